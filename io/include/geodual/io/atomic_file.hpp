@@ -1,0 +1,22 @@
+#pragma once
+// Outputs are written next to their target under a temporary name and renamed
+// at the end, so that a failure never leaves a half-written file behind.
+
+#include <filesystem>
+#include <functional>
+#include <initializer_list>
+#include <iosfwd>
+
+namespace geodual::io {
+
+/// Throws geodual::Error if `output` is (or links to) one of `inputs`.
+void refuse_to_overwrite_inputs(const std::filesystem::path& output,
+                                std::initializer_list<std::filesystem::path> inputs);
+
+/// Calls `write` on a binary stream to a temporary file in output's folder,
+/// flushes and checks it, then renames it over `output`. On any exception the
+/// temporary file is removed and `output` is left untouched.
+void write_file_atomically(const std::filesystem::path& output,
+                           const std::function<void(std::ostream&)>& write);
+
+}  // namespace geodual::io

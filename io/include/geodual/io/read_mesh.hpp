@@ -1,0 +1,41 @@
+#pragma once
+// Reading meshes exactly as the file stores them: vertex order and count kept,
+// polygons fan-triangulated, nothing cleaned. Every failure is a geodual::Error
+// whose message names the file and the problem.
+
+#include "geodual/io/mesh_format.hpp"
+#include "geodual/triangle_mesh.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace geodual::io {
+
+/// What the reader saw besides the mesh itself.
+struct ReadInfo {
+  MeshFormat format = MeshFormat::ply;
+  std::string encoding;               ///< e.g. "binary_little_endian float32", "ascii"
+  std::uintmax_t file_bytes = 0;
+  std::int64_t polygons_split = 0;    ///< polygons with more than 3 corners fan-triangulated
+  std::int64_t welded_corners = 0;    ///< STL: triangle corners merged into shared vertices
+  std::vector<std::string> notes;     ///< human-readable remarks, e.g. about welding
+};
+
+struct LoadedMesh {
+  TriangleMesh mesh;
+  ReadInfo info;
+};
+
+/// Reads OBJ, PLY, OFF, STL, glTF or GLB, chosen by the file's extension.
+LoadedMesh read_mesh(const std::filesystem::path& path);
+
+/// Reads from a buffer already in memory. `name` is used in error messages and,
+/// for .gltf, to resolve relative external buffers (empty: none may be external).
+LoadedMesh read_mesh_from_memory(std::span<const std::byte> data, MeshFormat format,
+                                 const std::filesystem::path& name);
+
+}  // namespace geodual::io

@@ -1,0 +1,77 @@
+#include "geodual/io/atomic_file.hpp"
+
+#include "geodual/error.hpp"
+
+#include <atomic>
+#include <fstream>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace geodual::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (!fs::exists(a, ec) || !fs::exists(b, ec)) {
+    // Not both on disk: compare the normalised absolute spellings.
+    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+  }
+  return fs::equivalent(a, b, ec);
+}
+
+fs::path temporary_sibling(const fs::path& output) {
+  static std::atomic<unsigned> counter{0};
+  fs::path tmp = output;
+  tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return tmp;
+}
+
+}  // namespace
+
+void refuse_to_overwrite_inputs(const fs::path& output, std::initializer_list<fs::path> inputs) {
+  for (const fs::path& input : inputs) {
+    if (same_file(output, input)) {
+      throw Error(output.string() + ": refusing to overwrite the input file; choose another output path");
+    }
+  }
+}
+
+void write_file_atomically(const fs::path& output,
+                           const std::function<void(std::ostream&)>& write) {
+  std::error_code ec;
+  if (fs::is_directory(output, ec)) {
+    throw Error(output.string() + ": is a directory, expected an output file path");
+  }
+  const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent, ec)) {
+    throw Error(output.string() + ": output folder '" + parent.string() + "' does not exist");
+  }
+  const fs::path tmp = temporary_sibling(output);
+  try {
+    {
+      std::ofstream stream(tmp, std::ios::binary | std::ios::trunc);
+      if (!stream) {
+        throw Error(output.string() + ": cannot create a file in '" + parent.string() +
+                    "' (permission denied or read-only?)");
+      }
+      write(stream);
+      stream.flush();
+      if (!stream) {
+        throw Error(output.string() + ": write failed (disk full?)");
+      }
+    }
+    fs::rename(tmp, output, ec);
+    if (ec) {
+      throw Error(output.string() + ": cannot replace the file: " + ec.message());
+    }
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace geodual::io
