@@ -19,4 +19,11 @@ class UsageError : public Error {
   using Error::Error;
 };
 
+/// The computation was cancelled through a progress callback: the CLI exits
+/// with status 3 and leaves no partial output.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace geodual

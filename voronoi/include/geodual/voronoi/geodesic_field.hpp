@@ -1,0 +1,119 @@
+#pragma once
+// Exact multi-source geodesic distances on a triangle mesh, computed with
+// window-VTP and Redundant Window Removal (Qin, Yu & Zhang, "Fast and
+// Memory-Efficient Voronoi Diagram Construction on Triangle Meshes", CGF 2017;
+// windows as in Surazhsky et al., "Fast Exact and Approximate Geodesics on
+// Meshes", SIGGRAPH 2005).
+//
+//   auto field = geodual::voronoi::compute_geodesic_field(mesh, sites);
+//   field.distance[v], field.nearest_site[v]     // exact, per vertex
+//   geodual::voronoi::query(field, mesh, point)  // any point of a valid triangle
+//
+// The surface is the mesh's triangles with their intrinsic edge lengths. Faces
+// with a repeated vertex index take no part; zero-area faces with distinct
+// vertices are crossed. Edges with three or more faces are treated as boundary
+// edges of each of their faces, so paths do not cross such an edge's interior
+// but may pass through its end points (every boundary or non-manifold vertex is
+// a pseudo-source, as every saddle vertex is).
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace geodual::voronoi {
+
+struct GeodesicOptions {
+  /// Free the windows that cannot matter for the Voronoi diagram as soon as
+  /// their faces are inactive (seed §3.2). Off keeps every window, as MMP and
+  /// [LCT11] do; distances and labels are the same either way.
+  bool remove_redundant_windows = true;
+  /// Stop with a geodual::Error when the windows held at one time need more
+  /// than this many bytes (a clear error instead of being killed for memory).
+  std::size_t window_memory_limit_bytes = std::size_t{8} << 30;
+  /// Called now and then with the fraction of faces reached, in [0, 1];
+  /// returning false cancels the computation (geodual::Cancelled is thrown).
+  std::function<bool(double fraction)> progress;
+};
+
+struct GeodesicStats {
+  std::int64_t windows_created = 0;   ///< windows that survived insertion on an edge
+  std::int64_t windows_stored = 0;    ///< windows held at the end
+  std::int64_t peak_windows = 0;      ///< most windows held at one time
+  std::int64_t peak_window_bytes = 0; ///< peak_windows times the size of one window
+  std::int64_t vertices_popped = 0;   ///< vertices taken from the priority queue to expand
+  std::int64_t pseudo_sources = 0;    ///< saddle / boundary vertices that emitted windows
+  std::int64_t faces_inactive = 0;    ///< faces that reached the inactive region
+  double setup_seconds = 0;           ///< topology, edge lengths, vertex classes
+  double propagation_seconds = 0;     ///< window-VTP including RWR
+  double total_seconds = 0;
+};
+
+/// One retained window, in the frame of its edge: the edge runs from
+/// `edge_vertices[e][0]` at x = 0 to `edge_vertices[e][1]` at x = length along
+/// the x axis; `edge_faces[e][0]` lies on the side y > 0. The window covers
+/// [b0, b1] and its distance at x is sigma + |(x, 0) - source|.
+struct EdgeWindow {
+  double b0 = 0, b1 = 0;
+  double source_x = 0, source_y = 0;  ///< unfolded (pseudo-)source
+  double sigma = 0;                   ///< distance from the real site to the pseudo-source
+  Index site = -1;
+};
+
+/// The result of compute_geodesic_field: plain data.
+struct GeodesicField {
+  /// Per mesh vertex: geodesic distance to the nearest site, +inf where no
+  /// site can be reached (other components, unreferenced vertices).
+  std::vector<double> distance;
+  /// Per mesh vertex: index of the nearest site, -1 where unreachable.
+  std::vector<Index> nearest_site;
+
+  /// The sites, as given.
+  std::vector<SurfacePoint> sites;
+
+  /// Propagation topology: edge e joins two vertices; its faces are -1 where
+  /// absent (boundary, non-manifold, or degenerate neighbour).
+  std::vector<std::array<Index, 2>> edge_vertices;
+  std::vector<std::array<Index, 2>> edge_faces;
+  std::vector<double> edge_length;
+  /// Per face, its edges: edge k joins corners k and (k + 1) mod 3; all -1 for
+  /// faces that take no part (a repeated vertex index).
+  std::vector<std::array<Index, 3>> face_edges;
+
+  /// Retained windows, grouped by edge and sorted along it: those of edge e are
+  /// windows[window_begin[e] .. window_begin[e + 1]).
+  std::vector<Index> window_begin;
+  std::vector<EdgeWindow> windows;
+
+  /// Per face: true where windows from different sites meet on the face's
+  /// edges or vertices (the face is crossed by a Voronoi boundary, seed
+  /// Definition 3.1). query() is exact inside these faces and at every vertex.
+  std::vector<bool> valid_face;
+
+  GeodesicStats stats;
+};
+
+/// Computes exact geodesic distances from every site. Throws geodual::Error for
+/// bad sites (index out of range, negative or non-normalised barycentric
+/// coordinates, a site on a face that takes no part or on an unreferenced
+/// vertex, two sites at the same point) and when the window memory limit is
+/// exceeded.
+GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                     const GeodesicOptions& options = {});
+
+struct PointDistance {
+  double distance = 0;
+  Index site = -1;
+};
+
+/// Distance and nearest site at any surface point: exact at vertices and inside
+/// valid faces; elsewhere (faces whose windows RWR freed) an upper bound
+/// through the face's vertices.
+PointDistance query(const GeodesicField& field, const TriangleMesh& mesh, const SurfacePoint& point);
+
+}  // namespace geodual::voronoi
