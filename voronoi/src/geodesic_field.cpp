@@ -1,0 +1,187 @@
+#include "geodual/voronoi/geodesic_field.hpp"
+
+#include "geodual/error.hpp"
+#include "propagation_mesh.hpp"
+#include "window_vtp.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+namespace geodual::voronoi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string site_name(std::size_t i) { return "site " + std::to_string(i); }
+
+/// Checks every site and brings it to a canonical form: a face point with two
+/// zero barycentric coordinates becomes a vertex site.
+std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail::PropagationMesh& pm,
+                                          std::span<const SurfacePoint> sites) {
+  std::vector<SurfacePoint> result(sites.begin(), sites.end());
+  for (std::size_t i = 0; i < result.size(); ++i) {
+    SurfacePoint& site = result[i];
+    if (site.kind == SurfacePoint::Kind::vertex) {
+      if (site.element < 0 || site.element >= mesh.num_vertices()) {
+        throw Error(site_name(i) + ": vertex index " + std::to_string(site.element) + " is out of range [0, " +
+                    std::to_string(mesh.num_vertices()) + ")");
+      }
+    } else {
+      if (site.element < 0 || site.element >= mesh.num_faces()) {
+        throw Error(site_name(i) + ": face index " + std::to_string(site.element) + " is out of range [0, " +
+                    std::to_string(mesh.num_faces()) + ")");
+      }
+      Eigen::Vector3d& b = site.barycentric;
+      if (!b.allFinite() || b.minCoeff() < -1e-12 || std::abs(b.sum() - 1) > 1e-9) {
+        throw Error(site_name(i) + ": barycentric coordinates (" + std::to_string(b[0]) + ", " +
+                    std::to_string(b[1]) + ", " + std::to_string(b[2]) +
+                    ") must be non-negative and sum to 1");
+      }
+      for (int c = 0; c < 3; ++c) b[c] = b[c] < 1e-14 ? 0.0 : b[c];
+      b /= b.sum();
+      if (!pm.included(site.element)) {
+        throw Error(site_name(i) + ": face " + std::to_string(site.element) +
+                    " repeats a vertex index and takes no part in the surface");
+      }
+      int nonzero = 0, corner = 0;
+      for (int c = 0; c < 3; ++c) {
+        if (b[c] > 0) ++nonzero, corner = c;
+      }
+      if (nonzero == 1) {
+        site = SurfacePoint::at_vertex(mesh.faces(site.element, corner));
+      } else if (!(pm.layout(site.element, 0).apex.y() > 0)) {
+        throw Error(site_name(i) + ": face " + std::to_string(site.element) +
+                    " has zero area; place the site on a neighbouring face");
+      }
+    }
+    if (site.kind == SurfacePoint::Kind::vertex &&
+        pm.vertex_face_begin[site.element] == pm.vertex_face_begin[site.element + 1]) {
+      throw Error(site_name(i) + ": vertex " + std::to_string(site.element) + " is used by no triangle");
+    }
+  }
+  // Two sites at the same point would have no cell between them.
+  std::vector<std::size_t> order(result.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<Eigen::Vector3d> positions(result.size());
+  for (std::size_t i = 0; i < result.size(); ++i) positions[i] = result[i].position(mesh);
+  auto less = [&](std::size_t a, std::size_t b) {
+    const Eigen::Vector3d &p = positions[a], &q = positions[b];
+    return p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : p.z() != q.z() ? p.z() < q.z() : a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    if (positions[order[i]] == positions[order[i - 1]]) {
+      throw Error(site_name(std::min(order[i], order[i - 1])) + " and " +
+                  site_name(std::max(order[i], order[i - 1])) + " are at the same point");
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                     const GeodesicOptions& options) {
+  const auto start = Clock::now();
+  const detail::PropagationMesh pm = detail::build_propagation_mesh(mesh);
+  GeodesicField field;
+  field.sites = validated_sites(mesh, pm, sites);
+  const double setup_seconds = seconds_since(start);
+
+  const auto propagation_start = Clock::now();
+  detail::WindowVtp vtp(pm, options);
+  vtp.add_sites(field.sites);
+  vtp.run();
+  field.stats = vtp.stats();
+  field.stats.setup_seconds = setup_seconds;
+  field.stats.propagation_seconds = seconds_since(propagation_start);
+
+  field.distance = vtp.distance();
+  field.nearest_site = vtp.label();
+  field.edge_vertices = pm.edge_vertices;
+  field.edge_faces = pm.edge_faces;
+  field.edge_length = pm.edge_length;
+  field.face_edges = pm.face_edges;
+  field.valid_face = vtp.valid_faces();
+
+  const detail::WindowStore& store = vtp.windows();
+  field.window_begin.assign(static_cast<std::size_t>(pm.num_edges()) + 1, 0);
+  field.windows.reserve(static_cast<std::size_t>(store.live()));
+  for (Index e = 0; e < pm.num_edges(); ++e) {
+    field.window_begin[e] = static_cast<Index>(field.windows.size());
+    for (Index id = store.head(e); id != -1; id = store[id].next) {
+      const detail::Window& w = store[id];
+      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, w.sigma, w.site});
+    }
+  }
+  field.window_begin.back() = static_cast<Index>(field.windows.size());
+  field.stats.total_seconds = seconds_since(start);
+  return field;
+}
+
+PointDistance query(const GeodesicField& field, const TriangleMesh& mesh, const SurfacePoint& point) {
+  if (point.kind == SurfacePoint::Kind::vertex) {
+    return {field.distance.at(point.element), field.nearest_site.at(point.element)};
+  }
+  const Index f = point.element;
+  PointDistance best{std::numeric_limits<double>::infinity(), -1};
+  auto consider = [&](double d, Index site) {
+    if (d < best.distance) best = {d, site};
+  };
+  // Through the face's corners (exact where the path passes a corner).
+  const Eigen::Vector3d p = point.position(mesh);
+  for (int c = 0; c < 3; ++c) {
+    const Index v = mesh.faces(f, c);
+    consider(field.distance[v] + (p - mesh.vertices.row(v).transpose()).norm(), field.nearest_site[v]);
+  }
+  if (field.face_edges[f][0] < 0) return best;
+  // Sites on the face itself or on its edges.
+  for (std::size_t i = 0; i < field.sites.size(); ++i) {
+    const SurfacePoint& s = field.sites[i];
+    if (s.kind != SurfacePoint::Kind::face) continue;
+    bool same_face = s.element == f;
+    if (!same_face) {
+      for (int k = 0; k < 3 && !same_face; ++k) {
+        const Index e = field.face_edges[f][k];
+        const Index other = field.edge_faces[e][field.edge_faces[e][0] == f ? 1 : 0];
+        same_face = other == s.element && s.barycentric.minCoeff() == 0;
+      }
+    }
+    if (same_face) consider((s.position(mesh) - p).norm(), static_cast<Index>(i));
+  }
+  // Through the windows entering the face: lay the face out on each edge's
+  // frame and look through the window's interval.
+  for (int k = 0; k < 3; ++k) {
+    const Index e = field.face_edges[f][k];
+    const int side = field.edge_faces[e][0] == f ? 0 : 1;
+    const Index v0 = field.edge_vertices[e][0], v1 = field.edge_vertices[e][1];
+    const Eigen::Vector3d a = mesh.vertices.row(v0).transpose(), b = mesh.vertices.row(v1).transpose();
+    const double length = field.edge_length[e];
+    if (!(length > 0)) continue;
+    const Eigen::Vector3d axis = (b - a) / (b - a).norm();
+    const Eigen::Vector3d r = p - a;
+    const double x = r.dot(axis);
+    const double y_abs = (r - x * axis).norm();
+    const double y = side == 0 ? y_abs : -y_abs;  // the face lies on its side of the edge
+    for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
+      const EdgeWindow& w = field.windows[i];
+      if ((w.source_y < 0) != (side == 0)) continue;  // leaves this face
+      // Where the segment from the source to the point crosses the edge.
+      const double t = -w.source_y / (y - w.source_y);
+      const double crossing = w.source_x + (x - w.source_x) * t;
+      if (crossing < w.b0 - 1e-12 * length || crossing > w.b1 + 1e-12 * length) continue;
+      consider(w.sigma + std::hypot(x - w.source_x, y - w.source_y), w.site);
+    }
+  }
+  return best;
+}
+
+}  // namespace geodual::voronoi

@@ -1,0 +1,182 @@
+#include "propagation_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace geodual::voronoi::detail {
+namespace {
+
+/// Twice the area of a triangle with side lengths a, b, c, by Kahan's
+/// cancellation-free form of Heron's formula (0 for impossible lengths).
+double twice_area_from_lengths(double a, double b, double c) {
+  if (a < b) std::swap(a, b);
+  if (b < c) std::swap(b, c);
+  if (a < b) std::swap(a, b);
+  const double product = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+  return product > 0 ? 0.5 * std::sqrt(product) : 0.0;
+}
+
+/// Interior angle at each corner of a face, from its planar layout.
+std::array<double, 3> corner_angles(const PropagationMesh& pm, Index face) {
+  const EdgeLayout l = pm.layout(face, 0);
+  const double at0 = std::atan2(l.apex.y(), l.apex.x());
+  const double at1 = std::atan2(l.apex.y(), l.length - l.apex.x());
+  return {at0, at1, std::max(0.0, std::numbers::pi - at0 - at1)};
+}
+
+/// Faces reachable from `start` by turning around `v` across shared edges.
+Index fan_size(const PropagationMesh& pm, Index v, Index start) {
+  Index visited = 1;
+  for (int direction = 0; direction < 2; ++direction) {
+    Index face = start;
+    int corner = 0;
+    while (pm.vertex(face, corner) != v) ++corner;
+    // The two local edges at corner c are c (c -> c+1) and c+2 (c+2 -> c).
+    int exit_edge_local = direction == 0 ? corner : (corner + 2) % 3;
+    for (;;) {
+      const Index e = pm.face_edges[face][exit_edge_local];
+      const int side = pm.side_of(e, face);
+      const Index next = pm.edge_faces[e][1 - side];
+      if (next < 0) break;
+      if (next == start) return visited;  // closed fan: each face counted once
+      ++visited;
+      // In `next`, leave through its other edge incident to v.
+      const int entry_local = pm.edge_local[e][1 - side];
+      int next_corner = 0;
+      while (pm.vertex(next, next_corner) != v) ++next_corner;
+      exit_edge_local = entry_local == next_corner ? (next_corner + 2) % 3 : next_corner;
+      face = next;
+    }
+  }
+  return visited;
+}
+
+}  // namespace
+
+EdgeLayout PropagationMesh::layout(Index face, int k) const {
+  const double length = edge_length[face_edges[face][k]];
+  const double next = edge_length[face_edges[face][(k + 1) % 3]];  // corners k+1, k+2
+  const double prev = edge_length[face_edges[face][(k + 2) % 3]];  // corners k+2, k
+  EdgeLayout l;
+  l.length = length;
+  if (length <= 0) return l;
+  // Law of cosines for the apex's x; its height from the stable area, which
+  // keeps needles and slivers accurate.
+  l.apex.x() = (length * length + prev * prev - next * next) / (2 * length);
+  l.apex.y() = twice_area_from_lengths(length, next, prev) / length;
+  return l;
+}
+
+PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
+  PropagationMesh pm;
+  pm.mesh = &mesh;
+  const Index num_vertices = mesh.num_vertices();
+  const Index num_faces = mesh.num_faces();
+  pm.face_edges.assign(num_faces, {-1, -1, -1});
+
+  // Half-edges of the included faces, sorted by their undirected vertex pair.
+  struct HalfEdge {
+    std::uint64_t key;
+    Index face;
+    std::int32_t local;
+  };
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(static_cast<std::size_t>(num_faces) * 3);
+  for (Index f = 0; f < num_faces; ++f) {
+    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a == b || b == c || c == a) continue;
+    ++pm.num_included_faces;
+    for (int k = 0; k < 3; ++k) {
+      const auto u = static_cast<std::uint64_t>(mesh.faces(f, k));
+      const auto w = static_cast<std::uint64_t>(mesh.faces(f, (k + 1) % 3));
+      half_edges.push_back({std::min(u, w) << 32 | std::max(u, w), f, k});
+    }
+  }
+  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.key != y.key ? x.key < y.key : (x.face != y.face ? x.face < y.face : x.local < y.local);
+  });
+
+  auto add_edge = [&](const HalfEdge& first, const HalfEdge* second) {
+    const Index e = static_cast<Index>(pm.edge_length.size());
+    const Index v0 = mesh.faces(first.face, first.local);
+    const Index v1 = mesh.faces(first.face, (first.local + 1) % 3);
+    pm.edge_vertices.push_back({v0, v1});
+    pm.edge_length.push_back((mesh.vertices.row(v1) - mesh.vertices.row(v0)).norm());
+    pm.face_edges[first.face][first.local] = e;
+    if (second != nullptr) {
+      pm.edge_faces.push_back({first.face, second->face});
+      pm.edge_local.push_back({static_cast<std::uint8_t>(first.local), static_cast<std::uint8_t>(second->local)});
+      pm.edge_reversed_in_face1.push_back(mesh.faces(second->face, second->local) == v1);
+      pm.face_edges[second->face][second->local] = e;
+    } else {
+      pm.edge_faces.push_back({first.face, -1});
+      pm.edge_local.push_back({static_cast<std::uint8_t>(first.local), 0});
+      pm.edge_reversed_in_face1.push_back(0);
+    }
+  };
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i + 1;
+    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) ++j;
+    if (j - i == 2) {
+      add_edge(half_edges[i], &half_edges[i + 1]);
+    } else {
+      // A boundary edge, or a non-manifold one: each face keeps its own copy.
+      for (std::size_t h = i; h < j; ++h) add_edge(half_edges[h], nullptr);
+    }
+    i = j;
+  }
+  half_edges.clear();
+  half_edges.shrink_to_fit();
+
+  // Vertex -> faces, by counting sort (faces in increasing order).
+  pm.vertex_face_begin.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!pm.included(f)) continue;
+    for (int k = 0; k < 3; ++k) ++pm.vertex_face_begin[mesh.faces(f, k) + 1];
+  }
+  for (Index v = 0; v < num_vertices; ++v) pm.vertex_face_begin[v + 1] += pm.vertex_face_begin[v];
+  pm.vertex_faces.resize(pm.vertex_face_begin.back());
+  {
+    std::vector<Index> fill(pm.vertex_face_begin.begin(), pm.vertex_face_begin.end() - 1);
+    for (Index f = 0; f < num_faces; ++f) {
+      if (!pm.included(f)) continue;
+      for (int k = 0; k < 3; ++k) pm.vertex_faces[fill[mesh.faces(f, k)]++] = f;
+    }
+  }
+
+  // Longest edge per face; angle sums; boundary vertices.
+  pm.face_longest_edge.assign(num_faces, 0.0);
+  std::vector<double> angle_sum(num_vertices, 0.0);
+  std::vector<std::uint8_t> on_boundary(num_vertices, 0);
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!pm.included(f)) continue;
+    const auto angles = corner_angles(pm, f);
+    for (int k = 0; k < 3; ++k) {
+      const Index e = pm.face_edges[f][k];
+      pm.face_longest_edge[f] = std::max(pm.face_longest_edge[f], pm.edge_length[e]);
+      angle_sum[mesh.faces(f, k)] += angles[k];
+      if (pm.edge_faces[e][1] < 0) {
+        on_boundary[pm.edge_vertices[e][0]] = 1;
+        on_boundary[pm.edge_vertices[e][1]] = 1;
+      }
+    }
+  }
+
+  // A vertex is a pseudo-source when shortest paths may bend around it: a
+  // saddle (angle sum > 2 pi), a boundary vertex, or a vertex where several
+  // fans meet. Flat vertices (within 1e-9 rad) count as saddles: an extra
+  // pseudo-source costs a little time but never accuracy.
+  constexpr double saddle_tolerance = 1e-9;
+  pm.is_pseudo_source.assign(num_vertices, 0);
+  for (Index v = 0; v < num_vertices; ++v) {
+    const Index begin = pm.vertex_face_begin[v], end = pm.vertex_face_begin[v + 1];
+    if (begin == end) continue;
+    const bool saddle = angle_sum[v] > 2 * std::numbers::pi - saddle_tolerance;
+    const bool several_fans = !on_boundary[v] && fan_size(pm, v, pm.vertex_faces[begin]) < end - begin;
+    pm.is_pseudo_source[v] = saddle || on_boundary[v] || several_fans;
+  }
+  return pm;
+}
+
+}  // namespace geodual::voronoi::detail

@@ -1,0 +1,105 @@
+#pragma once
+// The compact, intrinsic view of a triangle mesh that window propagation needs:
+// edges with their (at most two) faces and lengths, vertex -> face adjacency,
+// and which vertices are pseudo-sources. Built once per mesh; independent of
+// the sites.
+
+#include "geodual/triangle_mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace geodual::voronoi::detail {
+
+/// A face laid out in the plane for one of its edges: the edge runs from the
+/// origin (corner k) along the x axis to (length, 0) (corner k + 1), and the
+/// opposite corner k + 2 sits at `apex`, with apex.y() >= 0.
+struct EdgeLayout {
+  double length = 0;
+  Eigen::Vector2d apex = Eigen::Vector2d::Zero();
+};
+
+struct PropagationMesh {
+  const TriangleMesh* mesh = nullptr;
+
+  /// Per face, its three edges (edge k joins corners k and k + 1); all -1 for
+  /// faces with a repeated vertex index, which take no part.
+  std::vector<std::array<Index, 3>> face_edges;
+  /// Per edge: end vertices (v0 -> v1 is the direction of edge_faces[e][0]),
+  /// faces on the y > 0 side ([0]) and the y < 0 side ([1], or -1), and the
+  /// local index of the edge within each face.
+  std::vector<std::array<Index, 2>> edge_vertices;
+  std::vector<std::array<Index, 2>> edge_faces;
+  std::vector<std::array<std::uint8_t, 2>> edge_local;
+  /// True where face [1] runs along the edge from v1 to v0 (consistent
+  /// orientation); false where it runs v0 -> v1 like face [0].
+  std::vector<std::uint8_t> edge_reversed_in_face1;
+  std::vector<double> edge_length;
+
+  /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
+  std::vector<Index> vertex_face_begin;
+  std::vector<Index> vertex_faces;
+
+  /// Saddle (angle sum > 2 pi - tol), boundary or non-manifold vertices: paths
+  /// may bend around them, so they emit windows once their distance is final.
+  std::vector<std::uint8_t> is_pseudo_source;
+  /// Longest edge per face (0 for excluded faces); the RWR key uses it.
+  std::vector<double> face_longest_edge;
+
+  Index num_included_faces = 0;
+
+  Index num_vertices() const { return static_cast<Index>(vertex_face_begin.size()) - 1; }
+  Index num_faces() const { return static_cast<Index>(face_edges.size()); }
+  Index num_edges() const { return static_cast<Index>(edge_length.size()); }
+  bool included(Index face) const { return face_edges[face][0] >= 0; }
+
+  Index vertex(Index face, int corner) const { return mesh->faces(face, corner); }
+
+  /// Lays out face `face` for its local edge `k` using intrinsic edge lengths.
+  EdgeLayout layout(Index face, int k) const;
+  /// Which side of edge e face `face` is on: 0 or 1.
+  int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }
+};
+
+PropagationMesh build_propagation_mesh(const TriangleMesh& mesh);
+
+/// A whole face laid out in the plane: corner positions by corner index, in
+/// the frame of one of its edges (see EdgeLayout); counter-clockwise.
+struct FaceInPlane {
+  std::array<Eigen::Vector2d, 3> corner;
+};
+
+inline FaceInPlane lay_out_face(const PropagationMesh& pm, Index face, int k) {
+  const EdgeLayout l = pm.layout(face, k);
+  FaceInPlane plane;
+  plane.corner[k] = Eigen::Vector2d::Zero();
+  plane.corner[(k + 1) % 3] = Eigen::Vector2d(l.length, 0);
+  plane.corner[(k + 2) % 3] = l.apex;
+  return plane;
+}
+
+/// Coordinates of q (given in `plane`) in the frame of the face's local edge
+/// j: origin at corner j, x towards corner j + 1, the face on the y > 0 side.
+inline Eigen::Vector2d to_local_edge_frame(const FaceInPlane& plane, int j, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d origin = plane.corner[j];
+  Eigen::Vector2d u = plane.corner[(j + 1) % 3] - origin;
+  const double n = u.norm();
+  if (n > 0) u /= n;
+  const Eigen::Vector2d r = q - origin;
+  return {r.dot(u), u.x() * r.y() - u.y() * r.x()};
+}
+
+/// Position of a point given in a face's frame for its local edge k (see
+/// EdgeLayout), expressed in the canonical frame of that edge.
+inline Eigen::Vector2d face_frame_to_edge_frame(const PropagationMesh& pm, Index edge, int side,
+                                                const Eigen::Vector2d& p) {
+  const bool flip_x = side == 1 && pm.edge_reversed_in_face1[edge];
+  const double x = flip_x ? pm.edge_length[edge] - p.x() : p.x();
+  const double y = side == 0 ? p.y() : -p.y();
+  return {x, y};
+}
+
+}  // namespace geodual::voronoi::detail

@@ -1,0 +1,41 @@
+#pragma once
+// A window (Surazhsky et al. 2005, §3.1): an interval [b0, b1] of an edge
+// together with the unfolded image of the (pseudo-)source that reaches it
+// through one sequence of faces. Coordinates are in the canonical frame of
+// the edge (see PropagationMesh): the edge lies on the x axis from 0 to its
+// length. A source below the axis (y < 0) sends the window into face [0] of
+// the edge, a source above it into face [1].
+
+#include "geodual/triangle_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace geodual::voronoi::detail {
+
+struct Window {
+  double b0 = 0, b1 = 0;
+  double source_x = 0, source_y = 0;
+  double sigma = 0;
+  Index site = -1;
+  Index edge = -1;
+  Index next = -1;  ///< next window along the same edge, -1 at the end
+
+  /// Distance at abscissa x of the edge through this window.
+  double distance_at(double x) const {
+    const double dx = x - source_x;
+    return sigma + std::sqrt(dx * dx + source_y * source_y);
+  }
+
+  /// Smallest distance over [b0, b1].
+  double min_distance() const {
+    const double x = std::clamp(source_x, b0, b1);
+    return distance_at(x);
+  }
+
+  /// The side of the edge whose face the window enters: 0 or 1.
+  int entering_side() const { return source_y < 0 ? 0 : 1; }
+};
+
+}  // namespace geodual::voronoi::detail

@@ -1,0 +1,403 @@
+#include "window_vtp.hpp"
+
+#include "geodual/error.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace geodual::voronoi::detail {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// Relative tolerance (of an edge's length) for "a window reaches this end
+/// point" and "this vertex is visible through the window".
+constexpr double kEndpointTolerance = 1e-12;
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+}  // namespace
+
+WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options)
+    : pm_(mesh),
+      options_(options),
+      distance_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
+      label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
+      best_key_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
+      emitted_at_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
+      popped_(static_cast<std::size_t>(mesh.num_vertices()), 0),
+      face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
+      store_(mesh.num_edges()) {
+  window_limit_ = static_cast<std::int64_t>(options.window_memory_limit_bytes / (sizeof(Window) + 1));
+}
+
+// ---------------------------------------------------------------- seeding --
+
+void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites) {
+  for (Index i = 0; i < static_cast<Index>(sites.size()); ++i) {
+    const SurfacePoint& site = sites[i];
+    if (site.kind == SurfacePoint::Kind::vertex) {
+      add_vertex_site(site.element, i);
+    } else {
+      add_face_site(site.element, site.barycentric, i);
+    }
+  }
+}
+
+void WindowVtp::add_vertex_site(Index vertex, Index site) {
+  relax(vertex, 0.0, site);
+  emitted_at_[vertex] = 0.0;
+  emit_from_vertex(vertex, 0.0, site);
+}
+
+void WindowVtp::add_face_site(Index face, const Eigen::Vector3d& barycentric, Index site) {
+  const FaceInPlane plane = lay_out_face(pm_, face, 0);
+  const Eigen::Vector2d p =
+      barycentric[0] * plane.corner[0] + barycentric[1] * plane.corner[1] + barycentric[2] * plane.corner[2];
+  for (int c = 0; c < 3; ++c) relax(pm_.vertex(face, c), (p - plane.corner[c]).norm(), site);
+
+  int zero_corner = -1;
+  for (int c = 0; c < 3; ++c) {
+    if (barycentric[c] == 0) zero_corner = c;
+  }
+  if (zero_corner < 0) {
+    emit_from_point_in_face(face, plane, p, -1, 0.0, site);
+    return;
+  }
+  // On the edge opposite `zero_corner`: the site lies in both faces of it.
+  const int k = (zero_corner + 1) % 3;
+  emit_from_point_in_face(face, plane, p, k, 0.0, site);
+  const Index e = pm_.face_edges[face][k];
+  const int side = pm_.side_of(e, face);
+  const Index other = pm_.edge_faces[e][1 - side];
+  if (other < 0) return;
+  const double x_face = to_local_edge_frame(plane, k, p).x();
+  const double x_edge = face_frame_to_edge_frame(pm_, e, side, {x_face, 0.0}).x();
+  const int other_k = pm_.edge_local[e][1 - side];
+  const bool flip = (1 - side) == 1 && pm_.edge_reversed_in_face1[e];
+  const Eigen::Vector2d p_other(flip ? pm_.edge_length[e] - x_edge : x_edge, 0.0);
+  const FaceInPlane other_plane = lay_out_face(pm_, other, other_k);
+  const int apex = (other_k + 2) % 3;
+  relax(pm_.vertex(other, apex), (p_other - other_plane.corner[apex]).norm(), site);
+  emit_from_point_in_face(other, other_plane, p_other, other_k, 0.0, site);
+}
+
+void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, const Eigen::Vector2d& source,
+                                        int skip_local_edge, double sigma, Index site) {
+  for (int j = 0; j < 3; ++j) {
+    if (j == skip_local_edge) continue;
+    const Index e = pm_.face_edges[face][j];
+    const Eigen::Vector2d local = to_local_edge_frame(plane, j, source);
+    if (!(local.y() > 0)) continue;  // on the edge's line: reaches only its end points
+    const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
+    submit({0.0, pm_.edge_length[e], s.x(), s.y(), sigma, site, e, -1});
+  }
+}
+
+void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
+  for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
+    const Index f = pm_.vertex_faces[i];
+    int corner = 0;
+    while (pm_.vertex(f, corner) != v) ++corner;
+    const int k = (corner + 1) % 3;  // the edge opposite v
+    const Index e = pm_.face_edges[f][k];
+    const EdgeLayout l = pm_.layout(f, k);
+    if (!(l.apex.y() > 0) || !(l.length > 0)) {
+      // v lies on the line of its opposite edge: only the end points are reached.
+      relax(pm_.vertex(f, k), sigma + l.apex.norm(), site);
+      relax(pm_.vertex(f, (k + 1) % 3), sigma + (l.apex - Eigen::Vector2d(l.length, 0)).norm(), site);
+      continue;
+    }
+    const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, f), l.apex);
+    submit({0.0, l.length, s.x(), s.y(), sigma, site, e, -1});
+  }
+}
+
+// ------------------------------------------------------------ propagation --
+
+void WindowVtp::submit(Window w) {
+  const Index e = w.edge;
+  const double length = pm_.edge_length[e];
+  const Index v0 = pm_.edge_vertices[e][0], v1 = pm_.edge_vertices[e][1];
+  if (!(w.b1 > w.b0)) return;
+  if (w.source_y == 0 || !(length > 0)) {
+    // Paths along the edge's line: they matter only at its end points.
+    if (w.b0 <= kEndpointTolerance * length) relax(v0, w.distance_at(0), w.site);
+    if (w.b1 >= length * (1 - kEndpointTolerance)) relax(v1, w.distance_at(length), w.site);
+    return;
+  }
+  // Xin & Wang's filter: if the path through an end vertex along the edge is
+  // no longer at the window's far end, it is no longer anywhere on the window
+  // (the difference is monotone along the edge), and neither beyond it.
+  if (distance_[v0] + w.b1 < w.distance_at(w.b1)) return;
+  if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0)) return;
+
+  created_.clear();
+  store_.insert(w, length, created_);
+  stats_.windows_created += static_cast<std::int64_t>(created_.size());
+  if (store_.live() > window_limit_) {
+    throw Error("geodesic propagation needs more than the window memory limit of " +
+                std::to_string(options_.window_memory_limit_bytes >> 20) +
+                " MiB; raise the limit, use fewer sites, or keep redundant window removal on");
+  }
+  for (const Index id : created_) {
+    const Window& piece = store_[id];
+    if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0), piece.site);
+    if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length), piece.site);
+    schedule(id);
+  }
+}
+
+void WindowVtp::schedule(Index id) {
+  const Window& w = store_[id];
+  const Index face = pm_.edge_faces[w.edge][w.entering_side()];
+  if (face < 0) return;
+  if (face_flags_[face] & kTraversed) {
+    if (!store_.queued(id)) {
+      store_.set_queued(id, true);
+      fifo_.push_back(id);
+    }
+    return;
+  }
+  // A wavefront window: its edge's end points wait in the vertex queue.
+  const double key = w.min_distance();
+  push_expand(pm_.edge_vertices[w.edge][0], key);
+  push_expand(pm_.edge_vertices[w.edge][1], key);
+}
+
+void WindowVtp::propagate(Index id) {
+  const Window w = store_[id];  // a copy: submit() may grow the pool
+  const Index e = w.edge;
+  const int side = w.entering_side();
+  const Index g = pm_.edge_faces[e][side];
+  if (g < 0) return;
+  const int k = pm_.edge_local[e][side];
+  const EdgeLayout l = pm_.layout(g, k);
+  const double length = l.length;
+
+  // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex
+  // above the axis, the source below it.
+  const bool flip = side == 1 && pm_.edge_reversed_in_face1[e];
+  const Eigen::Vector2d s(flip ? length - w.source_x : w.source_x, side == 0 ? w.source_y : -w.source_y);
+  const double b0 = flip ? length - w.b1 : w.b0;
+  const double b1 = flip ? length - w.b0 : w.b1;
+  if (!(s.y() < 0)) return;
+  const Eigen::Vector2d a(0, 0), b(length, 0), c = l.apex;
+
+  // Where the ray from the source through C crosses the edge.
+  const double t = -s.y() / (c.y() - s.y());
+  const double x_c = s.x() + (c.x() - s.x()) * t;
+  const double tolerance = kEndpointTolerance * length;
+  if (x_c >= b0 - tolerance && x_c <= b1 + tolerance) {
+    relax(pm_.vertex(g, (k + 2) % 3), w.sigma + (c - s).norm(), w.site);
+  }
+
+  // Child windows: the part of the cone left of C lands on edge C -> A
+  // (local edge k + 2), the part right of C on edge B -> C (local edge k + 1).
+  auto emit_child = [&](int j, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double x_lo, double x_hi) {
+    const Index ej = pm_.face_edges[g][j];
+    const double len = pm_.edge_length[ej];
+    const Eigen::Vector2d pq = q - p;
+    const double pq_norm = pq.norm();
+    if (!(len > 0) || !(pq_norm > 0)) return;
+    auto hit = [&](double x) {
+      // The ray from s through (x, 0) meets line p + lambda (q - p) at lambda.
+      const Eigen::Vector2d d(x - s.x(), -s.y());
+      const double den = cross(pq, d);
+      return den != 0 ? std::clamp(cross(s - p, d) / den, 0.0, 1.0) : std::numeric_limits<double>::quiet_NaN();
+    };
+    const double l0 = hit(x_lo), l1 = hit(x_hi);
+    if (std::isnan(l0) || std::isnan(l1)) return;
+    const double lo = std::min(l0, l1) * len, hi = std::max(l0, l1) * len;
+    if (hi - lo <= 1e-12 * len) return;
+    const Eigen::Vector2d u = pq / pq_norm;
+    const Eigen::Vector2d r = s - p;
+    const Eigen::Vector2d source_local(r.dot(u), u.x() * r.y() - u.y() * r.x());
+    const int side_j = pm_.side_of(ej, g);
+    const Eigen::Vector2d src = face_frame_to_edge_frame(pm_, ej, side_j, source_local);
+    const bool flip_j = side_j == 1 && pm_.edge_reversed_in_face1[ej];
+    submit({flip_j ? len - hi : lo, flip_j ? len - lo : hi, src.x(), src.y(), w.sigma, w.site, ej, -1});
+  };
+  if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
+  if (x_c < b1) emit_child((k + 1) % 3, b, c, std::max(b0, x_c), b1);
+}
+
+void WindowVtp::drain_fifo() {
+  while (fifo_head_ < fifo_.size()) {
+    const Index id = fifo_[fifo_head_++];
+    if (!store_.queued(id)) continue;  // freed, or a second entry
+    store_.set_queued(id, false);
+    propagate(id);
+  }
+  fifo_.clear();
+  fifo_head_ = 0;
+}
+
+void WindowVtp::expand(Index v) {
+  popped_[v] = 1;
+  ++stats_.vertices_popped;
+  new_faces_.clear();
+  for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
+    const Index f = pm_.vertex_faces[i];
+    if (face_flags_[f] & kTraversed) continue;
+    face_flags_[f] |= kTraversed;
+    ++faces_traversed_;
+    new_faces_.push_back(f);
+  }
+  // Step 3: the windows waiting on the new faces' edges go in.
+  for (const Index f : new_faces_) {
+    for (int k = 0; k < 3; ++k) {
+      const Index e = pm_.face_edges[f][k];
+      const int side = pm_.side_of(e, f);
+      for (Index id = store_.head(e); id != -1; id = store_[id].next) {
+        if (store_[id].entering_side() == side && !store_.queued(id)) {
+          store_.set_queued(id, true);
+          fifo_.push_back(id);
+        }
+      }
+    }
+  }
+  drain_fifo();
+  // Step 6: the new faces join the inactive-region queue.
+  if (options_.remove_redundant_windows) {
+    for (const Index f : new_faces_) push_face_key(f);
+  }
+}
+
+void WindowVtp::relax(Index v, double d, Index site) {
+  if (!(d < distance_[v])) return;
+  const bool first_time = distance_[v] == kInfinity;
+  distance_[v] = d;
+  label_[v] = site;
+  if (pm_.is_pseudo_source[v]) events_.push({d, v, EventKind::emit});
+  if (first_time && options_.remove_redundant_windows) {
+    for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
+      const Index f = pm_.vertex_faces[i];
+      if (face_flags_[f] & kTraversed) push_face_key(f);
+    }
+  }
+}
+
+void WindowVtp::push_expand(Index v, double key) {
+  if (popped_[v] || !(key < best_key_[v])) return;
+  best_key_[v] = key;
+  events_.push({key, v, EventKind::expand});
+}
+
+bool WindowVtp::pop_event(Event& event) {
+  while (!events_.empty()) {
+    event = events_.top();
+    events_.pop();
+    const Index v = event.vertex;
+    if (event.kind == EventKind::expand) {
+      if (!popped_[v] && event.key == best_key_[v]) return true;
+    } else if (event.key == distance_[v] && emitted_at_[v] > distance_[v]) {
+      return true;
+    }
+  }
+  return false;
+}
+
+double WindowVtp::next_event_key() {
+  while (!events_.empty()) {
+    const Event& event = events_.top();
+    const Index v = event.vertex;
+    const bool live = event.kind == EventKind::expand
+                          ? (!popped_[v] && event.key == best_key_[v])
+                          : (event.key == distance_[v] && emitted_at_[v] > distance_[v]);
+    if (live) return event.key;
+    events_.pop();
+  }
+  return kInfinity;
+}
+
+// --------------------------------------------------------------------- RWR --
+
+void WindowVtp::push_face_key(Index face) {
+  if (face_flags_[face] & kKeyPushed) return;
+  double d_min = kInfinity;
+  for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
+  if (d_min == kInfinity) return;  // pushed when a corner is first reached
+  face_flags_[face] |= kKeyPushed;
+  face_events_.push({d_min + pm_.face_longest_edge[face], face});
+}
+
+bool WindowVtp::face_is_redundant(Index face) const {
+  const Index site = label_[pm_.vertex(face, 0)];
+  if (site < 0) return false;
+  for (int c = 1; c < 3; ++c) {
+    if (label_[pm_.vertex(face, c)] != site) return false;
+  }
+  for (int k = 0; k < 3; ++k) {
+    for (Index id = store_.head(pm_.face_edges[face][k]); id != -1; id = store_[id].next) {
+      if (store_[id].site != site) return false;
+    }
+  }
+  return true;
+}
+
+void WindowVtp::remove_redundant_windows(double lower_bound) {
+  // Proposition 3.1: with d_min(f) taken from f's vertices (an upper bound of
+  // the true minimum over f), no window yet to come, all of which are at least
+  // `lower_bound` away, can lower any distance on f's edges once
+  // d_min(f) + |e_max(f)| <= lower_bound.
+  while (!face_events_.empty() && face_events_.top().key <= lower_bound) {
+    const Index f = face_events_.top().face;
+    face_events_.pop();
+    if (face_flags_[f] & kInactive) continue;
+    face_flags_[f] |= kInactive;
+    ++stats_.faces_inactive;
+    if (!face_is_redundant(f)) continue;
+    face_flags_[f] |= kRedundant;
+    for (int k = 0; k < 3; ++k) {
+      const Index e = pm_.face_edges[f][k];
+      const Index other = pm_.edge_faces[e][1 - pm_.side_of(e, f)];
+      if (other < 0 || ((face_flags_[other] & kInactive) && (face_flags_[other] & kRedundant))) {
+        store_.clear_edge(e);
+      }
+    }
+  }
+}
+
+// -------------------------------------------------------------- main loop --
+
+void WindowVtp::report_progress() {
+  if (!options_.progress || (++steps_ & 1023) != 0) return;
+  const double fraction = pm_.num_included_faces > 0
+                              ? static_cast<double>(faces_traversed_) / pm_.num_included_faces
+                              : 1.0;
+  if (!options_.progress(fraction)) throw Cancelled("geodesic computation cancelled");
+}
+
+void WindowVtp::run() {
+  drain_fifo();
+  Event event{};
+  while (pop_event(event)) {
+    if (event.kind == EventKind::emit) {
+      emitted_at_[event.vertex] = event.key;
+      ++stats_.pseudo_sources;
+      emit_from_vertex(event.vertex, event.key, label_[event.vertex]);
+      drain_fifo();
+    } else {
+      expand(event.vertex);
+    }
+    if (options_.remove_redundant_windows) remove_redundant_windows(next_event_key());
+    report_progress();
+  }
+  if (options_.remove_redundant_windows) remove_redundant_windows(kInfinity);
+  if (options_.progress && !options_.progress(1.0)) throw Cancelled("geodesic computation cancelled");
+  stats_.windows_stored = store_.live();
+  stats_.peak_windows = store_.peak();
+  stats_.peak_window_bytes = store_.peak() * static_cast<std::int64_t>(sizeof(Window) + 1);
+}
+
+std::vector<bool> WindowVtp::valid_faces() const {
+  std::vector<bool> valid(static_cast<std::size_t>(pm_.num_faces()), false);
+  for (Index f = 0; f < pm_.num_faces(); ++f) {
+    if (!pm_.included(f) || label_[pm_.vertex(f, 0)] < 0) continue;
+    valid[f] = (face_flags_[f] & kInactive) ? !(face_flags_[f] & kRedundant) : !face_is_redundant(f);
+  }
+  return valid;
+}
+
+}  // namespace geodual::voronoi::detail

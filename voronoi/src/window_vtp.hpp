@@ -1,0 +1,108 @@
+#pragma once
+// window-VTP (Qin, Yu & Zhang 2017, Algorithm 2): multi-source exact geodesics
+// by vertex-sorted triangle propagation, with Redundant Window Removal.
+//
+// One priority queue holds vertices keyed by the smallest distance of the
+// waiting windows on their edges (§4.2), plus pseudo-source events keyed by a
+// saddle/boundary vertex's distance (emitted once that distance is final).
+// Popping a vertex adds its untraversed faces to the traversed area R and
+// propagates the windows waiting on their edges through R with a FIFO until
+// they reach the wavefront or die (Step 3). A second queue holds faces keyed
+// by d_min(f) + |e_max(f)|; a face whose key is <= the smallest key left in
+// the first queue is inactive (Proposition 3.1) and, if redundant, its edges'
+// windows are freed (Procedure 1, Step 4).
+
+#include "geodual/voronoi/geodesic_field.hpp"
+#include "propagation_mesh.hpp"
+#include "window_store.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <queue>
+#include <vector>
+
+namespace geodual::voronoi::detail {
+
+class WindowVtp {
+ public:
+  WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options);
+
+  /// Seeds the propagation from the sites (already validated; index = label).
+  void add_sites(const std::vector<SurfacePoint>& sites);
+  /// Runs the propagation to the end.
+  void run();
+
+  const std::vector<double>& distance() const { return distance_; }
+  const std::vector<Index>& label() const { return label_; }
+  const WindowStore& windows() const { return store_; }
+  /// Per face: windows of different sites meet on its edges or vertices.
+  std::vector<bool> valid_faces() const;
+  const GeodesicStats& stats() const { return stats_; }
+
+ private:
+  enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
+  enum class EventKind : std::uint8_t { expand = 0, emit = 1 };
+  struct Event {
+    double key;
+    Index vertex;
+    EventKind kind;
+    bool operator>(const Event& o) const {
+      if (key != o.key) return key > o.key;
+      if (kind != o.kind) return kind > o.kind;
+      return vertex > o.vertex;
+    }
+  };
+  struct FaceEvent {
+    double key;
+    Index face;
+    bool operator>(const FaceEvent& o) const { return key != o.key ? key > o.key : face > o.face; }
+  };
+
+  void add_vertex_site(Index vertex, Index site);
+  void add_face_site(Index face, const Eigen::Vector3d& barycentric, Index site);
+  /// Windows from a point source at `source` (in the face's planar layout
+  /// `plane`) onto the face's edges other than local edge `skip_local_edge`.
+  void emit_from_point_in_face(Index face, const FaceInPlane& plane, const Eigen::Vector2d& source,
+                               int skip_local_edge, double sigma, Index site);
+  /// Pseudo-source (or vertex site) v: windows on the edges opposite v.
+  void emit_from_vertex(Index v, double sigma, Index site);
+
+  void submit(Window window);
+  void schedule(Index id);
+  void propagate(Index id);
+  void drain_fifo();
+  void expand(Index v);
+  void relax(Index v, double d, Index site);
+  void push_expand(Index v, double key);
+  void push_face_key(Index face);
+  bool pop_event(Event& event);
+  double next_event_key();
+  void remove_redundant_windows(double lower_bound);
+  bool face_is_redundant(Index face) const;
+  void report_progress();
+
+  const PropagationMesh& pm_;
+  const GeodesicOptions& options_;
+  GeodesicStats stats_;
+
+  std::vector<double> distance_;
+  std::vector<Index> label_;
+  std::vector<double> best_key_;
+  std::vector<double> emitted_at_;
+  std::vector<std::uint8_t> popped_;
+  std::vector<std::uint8_t> face_flags_;
+  Index faces_traversed_ = 0;
+
+  WindowStore store_;
+  std::priority_queue<Event, std::vector<Event>, std::greater<>> events_;
+  std::priority_queue<FaceEvent, std::vector<FaceEvent>, std::greater<>> face_events_;
+  std::vector<Index> fifo_;
+  std::size_t fifo_head_ = 0;
+  std::vector<Index> created_;     // scratch for WindowStore::insert
+  std::vector<Index> new_faces_;   // scratch for expand
+  std::int64_t window_limit_ = 0;  // windows allowed at once
+  std::int64_t steps_ = 0;
+};
+
+}  // namespace geodual::voronoi::detail
