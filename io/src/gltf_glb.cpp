@@ -1,0 +1,140 @@
+#include "gltf_glb.hpp"
+
+#include "geodual/error.hpp"
+#include "gltf_constants.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+
+namespace geodual::io::detail {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "GLB is little-endian; this code reads and writes it in native order");
+
+std::uint32_t load_u32(std::span<const std::byte> data, std::size_t offset) {
+  std::uint32_t value = 0;
+  std::memcpy(&value, data.data() + offset, sizeof value);
+  return value;
+}
+
+void store_u32(std::vector<std::byte>& out, std::uint32_t value) {
+  const auto* bytes = reinterpret_cast<const std::byte*>(&value);
+  out.insert(out.end(), bytes, bytes + sizeof value);
+}
+
+std::string chunk_type_name(std::uint32_t type) {
+  std::string name;
+  for (int shift = 0; shift < 32; shift += 8) {
+    const auto c = static_cast<unsigned char>((type >> shift) & 0xFF);
+    name += (c >= 0x20 && c < 0x7F) ? static_cast<char>(c) : '?';
+  }
+  return name;
+}
+
+[[noreturn]] void fail(std::string_view where, const std::string& what) {
+  throw Error(std::string(where) + ": " + what);
+}
+
+}  // namespace
+
+GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where) {
+  using namespace gltf;
+  if (data.size() < glb_header_size) {
+    fail(where, "truncated GLB: " + std::to_string(data.size()) +
+                    " bytes, shorter than the 12-byte header");
+  }
+  if (load_u32(data, 0) != glb_magic) {
+    fail(where, "not a GLB file (the first 4 bytes are not 'glTF')");
+  }
+  if (const std::uint32_t version = load_u32(data, 4); version != glb_version) {
+    fail(where, "unsupported GLB version " + std::to_string(version) + " (only glTF 2.0 is read)");
+  }
+  const std::uint32_t declared_length = load_u32(data, 8);
+  if (declared_length > data.size()) {
+    fail(where, "truncated GLB: the header declares " + std::to_string(declared_length) +
+                    " bytes but the data has " + std::to_string(data.size()));
+  }
+  if (declared_length < data.size()) {
+    fail(where, "GLB header declares " + std::to_string(declared_length) +
+                    " bytes but the data has " + std::to_string(data.size()) +
+                    " (trailing bytes after the GLB)");
+  }
+
+  GlbChunks chunks;
+  bool have_json = false;
+  std::size_t offset = glb_header_size;
+  for (int chunk = 0; offset < data.size(); ++chunk) {
+    if (data.size() - offset < glb_chunk_header_size) {
+      fail(where, "truncated GLB: chunk " + std::to_string(chunk) + " header at byte " +
+                      std::to_string(offset) + " runs past the end");
+    }
+    const std::uint32_t length = load_u32(data, offset);
+    const std::uint32_t type = load_u32(data, offset + 4);
+    offset += glb_chunk_header_size;
+    if (length > data.size() - offset) {
+      fail(where, "truncated GLB: chunk " + std::to_string(chunk) + " ('" + chunk_type_name(type) +
+                      "') declares " + std::to_string(length) + " bytes but only " +
+                      std::to_string(data.size() - offset) + " remain");
+    }
+    const std::span<const std::byte> payload = data.subspan(offset, length);
+    offset += length;
+
+    if (chunk == 0) {
+      if (type != glb_chunk_json) {
+        fail(where, "the first GLB chunk must be JSON, found '" + chunk_type_name(type) + "'");
+      }
+      chunks.json = payload;
+      have_json = true;
+    } else if (type == glb_chunk_json) {
+      fail(where, "GLB has a second JSON chunk (chunk " + std::to_string(chunk) + ")");
+    } else if (type == glb_chunk_bin) {
+      if (chunk != 1) {
+        fail(where, "the GLB BIN chunk must be the second chunk, found it as chunk " +
+                        std::to_string(chunk));
+      }
+      chunks.bin = payload;
+    }
+    // Chunks of other types are extensions' business: the spec says to skip them.
+  }
+  if (!have_json) fail(where, "GLB has no JSON chunk");
+  return chunks;
+}
+
+std::vector<std::byte> assemble_glb(std::string_view json, std::span<const std::byte> bin) {
+  using namespace gltf;
+  const auto padded = [](std::size_t n) { return (n + 3) / 4 * 4; };
+  const std::size_t json_padded = padded(json.size());
+  const std::size_t bin_padded = padded(bin.size());
+  const std::size_t total = glb_header_size + glb_chunk_header_size + json_padded +
+                            (bin.empty() ? 0 : glb_chunk_header_size + bin_padded);
+  if (total > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("glTF output: " + std::to_string(total) +
+                " bytes do not fit a GLB file (at most 4 GiB); write fewer or smaller meshes");
+  }
+
+  std::vector<std::byte> out;
+  out.reserve(total);
+  store_u32(out, glb_magic);
+  store_u32(out, glb_version);
+  store_u32(out, static_cast<std::uint32_t>(total));
+
+  store_u32(out, static_cast<std::uint32_t>(json_padded));
+  store_u32(out, glb_chunk_json);
+  const auto* json_bytes = reinterpret_cast<const std::byte*>(json.data());
+  out.insert(out.end(), json_bytes, json_bytes + json.size());
+  out.resize(out.size() + json_padded - json.size(), std::byte{' '});
+
+  if (!bin.empty()) {
+    store_u32(out, static_cast<std::uint32_t>(bin_padded));
+    store_u32(out, glb_chunk_bin);
+    out.insert(out.end(), bin.begin(), bin.end());
+    out.resize(out.size() + bin_padded - bin.size(), std::byte{0});
+  }
+  return out;
+}
+
+}  // namespace geodual::io::detail
