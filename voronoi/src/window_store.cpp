@@ -11,10 +11,14 @@ namespace {
 /// replace it; re-derived copies of one window then never displace each other.
 constexpr double kTieMargin = 1e-13;
 
+/// f(x) = d1(x) - d2(x).
+double difference(const Window& w1, const Window& w2, double x) { return w1.distance_at(x) - w2.distance_at(x); }
+
 /// Abscissas in (lo, hi) where the two windows' distances are equal: the
 /// roots of sigma1 + |x - s1| = sigma2 + |x - s2|, found by squaring twice
-/// (a quadratic whose spurious roots are harmless: every sub-interval is
-/// decided by evaluating both windows) and polished with Newton steps.
+/// (a quadratic, whose spurious roots are harmless: every sub-interval is then
+/// decided by evaluating both windows), polished with Newton steps, and backed
+/// by bisection wherever the difference changes sign but no root was found.
 int crossings(const Window& w1, const Window& w2, double lo, double hi, std::array<double, 2>& roots) {
   const double shift = 0.5 * (lo + hi);  // work near the interval for precision
   const double a1 = w1.source_x - shift, a2 = w2.source_x - shift;
@@ -33,19 +37,24 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
   if (std::abs(qa) <= 1e-14 * scale) {
     if (qb != 0) candidates[found++] = -qc / qb;
   } else {
-    const double disc = qb * qb - 4 * qa * qc;
+    double disc = qb * qb - 4 * qa * qc;
+    // Equal sigmas give a double root whose discriminant rounds either way.
+    if (disc < 0 && disc > -1e-10 * (qb * qb + std::abs(4 * qa * qc))) disc = 0;
     if (disc >= 0) {
       const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
-      if (q != 0) candidates[found++] = q / qa;
-      if (q != 0) candidates[found++] = qc / q;
-      else candidates[found++] = -qb / (2 * qa);
+      if (q != 0) {
+        candidates[found++] = q / qa;
+        candidates[found++] = qc / q;
+      } else {
+        candidates[found++] = -qb / (2 * qa);
+      }
     }
   }
   int count = 0;
   for (int i = 0; i < found; ++i) {
     double x = candidates[i] + shift;
     if (!std::isfinite(x)) continue;
-    for (int step = 0; step < 2; ++step) {
+    for (int step = 0; step < 3; ++step) {
       const double r1 = std::sqrt((x - w1.source_x) * (x - w1.source_x) + h1);
       const double r2 = std::sqrt((x - w2.source_x) * (x - w2.source_x) + h2);
       const double f = (w1.sigma + r1) - (w2.sigma + r2);
@@ -53,7 +62,24 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
       if (df == 0) break;
       x -= f / df;
     }
-    if (x > lo && x < hi) roots[count++] = x;
+    if (x > lo && x < hi && (count == 0 || x != roots[0])) roots[count++] = x;
+  }
+  if (count == 0) {
+    double f_lo = difference(w1, w2, lo), f_hi = difference(w1, w2, hi);
+    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) {
+      double a = lo, b = hi;
+      for (int i = 0; i < 60 && b - a > 0; ++i) {
+        const double m = 0.5 * (a + b);
+        const double f_m = difference(w1, w2, m);
+        if ((f_m < 0) == (f_lo < 0)) {
+          a = m;
+          f_lo = f_m;
+        } else {
+          b = m;
+        }
+      }
+      roots[count++] = 0.5 * (a + b);
+    }
   }
   if (count == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
   return count;
@@ -90,6 +116,7 @@ void WindowStore::clear_edge(Index edge) {
     id = next;
   }
   head_[edge] = -1;
+  edge_site_[edge] = kNoSite;
 }
 
 void WindowStore::push_segment(double lo, double hi, int owner) {
@@ -121,6 +148,12 @@ void WindowStore::split_overlap(const Window& candidate, int k, double lo, doubl
 void WindowStore::insert(const Window& candidate, double edge_length, std::vector<Index>& created) {
   min_length_ = 1e-12 * edge_length;
   const Index edge = candidate.edge;
+  Index& site_summary = edge_site_[edge];
+  if (site_summary == kNoSite) {
+    site_summary = candidate.site;
+  } else if (site_summary != candidate.site) {
+    site_summary = kMixedSites;
+  }
   Index prev = -1;
   Index cur = head_[edge];
   while (cur != -1 && pool_[cur].b1 <= candidate.b0) {

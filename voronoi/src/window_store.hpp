@@ -15,7 +15,11 @@ namespace geodual::voronoi::detail {
 
 class WindowStore {
  public:
-  explicit WindowStore(Index num_edges) : head_(static_cast<std::size_t>(num_edges), -1) {}
+  explicit WindowStore(Index num_edges)
+      : head_(static_cast<std::size_t>(num_edges), -1), edge_site_(static_cast<std::size_t>(num_edges), kNoSite) {}
+
+  static constexpr Index kNoSite = -1;
+  static constexpr Index kMixedSites = -2;
 
   Index head(Index edge) const { return head_[edge]; }
   const Window& operator[](Index id) const { return pool_[id]; }
@@ -29,6 +33,11 @@ class WindowStore {
   /// to `created` the ids of the candidate's surviving pieces and of pieces
   /// split off queued windows (which must be queued too).
   void insert(const Window& candidate, double edge_length, std::vector<Index>& created);
+
+  /// The site of every window ever inserted on the edge since it was last
+  /// cleared, kNoSite if none, kMixedSites if several (the windows held now
+  /// may still all share one site).
+  Index edge_site(Index edge) const { return edge_site_[edge]; }
 
   /// Frees every window of the edge.
   void clear_edge(Index edge);
@@ -51,6 +60,7 @@ class WindowStore {
   std::vector<std::uint8_t> queued_;
   std::vector<Index> free_;
   std::vector<Index> head_;
+  std::vector<Index> edge_site_;
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;
   // Scratch space reused by insert().

@@ -329,7 +329,11 @@ bool WindowVtp::face_is_redundant(Index face) const {
     if (label_[pm_.vertex(face, c)] != site) return false;
   }
   for (int k = 0; k < 3; ++k) {
-    for (Index id = store_.head(pm_.face_edges[face][k]); id != -1; id = store_[id].next) {
+    const Index e = pm_.face_edges[face][k];
+    const Index summary = store_.edge_site(e);
+    if (summary == site || summary == WindowStore::kNoSite) continue;
+    if (summary != WindowStore::kMixedSites) return false;
+    for (Index id = store_.head(e); id != -1; id = store_[id].next) {
       if (store_[id].site != site) return false;
     }
   }
