@@ -1,0 +1,135 @@
+#pragma once
+// Test support for the geodesic-engine suites: a private reader for the shared
+// binary PLY files (independent of geodual_io), deterministic random numbers,
+// site sampling, mesh topology helpers, and generators of meshes whose
+// geodesic distances are known in closed form (flat square, L-shaped plate,
+// prism "cylinder", cube, cone with a convex or saddle apex).
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace geodual::test {
+
+// ---------------------------------------------------------------------------
+// Shared data
+
+/// ../shared/data/meshes relative to the repository root (tests run there).
+std::filesystem::path shared_mesh_dir();
+/// shared_mesh_dir() / file.
+std::filesystem::path shared_mesh_path(const std::string& file);
+/// The *.ply files of shared_mesh_dir(), sorted by name.
+std::vector<std::string> shared_mesh_files();
+
+/// Reads the shared set's fixed PLY layout (binary little endian, x y z as
+/// float or double, faces as `list uchar int`) without geodual_io, so that the
+/// oracle tests do not depend on the reader under test. Throws
+/// std::runtime_error on anything else.
+TriangleMesh read_shared_ply(const std::filesystem::path& path);
+
+// ---------------------------------------------------------------------------
+// Deterministic random numbers (the same sequence on every standard library)
+
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next();                       ///< splitmix64
+  double uniform();                           ///< [0, 1)
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+  std::int64_t below(std::int64_t n);         ///< [0, n)
+
+ private:
+  std::uint64_t state_;
+};
+
+// ---------------------------------------------------------------------------
+// Mesh facts
+
+double bbox_diagonal(const TriangleMesh& mesh);
+/// True for a face whose three vertex indices are distinct.
+bool face_takes_part(const TriangleMesh& mesh, Index face);
+/// Per vertex: referenced by at least one face with three distinct indices.
+std::vector<bool> referenced_vertices(const TriangleMesh& mesh);
+/// Per vertex: component id (union of the corners of faces that take part);
+/// vertices referenced by no such face get a component of their own.
+std::vector<Index> vertex_components(const TriangleMesh& mesh);
+/// Unique undirected edges {a < b} of the faces that take part.
+std::vector<std::array<Index, 2>> unique_edges(const TriangleMesh& mesh);
+
+/// `count` distinct referenced vertices, no two at the same position.
+std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, int count, std::uint64_t seed);
+/// `count` points strictly inside random faces of positive area (barycentric
+/// coordinates at least 0.05 each), in distinct faces.
+std::vector<SurfacePoint> random_face_sites(const TriangleMesh& mesh, int count, std::uint64_t seed);
+
+// ---------------------------------------------------------------------------
+// Analytic meshes. Each carries a function giving the exact geodesic distance
+// between two surface points of the *polyhedral* surface.
+
+/// Unit square z = 0 on an n x n grid, interior vertices jittered by up to
+/// `jitter` cells, diagonals alternating. Geodesic = Euclidean distance.
+TriangleMesh flat_square(int n, double jitter, std::uint64_t seed);
+
+/// The plate [0,2]^2 minus the open square (1,2)^2: a flat L with one reflex
+/// boundary corner at (1,1); cells of size 1/n, interior vertices jittered.
+TriangleMesh l_shape(int n, double jitter, std::uint64_t seed);
+/// Exact geodesic distance inside that L: straight when the segment stays in
+/// the plate, else through the reflex corner (1, 1).
+double l_shape_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
+/// Open prism with `sides` vertical rectangles of a regular polygon of
+/// circumradius `radius`, height `height`, `rings` + 1 rows of vertices (the
+/// two boundary rows at z = 0 and z = height exactly, interior rows jittered
+/// per vertex in z). Every side is exactly planar, so the surface unrolls
+/// isometrically onto a periodic strip.
+struct Prism {
+  TriangleMesh mesh;
+  std::vector<Index> face_side;       ///< side (rectangle) of each face
+  std::vector<Index> vertex_column;   ///< polygon corner of each vertex
+  std::vector<double> column_s;       ///< unrolled abscissa of each corner (column_s[0] = 0)
+  double perimeter = 0;               ///< unrolled period
+  /// Unrolled (s, z) of a point.
+  Eigen::Vector2d unroll(const SurfacePoint& p) const;
+  double distance(const SurfacePoint& a, const SurfacePoint& b) const;
+};
+Prism prism(int sides, int rings, double radius, double height, double jitter, std::uint64_t seed);
+
+/// The cube [0,1]^3, each square face on an n x n grid with interior vertices
+/// jittered within the face plane. distance() enumerates the unfoldings of
+/// simple sequences of cube faces (shortest paths on a convex polyhedron avoid
+/// vertices and enter each face at most once).
+struct Cube {
+  TriangleMesh mesh;
+  std::vector<int> face_square;       ///< cube face (0..5) of each mesh face
+  double distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
+};
+Cube cube(int n, double jitter, std::uint64_t seed);
+
+/// A polyhedral cone: apex vertex 0 at the origin, `rulings` straight rulings
+/// (even count), `rings` rings of vertices along them (interior rings jittered
+/// along the rulings, the outer ring at `radius` exactly). Each sector between
+/// two rulings is planar, so the surface is flat except at the apex, whose
+/// angle sum is `apex_angle` (rulings alternate up and down to get more than
+/// 2 pi: a saddle apex). Exact distance: in intrinsic polar coordinates
+/// (r, phi), with delta the angular separation, the straight segment when
+/// delta < pi, else r1 + r2 through the apex.
+struct Cone {
+  TriangleMesh mesh;
+  std::vector<Index> face_sector;     ///< sector k lies between rulings k and k + 1 (mod count)
+  std::vector<Index> vertex_ruling;   ///< -1 for the apex
+  std::vector<double> ruling_phi;     ///< intrinsic angle of each ruling
+  std::vector<Eigen::Vector3d> ruling_dir;
+  double total_angle = 0;             ///< the apex angle sum, from the built coordinates
+  Eigen::Vector2d polar(const SurfacePoint& p) const;  ///< (r, phi)
+  double distance(const SurfacePoint& a, const SurfacePoint& b) const;
+};
+Cone cone(int rulings, int rings, double radius, double apex_angle, double jitter, std::uint64_t seed);
+
+}  // namespace geodual::test
