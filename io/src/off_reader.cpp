@@ -46,16 +46,21 @@ class OffParser {
     const std::uint64_t needed = saturating_add(saturating_mul<std::uint64_t>(vertex_count_, 6),
                                                 saturating_mul<std::uint64_t>(face_count_, 8));
     if (needed > available) {
+      // Too short for the counts: name the first bad line without allocating
+      // (a dry run), else report the shortfall itself.
+      const std::size_t body_start = lines_.offset();
+      read_vertices(nullptr);
+      read_faces(nullptr);
       throw_line_error(file_, counts_line_, "the counts line declares ", vertex_count_, " vertices and ",
-                       face_count_, " faces, which need at least ", needed, " bytes, but only ", available - 1,
-                       " follow (file is ", text_.size(), " bytes)");
+                       face_count_, " faces, which need at least ", needed, " bytes, but only ",
+                       text_.size() - body_start, " follow (file is ", text_.size(), " bytes)");
     }
     LoadedMesh loaded;
     loaded.info.format = MeshFormat::off;
     loaded.info.encoding = "ascii";
-    read_vertices(loaded.mesh.vertices);
+    read_vertices(&loaded.mesh.vertices);
     TriangleBuffer triangles(static_cast<std::size_t>(face_count_));
-    read_faces(triangles);
+    read_faces(&triangles);
     loaded.info.polygons_split = triangles.polygons_split();
     loaded.mesh.faces = triangles.take();
     return loaded;
@@ -139,8 +144,11 @@ class OffParser {
     return static_cast<Index>(*count);
   }
 
-  void read_vertices(VertexMatrix& vertices) {
-    vertices.resize(vertex_count_, 3);
+  /// Reads the vertex lines into `vertices`, or only checks them when it is null.
+  void read_vertices(VertexMatrix* vertices) {
+    if (vertices != nullptr) {
+      vertices->resize(vertex_count_, 3);
+    }
     for (Index v = 0; v < vertex_count_; ++v) {
       WordCursor words(std::string_view{});
       if (!next_content_line(words)) {
@@ -157,13 +165,16 @@ class OffParser {
           throw_line_error(file_, lines_.line_number(), "vertex ", v, ": coordinate '", excerpt(word),
                            "' is not a number");
         }
-        vertices(v, axis) = *value;
+        if (vertices != nullptr) {
+          (*vertices)(v, axis) = *value;
+        }
       }
       // Normals, colours or texture coordinates (NOFF, COFF, STOFF) may follow.
     }
   }
 
-  void read_faces(TriangleBuffer& triangles) {
+  /// Reads the face lines into `triangles`, or only checks them when it is null.
+  void read_faces(TriangleBuffer* triangles) {
     for (Index f = 0; f < face_count_; ++f) {
       WordCursor words(std::string_view{});
       if (!next_content_line(words)) {
@@ -197,7 +208,9 @@ class OffParser {
         corners_.push_back(static_cast<Index>(*index));
       }
       // Colour values may follow the indices.
-      triangles.add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+      if (triangles != nullptr) {
+        triangles->add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+      }
     }
   }
 

@@ -113,39 +113,35 @@ std::uint64_t minimum_record_bytes(const PlyElement& element, const PlyMeshLayou
   return bytes;
 }
 
-/// Refuses a header whose counts the file cannot hold, before anything is
-/// allocated for them: a 100-byte file may claim 10^8 vertices.
-void check_counts_fit_file(const PlyHeader& header, const PlyMeshLayout& layout, std::size_t file_size,
-                           const fs::path& file) {
+/// The first element whose records the file cannot hold.
+struct Shortfall {
+  const PlyElement* element = nullptr;
+  std::uint64_t needed = 0;     ///< bytes up to and including that element, at least
+  std::uint64_t available = 0;  ///< bytes after the header
+};
+
+/// Whether the file can hold the records the header declares, judged by the
+/// least bytes each record can take. Checked before anything is allocated for
+/// them: a 100-byte file may claim 10^8 vertices.
+std::optional<Shortfall> find_shortfall(const PlyHeader& header, const PlyMeshLayout& layout, std::size_t file_size) {
   const bool ascii = header.encoding == PlyEncoding::ascii;
+  const std::uint64_t available = file_size - header.body_offset;
   // The last line of an ascii body may lack its line end.
-  const std::uint64_t available = file_size - header.body_offset + (ascii ? 1 : 0);
+  const std::uint64_t allowance = ascii ? 1 : 0;
   std::uint64_t needed = 0;
-  bool needed_is_exact = true;  // only fixed-size records so far
   for (const PlyElement& element : header.elements) {
-    const std::uint64_t record_bytes = minimum_record_bytes(element, layout, ascii);
-    const std::uint64_t element_bytes = saturating_mul(element.count, record_bytes);
-    const bool fixed_size = element.fixed_record_size().has_value();
-    if (saturating_add(needed, element_bytes) <= available) {
-      needed += element_bytes;
-      needed_is_exact = needed_is_exact && fixed_size;
-      continue;
+    needed = saturating_add(needed, saturating_mul(element.count, minimum_record_bytes(element, layout, ascii)));
+    if (needed > available + allowance) {
+      return Shortfall{.element = &element, .needed = needed, .available = available};
     }
-    if (ascii) {
-      throw_file_error(file, "the header declares ", element.count, " '", excerpt(element.name),
-                       "' records, which need at least ", saturating_add(needed, element_bytes),
-                       " bytes of text after the header, but the file has only ", available - 1,
-                       " (file is ", file_size, " bytes)");
-    }
-    if (needed_is_exact && fixed_size && record_bytes > 0) {
-      const std::uint64_t complete = (available - needed) / record_bytes;
-      throw_file_error(file, "truncated binary data: ", excerpt(element.name), " ", complete, " of ",
-                       element.count, " ends past the end of the file (file is ", file_size, " bytes)");
-    }
-    throw_file_error(file, "truncated binary data: the header declares ", element.count, " '",
-                     excerpt(element.name), "' records of at least ", record_bytes,
-                     " bytes each, which end past the end of the file (file is ", file_size, " bytes)");
   }
+  return std::nullopt;
+}
+
+[[noreturn]] void throw_shortfall(const Shortfall& shortfall, std::size_t file_size, const fs::path& file) {
+  throw_file_error(file, "the header declares ", shortfall.element->count, " '", excerpt(shortfall.element->name),
+                   "' records, which need at least ", shortfall.needed, " bytes after the header, but the file has only ",
+                   shortfall.available, " (file is ", file_size, " bytes)");
 }
 
 /// "float32", "int16", ... as ReadInfo::encoding spells coordinate types.
@@ -155,28 +151,36 @@ std::string_view sized_name_of(PlyScalar type) {
   return names[static_cast<std::size_t>(type)];
 }
 
-/// Checks one corner's vertex index against the vertex count the header declares.
+/// Checks one corner's vertex index against the vertex count the header
+/// declares. The checks inline into the hot loops; the throwing is kept apart.
 class CornerCheck {
  public:
   CornerCheck(const PlyElement& face, std::uint64_t vertex_count, const fs::path& file)
       : face_(face), vertex_count_(vertex_count), file_(file) {}
 
   Index operator()(std::int64_t value, std::uint64_t record) const {
-    if (value < 0 || static_cast<std::uint64_t>(value) >= vertex_count_) {
-      throw_file_error(file_, "face ", record, " of ", face_.count, ": vertex index ", value,
-                       " is out of range (the file has ", vertex_count_, " vertices)");
+    if (value < 0 || static_cast<std::uint64_t>(value) >= vertex_count_) [[unlikely]] {
+      index_out_of_range(value, record);
     }
     return static_cast<Index>(value);
   }
 
   void corner_count(std::int64_t count, std::uint64_t record) const {
-    if (count < 3) {
-      throw_file_error(file_, "face ", record, " of ", face_.count, " has ", count,
-                       " corners; a face needs at least 3");
+    if (count < 3) [[unlikely]] {
+      too_few_corners(count, record);
     }
   }
 
  private:
+  [[noreturn, gnu::cold, gnu::noinline]] void index_out_of_range(std::int64_t value, std::uint64_t record) const {
+    throw_file_error(file_, "face ", record, " of ", face_.count, ": vertex index ", value,
+                     " is out of range (the file has ", vertex_count_, " vertices)");
+  }
+
+  [[noreturn, gnu::cold, gnu::noinline]] void too_few_corners(std::int64_t count, std::uint64_t record) const {
+    throw_file_error(file_, "face ", record, " of ", face_.count, " has ", count, " corners; a face needs at least 3");
+  }
+
   const PlyElement& face_;
   std::uint64_t vertex_count_;
   const fs::path& file_;
@@ -269,7 +273,7 @@ class BinaryPlyBody {
   }
 
  private:
-  [[noreturn]] void truncated(const PlyElement& element, std::uint64_t record) const {
+  [[noreturn, gnu::cold, gnu::noinline]] void truncated(const PlyElement& element, std::uint64_t record) const {
     throw_file_error(file_, "truncated binary data: ", excerpt(element.name), " ", record, " of ",
                      element.count, " ends past the end of the file (file is ", data_.size(), " bytes)");
   }
@@ -408,6 +412,18 @@ std::size_t read_binary_body(std::span<const std::byte> data, const PlyHeader& h
   return body.remaining();
 }
 
+/// Steps over every record without allocating, to throw the error that names
+/// the record cut off; called when the file is too short for the header.
+template <std::endian Order>
+[[noreturn]] void name_truncated_record(std::span<const std::byte> data, const PlyHeader& header,
+                                        const Shortfall& shortfall, const fs::path& file) {
+  BinaryPlyBody<Order> body(data, header.body_offset, file);
+  for (const PlyElement& element : header.elements) {
+    body.skip(element);
+  }
+  throw_shortfall(shortfall, data.size(), file);
+}
+
 // ---------------------------------------------------------------------------
 // ASCII bodies: one record per line, values separated by blanks.
 
@@ -417,7 +433,8 @@ class AsciiPlyBody {
       : lines_(text.substr(header.body_offset), header.body_first_line), file_(file) {}
 
   /// Reads every record of `element`: scalar values go to on_scalar(property,
-  /// record, value); the list `corner_list` (if any) becomes triangles.
+  /// record, value); the list `corner_list` (if any) is checked and, unless
+  /// `triangles` is null, becomes triangles.
   template <class OnScalar>
   void read(const PlyElement& element, OnScalar&& on_scalar, std::optional<std::size_t> corner_list,
             const CornerCheck* check, TriangleBuffer* triangles) {
@@ -440,7 +457,9 @@ class AsciiPlyBody {
           for (std::int64_t i = 0; i < count; ++i) {
             corners_.push_back((*check)(value_as_integer(next_word(words, element, record), property.type), record));
           }
-          triangles->add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+          if (triangles != nullptr) {
+            triangles->add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+          }
         } else {
           for (std::int64_t i = 0; i < count; ++i) {
             value_as_double(next_word(words, element, record), property.type);
@@ -531,28 +550,31 @@ class AsciiPlyBody {
   std::vector<Index> corners_;  // reused for every face: no allocation per record
 };
 
+/// Reads an ascii body into `mesh` and `triangles`; with both null, only
+/// checks every record (a dry run that allocates nothing). Returns whether
+/// text follows the last element.
 bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, const PlyMeshLayout& layout,
-                     const fs::path& file, TriangleMesh& mesh, TriangleBuffer& triangles) {
+                     const fs::path& file, TriangleMesh* mesh, TriangleBuffer* triangles) {
   const std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
   AsciiPlyBody body(text, header, file);
   const std::uint64_t vertex_count = layout.vertex ? layout.vertex->count : 0;
   const auto ignore = [](std::size_t, std::uint64_t, double) {};
   for (const PlyElement& element : header.elements) {
-    if (&element == layout.vertex) {
-      mesh.vertices.resize(static_cast<Eigen::Index>(element.count), 3);
+    if (&element == layout.vertex && mesh != nullptr) {
+      mesh->vertices.resize(static_cast<Eigen::Index>(element.count), 3);
       body.read(
           element,
           [&](std::size_t property, std::uint64_t record, double value) {
             for (Eigen::Index axis = 0; axis < 3; ++axis) {
               if (property == layout.xyz[static_cast<std::size_t>(axis)]) {
-                mesh.vertices(static_cast<Eigen::Index>(record), axis) = value;
+                mesh->vertices(static_cast<Eigen::Index>(record), axis) = value;
               }
             }
           },
           std::nullopt, nullptr, nullptr);
     } else if (&element == layout.face) {
       const CornerCheck check(element, vertex_count, file);
-      body.read(element, ignore, layout.corner_list, &check, &triangles);
+      body.read(element, ignore, layout.corner_list, &check, triangles);
     } else {
       body.read(element, ignore, std::nullopt, nullptr, nullptr);
     }
@@ -589,7 +611,19 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
   const std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
   const PlyHeader header = parse_ply_header(text, name);
   const PlyMeshLayout layout = find_mesh_layout(header, name);
-  check_counts_fit_file(header, layout, data.size(), name);
+  if (const auto shortfall = find_shortfall(header, layout, data.size())) {
+    // Too short for what the header declares: find the first bad record
+    // without allocating, to name it, else report the shortfall itself.
+    switch (header.encoding) {
+      case PlyEncoding::ascii:
+        read_ascii_body(data, header, layout, name, nullptr, nullptr);
+        throw_shortfall(*shortfall, data.size(), name);
+      case PlyEncoding::binary_little_endian:
+        name_truncated_record<std::endian::little>(data, header, *shortfall, name);
+      case PlyEncoding::binary_big_endian:
+        name_truncated_record<std::endian::big>(data, header, *shortfall, name);
+    }
+  }
 
   LoadedMesh loaded;
   loaded.info.format = MeshFormat::ply;
@@ -602,7 +636,7 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
   TriangleBuffer triangles(layout.face ? static_cast<std::size_t>(layout.face->count) : 0);
   switch (header.encoding) {
     case PlyEncoding::ascii:
-      if (read_ascii_body(data, header, layout, name, loaded.mesh, triangles)) {
+      if (read_ascii_body(data, header, layout, name, &loaded.mesh, &triangles)) {
         loaded.info.notes.push_back("text after the last element was ignored");
       }
       break;

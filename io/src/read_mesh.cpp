@@ -129,7 +129,11 @@ LoadedMesh read_mesh_from_memory(std::span<const std::byte> data, MeshFormat for
 
   const TriangleMesh& mesh = loaded.mesh;
   detail::check_counts_fit_index(name, mesh);
-  detail::check_face_indices(name, mesh);
+  if (format == MeshFormat::gltf || format == MeshFormat::glb) {
+    // The PLY, OBJ, OFF and STL readers check every index as they decode it,
+    // naming the face and line; glTF's is checked here once more.
+    detail::check_face_indices(name, mesh);
+  }
   if (mesh.faces.rows() == 0) {
     detail::throw_file_error(name, "the file holds no triangles (", mesh.vertices.rows(),
                              " vertices, 0 faces); geodual needs a triangle mesh");

@@ -16,8 +16,8 @@ class TriangleBuffer {
   /// `expected` triangles are allocated at once (callers bound it by the file size).
   explicit TriangleBuffer(std::size_t expected = 0) : faces_(static_cast<Eigen::Index>(expected), 3) {}
 
-  void add(Index a, Index b, Index c) {
-    if (size_ == faces_.rows()) {
+  [[gnu::always_inline]] void add(Index a, Index b, Index c) {
+    if (size_ == faces_.rows()) [[unlikely]] {
       grow();
     }
     Index* row = faces_.data() + 3 * size_;
@@ -56,7 +56,7 @@ class TriangleBuffer {
   }
 
  private:
-  void grow() {
+  [[gnu::noinline]] void grow() {
     FaceMatrix bigger(std::max<Eigen::Index>(64, 2 * faces_.rows()), 3);
     bigger.topRows(size_) = faces_.topRows(size_);
     faces_.swap(bigger);
