@@ -1,0 +1,97 @@
+#pragma once
+// glTF 2.0 output: a small scene description -- triangle meshes with optional
+// per-vertex colours and scalar fields, line sets, point sets, and free-form
+// metadata in asset.extras -- and writers for .glb and .gltf.
+//
+// What the files hold:
+//  - one node and one mesh (with one primitive) per entry, in the order
+//    triangle meshes, line sets, point sets; all nodes in one default scene;
+//  - coordinates, colours and scalars as float32: a double that is not a
+//    float32 value is rounded to the nearest one;
+//  - triangle meshes: POSITION, NORMAL (area-weighted vertex normals, unit
+//    length; (0, 0, 1) where the surrounding area is zero), optional COLOR_0
+//    and scalar attributes, and uint16 indices when every vertex index fits
+//    below 65535 (the primitive restart value), uint32 otherwise;
+//  - .glb: one GLB file. .gltf: one JSON file with the binary data embedded as
+//    a base64 data URI (one file, so the atomic rename covers all of it).
+// The output passes the Khronos glTF-Validator without errors or warnings,
+// and the same scene always gives the same bytes.
+
+#include "geodual/triangle_mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace geodual::io {
+
+/// Per-vertex colours, one row per vertex: 3 columns (RGB) or 4 (RGBA), linear, each in [0, 1].
+using ColorMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// K x 2 point indices, one row per line segment.
+using SegmentMatrix = Eigen::Matrix<Index, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
+/// One float per vertex, written as an application-specific vertex attribute
+/// (SCALAR float accessor). glTF requires such names to start with an
+/// underscore, e.g. "_DISTANCE"; values must be finite.
+struct GltfVertexScalar {
+  std::string name;
+  std::vector<float> values;
+};
+
+/// A triangle mesh (a TRIANGLES primitive).
+struct GltfTriangleMesh {
+  std::string name;                        ///< node and mesh name; empty: none
+  TriangleMesh mesh;                       ///< at least one triangle
+  ColorMatrix colors;                      ///< COLOR_0: empty, or one row per vertex
+  std::vector<GltfVertexScalar> scalars;   ///< one value per vertex each
+};
+
+/// Line segments between points (a LINES primitive), e.g. polylines such as
+/// Voronoi cell boundaries: consecutive points joined by segments (i, i + 1).
+struct GltfLineSet {
+  std::string name;
+  VertexMatrix points;     ///< at least one row
+  SegmentMatrix segments;  ///< at least one row; indices into points
+  ColorMatrix colors;      ///< COLOR_0 per point: empty, or one row per point
+};
+
+/// Points (a POINTS primitive), e.g. sites or Voronoi vertices.
+struct GltfPointSet {
+  std::string name;
+  VertexMatrix points;  ///< at least one row
+  ColorMatrix colors;   ///< COLOR_0 per point: empty, or one row per point
+};
+
+/// Everything one file holds. Needs at least one entry.
+struct GltfScene {
+  std::vector<GltfTriangleMesh> triangle_meshes;
+  std::vector<GltfLineSet> line_sets;
+  std::vector<GltfPointSet> point_sets;
+  /// asset.extras: the text of a JSON object (e.g. statistics, options), or empty for none.
+  std::string extras_json;
+};
+
+enum class GltfContainer {
+  glb,            ///< binary .glb
+  gltf_embedded,  ///< JSON .gltf with the buffer as a base64 data URI
+};
+
+/// The bytes of a .glb or .gltf file for `scene`. Throws geodual::Error,
+/// naming the entry and element, for invalid input: out-of-range indices,
+/// non-finite or beyond-float32 coordinates, colours outside [0, 1], wrong
+/// row counts, scalar names without the leading underscore or used twice,
+/// extras that are not a JSON object, empty entries, an empty scene.
+std::vector<std::byte> encode_gltf(const GltfScene& scene, GltfContainer container);
+
+/// Writes `scene` atomically to `path`: .glb or .gltf by the extension
+/// (case-insensitive). Errors (as encode_gltf, plus I/O) name the path.
+void write_gltf(const std::filesystem::path& path, const GltfScene& scene);
+
+/// Writes one triangle mesh (positions, normals, indices) to `path`, as above.
+void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+}  // namespace geodual::io
