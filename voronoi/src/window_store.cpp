@@ -54,7 +54,7 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
   for (int i = 0; i < found; ++i) {
     double x = candidates[i] + shift;
     if (!std::isfinite(x)) continue;
-    for (int step = 0; step < 3; ++step) {
+    for (int step = 0; step < 2; ++step) {
       const double r1 = std::sqrt((x - w1.source_x) * (x - w1.source_x) + h1);
       const double r2 = std::sqrt((x - w2.source_x) * (x - w2.source_x) + h2);
       const double f = (w1.sigma + r1) - (w2.sigma + r2);
@@ -130,6 +130,17 @@ void WindowStore::push_segment(double lo, double hi, int owner) {
 
 void WindowStore::split_overlap(const Window& candidate, int k, double lo, double hi) {
   const Window& existing = pool_[overlaps_[k]];
+  const double f_lo = difference(candidate, existing, lo);
+  const double f_hi = difference(candidate, existing, hi);
+  // Each distance changes by at most |dx| along the edge, so the difference
+  // is 2-Lipschitz: it cannot reach zero inside when both ends are farther
+  // from zero than that allows, and one window wins the whole overlap.
+  if ((f_lo > 0) == (f_hi > 0) && std::abs(f_lo) + std::abs(f_hi) > 2 * (hi - lo)) {
+    const double mid = 0.5 * (lo + hi);
+    const double de = existing.distance_at(mid);
+    push_segment(lo, hi, candidate.distance_at(mid) < de - kTieMargin * de ? -1 : k);
+    return;
+  }
   std::array<double, 2> roots{};
   const int count = crossings(candidate, existing, lo, hi, roots);
   std::array<double, 4> cuts{lo, 0, 0, 0};

@@ -1,0 +1,107 @@
+#include "geodual/pipeline/sites.hpp"
+
+#include "geodual/error.hpp"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+namespace geodual {
+namespace {
+
+/// SplitMix64 (Steele, Lea & Flood 2014): tiny, and the same everywhere.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [0, bound), without modulo bias.
+  std::uint64_t below(std::uint64_t bound) {
+    const std::uint64_t limit = ~std::uint64_t{0} - (~std::uint64_t{0} % bound);
+    for (;;) {
+      const std::uint64_t x = next();
+      if (x < limit) return x % bound;
+    }
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+template <typename T>
+bool parse(std::string_view token, T& value) {
+  const char* end = token.data() + token.size();
+  auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, std::int64_t count, std::uint64_t seed) {
+  std::vector<std::uint8_t> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (int c = 0; c < 3; ++c) used[mesh.faces(f, c)] = 1;
+  }
+  std::vector<Index> candidates;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    if (used[v]) candidates.push_back(v);
+  }
+  if (count < 1 || count > static_cast<std::int64_t>(candidates.size())) {
+    throw UsageError("--sites " + std::to_string(count) + ": must be between 1 and the mesh's " +
+                     std::to_string(candidates.size()) + " referenced vertices");
+  }
+  // A partial Fisher-Yates shuffle: the first `count` entries are the sample.
+  SplitMix64 rng(seed);
+  std::vector<SurfacePoint> sites;
+  sites.reserve(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+    const std::size_t j = i + rng.below(candidates.size() - i);
+    std::swap(candidates[i], candidates[j]);
+    sites.push_back(SurfacePoint::at_vertex(candidates[i]));
+  }
+  return sites;
+}
+
+std::vector<SurfacePoint> read_site_file(const std::filesystem::path& path, const TriangleMesh& mesh) {
+  std::ifstream in(path);
+  if (!in) throw Error(path.string() + ": cannot open the site file");
+  std::vector<SurfacePoint> sites;
+  std::string line;
+  for (std::int64_t number = 1; std::getline(in, line); ++number) {
+    const std::string where = path.string() + ":" + std::to_string(number) + ": ";
+    std::istringstream tokens(line);
+    std::vector<std::string> words;
+    for (std::string w; tokens >> w;) words.push_back(w);
+    if (words.empty() || words[0][0] == '#') continue;
+    if (words.size() == 1) {
+      Index v = 0;
+      if (!parse(words[0], v)) throw Error(where + "expected a vertex index or 'f FACE U V W', got '" + line + "'");
+      if (v < 0 || v >= mesh.num_vertices()) {
+        throw Error(where + "vertex " + words[0] + " is out of range [0, " + std::to_string(mesh.num_vertices()) + ")");
+      }
+      sites.push_back(SurfacePoint::at_vertex(v));
+      continue;
+    }
+    Index f = 0;
+    double u = 0, v = 0, w = 0;
+    if (words.size() != 5 || words[0] != "f" || !parse(words[1], f) || !parse(words[2], u) || !parse(words[3], v) ||
+        !parse(words[4], w)) {
+      throw Error(where + "expected a vertex index or 'f FACE U V W', got '" + line + "'");
+    }
+    if (f < 0 || f >= mesh.num_faces()) {
+      throw Error(where + "face " + words[1] + " is out of range [0, " + std::to_string(mesh.num_faces()) + ")");
+    }
+    sites.push_back(SurfacePoint::in_face(f, u, v, w));
+  }
+  if (in.bad()) throw Error(path.string() + ": read error");
+  if (sites.empty()) throw Error(path.string() + ": the site file holds no sites");
+  return sites;
+}
+
+}  // namespace geodual
