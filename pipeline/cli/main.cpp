@@ -1,8 +1,107 @@
+// geodual: the command line tool. Parses the command line, runs the chosen
+// subcommand and reports every failure as one line on stderr:
+//   geodual: error: <message>
+// Exit status: 0 success, 1 bad input or failure, 2 bad command line.
+
+#include "command.hpp"
+
+#include "geodual/error.hpp"
 #include "geodual/pipeline/version.hpp"
 
-#include <iostream>
+#include <CLI/CLI.hpp>
 
-int main() {
-  std::cout << "geodual " << geodual::version() << "\n";
-  return 0;
+#include <exception>
+#include <iostream>
+#include <memory>
+#include <new>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace geodual::cli {
+
+// The subcommands, in the order `geodual --help` lists them. Adding one is a
+// new <name>_command.cpp plus its line here.
+CommandFactory make_info_command;
+
+namespace {
+
+constexpr CommandFactory* command_factories[] = {
+    &make_info_command,
+};
+
+constexpr int exit_failure = 1;
+constexpr int exit_usage = 2;
+
+/// Prints "geodual: error: <message>" as one line, without allocating (it
+/// also reports running out of memory).
+void report_error(std::string_view message) {
+  std::cerr << "geodual: error: ";
+  for (const char c : message) std::cerr.put(c == '\n' || c == '\r' ? ' ' : c);
+  std::cerr << std::endl;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"geodual: remeshing of dense triangle-mesh scans through exact geodesic "
+               "Voronoi diagrams",
+               "geodual"};
+  app.set_version_flag("--version", "geodual " + std::string(version()), "Print the version and exit");
+  app.require_subcommand(1);
+
+  std::vector<std::pair<CLI::App*, std::unique_ptr<Command>>> commands;
+  for (CommandFactory* factory : command_factories) {
+    std::unique_ptr<Command> command = factory();
+    CLI::App& subcommand = command->add_to(app);
+    commands.emplace_back(&subcommand, std::move(command));
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) {
+      return app.exit(error);  // --help or --version: printed on stdout
+    }
+    // Without a known subcommand, CLI11 only says that one is required; name
+    // the word it did not know instead.
+    const std::vector<std::string> unknown = app.remaining();
+    const std::string message = app.get_subcommands().empty() && !unknown.empty()
+                                    ? "unknown command or option '" + unknown.front() + "'"
+                                    : std::string(error.what());
+    report_error(message + " (run 'geodual --help' for usage)");
+    return exit_usage;
+  }
+
+  for (auto& [subcommand, command] : commands) {
+    if (subcommand->parsed()) {
+      const int status = command->run();
+      std::cout.flush();
+      if (!std::cout) {
+        throw Error("cannot write to standard output");
+      }
+      return status;
+    }
+  }
+  return exit_usage;  // unreachable: require_subcommand(1)
+}
+
+}  // namespace
+}  // namespace geodual::cli
+
+int main(int argc, char** argv) {
+  try {
+    return geodual::cli::run(argc, argv);
+  } catch (const geodual::UsageError& error) {
+    geodual::cli::report_error(error.what());
+    return geodual::cli::exit_usage;
+  } catch (const geodual::Error& error) {
+    geodual::cli::report_error(error.what());
+  } catch (const std::bad_alloc&) {
+    geodual::cli::report_error("out of memory");
+  } catch (const std::exception& error) {
+    geodual::cli::report_error(error.what());
+  } catch (...) {
+    geodual::cli::report_error("unexpected failure");
+  }
+  return geodual::cli::exit_failure;
 }

@@ -1,0 +1,112 @@
+// geodual info FILE [--json]: what a mesh file holds and what is wrong with it.
+
+#include "command.hpp"
+#include "text_table.hpp"
+
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh_report.hpp"
+#include "geodual/pipeline/report_json.hpp"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+namespace geodual::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string point(const Eigen::Vector3d& p) {
+  return "(" + significant(p.x()) + ", " + significant(p.y()) + ", " + significant(p.z()) + ")";
+}
+
+class InfoCommand final : public Command {
+ public:
+  CLI::App& add_to(CLI::App& app) override {
+    CLI::App& command = *app.add_subcommand(
+        "info", "Read a mesh file and report its size, topology and defects");
+    command.add_option("FILE", path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")
+        ->required();
+    command.add_flag("--json", json_, "Print one JSON object instead of a table");
+    return command;
+  }
+
+  int run() override {
+    const auto start = std::chrono::steady_clock::now();
+    const io::LoadedMesh loaded = io::read_mesh(path_);
+    const double read_seconds = seconds_since(start);
+    const auto analysis_start = std::chrono::steady_clock::now();
+    const MeshReport report = analyze_mesh(loaded.mesh);
+    const double analysis_seconds = seconds_since(analysis_start);
+
+    if (json_) {
+      print_json(loaded.info, report, read_seconds, analysis_seconds);
+    } else {
+      print_table(loaded.info, report, read_seconds, analysis_seconds);
+    }
+    return 0;
+  }
+
+ private:
+  void print_json(const io::ReadInfo& info, const MeshReport& report, double read_seconds,
+                  double analysis_seconds) const {
+    nlohmann::ordered_json json;
+    json["file"] = path_;
+    json.update(pipeline::read_info_json(info));
+    json["read_seconds"] = read_seconds;
+    json["analysis_seconds"] = analysis_seconds;
+    json.update(pipeline::mesh_report_json(report));
+    // Paths and notes need not be UTF-8: replace what is not rather than fail.
+    std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
+  }
+
+  void print_table(const io::ReadInfo& info, const MeshReport& report, double read_seconds,
+                   double analysis_seconds) const {
+    KeyValueTable table;
+    table.add("file", path_);
+    table.add("format", std::string(io::format_name(info.format)) +
+                            (info.encoding.empty() ? "" : ", " + info.encoding));
+    table.add("file size", byte_size(info.file_bytes));
+    const double megabytes_per_second = static_cast<double>(info.file_bytes) / 1e6 / read_seconds;
+    table.add("read time", duration(read_seconds) + " (" + significant(megabytes_per_second, 3) + " MB/s)");
+    if (info.polygons_split > 0) table.add("polygons split", with_thousands(info.polygons_split));
+    if (info.welded_corners > 0) table.add("welded corners", with_thousands(info.welded_corners));
+    for (const std::string& note : info.notes) table.add("note", note);
+
+    table.add("vertices", with_thousands(report.vertices));
+    table.add("faces", with_thousands(report.faces));
+    table.add("edges", with_thousands(report.edges));
+    table.add("components", with_thousands(report.components));
+    table.add("boundary loops", with_thousands(report.boundary_loops) + " (" +
+                                    with_thousands(report.boundary_edges) + " boundary edges)");
+    table.add("non-manifold edges", with_thousands(report.nonmanifold_edges));
+    table.add("non-manifold vertices", with_thousands(report.nonmanifold_vertices));
+    table.add("degenerate faces", with_thousands(report.degenerate_faces));
+    table.add("duplicate faces", with_thousands(report.duplicate_faces));
+    table.add("duplicate vertices", with_thousands(report.duplicate_vertices));
+    table.add("unreferenced vertices", with_thousands(report.unreferenced_vertices));
+    table.add("euler characteristic", with_thousands(report.euler_characteristic));
+    table.add("genus", report.genus ? significant(*report.genus)
+                                    : "not defined (not an orientable 2-manifold)");
+    table.add("oriented", report.oriented ? "yes" : "no (some edge is used twice in one direction)");
+    table.add("bounding box", point(report.bbox_min) + " to " + point(report.bbox_max));
+    table.add("bbox diagonal", significant(report.bbox_diagonal));
+    table.add("analysis time", duration(analysis_seconds));
+    table.print(std::cout);
+  }
+
+  std::string path_;
+  bool json_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_info_command() { return std::make_unique<InfoCommand>(); }
+
+}  // namespace geodual::cli

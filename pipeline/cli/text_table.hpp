@@ -1,0 +1,35 @@
+#pragma once
+// Human-readable output: aligned "key  value" rows and number formatting.
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace geodual::cli {
+
+/// Rows of key and value, printed with the values aligned in one column.
+class KeyValueTable {
+ public:
+  void add(std::string key, std::string value);
+  void print(std::ostream& out) const;
+
+ private:
+  std::vector<std::pair<std::string, std::string>> rows_;
+};
+
+/// 1234567 -> "1,234,567".
+std::string with_thousands(std::int64_t value);
+
+/// A size in bytes for people: "1.33 MB (1,334,607 bytes)".
+std::string byte_size(std::uintmax_t bytes);
+
+/// A duration: "12.3 ms", "1.24 s".
+std::string duration(double seconds);
+
+/// A number with `digits` significant digits, e.g. 0.250246.
+std::string significant(double value, int digits = 6);
+
+}  // namespace geodual::cli
