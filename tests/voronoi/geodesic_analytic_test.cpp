@@ -186,6 +186,15 @@ TEST(GeodesicAnalytic, FlatSquareSeveralSites) {
   });
 }
 
+TEST(GeodesicAnalytic, FlatSquareManySites) {
+  const TriangleMesh mesh = test::flat_square(50, 0.3, 16);
+  std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 40, 17);
+  for (const SurfacePoint& s : test::random_vertex_sites(mesh, 40, 18)) sites.push_back(s);
+  check_both("flat square, 80 sites", mesh, sites, [&](const SurfacePoint& s, const SurfacePoint& p) {
+    return (s.position(mesh) - p.position(mesh)).norm();
+  });
+}
+
 TEST(GeodesicAnalytic, LShapeAroundTheReflexCorner) {
   const TriangleMesh mesh = test::l_shape(8, 0.3, 21);
   // Sites in the arm x > 1: the arm y > 1 is reached around the corner (1, 1).
@@ -246,6 +255,9 @@ TEST(GeodesicAnalytic, CubeUnfoldings) {
   std::vector<SurfacePoint> sites = test::random_face_sites(cube.mesh, 4, 42);
   for (const SurfacePoint& s : test::random_vertex_sites(cube.mesh, 3, 43)) sites.push_back(s);
   check_both("cube, 7 sites", cube.mesh, sites, exact);
+  sites = test::random_face_sites(cube.mesh, 12, 44);
+  for (const SurfacePoint& s : test::random_vertex_sites(cube.mesh, 12, 45)) sites.push_back(s);
+  check_both("cube, 24 sites", cube.mesh, sites, exact);
 }
 
 TEST(GeodesicAnalytic, SaddleConePathsThroughTheApex) {

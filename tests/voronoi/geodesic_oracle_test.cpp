@@ -191,21 +191,29 @@ TEST(GeodesicOracle, Armadillo86k) {
   run_mesh("armadillo_86k.ply", {{1, 0, 101}, {0, 1, 102}, {15, 15, 103}, {150, 150, 104}});
 }
 
-TEST(GeodesicOracle, Horse) { run_mesh("horse.ply", {{1, 0, 201}, {15, 15, 203}, {150, 150, 204}}); }
+// (CGAL needs half a minute for a single source on the horse: none here.)
+TEST(GeodesicOracle, Horse) { run_mesh("horse.ply", {{15, 15, 203}, {150, 150, 204}}); }
 
 TEST(GeodesicOracle, Nefertiti100k) {
   // Needle triangles down to 0.06 degrees, float64 coordinates.
   run_mesh("nefertiti_100k.ply", {{0, 1, 302}, {15, 15, 303}, {150, 150, 304}});
 }
 
-// Heavier runs, not part of the default suite (about 2-3 minutes on two
-// cores): run with --gtest_also_run_disabled_tests.
-TEST(GeodesicOracle, DISABLED_MoreMeshesAndSiteKinds) {
+// Heavier runs, not part of the default suite (several CGAL minutes each on
+// two cores): run with --gtest_also_run_disabled_tests.
+TEST(GeodesicOracle, DISABLED_Lucy100kAllKinds) {
   run_mesh("lucy_100k.ply", {{1, 0, 401}, {0, 1, 402}, {30, 0, 403}, {0, 30, 404}, {300, 0, 405}, {0, 300, 406}});
-  run_mesh("horse.ply", {{0, 1, 502}, {30, 0, 503}, {0, 300, 506}});
-  run_mesh("nefertiti_100k.ply", {{1, 0, 601}, {0, 30, 604}, {300, 0, 605}});
-  run_mesh("igea.ply", {{15, 15, 703}});
 }
+
+TEST(GeodesicOracle, DISABLED_HorseAllKinds) {
+  run_mesh("horse.ply", {{1, 0, 201}, {0, 1, 502}, {30, 0, 503}, {0, 300, 506}});
+}
+
+TEST(GeodesicOracle, DISABLED_Nefertiti100kAllKinds) {
+  run_mesh("nefertiti_100k.ply", {{1, 0, 601}, {0, 30, 604}, {300, 0, 605}});
+}
+
+TEST(GeodesicOracle, DISABLED_Igea) { run_mesh("igea.ply", {{15, 15, 703}, {150, 150, 704}}); }
 
 }  // namespace
 }  // namespace geodual::voronoi
