@@ -40,6 +40,7 @@
 #include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 namespace geodual::bench {
@@ -51,6 +52,15 @@ using Clock = std::chrono::steady_clock;
 
 inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// CPU time (user + system) of the whole process, all threads, in seconds.
+/// On a machine shared with other jobs this is the steadier measure of work
+/// done; wall time also counts the time the process waited for a core.
+inline double process_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 /// The median of `values` (the mean of the two middle ones for an even count);

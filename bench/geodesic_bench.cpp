@@ -21,6 +21,7 @@
 // The exit status is 1 when a check fails.
 
 #include "bench_support.hpp"
+#include "subdivided_inputs.hpp"
 
 #include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"
@@ -93,6 +94,8 @@ struct Options {
   double window_limit_gib = 8;
   double tolerance = 1e-6;
   std::vector<int> subdivided_levels;
+  std::optional<std::filesystem::path> subdivided_input;  ///< default: see subdivision_input()
+  std::optional<std::filesystem::path> subdivided_cache;  ///< default: <executable's folder>/subdivided
 };
 
 constexpr std::string_view kUsage = R"(usage: geodesic_bench [options] MESH...
@@ -116,8 +119,13 @@ options:
   --window-limit-gib G   GeodesicOptions::window_memory_limit_bytes (default 8)
   --tolerance T          allowed max |ours - CGAL| / bbox diagonal (default 1e-6)
   --subdivided LEVELS    also run the Loop-subdivided igea, comma-separated
-                         levels (1: ~1.07M faces, 2: ~4.3M faces), generated
-                         if missing
+                         levels (1: 1,074,744 faces, 2: 4,298,976 faces),
+                         generated once into the cache folder if missing
+  --subdivided-input P   the mesh to subdivide (default: igea.ply among the
+                         meshes given, else $GEODUAL_MESH_DIR/igea.ply, else
+                         ../shared/data/meshes/igea.ply)
+  --subdivided-cache D   where subdivided meshes are kept (default: the
+                         folder 'subdivided' next to this executable)
   -h, --help             this text
 )";
 
@@ -193,6 +201,10 @@ Options parse_options(int argc, char** argv) {
         if (l < 1 || l > 2) throw UsageError("--subdivided: levels are 1 and 2");
         options.subdivided_levels.push_back(l);
       }
+    } else if (arg == "--subdivided-input") {
+      options.subdivided_input = std::filesystem::path(value());
+    } else if (arg == "--subdivided-cache") {
+      options.subdivided_cache = std::filesystem::path(value());
     } else if (arg.starts_with("-")) {
       throw UsageError("unknown option " + std::string(arg) + " (see --help)");
     } else {
@@ -405,7 +417,8 @@ Answer run_dijkstra(const TriangleMesh& mesh, std::span<const Index> site_vertic
 
 /// What the child sends back for one method.
 struct MethodReport {
-  std::vector<double> total_seconds;  ///< per run
+  std::vector<double> total_seconds;  ///< per run, wall clock
+  std::vector<double> cpu_seconds;    ///< per run, process CPU time
   std::vector<double> setup_seconds;
   std::vector<double> solve_seconds;
   voronoi::GeodesicStats stats;       ///< of the last run (deterministic)
@@ -419,6 +432,7 @@ struct MethodReport {
 std::vector<std::byte> encode(const MethodReport& r) {
   ByteWriter out;
   out.put_span<double>(r.total_seconds);
+  out.put_span<double>(r.cpu_seconds);
   out.put_span<double>(r.setup_seconds);
   out.put_span<double>(r.solve_seconds);
   out.put(r.stats);
@@ -434,6 +448,7 @@ MethodReport decode(std::span<const std::byte> bytes) {
   ByteReader in(bytes);
   MethodReport r;
   r.total_seconds = in.get_vector<double>();
+  r.cpu_seconds = in.get_vector<double>();
   r.setup_seconds = in.get_vector<double>();
   r.solve_seconds = in.get_vector<double>();
   r.stats = in.get<voronoi::GeodesicStats>();
@@ -455,9 +470,11 @@ MethodReport measure(const std::function<Answer()>& run, int repeat) {
     report.distance = {};
     report.label = {};
     report.peak_reset = reset_peak_rss();
+    const double cpu_start = process_cpu_seconds();
     const auto start = Clock::now();
     Answer answer = run();
     report.total_seconds.push_back(seconds_since(start));
+    report.cpu_seconds.push_back(process_cpu_seconds() - cpu_start);
     report.peak_rss_bytes = std::max(report.peak_rss_bytes, peak_rss_bytes().value_or(0));
     report.setup_seconds.push_back(answer.setup_seconds);
     report.solve_seconds.push_back(answer.solve_seconds);
@@ -540,8 +557,8 @@ struct MeshResult {
   }
 };
 
-double median_total(const MethodResult* r) {
-  return r && r->report ? median(r->report->total_seconds) : std::numeric_limits<double>::quiet_NaN();
+double median_cpu(const MethodResult* r) {
+  return r && r->report ? median(r->report->cpu_seconds) : std::numeric_limits<double>::quiet_NaN();
 }
 
 MeshResult bench_mesh(const std::filesystem::path& path, const Options& options, std::int64_t memory_limit_bytes) {
@@ -597,7 +614,8 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
       continue;
     }
     r.report = decode(outcome.payload);
-    std::cerr << "median " << fixed(median(r.report->total_seconds), 3) << " s\n";
+    std::cerr << "median " << fixed(median(r.report->total_seconds), 3) << " s (CPU "
+              << fixed(median(r.report->cpu_seconds), 3) << " s)\n";
 
     // Checks against the reference, ours with RWR. The answers are dropped
     // once checked, so that the parent (whose memory the next child inherits)
@@ -654,6 +672,16 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
 // ---------------------------------------------------------------------------
 // Output
 
+constexpr std::string_view kTable1Legend = R"(Every method runs in its own forked child process.
+  time     wall-clock median over the runs of the whole call; CPU: process CPU time, median
+  setup    (wall, of the median run) ours: GeodesicStats::setup_seconds; CGAL: Surface_mesh build;
+           Dijkstra: edge graph
+  solve    (wall, of the median run) ours: GeodesicStats::propagation_seconds; CGAL: add sources +
+           build_sequence_tree + a distance query at every vertex; Dijkstra: the search
+  peak RSS the child's VmHWM, reset through /proc/self/clear_refs before each run, max over the runs;
+           it includes the mesh and all the child inherited from the parent, shown as 'RSS before'
+  max|diff|/diag  max over vertices of |d - d(ours RWR)| / bounding box diagonal)";
+
 void print_tables(std::span<const MeshResult> results, const Options& options) {
   using Align = TextTable::Align;
   TextTable table({{"mesh", Align::left},
@@ -661,7 +689,8 @@ void print_tables(std::span<const MeshResult> results, const Options& options) {
                    {"sites"},
                    {"method", Align::left},
                    {"runs"},
-                   {"time s (median)"},
+                   {"time s"},
+                   {"CPU s"},
                    {"setup s"},
                    {"solve s"},
                    {"peak window MiB"},
@@ -681,6 +710,7 @@ void print_tables(std::span<const MeshResult> results, const Options& options) {
         const std::size_t mid = median_index(r.total_seconds);
         row.push_back(std::to_string(r.total_seconds.size()));
         row.push_back(fixed(median(r.total_seconds), 3));
+        row.push_back(fixed(median(r.cpu_seconds), 3));
         row.push_back(fixed(r.setup_seconds[mid], 3));
         row.push_back(fixed(r.solve_seconds[mid], 3));
         row.push_back(ours ? mebibytes(r.stats.peak_window_bytes) : "-");
@@ -693,29 +723,23 @@ void print_tables(std::span<const MeshResult> results, const Options& options) {
                       : m.diff_over_diagonal       ? scientific(*m.diff_over_diagonal)
                                                    : "-");
       } else {
-        row.insert(row.end(), {"0", "-", "-", "-", "-", "-", "-", "-",
+        row.insert(row.end(), {"0", "-", "-", "-", "-", "-", "-", "-", "-",
                                m.child_max_rss_bytes > 0 ? ">= " + mebibytes(m.child_max_rss_bytes) : "-", "-"});
       }
       row.push_back(m.note);
       table.add_row(std::move(row));
     }
   }
-  std::cout << "\nTable 1. Exact multi-source geodesics, " << options.sites << " random vertex sites (seed "
-            << options.seed << "). Every method ran in its own forked child process, so 'peak RSS' is that\n"
-            << "child's VmHWM (reset through /proc/self/clear_refs before each run; max over the runs); it "
-               "includes the mesh and\nwhat the child inherited, shown as 'RSS before'. time = median over the "
-               "runs of the whole call; setup/solve of that run:\nours = GeodesicStats setup_seconds / "
-               "propagation_seconds, CGAL = Surface_mesh build / sources + sequence tree + vertex queries,\n"
-               "Dijkstra = edge graph / search. max|diff|/diag: max over vertices of |d - d(ours RWR)| over the "
-               "bounding box diagonal.\n\n";
+  std::cout << "\nTable 1. Exact multi-source geodesics, " << options.sites << " random vertex sites (seed " << options.seed
+            << ").\n" << kTable1Legend << "\n\n";
   table.print(std::cout);
 
   TextTable ratios({{"mesh", Align::left},
                     {"faces"},
-                    {"CGAL / ours-RWR time"},
+                    {"CGAL / ours-RWR CPU time"},
                     {"no-RWR / RWR windows stored"},
                     {"no-RWR / RWR peak window bytes"},
-                    {"ours-RWR / Dijkstra time"},
+                    {"ours-RWR / Dijkstra CPU time"},
                     {"ours vs CGAL max|diff|/diag"},
                     {"RWR on = off"}});
   for (const MeshResult& mesh : results) {
@@ -725,24 +749,61 @@ void print_tables(std::span<const MeshResult> results, const Options& options) {
     const MethodResult* dijkstra = mesh.find(Method::dijkstra);
     const bool both_ours = rwr && rwr->report && no_rwr && no_rwr->report;
     ratios.add_row(
-        {mesh.name, grouped(mesh.faces), ratio(median_total(cgal), median_total(rwr)),
+        {mesh.name, grouped(mesh.faces), ratio(median_cpu(cgal), median_cpu(rwr)),
          both_ours ? ratio(static_cast<double>(no_rwr->report->stats.windows_stored),
                            static_cast<double>(rwr->report->stats.windows_stored))
                    : "-",
          both_ours ? ratio(static_cast<double>(no_rwr->report->stats.peak_window_bytes),
                            static_cast<double>(rwr->report->stats.peak_window_bytes))
                    : "-",
-         ratio(median_total(rwr), median_total(dijkstra)),
+         ratio(median_cpu(rwr), median_cpu(dijkstra)),
          cgal && cgal->diff_over_diagonal ? scientific(*cgal->diff_over_diagonal) : "-",
          both_ours ? (no_rwr->identical_to_reference ? "identical" : "DIFFERENT") : "-"});
   }
-  std::cout << "\nTable 2. Ratios (of the medians in Table 1).\n\n";
+  std::cout << "\nTable 2. Ratios of the medians in Table 1; times are compared by CPU time, which a loaded\n"
+               "machine disturbs less than wall time.\n\n";
   ratios.print(std::cout);
 }
 
-// TEMPORARY until bench/subdivided_inputs.hpp lands.
-std::filesystem::path subdivided_igea(int level) {
-  throw Error("--subdivided " + std::to_string(level) + ": bench/subdivided_inputs.hpp is not there yet");
+// ---------------------------------------------------------------------------
+// The Loop-subdivided inputs (bench/subdivided_inputs.hpp)
+
+std::filesystem::path subdivision_input(const Options& options) {
+  if (options.subdivided_input) return *options.subdivided_input;
+  for (const auto& mesh : options.meshes) {
+    if (mesh.filename() == "igea.ply") return mesh;
+  }
+  if (const char* folder = std::getenv("GEODUAL_MESH_DIR"); folder && *folder) {
+    return std::filesystem::path(folder) / "igea.ply";
+  }
+  return std::filesystem::path("..") / "shared" / "data" / "meshes" / "igea.ply";
+}
+
+std::filesystem::path subdivision_cache(const Options& options) {
+  if (options.subdivided_cache) return *options.subdivided_cache;
+  return std::filesystem::read_symlink("/proc/self/exe").parent_path() / "subdivided";
+}
+
+/// The subdivided mesh's path, made first if it is not in the cache. The
+/// subdivision runs in a child process so that its memory (OpenMesh) never
+/// inflates the parent, whose pages every measurement inherits.
+std::filesystem::path subdivided_mesh(const Options& options, int levels) {
+  const std::filesystem::path input = subdivision_input(options);
+  const std::filesystem::path cache = subdivision_cache(options);
+  const std::filesystem::path path = subdivided_path(input, levels, cache);
+  if (std::filesystem::exists(path)) return path;
+  std::cerr << "making " << path.string() << " (" << input.string() << ", " << levels << " Loop step(s)) ... "
+            << std::flush;
+  const auto start = Clock::now();
+  const ChildOutcome outcome = run_in_child({}, [&] {
+    ensure_subdivided(input, levels, cache);
+    return std::vector<std::byte>{};
+  });
+  if (outcome.status != ChildOutcome::Status::ok) {
+    throw Error("cannot make " + path.string() + ": " + outcome.message);
+  }
+  std::cerr << fixed(seconds_since(start), 1) << " s\n";
+  return path;
 }
 
 int run_benchmark(const Options& options) {
@@ -758,7 +819,7 @@ int run_benchmark(const Options& options) {
 
   std::vector<std::filesystem::path> meshes = options.meshes;
   for (const int level : options.subdivided_levels) {
-    meshes.push_back(subdivided_igea(level));
+    meshes.push_back(subdivided_mesh(options, level));
   }
   std::vector<MeshResult> results;
   for (const auto& path : meshes) results.push_back(bench_mesh(path, options, memory_limit));
