@@ -211,12 +211,14 @@ class BinaryPlyBody {
 
   void read_vertices(const PlyElement& element, const std::array<std::size_t, 3>& xyz,
                      VertexMatrix& vertices) {
-    vertices.resize(static_cast<Eigen::Index>(element.count), 3);
     const PlyScalar type = element.properties[xyz[0]].type;
     const bool same_type = element.properties[xyz[1]].type == type && element.properties[xyz[2]].type == type;
     const auto record_size = element.fixed_record_size();
-    if (record_size && same_type) {
+    if (record_size) {
       require_records(element, *record_size);
+    }
+    vertices.resize(static_cast<Eigen::Index>(element.count), 3);
+    if (record_size && same_type) {
       std::array<std::size_t, 3> offsets{};
       for (std::size_t axis = 0; axis < 3; ++axis) {
         offsets[axis] = property_offset(element, xyz[axis]);
