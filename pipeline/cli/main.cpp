@@ -24,11 +24,13 @@ namespace geodual::cli {
 // The subcommands, in the order `geodual --help` lists them. Adding one is a
 // new <name>_command.cpp plus its line here.
 CommandFactory make_info_command;
+CommandFactory make_geodesic_command;
 
 namespace {
 
 constexpr CommandFactory* command_factories[] = {
     &make_info_command,
+    &make_geodesic_command,
 };
 
 constexpr int exit_failure = 1;
