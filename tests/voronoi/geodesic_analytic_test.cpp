@@ -10,6 +10,7 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "voronoi/test_meshes.hpp"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <iostream>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -193,6 +195,49 @@ TEST(GeodesicAnalytic, FlatSquareManySites) {
   check_both("flat square, 80 sites", mesh, sites, [&](const SurfacePoint& s, const SurfacePoint& p) {
     return (s.position(mesh) - p.position(mesh)).norm();
   });
+}
+
+// The smallest case of the above: the unit square a b c d with m the midpoint
+// of a-c and faces (a,b,m) (m,b,c) (a,m,c) (a,c,d); (a,m,c) has zero area and
+// must be crossed. Sites at m, or on the edges a-m / m-c, reach d straight.
+TEST(GeodesicAnalytic, ZeroAreaFaceNextToTheSite) {
+  TriangleMesh mesh;
+  mesh.vertices.resize(5, 3);
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5, 0.5, 0;
+  mesh.faces.resize(4, 3);
+  mesh.faces << 0, 1, 4, 4, 1, 2, 0, 4, 2, 0, 2, 3;
+  const ExactDistance exact = [&](const SurfacePoint& s, const SurfacePoint& p) {
+    return (s.position(mesh) - p.position(mesh)).norm();
+  };
+  for (const SurfacePoint& site : {SurfacePoint::at_vertex(4), SurfacePoint::in_face(0, 0.5, 0.0, 0.5),
+                                   SurfacePoint::in_face(1, 0.5, 0.0, 0.5), SurfacePoint::in_face(0, 0.2, 0.2, 0.6),
+                                   SurfacePoint::at_vertex(1)}) {
+    std::ostringstream name;
+    name << "minimal zero-area square, site " << (site.kind == SurfacePoint::Kind::vertex ? "vertex " : "face ")
+         << site.element << " (" << site.barycentric.transpose() << ")";
+    check_both(name.str(), mesh, {site}, exact);
+  }
+}
+
+TEST(GeodesicAnalytic, FlatSquareWithZeroAreaFaces) {
+  const test::ZeroAreaSquare square = test::flat_square_with_zero_area_faces(16, 12, 0.3, 19);
+  const TriangleMesh& mesh = square.mesh;
+  ASSERT_GE(square.zero_area_faces.size(), 8u);
+  for (Index f : square.zero_area_faces) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+                          c = mesh.vertices.row(mesh.faces(f, 2));
+    ASSERT_EQ((b - a).cross(c - a).norm(), 0.0) << "face " << f;
+  }
+  const ExactDistance exact = [&](const SurfacePoint& s, const SurfacePoint& p) {
+    return (s.position(mesh) - p.position(mesh)).norm();
+  };
+  check_both("zero-area faces, one site", mesh, {SurfacePoint::at_vertex(3)}, exact);
+  // Sites at the midpoints themselves (vertices of a zero-area face) and
+  // elsewhere.
+  std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 6, 20);
+  sites.push_back(SurfacePoint::at_vertex(square.midpoints[0]));
+  sites.push_back(SurfacePoint::at_vertex(square.midpoints[1]));
+  check_both("zero-area faces, 8 sites", mesh, sites, exact);
 }
 
 TEST(GeodesicAnalytic, LShapeAroundTheReflexCorner) {

@@ -233,6 +233,23 @@ INSTANTIATE_TEST_SUITE_P(Shared, SharedMesh, ::testing::ValuesIn(manifest_meshes
                            return name;
                          });
 
+TEST(GeodesicRobustness, SameInputSameOutput) {
+  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path("bunny_res2.ply"));
+  const auto sites = test::random_vertex_sites(mesh, 40, 9);
+  const GeodesicField a = compute_geodesic_field(mesh, sites), b = compute_geodesic_field(mesh, sites);
+  EXPECT_EQ(a.distance, b.distance);
+  EXPECT_EQ(a.nearest_site, b.nearest_site);
+  EXPECT_EQ(a.valid_face, b.valid_face);
+  EXPECT_EQ(a.window_begin, b.window_begin);
+  ASSERT_EQ(a.windows.size(), b.windows.size());
+  for (std::size_t i = 0; i < a.windows.size(); ++i) {
+    const EdgeWindow &x = a.windows[i], &y = b.windows[i];
+    EXPECT_TRUE(x.b0 == y.b0 && x.b1 == y.b1 && x.source_x == y.source_x && x.source_y == y.source_y &&
+                x.sigma == y.sigma && x.site == y.site)
+        << "window " << i;
+  }
+}
+
 // ---------------------------------------------------------------------------
 // Error contract
 

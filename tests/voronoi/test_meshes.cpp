@@ -315,6 +315,66 @@ TriangleMesh flat_square(int n, double jitter, std::uint64_t seed) {
   return to_mesh(points, tris);
 }
 
+ZeroAreaSquare flat_square_with_zero_area_faces(int n, int count, double jitter, std::uint64_t seed) {
+  Rng rng(seed);
+  auto id = [n](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  std::vector<Eigen::Vector3d> points;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) points.emplace_back(static_cast<double>(i) / n, static_cast<double>(j) / n, 0.0);
+  }
+  // Interior cells with the diagonal a-c, no two sharing a corner.
+  std::vector<bool> used(points.size(), false), chosen(static_cast<std::size_t>(n * n), false);
+  int made = 0, attempts = 0;
+  while (made < count && attempts++ < 100 * count) {
+    const int i = 1 + static_cast<int>(rng.below(n - 2)), j = 1 + static_cast<int>(rng.below(n - 2));
+    if ((i + j) % 2 != 0) continue;
+    const Index corners[4] = {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+    bool free = true;
+    for (Index c : corners) free = free && !used[static_cast<std::size_t>(c)];
+    if (!free) continue;
+    for (Index c : corners) used[static_cast<std::size_t>(c)] = true;
+    chosen[static_cast<std::size_t>(j * n + i)] = true;
+    ++made;
+  }
+  // Jitter every interior vertex that is not the end of a split diagonal.
+  std::vector<bool> fixed(points.size(), false);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (!chosen[static_cast<std::size_t>(j * n + i)]) continue;
+      fixed[static_cast<std::size_t>(id(i, j))] = fixed[static_cast<std::size_t>(id(i + 1, j + 1))] = true;
+    }
+  }
+  for (int j = 1; j < n; ++j) {
+    for (int i = 1; i < n; ++i) {
+      const auto v = static_cast<std::size_t>(id(i, j));
+      if (fixed[v]) continue;
+      points[v].x() += jitter / n * rng.uniform(-1, 1);
+      points[v].y() += jitter / n * rng.uniform(-1, 1);
+    }
+  }
+  ZeroAreaSquare out;
+  std::vector<std::array<Index, 3>> tris;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const Index a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (!chosen[static_cast<std::size_t>(j * n + i)]) {
+        add_quad(tris, a, b, c, d, (i + j) % 2 == 0);
+        continue;
+      }
+      const Index m = static_cast<Index>(points.size());
+      points.push_back(0.5 * (points[static_cast<std::size_t>(a)] + points[static_cast<std::size_t>(c)]));
+      out.midpoints.push_back(m);
+      tris.push_back({a, b, m});
+      tris.push_back({m, b, c});
+      out.zero_area_faces.push_back(static_cast<Index>(tris.size()));
+      tris.push_back({a, m, c});
+      tris.push_back({a, c, d});
+    }
+  }
+  out.mesh = to_mesh(points, tris);
+  return out;
+}
+
 TriangleMesh l_shape(int n, double jitter, std::uint64_t seed) {
   Rng rng(seed);
   const int m = 2 * n;

@@ -77,6 +77,19 @@ std::vector<SurfacePoint> random_face_sites(const TriangleMesh& mesh, int count,
 /// `jitter` cells, diagonals alternating. Geodesic = Euclidean distance.
 TriangleMesh flat_square(int n, double jitter, std::uint64_t seed);
 
+/// A flat square on an n x n grid (n a power of two, so that coordinates and
+/// midpoints are exact in binary) where `count` cells get a vertex m at the
+/// exact midpoint of their diagonal a-c and the triangles (a, b, m), (m, b, c),
+/// (a, m, c), (a, c, d): the third one has distinct vertices and exactly zero
+/// area, and the mesh stays an oriented manifold. Vertices not on such a
+/// diagonal are jittered. The new vertices m are listed in `midpoints`.
+struct ZeroAreaSquare {
+  TriangleMesh mesh;
+  std::vector<Index> midpoints;
+  std::vector<Index> zero_area_faces;
+};
+ZeroAreaSquare flat_square_with_zero_area_faces(int n, int count, double jitter, std::uint64_t seed);
+
 /// The plate [0,2]^2 minus the open square (1,2)^2: a flat L with one reflex
 /// boundary corner at (1,1); cells of size 1/n, interior vertices jittered.
 TriangleMesh l_shape(int n, double jitter, std::uint64_t seed);
