@@ -11,7 +11,7 @@
 
 namespace geodual {
 
-Eigen::Vector3f site_color(Index site) {
+std::array<float, 3> site_color(Index site) {
   if (site < 0) return {0.5f, 0.5f, 0.5f};
   // Hues stepped by the golden ratio never repeat and stay well apart.
   const double hue = std::fmod(0.1 + static_cast<double>(site) * 0.618033988749895, 1.0) * 6.0;
@@ -47,7 +47,8 @@ void write_geodesic_field(const std::filesystem::path& path, const TriangleMesh&
     entry.colors.resize(static_cast<Eigen::Index>(n), 3);
     io::GltfVertexScalar distance{"_DISTANCE", std::vector<float>(n)};
     for (std::size_t v = 0; v < n; ++v) {
-      entry.colors.row(static_cast<Eigen::Index>(v)) = site_color(field.nearest_site[v]).transpose();
+      const std::array<float, 3> color = site_color(field.nearest_site[v]);
+      for (int c = 0; c < 3; ++c) entry.colors(static_cast<Eigen::Index>(v), c) = color[c];
       distance.values[v] = std::isfinite(field.distance[v]) ? static_cast<float>(field.distance[v]) : -1.0f;
     }
     entry.scalars.push_back(std::move(distance));

@@ -4,15 +4,14 @@
 #include "geodual/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
-#include <Eigen/Core>
-
+#include <array>
 #include <filesystem>
 
 namespace geodual {
 
 /// A colour per site index, well spread in hue, the same on every run;
 /// grey for -1 (no site).
-Eigen::Vector3f site_color(Index site);
+std::array<float, 3> site_color(Index site);
 
 /// Writes the mesh with the field, by extension:
 ///  - .ply: per-vertex properties `distance` (double; inf where unreachable)
