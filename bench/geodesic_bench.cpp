@@ -87,6 +87,7 @@ struct Options {
   std::size_t sites = 30;
   std::uint64_t seed = 1;
   int repeat = 3;
+  std::optional<int> cgal_repeat;  ///< default: repeat
   std::vector<Method> methods{std::begin(kAllMethods), std::end(kAllMethods)};
   std::int64_t max_faces_cgal = 400'000;
   std::optional<double> memory_limit_gib;  ///< default: min(20 GiB, 80% of MemAvailable)
@@ -108,14 +109,16 @@ options:
   --sites N              random vertex sites per mesh (default 30)
   --seed S               seed of the site choice (default 1)
   --repeat R             runs per method; the median is reported (default 3)
+  --cgal-repeat R        runs of CGAL, which is 10-100x slower (default: R)
   --methods LIST         comma-separated subset of rwr,no-rwr,cgal,dijkstra
                          (default: all four)
   --skip-cgal            leave CGAL out
   --max-faces-cgal F     skip CGAL on meshes with more than F faces (default 400000)
   --memory-limit-gib G   address-space limit of each method's child process
                          (default: 20, or 80% of MemAvailable if less)
-  --time-limit S         wall-clock limit of each method's child in seconds,
-                         0 for none (default 1800)
+  --time-limit S         wall-clock limit of each method's child in seconds
+                         (ours stops then and says how far it got; the others
+                         are killed a minute later), 0 for none (default 1800)
   --window-limit-gib G   GeodesicOptions::window_memory_limit_bytes (default 8)
   --tolerance T          allowed max |ours - CGAL| / bbox diagonal (default 1e-6)
   --subdivided LEVELS    also run the Loop-subdivided igea, comma-separated
@@ -169,6 +172,9 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--repeat") {
       options.repeat = parse_number<int>(arg, value());
       if (options.repeat < 1) throw UsageError("--repeat must be at least 1");
+    } else if (arg == "--cgal-repeat") {
+      options.cgal_repeat = parse_number<int>(arg, value());
+      if (*options.cgal_repeat < 1) throw UsageError("--cgal-repeat must be at least 1");
     } else if (arg == "--methods") {
       options.methods.clear();
       for (const std::string_view name : split_commas(value())) {
@@ -231,11 +237,33 @@ struct Answer {
 
 // ---- ours ------------------------------------------------------------------
 
-Answer run_ours(const TriangleMesh& mesh, std::span<const SurfacePoint> sites, bool rwr, double window_limit_gib) {
+/// When a method's child must give up: `at`, `seconds` after it started.
+struct Deadline {
+  Clock::time_point at;
+  unsigned seconds = 0;
+};
+
+/// Ours. With a deadline it stops through the progress callback and says how
+/// far it got (a SIGALRM would end the child without a word).
+Answer run_ours(const TriangleMesh& mesh, std::span<const SurfacePoint> sites, bool rwr, double window_limit_gib,
+                const std::optional<Deadline>& deadline) {
   voronoi::GeodesicOptions options;
   options.remove_redundant_windows = rwr;
   options.window_memory_limit_bytes = static_cast<std::size_t>(window_limit_gib * static_cast<double>(kGiB));
-  voronoi::GeodesicField field = voronoi::compute_geodesic_field(mesh, sites, options);
+  double reached = 0;
+  if (deadline) {
+    options.progress = [&](double fraction) {
+      reached = fraction;
+      return Clock::now() < deadline->at;
+    };
+  }
+  voronoi::GeodesicField field;
+  try {
+    field = voronoi::compute_geodesic_field(mesh, sites, options);
+  } catch (const Cancelled&) {
+    throw Error("time limit of " + std::to_string(deadline->seconds) + " s: stopped with " +
+                fixed(100 * reached, 1) + "% of the faces reached");
+  }
   Answer answer;
   answer.stats = field.stats;
   answer.setup_seconds = field.stats.setup_seconds;
@@ -546,7 +574,6 @@ struct MeshResult {
   std::int64_t faces = 0;
   std::int64_t vertices = 0;
   std::size_t sites = 0;
-  int repeat = 0;
   std::vector<MethodResult> methods;
 
   const MethodResult* find(Method m) const {
@@ -561,6 +588,45 @@ double median_cpu(const MethodResult* r) {
   return r && r->report ? median(r->report->cpu_seconds) : std::numeric_limits<double>::quiet_NaN();
 }
 
+/// Records in `r` how its answer compares with ours with RWR, and whether
+/// that is acceptable for its method.
+void judge(MethodResult& r, const Agreement& a, double diagonal, double tolerance) {
+  r.diff_over_diagonal = a.max_abs_diff / diagonal;
+  if (a.reachability_differs > 0) {
+    r.check_failed = true;
+    r.note = "CHECK FAILED: reachability differs at " + grouped(a.reachability_differs) + " vertices; ";
+  }
+  switch (r.method) {
+    case Method::ours_no_rwr:
+      r.identical_to_reference = a.distance_differs == 0 && a.label_differs == 0;
+      if (r.identical_to_reference) {
+        r.note += "distances and labels identical to RWR on";
+      } else {
+        r.check_failed = true;
+        r.note += "CHECK FAILED: differs from RWR on at " + grouped(a.distance_differs) + " distances, " +
+                  grouped(a.label_differs) + " labels";
+      }
+      break;
+    case Method::cgal:
+      if (*r.diff_over_diagonal > tolerance) {
+        r.check_failed = true;
+        r.note += "CHECK FAILED: max |diff| above --tolerance " + scientific(tolerance) + "; ";
+      }
+      r.note += "labels differ at " + grouped(a.label_differs) + " vertices";
+      break;
+    case Method::dijkstra:
+      // An exact geodesic is never longer than a path along edges.
+      if (a.max_excess > tolerance * diagonal) {
+        r.check_failed = true;
+        r.note += "CHECK FAILED: ours exceeds the edge path by " + scientific(a.max_excess / diagonal) +
+                  " of the diagonal; ";
+      }
+      r.note += "upper bound; labels differ at " + grouped(a.label_differs) + " vertices";
+      break;
+    case Method::ours_rwr: break;
+  }
+}
+
 MeshResult bench_mesh(const std::filesystem::path& path, const Options& options, std::int64_t memory_limit_bytes) {
   const auto load_start = Clock::now();
   io::LoadedMesh loaded = io::read_mesh(path);
@@ -570,7 +636,6 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
   result.faces = mesh.num_faces();
   result.vertices = mesh.num_vertices();
   result.sites = options.sites;
-  result.repeat = options.repeat;
   const double diagonal = bbox_diagonal(mesh);
   std::cerr << "\n== " << result.name << ": " << grouped(result.vertices) << " vertices, " << grouped(result.faces)
             << " faces, bbox diagonal " << diagonal << ", read in " << fixed(seconds_since(load_start), 2) << " s\n";
@@ -582,7 +647,12 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
   for (std::size_t i = 0; i < site_vertices.size(); ++i) std::cerr << (i % 15 == 0 ? "\n     " : " ") << site_vertices[i];
   std::cerr << '\n';
 
-  const ChildLimits limits{memory_limit_bytes, options.time_limit_seconds};
+  // Ours stops itself at the time limit; SIGALRM, a minute later, is the
+  // backstop for every method.
+  constexpr unsigned kAlarmGraceSeconds = 60;
+  const ChildLimits limits{memory_limit_bytes,
+                           options.time_limit_seconds > 0 ? options.time_limit_seconds + kAlarmGraceSeconds : 0};
+  std::optional<Deadline> deadline;  // set in each child as it starts
   // The answer of ours with RWR, which every other method is checked against.
   std::optional<std::pair<std::vector<double>, std::vector<Index>>> reference;
   for (const Method method : options.methods) {
@@ -598,14 +668,20 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
       case Method::ours_rwr:
       case Method::ours_no_rwr: {
         const bool rwr = method == Method::ours_rwr;
-        run = [&, rwr] { return run_ours(mesh, sites, rwr, options.window_limit_gib); };
+        run = [&, rwr] { return run_ours(mesh, sites, rwr, options.window_limit_gib, deadline); };
         break;
       }
       case Method::cgal: run = [&] { return run_cgal(mesh, site_vertices); }; break;
       case Method::dijkstra: run = [&] { return run_dijkstra(mesh, site_vertices); }; break;
     }
-    std::cerr << "   " << method_title(method) << ": " << options.repeat << " run(s) ... " << std::flush;
-    const ChildOutcome outcome = run_in_child(limits, [&] { return encode(measure(run, options.repeat)); });
+    const int repeat = method == Method::cgal ? options.cgal_repeat.value_or(options.repeat) : options.repeat;
+    std::cerr << "   " << method_title(method) << ": " << repeat << " run(s) ... " << std::flush;
+    const ChildOutcome outcome = run_in_child(limits, [&] {
+      if (options.time_limit_seconds > 0) {
+        deadline = Deadline{Clock::now() + std::chrono::seconds(options.time_limit_seconds), options.time_limit_seconds};
+      }
+      return encode(measure(run, repeat));
+    });
     r.status = outcome.status;
     r.child_max_rss_bytes = outcome.child_max_rss_bytes;
     if (outcome.status != ChildOutcome::Status::ok) {
@@ -630,41 +706,7 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
       r.note = "not checked (no reference: ours RWR did not run)";
       continue;
     }
-    const Agreement a = compare(reference->first, reference->second, distance, label);
-    r.diff_over_diagonal = a.max_abs_diff / diagonal;
-    if (a.reachability_differs > 0) {
-      r.check_failed = true;
-      r.note = "CHECK FAILED: reachability differs at " + grouped(a.reachability_differs) + " vertices; ";
-    }
-    switch (method) {
-      case Method::ours_no_rwr:
-        r.identical_to_reference = a.distance_differs == 0 && a.label_differs == 0;
-        if (r.identical_to_reference) {
-          r.note += "distances and labels identical to RWR on";
-        } else {
-          r.check_failed = true;
-          r.note += "CHECK FAILED: differs from RWR on at " + grouped(a.distance_differs) + " distances, " +
-                    grouped(a.label_differs) + " labels";
-        }
-        break;
-      case Method::cgal:
-        if (*r.diff_over_diagonal > options.tolerance) {
-          r.check_failed = true;
-          r.note += "CHECK FAILED: max |diff| above --tolerance " + scientific(options.tolerance) + "; ";
-        }
-        r.note += "labels differ at " + grouped(a.label_differs) + " vertices (ties)";
-        break;
-      case Method::dijkstra:
-        // An exact geodesic is never longer than a path along edges.
-        if (a.max_excess > options.tolerance * diagonal) {
-          r.check_failed = true;
-          r.note += "CHECK FAILED: ours exceeds the edge path by " + scientific(a.max_excess / diagonal) +
-                    " of the diagonal; ";
-        }
-        r.note += "upper bound: labels differ at " + grouped(a.label_differs) + " vertices";
-        break;
-      case Method::ours_rwr: break;
-    }
+    judge(r, compare(reference->first, reference->second, distance, label), diagonal, options.tolerance);
   }
   return result;
 }
