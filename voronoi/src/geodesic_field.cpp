@@ -10,6 +10,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 namespace geodual::voronoi {
 namespace {
@@ -91,7 +92,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
 GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                      const GeodesicOptions& options) {
   const auto start = Clock::now();
-  const detail::PropagationMesh pm = detail::build_propagation_mesh(mesh);
+  detail::PropagationMesh pm = detail::build_propagation_mesh(mesh);
   GeodesicField field;
   field.sites = validated_sites(mesh, pm, sites);
   const double setup_seconds = seconds_since(start);
@@ -106,10 +107,6 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
 
   field.distance = vtp.distance();
   field.nearest_site = vtp.label();
-  field.edge_vertices = pm.edge_vertices;
-  field.edge_faces = pm.edge_faces;
-  field.edge_length = pm.edge_length;
-  field.face_edges = pm.face_edges;
   field.valid_face = vtp.valid_faces();
 
   const detail::WindowStore& store = vtp.windows();
@@ -123,6 +120,12 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
     }
   }
   field.window_begin.back() = static_cast<Index>(field.windows.size());
+  // The topology moves into the result rather than being copied: it is the
+  // largest thing held, and the propagation no longer needs it.
+  field.edge_vertices = std::move(pm.edge_vertices);
+  field.edge_faces = std::move(pm.edge_faces);
+  field.edge_length = std::move(pm.edge_length);
+  field.face_edges = std::move(pm.face_edges);
   field.stats.total_seconds = seconds_since(start);
   return field;
 }

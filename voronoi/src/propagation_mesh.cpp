@@ -55,9 +55,10 @@ Index fan_size(const PropagationMesh& pm, Index v, Index start) {
 }  // namespace
 
 EdgeLayout PropagationMesh::layout(Index face, int k) const {
-  const double length = edge_length[face_edges[face][k]];
-  const double next = edge_length[face_edges[face][(k + 1) % 3]];  // corners k+1, k+2
-  const double prev = edge_length[face_edges[face][(k + 2) % 3]];  // corners k+2, k
+  const std::array<double, 3>& lengths = face_edge_lengths[face];
+  const double length = lengths[k];
+  const double next = lengths[(k + 1) % 3];  // corners k+1, k+2
+  const double prev = lengths[(k + 2) % 3];  // corners k+2, k
   EdgeLayout l;
   l.length = length;
   if (length <= 0) return l;
@@ -128,6 +129,12 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   }
   half_edges.clear();
   half_edges.shrink_to_fit();
+
+  pm.face_edge_lengths.assign(num_faces, {0.0, 0.0, 0.0});
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!pm.included(f)) continue;
+    for (int k = 0; k < 3; ++k) pm.face_edge_lengths[f][k] = pm.edge_length[pm.face_edges[f][k]];
+  }
 
   // Vertex -> faces, by counting sort (faces in increasing order).
   pm.vertex_face_begin.assign(static_cast<std::size_t>(num_vertices) + 1, 0);

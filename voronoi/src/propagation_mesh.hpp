@@ -38,6 +38,9 @@ struct PropagationMesh {
   /// orientation); false where it runs v0 -> v1 like face [0].
   std::vector<std::uint8_t> edge_reversed_in_face1;
   std::vector<double> edge_length;
+  /// Per face, the lengths of its edges 0, 1, 2 (a copy kept next to each
+  /// other: laying a face out is the innermost step of propagation).
+  std::vector<std::array<double, 3>> face_edge_lengths;
 
   /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
   std::vector<Index> vertex_face_begin;
