@@ -5,7 +5,9 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
 
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -24,6 +26,35 @@ using FaceIndex = Mesh::Face_index;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// CGAL 5.5's expand_root() passes the weight of the edge's source corner as
+/// the parameter t of face_location(halfedge, t), which gives that weight to
+/// the edge's *target*: a source point on an edge is mirrored along the edge
+/// (an interior or vertex source is not affected, nor are queries). Measured
+/// once on a unit square split along its diagonal, so that the oracle stays
+/// right whether or not the installed CGAL has the defect.
+bool cgal_mirrors_edge_sources() {
+  static const bool mirrors = [] {
+    Mesh sm;
+    const VertexIndex v0 = sm.add_vertex(Kernel::Point_3(0, 0, 0)), v1 = sm.add_vertex(Kernel::Point_3(1, 0, 0)),
+                      v2 = sm.add_vertex(Kernel::Point_3(1, 1, 0)), v3 = sm.add_vertex(Kernel::Point_3(0, 1, 0));
+    const FaceIndex f = sm.add_face(v0, v1, v2);
+    sm.add_face(v0, v2, v3);
+    // The point 0.8 v0 + 0.2 v2 on the diagonal, in CGAL's corner order.
+    const auto h = sm.halfedge(f);
+    const VertexIndex corners[3] = {sm.source(h), sm.target(h), sm.target(sm.next(h))};
+    std::array<double, 3> b{};
+    for (int i = 0; i < 3; ++i) b[static_cast<std::size_t>(i)] = corners[i] == v0 ? 0.8 : corners[i] == v2 ? 0.2 : 0.0;
+    ShortestPath solver(sm);
+    solver.add_source_point(f, ShortestPath::Barycentric_coordinates{{b[0], b[1], b[2]}});
+    const double to_v0 = solver.shortest_distance_to_source_points(v0).first;
+    const double right = 0.2 * std::sqrt(2.0), mirrored = 0.8 * std::sqrt(2.0);
+    if (std::abs(to_v0 - right) < 1e-12) return false;
+    if (std::abs(to_v0 - mirrored) < 1e-12) return true;
+    throw std::runtime_error("cgal_geodesic: CGAL places an edge source neither right nor mirrored");
+  }();
+  return mirrors;
 }
 
 }  // namespace
@@ -73,7 +104,8 @@ OracleResult cgal_geodesic(const TriangleMesh& mesh, std::span<const SurfacePoin
 
   // CGAL's barycentric coordinates of face f refer to source(h), target(h),
   // target(next(h)) with h = halfedge(f); map ours (corners 0, 1, 2) onto them.
-  auto to_cgal_location = [&](const SurfacePoint& p) {
+  // Source points on an edge are pre-mirrored where CGAL mirrors them.
+  auto to_cgal_location = [&](const SurfacePoint& p, bool is_source) {
     const Index f = p.element;
     if (f < 0 || f >= nf || cgal_face[f] == Mesh::null_face()) {
       throw std::runtime_error("cgal_geodesic: face point on a face that takes no part");
@@ -90,6 +122,11 @@ OracleResult cgal_geodesic(const TriangleMesh& mesh, std::span<const SurfacePoin
       }
       if (corner < 0) throw std::runtime_error("cgal_geodesic: face corner mapping failed");
       b[static_cast<std::size_t>(i)] = p.barycentric[corner];
+    }
+    const int zeros = (b[0] == 0) + (b[1] == 0) + (b[2] == 0);
+    if (is_source && zeros == 1 && cgal_mirrors_edge_sources()) {
+      const std::size_t zero = b[0] == 0 ? 0 : b[1] == 0 ? 1 : 2;
+      std::swap(b[(zero + 1) % 3], b[(zero + 2) % 3]);
     }
     return ShortestPath::Face_location(cf, ShortestPath::Barycentric_coordinates{{b[0], b[1], b[2]}});
   };
@@ -108,7 +145,7 @@ OracleResult cgal_geodesic(const TriangleMesh& mesh, std::span<const SurfacePoin
       }
       it = solver.add_source_point(VertexIndex(static_cast<Mesh::size_type>(to_cgal[s.element])));
     } else {
-      it = solver.add_source_point(to_cgal_location(s));
+      it = solver.add_source_point(to_cgal_location(s, true));
     }
     site_of[static_cast<const void*>(&*it)] = static_cast<Index>(i);
   }
@@ -126,7 +163,7 @@ OracleResult cgal_geodesic(const TriangleMesh& mesh, std::span<const SurfacePoin
   }
   for (const SurfacePoint& q : queries) {
     if (q.kind != SurfacePoint::Kind::face) throw std::runtime_error("cgal_geodesic: queries must be face points");
-    const auto location = to_cgal_location(q);
+    const auto location = to_cgal_location(q, false);
     const auto result = solver.shortest_distance_to_source_points(location.first, location.second);
     if (result.first < 0 || result.second == solver.source_points_end()) {
       out.query_distance.push_back(inf);

@@ -265,6 +265,31 @@ TEST(GeodesicAnalytic, LShapeAroundTheReflexCorner) {
   check_both("L plate, 3 sites", mesh, sites, exact);
 }
 
+TEST(GeodesicAnalytic, BookOfThreePagesCrossesOnlyAtSpineVertices) {
+  const test::NonManifold book = test::book(3, 8, 6, 1.0, 0.3, 71);
+  const ExactDistance exact = [&](const SurfacePoint& s, const SurfacePoint& p) { return book.distance(s, p); };
+  // A site in page 0 reaches pages 1 and 2 through the spine's vertices.
+  Index face = -1;
+  for (Index f = 0; f < book.mesh.num_faces() && face < 0; ++f) {
+    if (book.face_page[f] == 0 && SurfacePoint::in_face(f, 0.3, 0.3, 0.4).position(book.mesh).y() > 0.4) face = f;
+  }
+  ASSERT_GE(face, 0);
+  check_both("book of 3 pages, face site", book.mesh, {SurfacePoint::in_face(face, 0.3, 0.3, 0.4)}, exact);
+  check_both("book of 3 pages, site on the spine", book.mesh, {SurfacePoint::at_vertex(book.shared[3])}, exact);
+  std::vector<SurfacePoint> sites = test::random_face_sites(book.mesh, 4, 72);
+  sites.push_back(SurfacePoint::at_vertex(book.shared.back()));
+  check_both("book of 3 pages, 5 sites", book.mesh, sites, exact);
+}
+
+TEST(GeodesicAnalytic, BowtieThroughThePinchVertex) {
+  const test::NonManifold bowtie = test::bowtie(8, 0.3, 81);
+  const ExactDistance exact = [&](const SurfacePoint& s, const SurfacePoint& p) { return bowtie.distance(s, p); };
+  check_both("bowtie, face site", bowtie.mesh, {SurfacePoint::in_face(20, 0.3, 0.3, 0.4)}, exact);
+  check_both("bowtie, site at the pinch", bowtie.mesh, {SurfacePoint::at_vertex(0)}, exact);
+  std::vector<SurfacePoint> sites = test::random_face_sites(bowtie.mesh, 3, 82);
+  check_both("bowtie, 3 sites", bowtie.mesh, sites, exact);
+}
+
 TEST(GeodesicAnalytic, PrismUnrolls) {
   const test::Prism prism = test::prism(12, 8, 1.0, 3.0, 0.3, 31);
   const ExactDistance exact = [&](const SurfacePoint& s, const SurfacePoint& p) { return prism.distance(s, p); };

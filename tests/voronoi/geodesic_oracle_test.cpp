@@ -22,9 +22,11 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -187,6 +189,53 @@ void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCas
             << field.stats.total_seconds << " s (wall " << ours_wall << ", cpu " << ours_cpu << "), CGAL "
             << cgal.solve_seconds << " s (wall " << cgal_wall << ", cpu " << cgal_cpu << "); peak windows "
             << field.stats.peak_windows << ", stored " << field.stats.windows_stored << "\n";
+}
+
+// The oracle itself, against closed forms: vertex, interior and edge sites on
+// a flat square, the L plate (boundary), the saddle cone and the cube. This
+// is what caught CGAL 5.5 mirroring sources on edges (see cgal_oracle.cpp).
+TEST(GeodesicOracle, CgalMatchesClosedForms) {
+  struct Case {
+    std::string name;
+    TriangleMesh mesh;
+    std::function<double(const SurfacePoint&, const SurfacePoint&)> exact;
+  };
+  const TriangleMesh square = test::flat_square(16, 0.3, 901);
+  const TriangleMesh plate = test::l_shape(6, 0.3, 902);
+  const test::Cone cone = test::cone(16, 8, 1.0, 2.5 * std::numbers::pi, 0.3, 903);
+  const test::Cube cube = test::cube(5, 0.25, 904);
+  std::vector<Case> cases;
+  cases.push_back({"flat square", square, [&](const SurfacePoint& a, const SurfacePoint& b) {
+                     return (a.position(square) - b.position(square)).norm();
+                   }});
+  cases.push_back({"L plate", plate, [&](const SurfacePoint& a, const SurfacePoint& b) {
+                     return test::l_shape_distance(a.position(plate), b.position(plate));
+                   }});
+  cases.push_back({"saddle cone", cone.mesh, [&](const SurfacePoint& a, const SurfacePoint& b) {
+                     return cone.distance(a, b);
+                   }});
+  cases.push_back({"cube", cube.mesh, [&](const SurfacePoint& a, const SurfacePoint& b) {
+                     return cube.distance(a.position(cube.mesh), b.position(cube.mesh));
+                   }});
+  for (const Case& c : cases) {
+    const double tol = 1e-12 * test::bbox_diagonal(c.mesh);
+    std::vector<SurfacePoint> probes = test::random_vertex_sites(c.mesh, 2, 905);
+    for (const SurfacePoint& p : test::random_face_sites(c.mesh, 2, 906)) probes.push_back(p);
+    for (SurfacePoint p : test::random_face_sites(c.mesh, 3, 907)) {
+      p.barycentric[static_cast<int>(p.element % 3)] = 0;
+      p.barycentric /= p.barycentric.sum();
+      probes.push_back(p);
+    }
+    for (const SurfacePoint& site : probes) {
+      const test::OracleResult r = test::cgal_geodesic(c.mesh, std::vector<SurfacePoint>{site});
+      double worst = 0;
+      for (Index v = 0; v < c.mesh.num_vertices(); ++v) {
+        worst = std::max(worst, std::abs(r.distance[v] - c.exact(site, SurfacePoint::at_vertex(v))));
+      }
+      EXPECT_LE(worst, tol) << c.name << ": CGAL from " << (site.kind == SurfacePoint::Kind::vertex ? "vertex " : "face ")
+                            << site.element << " (" << site.barycentric.transpose() << ")";
+    }
+  }
 }
 
 void run_mesh(const std::string& file, const std::vector<OracleCase>& cases) {

@@ -426,6 +426,109 @@ double l_shape_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 }
 
 // ---------------------------------------------------------------------------
+// Non-manifold surfaces
+
+NonManifold book(int pages, int n, int m, double height, double jitter, std::uint64_t seed) {
+  Rng rng(seed);
+  NonManifold out;
+  out.spine = true;
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i <= n; ++i) {
+    out.shared.push_back(static_cast<Index>(points.size()));
+    out.vertex_page.push_back(-1);
+    points.emplace_back(static_cast<double>(i) / n, 0.0, 0.0);
+  }
+  std::vector<std::array<Index, 3>> tris;
+  for (int k = 0; k < pages; ++k) {
+    const double theta = 2 * kPi * k / pages;
+    std::vector<Index> id(static_cast<std::size_t>((n + 1) * (m + 1)));
+    for (int j = 0; j <= m; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        if (j == 0) {
+          id[static_cast<std::size_t>(i)] = static_cast<Index>(i);
+          continue;
+        }
+        double x = static_cast<double>(i) / n, r = height * j / m;
+        if (i > 0 && i < n && j < m) {
+          x += jitter / n * rng.uniform(-1, 1);
+          r += jitter * height / m * rng.uniform(-1, 1);
+        }
+        id[static_cast<std::size_t>(j * (n + 1) + i)] = static_cast<Index>(points.size());
+        out.vertex_page.push_back(k);
+        points.emplace_back(x, r * std::cos(theta), r * std::sin(theta));
+      }
+    }
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const auto at = [&](int a, int b) { return id[static_cast<std::size_t>(b * (n + 1) + a)]; };
+        add_quad(tris, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0);
+        out.face_page.push_back(k);
+        out.face_page.push_back(k);
+      }
+    }
+  }
+  out.mesh = to_mesh(points, tris);
+  return out;
+}
+
+NonManifold bowtie(int n, double jitter, std::uint64_t seed) {
+  Rng rng(seed);
+  NonManifold out;
+  std::vector<Eigen::Vector3d> points{Eigen::Vector3d::Zero()};
+  out.vertex_page.push_back(-1);
+  out.shared.push_back(0);
+  std::vector<std::array<Index, 3>> tris;
+  for (int k = 0; k < 2; ++k) {
+    const double sign = k == 0 ? 1.0 : -1.0;
+    std::vector<Index> id(static_cast<std::size_t>((n + 1) * (n + 1)));
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        if (i == 0 && j == 0) {
+          id[0] = 0;
+          continue;
+        }
+        double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
+        if (i > 0 && i < n && j > 0 && j < n) {
+          x += jitter / n * rng.uniform(-1, 1);
+          y += jitter / n * rng.uniform(-1, 1);
+        }
+        id[static_cast<std::size_t>(j * (n + 1) + i)] = static_cast<Index>(points.size());
+        out.vertex_page.push_back(k);
+        points.emplace_back(sign * x, sign * y, 0.0);
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const auto at = [&](int a, int b) { return id[static_cast<std::size_t>(b * (n + 1) + a)]; };
+        add_quad(tris, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0);
+        out.face_page.push_back(k);
+        out.face_page.push_back(k);
+      }
+    }
+  }
+  out.mesh = to_mesh(points, tris);
+  return out;
+}
+
+double NonManifold::distance(const SurfacePoint& a, const SurfacePoint& b) const {
+  // Shared points (on the spine, or the pinch vertex) belong to every page.
+  auto page = [&](const SurfacePoint& p, const Eigen::Vector3d& x) {
+    if (p.kind == SurfacePoint::Kind::vertex) return vertex_page[static_cast<std::size_t>(p.element)];
+    if (spine ? (x.y() == 0 && x.z() == 0) : x.isZero()) return Index{-1};
+    return face_page[static_cast<std::size_t>(p.element)];
+  };
+  const Eigen::Vector3d pa = a.position(mesh), pb = b.position(mesh);
+  const Index ka = page(a, pa), kb = page(b, pb);
+  if (ka < 0 || kb < 0 || ka == kb) return (pa - pb).norm();
+  double best = std::numeric_limits<double>::infinity();
+  for (Index e : shared) {
+    const Eigen::Vector3d pe = mesh.vertices.row(e).transpose();
+    best = std::min(best, (pa - pe).norm() + (pe - pb).norm());
+  }
+  return best;
+}
+
+// ---------------------------------------------------------------------------
 // Prism
 
 Prism prism(int sides, int rings, double radius, double height, double jitter, std::uint64_t seed) {

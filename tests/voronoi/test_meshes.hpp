@@ -90,6 +90,30 @@ struct ZeroAreaSquare {
 };
 ZeroAreaSquare flat_square_with_zero_area_faces(int n, int count, double jitter, std::uint64_t seed);
 
+/// Non-manifold surfaces with exact distances.
+///
+/// Book: `pages` flat rectangles [0,1] x [0,height] (n x m cells, interior
+/// vertices jittered) sharing the spine from (0,0,0) to (1,0,0), page k turned
+/// by 2 pi k / pages about the x axis. Spine edges have `pages` faces, so
+/// (engine contract) their interiors cannot be crossed and paths change page
+/// only through spine vertices: between pages the distance is the minimum of
+/// |s e| + |e p| over spine vertices e; within a page it is straight (every
+/// page is convex).
+///
+/// Bowtie (pages == 0 is not used): two unit squares z = 0, [0,1]^2 and
+/// [-1,0]^2, sharing only the vertex at the origin (a pinch vertex): between
+/// the squares the distance is |s o| + |o p|.
+struct NonManifold {
+  TriangleMesh mesh;
+  std::vector<Index> vertex_page;  ///< -1 for the shared vertices (spine or pinch)
+  std::vector<Index> face_page;
+  std::vector<Index> shared;       ///< the spine or pinch vertices
+  bool spine = false;              ///< book: every point of the x axis is shared
+  double distance(const SurfacePoint& a, const SurfacePoint& b) const;
+};
+NonManifold book(int pages, int n, int m, double height, double jitter, std::uint64_t seed);
+NonManifold bowtie(int n, double jitter, std::uint64_t seed);
+
 /// The plate [0,2]^2 minus the open square (1,2)^2: a flat L with one reflex
 /// boundary corner at (1,1); cells of size 1/n, interior vertices jittered.
 TriangleMesh l_shape(int n, double jitter, std::uint64_t seed);
