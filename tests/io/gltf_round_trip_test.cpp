@@ -5,15 +5,13 @@
 // reason (doubles in general come back rounded to the nearest float).
 
 #include "geodual/io/gltf.hpp"
-#include "../../io/src/format_readers.hpp"
+#include "geodual/io/read_mesh.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,11 +22,9 @@ namespace geodual::io {
 namespace {
 namespace fs = std::filesystem;
 
-LoadedMesh read_back(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return detail::read_gltf(std::as_bytes(std::span(chars)), path.extension() == ".glb", path);
-}
+// Through the public entry point: file loading, the glTF reader and the
+// checks read_mesh applies to every format.
+LoadedMesh read_back(const fs::path& path) { return read_mesh(path); }
 
 // A bumpy grid of float32-representable coordinates (awkward values, not
 // round numbers), plus one unreferenced vertex at the end.
@@ -110,7 +106,7 @@ TEST_P(GltfRoundTrip, SceneExtrasDoNotDisturbTheTriangles) {
   const TriangleMesh first = float_grid(4, 1);
   const TriangleMesh second = float_grid(3, 2);
   scene.triangle_meshes.push_back({.name = "a", .mesh = first, .colors = ColorMatrix::Zero(17, 3), .scalars = {}});
-  scene.triangle_meshes.push_back({.name = "b", .mesh = second, .colors = {}, .scalars = {{.name = "_X", .values = std::vector<float>(10, 1.0F)}}});
+  scene.triangle_meshes.push_back({.name = "b", .mesh = second, .scalars = {{.name = "_X", .values = std::vector<float>(10, 1.0F)}}});
   GltfLineSet lines;
   lines.points = VertexMatrix{{0, 0, 0}, {1, 1, 1}};
   lines.segments = SegmentMatrix{{0, 1}};

@@ -47,7 +47,7 @@ TriangleMesh tetrahedron_and_lone_vertex() {
 
 GltfScene one_mesh_scene(TriangleMesh mesh) {
   GltfScene scene;
-  scene.triangle_meshes.push_back({.name = "tet", .mesh = std::move(mesh), .colors = {}, .scalars = {}});
+  scene.triangle_meshes.push_back({.name = "tet", .mesh = std::move(mesh)});
   return scene;
 }
 
@@ -383,7 +383,7 @@ TEST_F(GltfWriteFiles, ExtensionPicksTheContainer) {
   EXPECT_EQ(gltf.front(), std::byte{'{'});
   // The mesh-only entry point writes what an unnamed one-mesh scene gives.
   GltfScene scene;
-  scene.triangle_meshes.push_back({.name = "", .mesh = mesh, .colors = {}, .scalars = {}});
+  scene.triangle_meshes.push_back({.name = "", .mesh = mesh});
   EXPECT_EQ(glb, encode_gltf(scene, GltfContainer::glb));
   EXPECT_EQ(gltf, encode_gltf(scene, GltfContainer::gltf_embedded));
 }

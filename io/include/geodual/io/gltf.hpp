@@ -38,41 +38,42 @@ using SegmentMatrix = Eigen::Matrix<Index, Eigen::Dynamic, 2, Eigen::RowMajor>;
 /// (SCALAR float accessor). glTF requires such names to start with an
 /// underscore, e.g. "_DISTANCE"; values must be finite.
 struct GltfVertexScalar {
-  std::string name;
-  std::vector<float> values;
+  std::string name{};
+  std::vector<float> values{};
 };
 
 /// A triangle mesh (a TRIANGLES primitive).
 struct GltfTriangleMesh {
-  std::string name;                        ///< node and mesh name; empty: none
-  TriangleMesh mesh;                       ///< at least one triangle
-  ColorMatrix colors;                      ///< COLOR_0: empty, or one row per vertex
-  std::vector<GltfVertexScalar> scalars;   ///< one value per vertex each
+  std::string name{};                        ///< node and mesh name; empty: none
+  TriangleMesh mesh{};                       ///< at least one triangle
+  ColorMatrix colors{};                      ///< COLOR_0: empty, or one row per vertex
+  std::vector<GltfVertexScalar> scalars{};   ///< one value per vertex each
 };
 
 /// Line segments between points (a LINES primitive), e.g. polylines such as
 /// Voronoi cell boundaries: consecutive points joined by segments (i, i + 1).
 struct GltfLineSet {
-  std::string name;
-  VertexMatrix points;     ///< at least one row
-  SegmentMatrix segments;  ///< at least one row; indices into points
-  ColorMatrix colors;      ///< COLOR_0 per point: empty, or one row per point
+  std::string name{};
+  VertexMatrix points{};     ///< at least one row
+  SegmentMatrix segments{};  ///< at least one row; indices into points
+  ColorMatrix colors{};      ///< COLOR_0 per point: empty, or one row per point
 };
 
 /// Points (a POINTS primitive), e.g. sites or Voronoi vertices.
 struct GltfPointSet {
-  std::string name;
-  VertexMatrix points;  ///< at least one row
-  ColorMatrix colors;   ///< COLOR_0 per point: empty, or one row per point
+  std::string name{};
+  VertexMatrix points{};  ///< at least one row
+  ColorMatrix colors{};   ///< COLOR_0 per point: empty, or one row per point
 };
 
-/// Everything one file holds. Needs at least one entry.
+/// Everything one file holds. Needs at least one entry. Every member has a
+/// default, so designated initializers may leave any of them out.
 struct GltfScene {
-  std::vector<GltfTriangleMesh> triangle_meshes;
-  std::vector<GltfLineSet> line_sets;
-  std::vector<GltfPointSet> point_sets;
+  std::vector<GltfTriangleMesh> triangle_meshes{};
+  std::vector<GltfLineSet> line_sets{};
+  std::vector<GltfPointSet> point_sets{};
   /// asset.extras: the text of a JSON object (e.g. statistics, options), or empty for none.
-  std::string extras_json;
+  std::string extras_json{};
 };
 
 enum class GltfContainer {
