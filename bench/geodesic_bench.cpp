@@ -33,9 +33,11 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -721,7 +723,8 @@ constexpr std::string_view kTable1Legend = R"(Every method runs in its own forke
   solve    (wall, of the median run) ours: GeodesicStats::propagation_seconds; CGAL: add sources +
            build_sequence_tree + a distance query at every vertex; Dijkstra: the search
   peak RSS the child's VmHWM, reset through /proc/self/clear_refs before each run, max over the runs;
-           it includes the mesh and all the child inherited from the parent, shown as 'RSS before'
+           it includes the mesh and all the child inherited from the parent, shown as 'RSS before';
+           '>= x' for a child that did not finish: its lifetime peak (wait4's ru_maxrss)
   max|diff|/diag  max over vertices of |d - d(ours RWR)| / bounding box diagonal)";
 
 void print_tables(std::span<const MeshResult> results, const Options& options) {
