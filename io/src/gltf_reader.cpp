@@ -33,15 +33,24 @@ using gltf::fail;
 
 constexpr std::string_view memory_name = "<memory>";
 
+constexpr std::string_view utf8_bom = "\xEF\xBB\xBF";
+
 bool starts_with_glb_magic(std::span<const std::byte> data) {
   return data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0;
+}
+
+// Whether the first character after an optional byte order mark and white space is '{'.
+bool looks_like_json(std::span<const std::byte> data) {
+  std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
+  if (text.starts_with(utf8_bom)) text.remove_prefix(utf8_bom.size());
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  return first != std::string_view::npos && text[first] == '{';
 }
 
 Json parse_json(std::span<const std::byte> text, const std::string& where) {
   const char* begin = reinterpret_cast<const char*>(text.data());
   const char* end = begin + text.size();
-  constexpr std::string_view bom = "\xEF\xBB\xBF";
-  if (text.size() >= bom.size() && std::string_view(begin, bom.size()) == bom) begin += bom.size();
+  if (std::string_view(begin, text.size()).starts_with(utf8_bom)) begin += utf8_bom.size();
   try {
     return Json::parse(begin, end);
   } catch (const Json::parse_error& e) {
@@ -109,7 +118,7 @@ LoadedMesh read_gltf_document(std::span<const std::byte> data, bool binary,
   info.file_bytes = data.size();
 
   // The content decides, whatever the extension says: GLBs named .gltf are common.
-  const bool is_glb = starts_with_glb_magic(data) || (binary && !(data.size() > 0 && data[0] == std::byte{'{'}));
+  const bool is_glb = starts_with_glb_magic(data) || (binary && !looks_like_json(data));
   if (is_glb != binary) {
     info.notes.push_back(std::string("the file holds ") + (is_glb ? "binary GLB" : "JSON glTF") +
                          " despite its name; read it as such");

@@ -147,6 +147,7 @@ TEST(GltfRead, ContentDecidesBetweenGlbAndJson) {
   const LoadedMesh json_named_glb = detail::read_gltf(as_span(json), true, "misnamed.glb");
   expect_square(json_named_glb.mesh);
   EXPECT_EQ(json_named_glb.info.format, MeshFormat::gltf);
+  expect_square(detail::read_gltf(as_span("\xEF\xBB\xBF \n\t" + json), true, "misnamed.glb").mesh);
 }
 
 TEST(GltfRead, Utf8ByteOrderMarkIsSkipped) {
