@@ -52,7 +52,7 @@ struct Timer {
 
 constexpr double kRelativeTolerance = 1e-8;
 constexpr int kQueryPoints = 300;
-constexpr std::size_t kMaxTieChecks = 6;  // single-site CGAL runs allowed per case
+constexpr std::size_t kMaxTieChecks = 4;  // single-site CGAL runs allowed per case
 
 std::vector<SurfacePoint> random_query_points(const TriangleMesh& mesh, std::uint64_t seed) {
   return test::random_face_sites(mesh, kQueryPoints, seed);
@@ -156,7 +156,10 @@ void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCas
   std::map<Index, bool> labels_to_check;
   for (const auto& [site, vertices] : differing) labels_to_check[site] = true;
   for (const auto& [site, points] : differing_queries) labels_to_check[site] = true;
-  if (labels_to_check.size() > kMaxTieChecks) {
+  if (distance_failures > 0 || query_failures > 0) {
+    // Labels are moot where distances are wrong; skip the costly tie checks.
+    std::cout << "[oracle] label tie checks skipped: distances already disagree\n";
+  } else if (labels_to_check.size() > kMaxTieChecks) {
     ADD_FAILURE() << differing_vertices << " vertices and " << differing_query_count
                   << " valid-face query points name a different site than CGAL, with " << labels_to_check.size()
                   << " distinct sites of ours: too many to be ties";
