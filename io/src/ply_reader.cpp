@@ -140,7 +140,8 @@ std::optional<Shortfall> find_shortfall(const PlyHeader& header, const PlyMeshLa
 
 [[noreturn]] void throw_shortfall(const Shortfall& shortfall, std::size_t file_size, const fs::path& file) {
   throw_file_error(file, "the header declares ", shortfall.element->count, " '", excerpt(shortfall.element->name),
-                   "' records, which need at least ", shortfall.needed, " bytes after the header, but the file has only ",
+                   "' records, which need at least ", shortfall.needed,
+                   " bytes after the header, but the file has only ",
                    shortfall.available, " (file is ", file_size, " bytes)");
 }
 
@@ -553,8 +554,8 @@ class AsciiPlyBody {
 };
 
 /// Reads an ascii body into `mesh` and `triangles`; with both null, only
-/// checks every record (a dry run that allocates nothing). Returns whether
-/// text follows the last element.
+/// checks every record (a dry run: nothing sized by the header's counts is
+/// allocated). Returns whether text follows the last element.
 bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, const PlyMeshLayout& layout,
                      const fs::path& file, TriangleMesh* mesh, TriangleBuffer* triangles) {
   const std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
@@ -597,7 +598,8 @@ std::string ignored_parts(const PlyHeader& header, const PlyMeshLayout& layout) 
       continue;
     }
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
-      const bool used = (&element == layout.vertex && (p == layout.xyz[0] || p == layout.xyz[1] || p == layout.xyz[2])) ||
+      const bool is_coordinate = p == layout.xyz[0] || p == layout.xyz[1] || p == layout.xyz[2];
+      const bool used = (&element == layout.vertex && is_coordinate) ||
                         (&element == layout.face && p == layout.corner_list);
       if (!used) {
         add(str_cat(element.name, " property '", excerpt(element.properties[p].name), "'"));

@@ -124,7 +124,8 @@ LoadedMesh read_mesh_from_memory(std::span<const std::byte> data, MeshFormat for
   } catch (const std::bad_alloc&) {
     detail::throw_file_error(name, "not enough memory to hold the mesh");
   }
-  loaded.info.format = format;
+  // info.format is the reader's: the glTF reader goes by content (a .glb
+  // that holds JSON says gltf).
   loaded.info.file_bytes = data.size();
 
   const TriangleMesh& mesh = loaded.mesh;

@@ -139,7 +139,9 @@ std::string obj_with_forms(const TriangleMesh& mesh) {
     switch (f % 4) {
       case 0: out += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\r\n"; break;
       case 1: out += "f " + std::to_string(a) + "/1 " + std::to_string(b) + "/2 " + std::to_string(c) + "/3\n"; break;
-      case 2: out += "f " + std::to_string(a) + "//1 " + std::to_string(b) + "//1 " + std::to_string(c) + "//1\n"; break;
+      case 2:
+        out += "f " + std::to_string(a) + "//1 " + std::to_string(b) + "//1 " + std::to_string(c) + "//1\n";
+        break;
       default: out += "f " + std::to_string(a) + "/1/1 " + std::to_string(b) + "/2/1 " + std::to_string(c) + "/3/1\n";
     }
   }

@@ -144,7 +144,8 @@ TEST(PlyReader, EveryListCountTypeAndIndexType) {
 
 TEST(PlyReader, VertexIndexIsAcceptedAsListName) {
   TempDir dir;
-  expect_binary_quad(read_text(dir, "vi.ply", binary_quad(std::endian::little, "float", "uchar", "int", "vertex_index")));
+  expect_binary_quad(
+      read_text(dir, "vi.ply", binary_quad(std::endian::little, "float", "uchar", "int", "vertex_index")));
 }
 
 /// Extra properties before, between and after x y z, extra face properties

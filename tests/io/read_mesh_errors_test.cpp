@@ -38,7 +38,7 @@ constexpr std::string_view ply_triangle_header =
     "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
 
 /// A binary little-endian PLY with `vertices` float vertices at (i, 0, 0)
-/// and the triangles (0, i, i+1), cut to `keep` bytes when given.
+/// and the triangles (0, i, i+1).
 std::string binary_fan(std::uint32_t vertices) {
   ByteWriter file;
   file.text("ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertices) +
@@ -48,7 +48,8 @@ std::string binary_fan(std::uint32_t vertices) {
     file.put(static_cast<float>(i)).put(0.f).put(0.f);
   }
   for (std::uint32_t i = 1; i + 1 < vertices; ++i) {
-    file.put<std::uint8_t>(3).put<std::int32_t>(0).put(static_cast<std::int32_t>(i)).put(static_cast<std::int32_t>(i + 1));
+    file.put<std::uint8_t>(3).put<std::int32_t>(0);
+    file.put(static_cast<std::int32_t>(i)).put(static_cast<std::int32_t>(i + 1));
   }
   return file.str();
 }

@@ -18,11 +18,13 @@ namespace geodual::io {
 /// What the reader saw besides the mesh itself.
 struct ReadInfo {
   MeshFormat format = MeshFormat::ply;
-  std::string encoding;               ///< e.g. "binary_little_endian float32", "ascii"
+  /// PLY: the format line's encoding and the x type, e.g. "binary_little_endian
+  /// float32", "ascii float64"; STL: "binary" or "ascii"; OBJ, OFF: "ascii".
+  std::string encoding;
   std::uintmax_t file_bytes = 0;
   std::int64_t polygons_split = 0;    ///< polygons with more than 3 corners fan-triangulated
   std::int64_t welded_corners = 0;    ///< STL: triangle corners merged into shared vertices
-  std::vector<std::string> notes;     ///< human-readable remarks, e.g. about welding
+  std::vector<std::string> notes;     ///< human-readable remarks: welding, what was ignored
 };
 
 struct LoadedMesh {
@@ -30,7 +32,12 @@ struct LoadedMesh {
   ReadInfo info;
 };
 
-/// Reads OBJ, PLY, OFF, STL, glTF or GLB, chosen by the file's extension.
+/// Reads OBJ, PLY, OFF, STL, glTF or GLB, chosen by the file's extension
+/// (case-insensitive). The file is read whole with one read, then decoded.
+/// Every mesh read has at least one triangle, finite coordinates and vertex
+/// indices in range; a file that breaks any of that is an error, whose
+/// message starts with the path and names the line (text formats) or the
+/// element and its index (binary ones).
 LoadedMesh read_mesh(const std::filesystem::path& path);
 
 /// Reads from a buffer already in memory. `name` is used in error messages and,

@@ -20,14 +20,21 @@ struct VertexProperty {
   std::variant<std::vector<double>, std::vector<float>, std::vector<std::int32_t>> values;
 };
 
-/// Binary little-endian PLY with float64 coordinates and int32 indices.
+/// Binary little-endian PLY: float64 x y z, then the vertex properties in the
+/// order given (double, float, int32 -> PLY double, float, int), then faces as
+/// `list uchar int vertex_indices`. Property names must be single printable
+/// words, unique, not x/y/z, with one value per vertex; face indices must be
+/// in range. Violations throw geodual::Error naming the path; nothing is written.
 void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh,
                const std::vector<VertexProperty>& vertex_properties = {});
 
-/// Wavefront OBJ, coordinates printed with round-trip precision (max_digits10).
+/// Wavefront OBJ ("v x y z", "f a b c", 1-based). Coordinates are printed in
+/// the shortest form that reads back as the same double (std::to_chars: at most
+/// max_digits10 = 17 significant digits), so the round trip is exact.
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
 
-/// Writes by extension: .ply, .obj, .glb or .gltf (glTF: see gltf.hpp for more).
+/// Writes by extension (case-insensitive): .ply, .obj, .glb or .gltf (glTF: see
+/// gltf.hpp for more); any other extension is a geodual::Error.
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh);
 
 }  // namespace geodual::io
