@@ -6,8 +6,8 @@
 
 #include "format_readers.hpp"
 
-#include "parse_number.hpp"
 #include "file_error.hpp"
+#include "parse_number.hpp"
 #include "saturating.hpp"
 #include "text_lines.hpp"
 #include "triangle_buffer.hpp"

@@ -2,8 +2,8 @@
 // Internal: the PLY header -- encoding, elements, their properties -- and its
 // parser. Only ply_reader.cpp includes this.
 
-#include "parse_number.hpp"
 #include "file_error.hpp"
+#include "parse_number.hpp"
 #include "text_lines.hpp"
 
 #include <cstddef>
@@ -13,6 +13,9 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace geodual::io::detail {
@@ -144,161 +147,170 @@ struct PlyHeader {
   std::size_t body_first_line = 0;  ///< the line number of that byte (ascii bodies)
 };
 
-namespace ply_header_internal {
+/// Parses the header at the start of a PLY file's text, line by line.
+class PlyHeaderParser {
+ public:
+  PlyHeaderParser(std::string_view file_text, const std::filesystem::path& file)
+      : lines_(file_text), file_(file) {}
 
-inline constexpr std::string_view type_list =
-    "char, uchar, short, ushort, int, uint, float, double or int8, uint8, int16, uint16, int32, "
-    "uint32, float32, float64";
-
-inline PlyScalar scalar_type(std::string_view word, const std::filesystem::path& file, std::size_t line) {
-  if (const auto type = ply_scalar_from_name(word)) {
-    return *type;
-  }
-  throw_line_error(file, line, "unsupported PLY property type '", excerpt(word), "' (expected ", type_list, ")");
-}
-
-inline void parse_format(WordCursor& words, PlyHeader& header, const std::filesystem::path& file,
-                         std::size_t line) {
-  std::string_view encoding;
-  std::string_view version;
-  if (!words.next(encoding) || !words.next(version) || !words.at_end()) {
-    throw_line_error(file, line,
-                     "malformed format line (expected 'format ascii 1.0', 'format "
-                     "binary_little_endian 1.0' or 'format binary_big_endian 1.0')");
-  }
-  if (encoding == "ascii") {
-    header.encoding = PlyEncoding::ascii;
-  } else if (encoding == "binary_little_endian") {
-    header.encoding = PlyEncoding::binary_little_endian;
-  } else if (encoding == "binary_big_endian") {
-    header.encoding = PlyEncoding::binary_big_endian;
-  } else {
-    throw_line_error(file, line, "unknown PLY format '", excerpt(encoding),
-                     "' (expected ascii, binary_little_endian or binary_big_endian)");
-  }
-  if (!parse_double(version)) {
-    throw_line_error(file, line, "malformed PLY version '", excerpt(version), "' (expected 1.0)");
-  }
-}
-
-inline void parse_element(WordCursor& words, PlyHeader& header, const std::filesystem::path& file,
-                          std::size_t line) {
-  std::string_view name;
-  std::string_view count_word;
-  if (!words.next(name) || !words.next(count_word) || !words.at_end()) {
-    throw_line_error(file, line, "malformed element line (expected 'element <name> <count>')");
-  }
-  const auto count = parse_integer<std::uint64_t>(count_word);
-  if (!count) {
-    throw_line_error(file, line, "element '", excerpt(name), "' has an invalid count '", excerpt(count_word),
-                     "' (expected a non-negative integer)");
-  }
-  for (const PlyElement& element : header.elements) {
-    if (element.name == name) {
-      throw_line_error(file, line, "element '", excerpt(name), "' is declared twice (first on line ",
-                       element.line, ")");
+  /// Throws geodual::Error naming the line for anything malformed or unsupported.
+  PlyHeader parse() {
+    std::string_view line;
+    bool is_ply = false;
+    if (lines_.next(line)) {
+      WordCursor words(line);
+      std::string_view magic;
+      is_ply = words.next(magic) && magic == "ply" && words.at_end();
     }
+    if (!is_ply) {
+      throw_file_error(file_, "not a PLY file (the first line is not 'ply')");
+    }
+    while (lines_.next(line)) {
+      line_ = lines_.line_number();
+      WordCursor words(line);
+      std::string_view keyword;
+      if (!words.next(keyword)) {
+        continue;  // blank lines are harmless
+      }
+      if (keyword == "end_header") {
+        if (!words.at_end()) {
+          throw_line_error(file_, line_, "malformed end_header line (nothing may follow end_header)");
+        }
+        if (!have_format_) {
+          throw_file_error(file_, "the PLY header has no format line");
+        }
+        header_.body_offset = lines_.offset();
+        header_.body_first_line = line_ + 1;
+        return std::move(header_);
+      }
+      if (keyword == "comment" || keyword == "obj_info") {
+        continue;
+      }
+      if (keyword == "format") {
+        parse_format(words);
+      } else if (keyword == "element") {
+        parse_element(words);
+      } else if (keyword == "property") {
+        parse_property(words);
+      } else {
+        throw_line_error(file_, line_, "malformed PLY header line: unknown keyword '", excerpt(keyword), "'");
+      }
+    }
+    throw_file_error(file_, "the PLY header has no end_header line (truncated or not a PLY file)");
   }
-  header.elements.push_back(PlyElement{.name = std::string(name), .count = *count, .properties = {},
-                                       .line = line});
-}
 
-inline void parse_property(WordCursor& words, PlyHeader& header, const std::filesystem::path& file,
-                           std::size_t line) {
-  if (header.elements.empty()) {
-    throw_line_error(file, line, "property declared before any element");
+ private:
+  static constexpr std::string_view type_list =
+      "char, uchar, short, ushort, int, uint, float, double or int8, uint8, int16, uint16, int32, "
+      "uint32, float32, float64";
+
+  PlyScalar scalar_type(std::string_view word) const {
+    if (const auto type = ply_scalar_from_name(word)) {
+      return *type;
+    }
+    throw_line_error(file_, line_, "unsupported PLY property type '", excerpt(word), "' (expected ", type_list,
+                     ")");
   }
-  PlyElement& element = header.elements.back();
-  PlyProperty property;
-  std::string_view type_word;
-  std::string_view name;
-  if (!words.next(type_word)) {
-    throw_line_error(file, line, "malformed property line (expected 'property <type> <name>' or "
-                                 "'property list <count type> <item type> <name>')");
+
+  void parse_format(WordCursor& words) {
+    if (have_format_) {
+      throw_line_error(file_, line_, "a second format line");
+    }
+    std::string_view encoding;
+    std::string_view version;
+    if (!words.next(encoding) || !words.next(version) || !words.at_end()) {
+      throw_line_error(file_, line_,
+                       "malformed format line (expected 'format ascii 1.0', 'format "
+                       "binary_little_endian 1.0' or 'format binary_big_endian 1.0')");
+    }
+    if (encoding == "ascii") {
+      header_.encoding = PlyEncoding::ascii;
+    } else if (encoding == "binary_little_endian") {
+      header_.encoding = PlyEncoding::binary_little_endian;
+    } else if (encoding == "binary_big_endian") {
+      header_.encoding = PlyEncoding::binary_big_endian;
+    } else {
+      throw_line_error(file_, line_, "unknown PLY format '", excerpt(encoding),
+                       "' (expected ascii, binary_little_endian or binary_big_endian)");
+    }
+    if (!parse_double(version)) {
+      throw_line_error(file_, line_, "malformed PLY version '", excerpt(version), "' (expected 1.0)");
+    }
+    have_format_ = true;
   }
-  if (type_word == "list") {
+
+  void parse_element(WordCursor& words) {
+    std::string_view name;
     std::string_view count_word;
-    std::string_view item_word;
-    if (!words.next(count_word) || !words.next(item_word) || !words.next(name) || !words.at_end()) {
-      throw_line_error(file, line, "malformed list property line (expected 'property list <count "
-                                   "type> <item type> <name>')");
+    if (!words.next(name) || !words.next(count_word) || !words.at_end()) {
+      throw_line_error(file_, line_, "malformed element line (expected 'element <name> <count>')");
     }
-    property.count_type = scalar_type(count_word, file, line);
-    property.type = scalar_type(item_word, file, line);
-    if (!is_integer(*property.count_type)) {
-      throw_line_error(file, line, "list property '", excerpt(name), "' has a length of type '", count_word,
-                       "'; list lengths must be of an integer type");
+    const auto count = parse_integer<std::uint64_t>(count_word);
+    if (!count) {
+      throw_line_error(file_, line_, "element '", excerpt(name), "' has an invalid count '", excerpt(count_word),
+                       "' (expected a non-negative integer)");
     }
-  } else {
-    if (!words.next(name) || !words.at_end()) {
-      throw_line_error(file, line, "malformed property line (expected 'property <type> <name>')");
+    // Hash sets keep duplicate checks linear however many names a header holds.
+    if (const auto [first, added] = element_lines_.emplace(name, line_); !added) {
+      throw_line_error(file_, line_, "element '", excerpt(name), "' is declared twice (first on line ",
+                       first->second, ")");
     }
-    property.type = scalar_type(type_word, file, line);
+    property_names_.clear();
+    header_.elements.push_back(PlyElement{.name = std::string(name), .count = *count, .properties = {}, .line = line_});
   }
-  if (element.find_property(name)) {
-    throw_line_error(file, line, "property '", excerpt(name), "' of element '", excerpt(element.name),
-                     "' is declared twice");
-  }
-  property.name = std::string(name);
-  element.properties.push_back(std::move(property));
-}
 
-}  // namespace ply_header_internal
+  void parse_property(WordCursor& words) {
+    if (header_.elements.empty()) {
+      throw_line_error(file_, line_, "property declared before any element");
+    }
+    PlyElement& element = header_.elements.back();
+    PlyProperty property;
+    std::string_view type_word;
+    std::string_view name;
+    if (!words.next(type_word)) {
+      throw_line_error(file_, line_, "malformed property line (expected 'property <type> <name>' or "
+                                     "'property list <count type> <item type> <name>')");
+    }
+    if (type_word == "list") {
+      std::string_view count_word;
+      std::string_view item_word;
+      if (!words.next(count_word) || !words.next(item_word) || !words.next(name) || !words.at_end()) {
+        throw_line_error(file_, line_, "malformed list property line (expected 'property list <count type> "
+                                       "<item type> <name>')");
+      }
+      property.count_type = scalar_type(count_word);
+      property.type = scalar_type(item_word);
+      if (!is_integer(*property.count_type)) {
+        throw_line_error(file_, line_, "list property '", excerpt(name), "' has a length of type '", count_word,
+                         "'; list lengths must be of an integer type");
+      }
+    } else {
+      if (!words.next(name) || !words.at_end()) {
+        throw_line_error(file_, line_, "malformed property line (expected 'property <type> <name>')");
+      }
+      property.type = scalar_type(type_word);
+    }
+    if (!property_names_.insert(name).second) {
+      throw_line_error(file_, line_, "property '", excerpt(name), "' of element '", excerpt(element.name),
+                       "' is declared twice");
+    }
+    property.name = std::string(name);
+    element.properties.push_back(std::move(property));
+  }
+
+  LineCursor lines_;
+  const std::filesystem::path& file_;
+  std::size_t line_ = 1;  // the line being parsed
+  PlyHeader header_;
+  bool have_format_ = false;
+  std::unordered_map<std::string_view, std::size_t> element_lines_;  // name -> declaring line
+  std::unordered_set<std::string_view> property_names_;             // of the latest element
+};
 
 /// Parses the header at the start of `file_text`; throws geodual::Error naming
 /// the line for anything malformed or unsupported.
 inline PlyHeader parse_ply_header(std::string_view file_text, const std::filesystem::path& file) {
-  using namespace ply_header_internal;
-  LineCursor lines(file_text);
-  std::string_view line;
-  bool is_ply = false;
-  if (lines.next(line)) {
-    WordCursor words(line);
-    std::string_view magic;
-    is_ply = words.next(magic) && magic == "ply" && words.at_end();
-  }
-  if (!is_ply) {
-    throw_file_error(file, "not a PLY file (the first line is not 'ply')");
-  }
-  PlyHeader header;
-  bool have_format = false;
-  while (lines.next(line)) {
-    const std::size_t number = lines.line_number();
-    WordCursor words(line);
-    std::string_view keyword;
-    if (!words.next(keyword)) {
-      continue;  // blank lines are harmless
-    }
-    if (keyword == "end_header") {
-      if (!words.at_end()) {
-        throw_line_error(file, number, "malformed end_header line (nothing may follow end_header)");
-      }
-      if (!have_format) {
-        throw_file_error(file, "the PLY header has no format line");
-      }
-      header.body_offset = lines.offset();
-      header.body_first_line = number + 1;
-      return header;
-    }
-    if (keyword == "comment" || keyword == "obj_info") {
-      continue;
-    }
-    if (keyword == "format") {
-      if (have_format) {
-        throw_line_error(file, number, "a second format line");
-      }
-      parse_format(words, header, file, number);
-      have_format = true;
-    } else if (keyword == "element") {
-      parse_element(words, header, file, number);
-    } else if (keyword == "property") {
-      parse_property(words, header, file, number);
-    } else {
-      throw_line_error(file, number, "malformed PLY header line: unknown keyword '",
-                       excerpt(keyword), "'");
-    }
-  }
-  throw_file_error(file, "the PLY header has no end_header line (truncated or not a PLY file)");
+  return PlyHeaderParser(file_text, file).parse();
 }
 
 }  // namespace geodual::io::detail

@@ -10,9 +10,9 @@
 #include "format_readers.hpp"
 
 #include "byte_order.hpp"
+#include "file_error.hpp"
 #include "parse_number.hpp"
 #include "ply_header.hpp"
-#include "file_error.hpp"
 #include "saturating.hpp"
 #include "text_lines.hpp"
 #include "triangle_buffer.hpp"
@@ -585,16 +585,20 @@ bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, c
   return body.has_trailing_text();
 }
 
-/// What the reader stepped over, for ReadInfo::notes.
+/// What the reader stepped over, for ReadInfo::notes: the first few parts by
+/// name, then how many more.
 std::string ignored_parts(const PlyHeader& header, const PlyMeshLayout& layout) {
-  std::string ignored;
-  const auto add = [&ignored](std::string_view what) {
-    ignored += ignored.empty() ? "" : ", ";
-    ignored += what;
+  constexpr std::size_t max_named = 12;
+  std::string named;
+  std::size_t count = 0;
+  const auto add = [&](const auto&... pieces) {
+    if (count++ < max_named) {
+      named += str_cat(named.empty() ? "" : ", ", pieces...);
+    }
   };
   for (const PlyElement& element : header.elements) {
     if (&element != layout.vertex && &element != layout.face) {
-      add(str_cat("element '", excerpt(element.name), "' (", element.count, " records)"));
+      add("element '", excerpt(element.name), "' (", element.count, " records)");
       continue;
     }
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -602,11 +606,14 @@ std::string ignored_parts(const PlyHeader& header, const PlyMeshLayout& layout) 
       const bool used = (&element == layout.vertex && is_coordinate) ||
                         (&element == layout.face && p == layout.corner_list);
       if (!used) {
-        add(str_cat(element.name, " property '", excerpt(element.properties[p].name), "'"));
+        add(excerpt(element.name), " property '", excerpt(element.properties[p].name), "'");
       }
     }
   }
-  return ignored;
+  if (count > max_named) {
+    named += str_cat(" and ", count - max_named, " more");
+  }
+  return named;
 }
 
 }  // namespace

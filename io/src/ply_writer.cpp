@@ -5,8 +5,8 @@
 #include "geodual/io/write_mesh.hpp"
 
 #include "byte_order.hpp"
-#include "mesh_checks.hpp"
 #include "file_error.hpp"
+#include "mesh_checks.hpp"
 
 #include "geodual/io/atomic_file.hpp"
 

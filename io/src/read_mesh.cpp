@@ -3,9 +3,9 @@
 
 #include "geodual/io/read_mesh.hpp"
 
+#include "file_error.hpp"
 #include "format_readers.hpp"
 #include "mesh_checks.hpp"
-#include "file_error.hpp"
 
 #include <cerrno>
 #include <cstddef>

@@ -10,9 +10,9 @@
 #include "format_readers.hpp"
 
 #include "byte_order.hpp"
+#include "file_error.hpp"
 #include "parse_number.hpp"
 #include "position_welder.hpp"
-#include "file_error.hpp"
 #include "text_lines.hpp"
 #include "triangle_buffer.hpp"
 

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <bit>
+#include <chrono>
 #include <cstdint>
 #include <fstream>
 #include <map>
@@ -270,6 +271,33 @@ TEST(PlyReader, DegenerateFacesAndUnreferencedVerticesStay) {
                                           "3 0 1 2\n3 0 0 1\n3 0 1 2\n");
   EXPECT_EQ(loaded.mesh.num_vertices(), 4);  // vertex 3 duplicates vertex 0 and is used by no face
   EXPECT_EQ(face_list(loaded.mesh), (std::vector<Index>{0, 1, 2, 0, 0, 1, 0, 1, 2}));
+}
+
+TEST(PlyReader, HugeHeadersParseInLinearTime) {
+  // 100000 extra elements and 100000 extra vertex properties: checking names
+  // for duplicates pairwise would take minutes.
+  TempDir dir;
+  constexpr int extras = 100000;
+  std::string header = "ply\nformat ascii 1.0\n";
+  for (int i = 0; i < extras; ++i) {
+    header += "element extra" + std::to_string(i) + " 0\n";
+  }
+  header += "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  std::string values;
+  for (int i = 0; i < extras; ++i) {
+    header += "property uchar p" + std::to_string(i) + "\n";
+    values += " 1";
+  }
+  header += "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string body = "0 0 0" + values + "\n1 0 0" + values + "\n0 1 0" + values + "\n3 0 1 2\n";
+  const auto started = std::chrono::steady_clock::now();
+  const io::LoadedMesh loaded = read_text(dir, "wide.ply", header + body);
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5));
+  EXPECT_EQ(face_list(loaded.mesh), (std::vector<Index>{0, 1, 2}));
+  EXPECT_EQ(loaded.mesh.vertices(1, 0), 1.0);
+  ASSERT_FALSE(loaded.info.notes.empty());
+  EXPECT_NE(loaded.info.notes.back().find(" and 199988 more"), std::string::npos) << loaded.info.notes.back();
+  EXPECT_LT(loaded.info.notes.back().size(), 1000u);
 }
 
 /// The columns of ../shared/data/meshes/MANIFEST.tsv by name, one map per mesh.
