@@ -254,12 +254,13 @@ TEST(GeodesicOracle, Armadillo86k) {
   run_mesh("armadillo_86k.ply", {{1, 0, 101}, {0, 1, 102}, {10, 10, 103, 10}, {150, 150, 104}});
 }
 
-// (CGAL needs half a minute for a single source on the horse: none here.)
+// (CGAL needs 20-30 s of CPU for a single source on the horse or Nefertiti:
+// those runs are in the DISABLED_ tests below.)
 TEST(GeodesicOracle, Horse) { run_mesh("horse.ply", {{10, 10, 203, 10}, {150, 150, 204}}); }
 
 TEST(GeodesicOracle, Nefertiti100k) {
   // Needle triangles down to 0.06 degrees, float64 coordinates.
-  run_mesh("nefertiti_100k.ply", {{0, 1, 302}, {10, 10, 303, 10}, {150, 150, 304}});
+  run_mesh("nefertiti_100k.ply", {{10, 10, 303, 10}, {150, 150, 304}});
 }
 
 TEST(GeodesicOracle, BunnyWithHoles) {
@@ -279,7 +280,7 @@ TEST(GeodesicOracle, DISABLED_HorseAllKinds) {
 }
 
 TEST(GeodesicOracle, DISABLED_Nefertiti100kAllKinds) {
-  run_mesh("nefertiti_100k.ply", {{1, 0, 601}, {0, 30, 604}, {300, 0, 605}});
+  run_mesh("nefertiti_100k.ply", {{0, 1, 302}, {1, 0, 601}, {0, 30, 604}, {300, 0, 605}});
 }
 
 TEST(GeodesicOracle, DISABLED_Igea) { run_mesh("igea.ply", {{15, 15, 703}, {150, 150, 704}}); }
