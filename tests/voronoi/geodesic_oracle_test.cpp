@@ -246,10 +246,11 @@ void run_mesh(const std::string& file, const std::vector<OracleCase>& cases) {
   for (const OracleCase& c : cases) run_case(file, mesh, c);
 }
 
-// Chosen to keep CGAL's share of the suite near a minute of CPU time: every
-// closed mesh gets 30 sites (a third at vertices, inside faces, on edges) and
-// 300 (half at vertices, half inside faces); single vertex and face sites are
-// spread over the meshes where CGAL is quick with one source.
+// Chosen to keep CGAL's share of the suite near a minute and a half of CPU
+// time: every mesh gets 30 sites (a third each at vertices, inside faces and
+// on edges), the closed ones also 300 (half at vertices, half inside faces),
+// and the armadillo, where CGAL is quickest with one source, a single vertex
+// site and a single face site.
 TEST(GeodesicOracle, Armadillo86k) {
   run_mesh("armadillo_86k.ply", {{1, 0, 101}, {0, 1, 102}, {10, 10, 103, 10}, {150, 150, 104}});
 }
