@@ -44,9 +44,9 @@ struct MeshReport {
   bool oriented = true;                    ///< no directed edge is used by two faces
 };
 
-/// Analyses the mesh as stored; never modifies it. Linear time and memory
-/// (about 12 bytes per face besides the mesh). Throws geodual::Error if a face
-/// refers to a vertex that does not exist.
+/// Analyses the mesh as stored; never modifies it. Linear time; at most about
+/// 26 bytes per face of working memory besides the mesh (for V = F / 2).
+/// Throws geodual::Error if a face refers to a vertex that does not exist.
 MeshReport analyze_mesh(const TriangleMesh& mesh);
 
 }  // namespace geodual
