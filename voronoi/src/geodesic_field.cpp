@@ -108,6 +108,9 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   field.distance = vtp.distance();
   field.nearest_site = vtp.label();
   field.valid_face = vtp.valid_faces();
+  field.face_point_sources = vtp.point_sources();
+  std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
+                   [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
 
   const detail::WindowStore& store = vtp.windows();
   field.window_begin.assign(static_cast<std::size_t>(pm.num_edges()) + 1, 0);
@@ -146,19 +149,14 @@ PointDistance query(const GeodesicField& field, const TriangleMesh& mesh, const 
     consider(field.distance[v] + (p - mesh.vertices.row(v).transpose()).norm(), field.nearest_site[v]);
   }
   if (field.face_edges[f][0] < 0) return best;
-  // Sites on the face itself or on its edges.
-  for (std::size_t i = 0; i < field.sites.size(); ++i) {
-    const SurfacePoint& s = field.sites[i];
-    if (s.kind != SurfacePoint::Kind::face) continue;
-    bool same_face = s.element == f;
-    if (!same_face) {
-      for (int k = 0; k < 3 && !same_face; ++k) {
-        const Index e = field.face_edges[f][k];
-        const Index other = field.edge_faces[e][field.edge_faces[e][0] == f ? 1 : 0];
-        same_face = other == s.element && s.barycentric.minCoeff() == 0;
-      }
-    }
-    if (same_face) consider((s.position(mesh) - p).norm(), static_cast<Index>(i));
+  // Point sources in the face or on its edges.
+  const auto [first, last] =
+      std::equal_range(field.face_point_sources.begin(), field.face_point_sources.end(), FacePointSource{f},
+                       [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  for (auto it = first; it != last; ++it) {
+    const Eigen::Vector3d q = SurfacePoint::in_face(f, it->barycentric[0], it->barycentric[1], it->barycentric[2])
+                                  .position(mesh);
+    consider(it->sigma + (q - p).norm(), it->site);
   }
   // Through the windows entering the face: lay the face out on each edge's
   // frame and look through the window's interval.

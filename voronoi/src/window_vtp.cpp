@@ -60,35 +60,54 @@ void WindowVtp::add_face_site(Index face, const Eigen::Vector3d& barycentric, In
   for (int c = 0; c < 3; ++c) {
     if (barycentric[c] == 0) zero_corner = c;
   }
+  point_sources_.push_back({face, site, 0.0, barycentric});
   if (zero_corner < 0) {
-    emit_from_point_in_face(face, plane, p, -1, 0.0, site);
+    emit_from_point_in_face(face, plane, p, -1, 0.0, site, 0);
     return;
   }
   // On the edge opposite `zero_corner`: the site lies in both faces of it.
   const int k = (zero_corner + 1) % 3;
-  emit_from_point_in_face(face, plane, p, k, 0.0, site);
+  emit_from_point_in_face(face, plane, p, k, 0.0, site, 0);
+  emit_across_edge(face, k, to_local_edge_frame(plane, k, p).x(), 0.0, site, 0);
+}
+
+void WindowVtp::emit_across_edge(Index face, int k, double x_face, double sigma, Index site, int depth) {
   const Index e = pm_.face_edges[face][k];
   const int side = pm_.side_of(e, face);
   const Index other = pm_.edge_faces[e][1 - side];
   if (other < 0) return;
-  const double x_face = to_local_edge_frame(plane, k, p).x();
   const double x_edge = face_frame_to_edge_frame(pm_, e, side, {x_face, 0.0}).x();
   const int other_k = pm_.edge_local[e][1 - side];
   const bool flip = (1 - side) == 1 && pm_.edge_reversed_in_face1[e];
   const Eigen::Vector2d p_other(flip ? pm_.edge_length[e] - x_edge : x_edge, 0.0);
   const FaceInPlane other_plane = lay_out_face(pm_, other, other_k);
   const int apex = (other_k + 2) % 3;
-  relax(pm_.vertex(other, apex), (p_other - other_plane.corner[apex]).norm(), site);
-  emit_from_point_in_face(other, other_plane, p_other, other_k, 0.0, site);
+  relax(pm_.vertex(other, apex), sigma + (p_other - other_plane.corner[apex]).norm(), site);
+  // Remember the point for queries inside `other`, where no window shows it.
+  const double t = pm_.edge_length[e] > 0 ? p_other.x() / pm_.edge_length[e] : 0.0;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  barycentric[other_k] = 1 - t;
+  barycentric[(other_k + 1) % 3] = t;
+  point_sources_.push_back({other, site, sigma, barycentric});
+  emit_from_point_in_face(other, other_plane, p_other, other_k, sigma, site, depth + 1);
 }
 
 void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, const Eigen::Vector2d& source,
-                                        int skip_local_edge, double sigma, Index site) {
+                                        int skip_local_edge, double sigma, Index site, int depth) {
+  // Chains of zero-area faces are crossed, but never without end.
+  constexpr int kMaxZeroAreaCrossings = 16;
   for (int j = 0; j < 3; ++j) {
     if (j == skip_local_edge) continue;
     const Index e = pm_.face_edges[face][j];
     const Eigen::Vector2d local = to_local_edge_frame(plane, j, source);
-    if (!(local.y() > 0)) continue;  // on the edge's line: reaches only its end points
+    if (!(local.y() > 0)) {
+      // On the edge's line (a zero-area face): where the point lies inside
+      // the edge, it is a point of the edge and reaches the face beyond.
+      if (local.x() > 0 && local.x() < pm_.edge_length[e] && depth < kMaxZeroAreaCrossings) {
+        emit_across_edge(face, j, local.x(), sigma, site, depth);
+      }
+      continue;
+    }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
     submit({0.0, pm_.edge_length[e], s.x(), s.y(), sigma, site, e, -1});
   }
@@ -103,9 +122,12 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
     const Index e = pm_.face_edges[f][k];
     const EdgeLayout l = pm_.layout(f, k);
     if (!(l.apex.y() > 0) || !(l.length > 0)) {
-      // v lies on the line of its opposite edge: only the end points are reached.
+      // A zero-area face: v lies on the line of its opposite edge. Its end
+      // points are reached along the line; where v lies inside the edge, v is
+      // a point of that edge and sends windows into the face beyond it.
       relax(pm_.vertex(f, k), sigma + l.apex.norm(), site);
       relax(pm_.vertex(f, (k + 1) % 3), sigma + (l.apex - Eigen::Vector2d(l.length, 0)).norm(), site);
+      if (l.apex.x() > 0 && l.apex.x() < l.length) emit_across_edge(f, k, l.apex.x(), sigma, site, 0);
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, f), l.apex);

@@ -39,6 +39,9 @@ class WindowVtp {
   /// Per face: windows of different sites meet on its edges or vertices.
   std::vector<bool> valid_faces() const;
   const GeodesicStats& stats() const { return stats_; }
+  /// Point sources (sites, and pseudo-sources on zero-area faces) lying in a
+  /// face or on its edges, which queries inside that face must consider.
+  const std::vector<FacePointSource>& point_sources() const { return point_sources_; }
 
  private:
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
@@ -64,7 +67,10 @@ class WindowVtp {
   /// Windows from a point source at `source` (in the face's planar layout
   /// `plane`) onto the face's edges other than local edge `skip_local_edge`.
   void emit_from_point_in_face(Index face, const FaceInPlane& plane, const Eigen::Vector2d& source,
-                               int skip_local_edge, double sigma, Index site);
+                               int skip_local_edge, double sigma, Index site, int depth);
+  /// A point source on local edge k of `face`, at abscissa x_face of the
+  /// face's frame for that edge: windows into the face on the other side.
+  void emit_across_edge(Index face, int k, double x_face, double sigma, Index site, int depth);
   /// Pseudo-source (or vertex site) v: windows on the edges opposite v.
   void emit_from_vertex(Index v, double sigma, Index site);
 
@@ -103,6 +109,7 @@ class WindowVtp {
   std::vector<Index> new_faces_;   // scratch for expand
   std::int64_t window_limit_ = 0;  // windows allowed at once
   std::int64_t steps_ = 0;
+  std::vector<FacePointSource> point_sources_;
 };
 
 }  // namespace geodual::voronoi::detail

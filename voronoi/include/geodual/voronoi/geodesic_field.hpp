@@ -65,6 +65,16 @@ struct EdgeWindow {
   Index site = -1;
 };
 
+/// A point source that lies in a face or on one of its edges: a site, or a
+/// pseudo-source seen through a zero-area neighbour. No window shows it to
+/// points of that face, so queries there consider it directly.
+struct FacePointSource {
+  Index face = -1;
+  Index site = -1;
+  double sigma = 0;                                          ///< distance of the point itself
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();     ///< in `face`
+};
+
 /// The result of compute_geodesic_field: plain data.
 struct GeodesicField {
   /// Per mesh vertex: geodesic distance to the nearest site, +inf where no
@@ -89,6 +99,9 @@ struct GeodesicField {
   /// windows[window_begin[e] .. window_begin[e + 1]).
   std::vector<Index> window_begin;
   std::vector<EdgeWindow> windows;
+
+  /// Sorted by face.
+  std::vector<FacePointSource> face_point_sources;
 
   /// Per face: true where windows from different sites meet on the face's
   /// edges or vertices (the face is crossed by a Voronoi boundary, seed
