@@ -21,8 +21,9 @@
 
 namespace geodual::cli {
 
-// The subcommands, in the order `geodual --help` lists them. Adding one is a
-// new <name>_command.cpp plus its line here.
+// The subcommands. Adding one is a new <name>_command.cpp that defines
+// make_<name>_command(), declared here, and its entry in command_factories
+// below (the order `geodual --help` lists them in).
 CommandFactory make_info_command;
 CommandFactory make_geodesic_command;
 
