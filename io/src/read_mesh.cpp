@@ -109,6 +109,11 @@ LoadedMesh read_by_format(std::span<const std::byte> data, MeshFormat format, co
 }  // namespace
 
 LoadedMesh read_mesh(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    // Say so before the extension check: a folder's "extension" means nothing.
+    detail::throw_file_error(path, "is a directory, expected a mesh file");
+  }
   const MeshFormat format = format_from_extension(path);
   const FileBytes contents = read_whole_file(path);
   return read_mesh_from_memory(contents.span(), format, path);
