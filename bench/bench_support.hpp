@@ -7,6 +7,7 @@
 // Linux only (it reads /proc and forks); header-only so that every bench/*.cpp
 // stays one executable.
 
+#include "geodual/pipeline/sites.hpp"
 #include "geodual/triangle_mesh.hpp"
 
 #include <algorithm>
@@ -454,31 +455,6 @@ class TextTable {
 // ---------------------------------------------------------------------------
 // Reproducible random sites
 
-/// SplitMix64 (Steele, Lea & Flood 2014): a tiny generator whose output is the
-/// same on every platform and standard library, unlike the std distributions.
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-
-  /// Uniform in [0, bound), bound > 0, without modulo bias (rejection).
-  std::uint64_t below(std::uint64_t bound) {
-    const std::uint64_t limit = std::numeric_limits<std::uint64_t>::max() - std::numeric_limits<std::uint64_t>::max() % bound;
-    std::uint64_t x = next();
-    while (x >= limit) x = next();
-    return x % bound;
-  }
-
- private:
-  std::uint64_t state_;
-};
-
 /// True for a face whose three corners are distinct (faces with a repeated
 /// vertex take no part in any surface computation).
 inline bool is_proper_face(const TriangleMesh& mesh, Index f) {
@@ -486,43 +462,13 @@ inline bool is_proper_face(const TriangleMesh& mesh, Index f) {
   return a != b && b != c && a != c;
 }
 
-/// `count` distinct vertices used by a proper face, at pairwise distinct
-/// positions, drawn uniformly with a fixed `seed`: the same mesh and seed give
-/// the same sites everywhere. Throws std::runtime_error where the mesh has
-/// fewer such vertices.
+/// The vertices of geodual::random_vertex_sites (the CLI's --sites), as indices.
 inline std::vector<Index> random_vertex_sites(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed) {
-  std::vector<char> referenced(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (!is_proper_face(mesh, f)) continue;
-    for (int c = 0; c < 3; ++c) referenced[mesh.faces(f, c)] = 1;
+  std::vector<Index> vertices;
+  for (const SurfacePoint& site : geodual::random_vertex_sites(mesh, static_cast<std::int64_t>(count), seed)) {
+    vertices.push_back(site.element);
   }
-  std::vector<Index> candidates;
-  for (Index v = 0; v < mesh.num_vertices(); ++v) {
-    if (referenced[v]) candidates.push_back(v);
-  }
-  // Partial Fisher-Yates shuffle; skip a vertex whose position was taken.
-  SplitMix64 random(seed);
-  std::vector<Index> sites;
-  struct PositionHash {
-    std::size_t operator()(const std::array<double, 3>& p) const {
-      std::size_t h = 0;
-      for (double x : p) h = h * 1000003u ^ std::hash<double>{}(x);
-      return h;
-    }
-  };
-  std::unordered_set<std::array<double, 3>, PositionHash> taken;
-  for (std::size_t i = 0; i < candidates.size() && sites.size() < count; ++i) {
-    const std::size_t j = i + static_cast<std::size_t>(random.below(candidates.size() - i));
-    std::swap(candidates[i], candidates[j]);
-    const Index v = candidates[i];
-    if (taken.insert({mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2)}).second) sites.push_back(v);
-  }
-  if (sites.size() < count) {
-    throw std::runtime_error("the mesh has only " + std::to_string(sites.size()) +
-                             " vertices at distinct positions used by a face; asked for " + std::to_string(count) +
-                             " sites");
-  }
-  return sites;
+  return vertices;
 }
 
 }  // namespace geodual::bench

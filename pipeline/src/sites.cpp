@@ -2,7 +2,10 @@
 
 #include "geodual/error.hpp"
 
+#include <array>
 #include <charconv>
+#include <functional>
+#include <unordered_set>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -44,9 +47,13 @@ bool parse(std::string_view token, T& value) {
 }  // namespace
 
 std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, std::int64_t count, std::uint64_t seed) {
+  // Candidates: vertices of faces with three distinct corners (the others
+  // take no part in any surface computation).
   std::vector<std::uint8_t> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    for (int c = 0; c < 3; ++c) used[mesh.faces(f, c)] = 1;
+    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a == b || b == c || c == a) continue;
+    used[a] = used[b] = used[c] = 1;
   }
   std::vector<Index> candidates;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
@@ -54,16 +61,32 @@ std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, std::int
   }
   if (count < 1 || count > static_cast<std::int64_t>(candidates.size())) {
     throw UsageError("--sites " + std::to_string(count) + ": must be between 1 and the mesh's " +
-                     std::to_string(candidates.size()) + " referenced vertices");
+                     std::to_string(candidates.size()) + " vertices used by a face");
   }
-  // A partial Fisher-Yates shuffle: the first `count` entries are the sample.
+  // A partial Fisher-Yates shuffle; a vertex at the position of one already
+  // drawn is skipped (two sites at one point have no cell between them).
+  struct PositionHash {
+    std::size_t operator()(const std::array<double, 3>& p) const {
+      std::size_t h = 0;
+      for (const double x : p) h = h * 1000003u ^ std::hash<double>{}(x);
+      return h;
+    }
+  };
+  std::unordered_set<std::array<double, 3>, PositionHash> taken;
   SplitMix64 rng(seed);
   std::vector<SurfacePoint> sites;
   sites.reserve(static_cast<std::size_t>(count));
-  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+  for (std::size_t i = 0; i < candidates.size() && sites.size() < static_cast<std::size_t>(count); ++i) {
     const std::size_t j = i + rng.below(candidates.size() - i);
     std::swap(candidates[i], candidates[j]);
-    sites.push_back(SurfacePoint::at_vertex(candidates[i]));
+    const Index v = candidates[i];
+    if (taken.insert({mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2)}).second) {
+      sites.push_back(SurfacePoint::at_vertex(v));
+    }
+  }
+  if (sites.size() < static_cast<std::size_t>(count)) {
+    throw UsageError("--sites " + std::to_string(count) + ": the mesh has only " + std::to_string(sites.size()) +
+                     " vertices at distinct positions used by a face");
   }
   return sites;
 }

@@ -10,9 +10,10 @@
 
 namespace geodual {
 
-/// `count` distinct vertices drawn uniformly from those used by a face, the
-/// same for the same mesh, count and seed on every platform. Throws
-/// geodual::UsageError if the mesh has fewer referenced vertices.
+/// `count` vertices drawn uniformly from those used by a face with three
+/// distinct corners, at pairwise distinct positions; the same for the same
+/// mesh, count and seed on every platform. Throws geodual::UsageError if the
+/// mesh has fewer such vertices.
 std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, std::int64_t count, std::uint64_t seed);
 
 /// Reads a site file: one site per line, either a vertex index alone or
