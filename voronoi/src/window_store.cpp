@@ -94,11 +94,25 @@ Index WindowStore::allocate(const Window& w) {
     free_.pop_back();
     pool_[id] = w;
     queued_[id] = 0;
+  } else if (!free_lists_.empty()) {
+    // Take the first window of a cleared edge's list; its successor heads
+    // the rest. The slot is about to be written anyway, so following the
+    // list here costs nothing extra.
+    id = free_lists_.back();
+    const Index next = pool_[id].next;
+    if (next == -1) {
+      free_lists_.pop_back();
+    } else {
+      free_lists_.back() = next;
+    }
+    pool_[id] = w;
+    queued_[id] = 0;
   } else {
     id = static_cast<Index>(pool_.size());
     pool_.push_back(w);
     queued_.push_back(0);
   }
+  ++edge_count_[w.edge];
   peak_ = std::max(peak_, ++live_);
   return id;
 }
@@ -106,15 +120,17 @@ Index WindowStore::allocate(const Window& w) {
 void WindowStore::release(Index id) {
   queued_[id] = 0;
   free_.push_back(id);
+  --edge_count_[pool_[id].edge];
   --live_;
 }
 
 void WindowStore::clear_edge(Index edge) {
-  for (Index id = head_[edge]; id != -1;) {
-    const Index next = pool_[id].next;
-    release(id);
-    id = next;
-  }
+  // The whole list becomes free at once, without walking it: allocate()
+  // takes its windows one by one. None of them is queued (RWR clears only
+  // edges of inactive faces, after the FIFO has run dry).
+  if (head_[edge] != -1) free_lists_.push_back(head_[edge]);
+  live_ -= edge_count_[edge];
+  edge_count_[edge] = 0;
   head_[edge] = -1;
   edge_site_[edge] = kNoSite;
 }

@@ -16,7 +16,9 @@ namespace geodual::voronoi::detail {
 class WindowStore {
  public:
   explicit WindowStore(Index num_edges)
-      : head_(static_cast<std::size_t>(num_edges), -1), edge_site_(static_cast<std::size_t>(num_edges), kNoSite) {}
+      : head_(static_cast<std::size_t>(num_edges), -1),
+        edge_site_(static_cast<std::size_t>(num_edges), kNoSite),
+        edge_count_(static_cast<std::size_t>(num_edges), 0) {}
 
   static constexpr Index kNoSite = -1;
   static constexpr Index kMixedSites = -2;
@@ -58,9 +60,11 @@ class WindowStore {
 
   std::vector<Window> pool_;
   std::vector<std::uint8_t> queued_;
-  std::vector<Index> free_;
+  std::vector<Index> free_;        ///< single free windows
+  std::vector<Index> free_lists_;  ///< heads of whole freed edge lists
   std::vector<Index> head_;
   std::vector<Index> edge_site_;
+  std::vector<Index> edge_count_;  ///< windows held per edge
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;
   // Scratch space reused by insert().
