@@ -174,12 +174,12 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   // saddle (angle sum > 2 pi), a boundary vertex, or a vertex where several
   // fans meet. Flat vertices (within 1e-9 rad) count as saddles: an extra
   // pseudo-source costs a little time but never accuracy.
-  constexpr double saddle_tolerance = 1e-9;
+  constexpr double kSaddleTolerance = 1e-9;
   pm.is_pseudo_source.assign(num_vertices, 0);
   for (Index v = 0; v < num_vertices; ++v) {
     const Index begin = pm.vertex_face_begin[v], end = pm.vertex_face_begin[v + 1];
     if (begin == end) continue;
-    const bool saddle = angle_sum[v] > 2 * std::numbers::pi - saddle_tolerance;
+    const bool saddle = angle_sum[v] > 2 * std::numbers::pi - kSaddleTolerance;
     const bool several_fans = !on_boundary[v] && fan_size(pm, v, pm.vertex_faces[begin]) < end - begin;
     pm.is_pseudo_source[v] = saddle || on_boundary[v] || several_fans;
   }
