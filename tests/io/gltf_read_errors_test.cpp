@@ -3,6 +3,7 @@
 
 #include "geodual/error.hpp"
 #include "geodual/io/gltf.hpp"
+#include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
 #include "../../io/src/gltf_base64.hpp"
 #include "../../io/src/gltf_glb.hpp"
@@ -22,16 +23,8 @@ namespace geodual::io {
 namespace {
 namespace fs = std::filesystem;
 
-template <class T>
-std::vector<std::byte> bytes_of(std::initializer_list<T> values) {
-  std::vector<std::byte> out(values.size() * sizeof(T));
-  std::memcpy(out.data(), std::data(values), out.size());
-  return out;
-}
-
-std::span<const std::byte> as_span(const std::string& text) {
-  return std::as_bytes(std::span(text.data(), text.size()));
-}
+using gltf_test::as_span;
+using gltf_test::bytes_of;
 
 // Reads `data` and expects a geodual::Error whose message starts with `name`
 // and contains every string in `fragments`.

@@ -1,6 +1,7 @@
 // glTF reading of hand-built files: buffer sources, node transforms,
 // instancing, primitive kinds and accessor layouts.
 
+#include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
 #include "../../io/src/gltf_base64.hpp"
 #include "../../io/src/gltf_glb.hpp"
@@ -22,13 +23,8 @@ namespace geodual::io {
 namespace {
 namespace fs = std::filesystem;
 
-// Little-endian bytes of a list of values, e.g. bytes_of<float>({0, 1, 2}).
-template <class T>
-std::vector<std::byte> bytes_of(std::initializer_list<T> values) {
-  std::vector<std::byte> out(values.size() * sizeof(T));
-  std::memcpy(out.data(), std::data(values), out.size());
-  return out;
-}
+using gltf_test::as_span;
+using gltf_test::bytes_of;
 
 std::vector<std::byte> concat(std::initializer_list<std::vector<std::byte>> parts) {
   std::vector<std::byte> out;
@@ -38,10 +34,6 @@ std::vector<std::byte> concat(std::initializer_list<std::vector<std::byte>> part
 
 std::string data_uri(const std::vector<std::byte>& bytes) {
   return "data:application/octet-stream;base64," + detail::encode_base64(bytes);
-}
-
-std::span<const std::byte> as_span(const std::string& text) {
-  return std::as_bytes(std::span(text.data(), text.size()));
 }
 
 LoadedMesh read_json(const std::string& json, const fs::path& name = "hand.gltf") {
