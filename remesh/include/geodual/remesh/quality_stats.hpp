@@ -1,0 +1,121 @@
+#pragma once
+// Quality statistics of a triangle mesh, and the distance between two meshes:
+// the figures isotropic-remeshing papers and tools publish (shared/DESIGN.md,
+// "Quality statistics"), so that geodual's output can be set side by side with
+// theirs, and any two meshes (ours or another tool's) can be compared.
+//
+// Element quality, for a triangle with area A, half-perimeter p and longest
+// edge h: Q = 6/sqrt(3) * A / (p * h), 1 for the equilateral triangle, 0 for a
+// degenerate one. Angles are measured as atan2(|u x v|, u . v), accurate for
+// tiny angles too.
+//
+// Degenerate faces (a repeated vertex index, or exactly zero area computed in
+// double, the definition of analyze_mesh) have Q = 0 and angles (0, 0, 180)
+// degrees: they count in Qmin (= 0), Qavg, the minimum angle (= 0), and with two
+// angles below 30 degrees. They add nothing to the area or volume, are never
+// sampled and are left out of the distance queries (a zero-area face is a
+// segment or a point, covered by its neighbours in any sane mesh); their
+// vertices are still measured if some face uses them.
+
+#include "geodual/triangle_mesh.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace geodual::remesh {
+
+struct QualityOptions {
+  /// Points drawn area-uniformly on each mesh for the distances, besides all
+  /// of its referenced vertices. 10^6 keeps the sampling error of the Hausdorff
+  /// distance well below typical remeshing deviations on meshes of up to a few
+  /// million faces; 0 measures the vertices only.
+  std::int64_t samples_per_side = 1'000'000;
+  /// Seed of the (counter-based, platform-independent) sample generator.
+  std::uint64_t seed = 1;
+};
+
+/// Figures of one mesh alone. Percentages are in [0, 100].
+struct TriangleQuality {
+  std::int64_t vertices = 0;  ///< as stored, referenced or not
+  std::int64_t faces = 0;
+  std::int64_t degenerate_faces = 0;  ///< repeated index or zero area: Q = 0
+
+  double q_min = 0.0;              ///< smallest Q over all faces
+  double q_avg = 0.0;              ///< mean Q over all faces
+  double theta_min_deg = 0.0;      ///< smallest angle of any face, degrees
+  double theta_min_avg_deg = 0.0;  ///< mean over faces of each face's smallest angle, degrees
+  double pct_angles_lt30 = 0.0;    ///< 100 * (angles < 30 degrees) / (3 * faces)
+  /// 100 * (faces whose smallest angle is < 30 degrees) / (3 * faces), the
+  /// "P30" other remeshers print (a third of the share of such faces).
+  double p30 = 0.0;
+
+  /// valence_histogram[k]: interior vertices with k neighbours. A vertex is
+  /// interior when it is referenced and each of its edges has exactly two face
+  /// sides (no boundary edge, no non-manifold edge). Edges are those of
+  /// analyze_mesh: sides of faces joining two different indices.
+  std::vector<std::int64_t> valence_histogram;
+  std::int64_t interior_vertices = 0;
+  /// 100 * (interior vertices of valence 6) / (interior vertices); empty when
+  /// there is no interior vertex.
+  std::optional<double> pct_valence6;
+
+  // Topology, from analyze_mesh (see geodual/mesh_report.hpp).
+  std::int64_t euler_characteristic = 0;
+  std::optional<double> genus;  ///< only for an orientable 2-manifold
+  std::int64_t components = 0;
+  std::int64_t boundary_loops = 0;
+  std::int64_t nonmanifold_edges = 0;
+
+  double bbox_diagonal = 0.0;  ///< of the referenced vertices
+  double area = 0.0;           ///< sum of the face areas
+  /// Signed volume by the divergence theorem: the sum over faces of the signed
+  /// volumes of the tetrahedra joining each face to the centre of the bounding
+  /// box. For a closed mesh oriented counter-clockwise seen from outside it is
+  /// the enclosed volume (negative if oriented the other way); for an open mesh
+  /// it depends on that centre and has no geometric meaning.
+  double volume = 0.0;
+};
+
+/// Element quality, valence and topology of one mesh. Throws geodual::Error for
+/// a mesh without faces, a face index out of range or a non-finite coordinate.
+TriangleQuality triangle_quality(const TriangleMesh& mesh);
+
+/// The candidate's quality and its distance to the reference.
+///
+/// Distances: each side's sample set is its referenced vertices plus
+/// `samples_per_side` points drawn area-uniformly on its faces; every sample's
+/// distance to the other mesh's surface is exact (closest point on its
+/// triangles, CGAL AABB tree). Hausdorff = max over both sample sets; RMS =
+/// sqrt of the mean squared distance over both sample sets together. Since the
+/// samples are finite, the Hausdorff figure is a lower bound of the true one
+/// (exact where the farthest point is a vertex, as for nested convex shapes).
+/// The _pct figures are in percent of the reference's bounding-box diagonal.
+///
+/// Same meshes and options give the same bits whatever the number of threads.
+struct QualityReport {
+  TriangleQuality reference;
+  TriangleQuality candidate;
+
+  double hausdorff = 0.0;                        ///< two-sided, max of the two below
+  double hausdorff_reference_to_candidate = 0.0;  ///< max over reference samples
+  double hausdorff_candidate_to_reference = 0.0;  ///< max over candidate samples
+  double rms = 0.0;                               ///< over both sample sets together
+  double hausdorff_pct = 0.0;                     ///< 100 * hausdorff / reference.bbox_diagonal
+  double rms_pct = 0.0;                           ///< 100 * rms / reference.bbox_diagonal
+  std::int64_t reference_samples = 0;  ///< measured points on the reference: vertices + samples
+  std::int64_t candidate_samples = 0;  ///< measured points on the candidate
+
+  double area_change_pct = 0.0;  ///< 100 * (candidate.area - reference.area) / reference.area
+  /// 100 * (candidate.volume - reference.volume) / |reference.volume|; empty
+  /// when the reference's volume is 0. Meaningful for closed meshes only.
+  std::optional<double> volume_change_pct;
+};
+
+/// Compares `candidate` with `reference`. Throws geodual::Error (naming which
+/// mesh) for what triangle_quality refuses, for a mesh whose faces all have
+/// zero area, and for a negative sample count.
+QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
+                             const QualityOptions& options = {});
+
+}  // namespace geodual::remesh

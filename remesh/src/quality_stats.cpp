@@ -1,0 +1,213 @@
+// compare_meshes: two-sided Hausdorff and RMS distance between two meshes by
+// exact point-to-surface distances (CGAL AABB tree) from every referenced
+// vertex and from area-uniform samples of each side. The only translation unit
+// of geodual_remesh that includes CGAL.
+
+#include "geodual/remesh/quality_stats.hpp"
+
+#include "geodual/error.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace geodual::remesh {
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using Triangle = Kernel::Triangle_3;
+using TriangleIterator = std::vector<Triangle>::const_iterator;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+/// splitmix64's finaliser.
+std::uint64_t mix(std::uint64_t x) {
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9U;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebU;
+  return x ^ (x >> 31);
+}
+
+/// A counter-based generator: the value number `counter` of stream `stream`
+/// is splitmix64 at that position, so every sample can be drawn on its own,
+/// in any order and on any thread, and gives the same bits everywhere.
+double uniform(std::uint64_t stream, std::uint64_t counter) {
+  constexpr std::uint64_t golden_gamma = 0x9e3779b97f4a7c15U;
+  const std::uint64_t bits = mix(stream + (counter + 1) * golden_gamma);
+  return static_cast<double>(bits >> 11) * 0x1.0p-53;  // in [0, 1)
+}
+
+/// One mesh as a surface to sample and to measure distances to: its faces of
+/// non-zero area in an AABB tree, their cumulative areas, and its referenced
+/// vertices.
+class Surface {
+ public:
+  explicit Surface(const TriangleMesh& mesh) {
+    std::vector<char> referenced(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    double total = 0.0;
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+      const Index a = mesh.faces(f, 0);
+      const Index b = mesh.faces(f, 1);
+      const Index c = mesh.faces(f, 2);
+      referenced[a] = referenced[b] = referenced[c] = 1;
+      const Eigen::Vector3d p0 = mesh.vertices.row(a);
+      const Eigen::Vector3d p1 = mesh.vertices.row(b);
+      const Eigen::Vector3d p2 = mesh.vertices.row(c);
+      const double area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+      if (a == b || b == c || a == c || !(area > 0.0)) continue;  // degenerate: left out
+      triangles_.emplace_back(Point(p0.x(), p0.y(), p0.z()), Point(p1.x(), p1.y(), p1.z()),
+                              Point(p2.x(), p2.y(), p2.z()));
+      total += area;
+      cumulative_area_.push_back(total);
+    }
+    if (triangles_.empty()) throw Error("every face has zero area");
+    for (Index v = 0; v < mesh.num_vertices(); ++v) {
+      if (referenced[v]) {
+        vertices_.emplace_back(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2));
+      }
+    }
+    tree_.insert(triangles_.begin(), triangles_.end());
+    // Built now, not lazily on the first query, so that the queries only read.
+    tree_.build();
+    tree_.accelerate_distance_queries();
+  }
+  Surface(const Surface&) = delete;
+  Surface& operator=(const Surface&) = delete;
+
+  std::int64_t vertex_count() const { return static_cast<std::int64_t>(vertices_.size()); }
+  const Point& vertex(std::int64_t i) const { return vertices_[static_cast<std::size_t>(i)]; }
+
+  /// Sample number `i` of stream `stream`: a face chosen with probability
+  /// proportional to its area, then a uniform point in it
+  /// ((1 - sqrt(r1)) a + sqrt(r1) (1 - r2) b + sqrt(r1) r2 c).
+  Point sample(std::uint64_t stream, std::int64_t i) const {
+    const auto counter = 3 * static_cast<std::uint64_t>(i);
+    const double target = uniform(stream, counter) * cumulative_area_.back();
+    const auto found = std::upper_bound(cumulative_area_.begin(), cumulative_area_.end(), target);
+    const auto face = std::min<std::ptrdiff_t>(found - cumulative_area_.begin(),
+                                               static_cast<std::ptrdiff_t>(triangles_.size()) - 1);
+    const Triangle& t = triangles_[static_cast<std::size_t>(face)];
+    const double s = std::sqrt(uniform(stream, counter + 1));
+    const double r = uniform(stream, counter + 2);
+    const double wa = 1.0 - s;
+    const double wb = s * (1.0 - r);
+    const double wc = s * r;
+    return Point(wa * t[0].x() + wb * t[1].x() + wc * t[2].x(),
+                 wa * t[0].y() + wb * t[1].y() + wc * t[2].y(),
+                 wa * t[0].z() + wb * t[1].z() + wc * t[2].z());
+  }
+
+  /// Squared distance from p to the closest point of the surface.
+  double squared_distance(const Point& p) const { return tree_.squared_distance(p); }
+
+ private:
+  std::vector<Triangle> triangles_;
+  std::vector<double> cumulative_area_;
+  std::vector<Point> vertices_;
+  Tree tree_;
+};
+
+struct OneSided {
+  double max_squared = 0.0;
+  double sum_squared = 0.0;
+  std::int64_t count = 0;
+};
+
+/// Distances from `from`'s vertices and `samples` area-uniform samples of it
+/// to `to`. Fixed blocks, each summed in order, then the blocks summed in
+/// order: the same bits for any number of threads.
+OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, std::uint64_t stream) {
+  constexpr std::int64_t block = 4096;
+  const std::int64_t vertices = from.vertex_count();
+  const std::int64_t count = vertices + samples;
+  const auto blocks = static_cast<std::size_t>((count + block - 1) / block);
+  std::vector<double> block_max(blocks, 0.0);
+  std::vector<double> block_sum(blocks, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t b = range.begin(); b != range.end(); ++b) {
+      const std::int64_t first = static_cast<std::int64_t>(b) * block;
+      const std::int64_t last = std::min(first + block, count);
+      double max_squared = 0.0;
+      double sum_squared = 0.0;
+      for (std::int64_t i = first; i < last; ++i) {
+        const Point p = i < vertices ? from.vertex(i) : from.sample(stream, i - vertices);
+        const double d2 = to.squared_distance(p);
+        max_squared = std::max(max_squared, d2);
+        sum_squared += d2;
+      }
+      block_max[b] = max_squared;
+      block_sum[b] = sum_squared;
+    }
+  });
+  OneSided result;
+  result.count = count;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    result.max_squared = std::max(result.max_squared, block_max[b]);
+    result.sum_squared += block_sum[b];
+  }
+  return result;
+}
+
+/// Runs `f`, prefixing the message of a geodual::Error with `which`.
+template <typename F>
+auto naming(const char* which, F&& f) {
+  try {
+    return f();
+  } catch (const Error& error) {
+    throw Error(std::string(which) + ": " + error.what());
+  }
+}
+
+}  // namespace
+
+QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
+                             const QualityOptions& options) {
+  if (options.samples_per_side < 0) {
+    throw Error("compare_meshes: samples_per_side is " + std::to_string(options.samples_per_side) +
+                "; give 0 or more");
+  }
+  QualityReport report;
+  report.reference = naming("reference mesh", [&] { return triangle_quality(reference); });
+  report.candidate = naming("candidate mesh", [&] { return triangle_quality(candidate); });
+
+  {
+    // One scope, so that the trees are freed before returning.
+    const Surface reference_surface = naming("reference mesh", [&] { return Surface(reference); });
+    const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate); });
+    const std::uint64_t stream = mix(options.seed);
+    const OneSided forward = measure(reference_surface, candidate_surface, options.samples_per_side, mix(stream));
+    const OneSided backward = measure(candidate_surface, reference_surface, options.samples_per_side, mix(stream + 1));
+    report.hausdorff_reference_to_candidate = std::sqrt(forward.max_squared);
+    report.hausdorff_candidate_to_reference = std::sqrt(backward.max_squared);
+    report.hausdorff = std::max(report.hausdorff_reference_to_candidate, report.hausdorff_candidate_to_reference);
+    report.rms = std::sqrt((forward.sum_squared + backward.sum_squared) /
+                           static_cast<double>(forward.count + backward.count));
+    report.reference_samples = forward.count;
+    report.candidate_samples = backward.count;
+  }
+
+  // A reference with a face of non-zero area has a positive area and diagonal.
+  const double diagonal = report.reference.bbox_diagonal;
+  report.hausdorff_pct = 100.0 * report.hausdorff / diagonal;
+  report.rms_pct = 100.0 * report.rms / diagonal;
+  report.area_change_pct = 100.0 * (report.candidate.area - report.reference.area) / report.reference.area;
+  if (report.reference.volume != 0.0) {
+    report.volume_change_pct =
+        100.0 * (report.candidate.volume - report.reference.volume) / std::abs(report.reference.volume);
+  }
+  return report;
+}
+
+}  // namespace geodual::remesh
