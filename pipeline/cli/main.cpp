@@ -26,12 +26,14 @@ namespace geodual::cli {
 // below (the order `geodual --help` lists them in).
 CommandFactory make_info_command;
 CommandFactory make_geodesic_command;
+CommandFactory make_stats_command;
 
 namespace {
 
 constexpr CommandFactory* command_factories[] = {
     &make_info_command,
     &make_geodesic_command,
+    &make_stats_command,
 };
 
 constexpr int exit_failure = 1;

@@ -1,0 +1,230 @@
+// geodual stats REFERENCE CANDIDATE [--json] [--samples N] [--seed S]
+// Quality of the candidate mesh and its distance to the reference: the figures
+// remeshing papers and tools publish (remesh/quality_stats.hpp has the exact
+// definitions), for any two meshes, ours or another tool's.
+
+#include "command.hpp"
+#include "text_table.hpp"
+
+#include "geodual/error.hpp"
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/remesh/quality_stats.hpp"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace geodual::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+nlohmann::ordered_json optional_json(const std::optional<double>& value) {
+  return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
+}
+
+/// A genus as 2, not 2.0; null where it means nothing.
+nlohmann::ordered_json genus_json(const std::optional<double>& genus) {
+  if (!genus) return nullptr;
+  if (*genus == std::round(*genus)) return std::llround(*genus);
+  return *genus;
+}
+
+/// The figures of one mesh, under the keys the README documents.
+nlohmann::ordered_json quality_json(const remesh::TriangleQuality& q) {
+  nlohmann::ordered_json json;
+  json["vertices"] = q.vertices;
+  json["faces"] = q.faces;
+  json["degenerate_faces"] = q.degenerate_faces;
+  json["q_min"] = q.q_min;
+  json["q_avg"] = q.q_avg;
+  json["theta_min_deg"] = q.theta_min_deg;
+  json["theta_min_avg_deg"] = q.theta_min_avg_deg;
+  json["pct_angles_lt30"] = q.pct_angles_lt30;
+  json["p30"] = q.p30;
+  json["valence_histogram"] = q.valence_histogram;
+  json["interior_vertices"] = q.interior_vertices;
+  json["pct_valence6"] = optional_json(q.pct_valence6);
+  json["euler_characteristic"] = q.euler_characteristic;
+  json["genus"] = genus_json(q.genus);
+  json["components"] = q.components;
+  json["boundary_loops"] = q.boundary_loops;
+  json["nonmanifold_edges"] = q.nonmanifold_edges;
+  json["bbox_diagonal"] = q.bbox_diagonal;
+  json["area"] = q.area;
+  json["volume"] = q.volume;
+  return json;
+}
+
+std::string percent(double value) { return significant(value, 4) + "%"; }
+
+std::string signed_percent(double value) { return (value > 0 ? "+" : "") + percent(value); }
+
+class StatsCommand final : public Command {
+ public:
+  CLI::App& add_to(CLI::App& app) override {
+    CLI::App& command = *app.add_subcommand(
+        "stats", "Quality of a mesh and its Hausdorff/RMS distance to a reference mesh");
+    command.footer(
+        "Example:\n  geodual stats scan.ply remeshed.ply --json\n"
+        "Distances: all vertices plus N area-uniform samples per side, exact distance to the "
+        "other surface;\nin % of the reference's bounding-box diagonal.");
+    command.add_option("REFERENCE", reference_path_, "The original mesh (.ply, .obj, .off, .stl, .gltf, .glb)")
+        ->required();
+    command.add_option("CANDIDATE", candidate_path_, "The mesh to assess, e.g. a remesh of REFERENCE")
+        ->required();
+    command.add_flag("--json", json_, "Print one JSON object instead of a table");
+    command.add_option("--samples", options_.samples_per_side,
+                       "Area-uniform samples per mesh for the distances, besides the vertices")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str();
+    return command;
+  }
+
+  int run() override {
+    const auto start = std::chrono::steady_clock::now();
+    const io::LoadedMesh reference = io::read_mesh(reference_path_);
+    const io::LoadedMesh candidate = io::read_mesh(candidate_path_);
+    const double read_seconds = seconds_since(start);
+    const auto stats_start = std::chrono::steady_clock::now();
+    remesh::QualityReport report;
+    try {
+      report = remesh::compare_meshes(reference.mesh, candidate.mesh, options_);
+    } catch (const Error& error) {
+      throw Error(name_the_file(error.what()));
+    }
+    const double stats_seconds = seconds_since(stats_start);
+    if (json_) {
+      print_json(report, read_seconds, stats_seconds);
+    } else {
+      print_table(report, read_seconds, stats_seconds);
+    }
+    return 0;
+  }
+
+ private:
+  /// compare_meshes says "reference mesh: ..." or "candidate mesh: ...": put
+  /// the file's path there instead.
+  std::string name_the_file(std::string_view message) const {
+    for (const auto& [prefix, path] : {std::pair{std::string_view("reference mesh"), &reference_path_},
+                                       std::pair{std::string_view("candidate mesh"), &candidate_path_}}) {
+      if (message.substr(0, prefix.size()) == prefix) {
+        return *path + std::string(message.substr(prefix.size()));
+      }
+    }
+    return std::string(message);
+  }
+
+  void print_json(const remesh::QualityReport& report, double read_seconds, double stats_seconds) const {
+    nlohmann::ordered_json json;
+    json["reference"] = reference_path_;
+    json["candidate"] = candidate_path_;
+    json.update(quality_json(report.candidate));
+    json["hausdorff"] = report.hausdorff;
+    json["rms"] = report.rms;
+    json["hausdorff_pct"] = report.hausdorff_pct;
+    json["rms_pct"] = report.rms_pct;
+    const double diagonal = report.reference.bbox_diagonal;
+    json["hausdorff_reference_to_candidate_pct"] = 100.0 * report.hausdorff_reference_to_candidate / diagonal;
+    json["hausdorff_candidate_to_reference_pct"] = 100.0 * report.hausdorff_candidate_to_reference / diagonal;
+    json["area_change_pct"] = report.area_change_pct;
+    json["volume_change_pct"] = optional_json(report.volume_change_pct);
+    json["samples_per_side"] = options_.samples_per_side;
+    json["seed"] = options_.seed;
+    json["reference_samples"] = report.reference_samples;
+    json["candidate_samples"] = report.candidate_samples;
+    json["reference_quality"] = quality_json(report.reference);
+    json["read_s"] = read_seconds;
+    json["stats_s"] = stats_seconds;
+    // Paths need not be UTF-8: replace what is not rather than fail.
+    std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
+  }
+
+  void print_table(const remesh::QualityReport& report, double read_seconds, double stats_seconds) const {
+    const remesh::TriangleQuality& r = report.reference;
+    const remesh::TriangleQuality& c = report.candidate;
+    KeyValueTable table;
+    table.add("reference", reference_path_);
+    table.add("candidate", candidate_path_);
+
+    // Figures of each mesh: two columns, the reference's padded to one width.
+    std::vector<std::pair<std::string, std::pair<std::string, std::string>>> rows;
+    const auto both = [&rows](std::string key, std::string ref, std::string cand) {
+      rows.push_back({std::move(key), {std::move(ref), std::move(cand)}});
+    };
+    const auto valence6 = [](const remesh::TriangleQuality& q) {
+      return q.pct_valence6 ? percent(*q.pct_valence6) + " of " + with_thousands(q.interior_vertices)
+                            : std::string("no interior vertex");
+    };
+    const auto genus = [](const remesh::TriangleQuality& q) {
+      return q.genus ? significant(*q.genus) : std::string("not defined");
+    };
+    both("", "reference", "candidate");
+    both("vertices", with_thousands(r.vertices), with_thousands(c.vertices));
+    both("faces", with_thousands(r.faces), with_thousands(c.faces));
+    both("degenerate faces", with_thousands(r.degenerate_faces), with_thousands(c.degenerate_faces));
+    both("Q min", significant(r.q_min, 4), significant(c.q_min, 4));
+    both("Q avg", significant(r.q_avg, 4), significant(c.q_avg, 4));
+    both("min angle", significant(r.theta_min_deg, 4) + " deg", significant(c.theta_min_deg, 4) + " deg");
+    both("mean min angle", significant(r.theta_min_avg_deg, 4) + " deg",
+         significant(c.theta_min_avg_deg, 4) + " deg");
+    both("angles < 30 deg", percent(r.pct_angles_lt30), percent(c.pct_angles_lt30));
+    both("P30", percent(r.p30), percent(c.p30));
+    both("valence 6 (interior)", valence6(r), valence6(c));
+    both("euler characteristic", with_thousands(r.euler_characteristic), with_thousands(c.euler_characteristic));
+    both("genus", genus(r), genus(c));
+    both("components", with_thousands(r.components), with_thousands(c.components));
+    both("boundary loops", with_thousands(r.boundary_loops), with_thousands(c.boundary_loops));
+    both("non-manifold edges", with_thousands(r.nonmanifold_edges), with_thousands(c.nonmanifold_edges));
+    both("area", significant(r.area), significant(c.area));
+    both("volume", significant(r.volume), significant(c.volume));
+    std::size_t width = 0;
+    for (const auto& row : rows) width = std::max(width, row.second.first.size());
+    for (auto& [key, values] : rows) {
+      table.add(key.empty() ? "mesh" : key,
+                values.first + std::string(width - values.first.size() + 2, ' ') + values.second);
+    }
+
+    const double diagonal = r.bbox_diagonal;
+    const auto distance = [diagonal](double d) {
+      return percent(100.0 * d / diagonal) + " (" + significant(d) + ")";
+    };
+    table.add("hausdorff", distance(report.hausdorff));
+    table.add("  reference to candidate", distance(report.hausdorff_reference_to_candidate));
+    table.add("  candidate to reference", distance(report.hausdorff_candidate_to_reference));
+    table.add("rms", distance(report.rms));
+    table.add("area change", signed_percent(report.area_change_pct));
+    table.add("volume change", report.volume_change_pct ? signed_percent(*report.volume_change_pct)
+                                                        : std::string("not defined (reference volume 0)"));
+    table.add("distances in", "% of the reference's bbox diagonal " + significant(diagonal));
+    table.add("samples", with_thousands(options_.samples_per_side) + " per side + vertices (seed " +
+                             std::to_string(options_.seed) + "): " + with_thousands(report.reference_samples) +
+                             " + " + with_thousands(report.candidate_samples) + " points");
+    table.add("time", duration(stats_seconds) + " (reading " + duration(read_seconds) + ")");
+    table.print(std::cout);
+  }
+
+  std::string reference_path_;
+  std::string candidate_path_;
+  bool json_ = false;
+  remesh::QualityOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_stats_command() { return std::make_unique<StatsCommand>(); }
+
+}  // namespace geodual::cli
