@@ -1,7 +1,7 @@
 // Quality statistics and mesh distances against closed forms and independent
 // oracles: hand-built triangles (Heron's formula), the regular icosahedron, a
 // torus and a plane grid, nested convex shapes (Hausdorff exact at a vertex),
-// a brute-force point-to-triangle distance (Ericson), and the real bunny scan
+// a brute-force point-to-triangle distance (CGAL's), and the real bunny scan
 // against the data set manifest.
 
 #include "geodual/error.hpp"
@@ -9,6 +9,7 @@
 #include "geodual/mesh_report.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 
+#include <CGAL/Simple_cartesian.h>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -143,6 +144,16 @@ TriangleMesh torus(int n, int m) {
   return make_mesh(points, faces);
 }
 
+/// Both meshes as one (two components).
+TriangleMesh combined(const TriangleMesh& first, const TriangleMesh& second) {
+  TriangleMesh mesh;
+  mesh.vertices.resize(first.vertices.rows() + second.vertices.rows(), 3);
+  mesh.vertices << first.vertices, second.vertices;
+  mesh.faces.resize(first.faces.rows() + second.faces.rows(), 3);
+  mesh.faces << first.faces, (second.faces.array() + first.num_vertices()).matrix();
+  return mesh;
+}
+
 /// The unit cube [0, 1]^3, faces counter-clockwise seen from outside.
 TriangleMesh unit_cube() {
   std::vector<Vec> p;
@@ -162,35 +173,18 @@ double heron_quality(double a, double b, double c) {
   return 6 / std::sqrt(3.0) * area / (s * std::max({a, b, c}));
 }
 
-/// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5).
-Vec closest_on_triangle(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {
-  const Vec ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vec cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denominator = 1 / (va + vb + vc);
-  return a + ab * (vb * denominator) + ac * (vc * denominator);
-}
-
+/// Distance from p to the nearest triangle, by CGAL's point-triangle distance
+/// over every triangle (the library uses its own, through an AABB tree).
 double brute_distance(const Vec& p, const TriangleMesh& mesh) {
+  using Kernel = CGAL::Simple_cartesian<double>;
+  const auto point = [](const Vec& v) { return Kernel::Point_3(v.x(), v.y(), v.z()); };
   double best = std::numeric_limits<double>::infinity();
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
-    const Vec q = closest_on_triangle(p, mesh.vertices.row(mesh.faces(f, 0)), mesh.vertices.row(mesh.faces(f, 1)),
-                                      mesh.vertices.row(mesh.faces(f, 2)));
-    best = std::min(best, (p - q).norm());
+    const Kernel::Triangle_3 triangle(point(mesh.vertices.row(mesh.faces(f, 0))), point(mesh.vertices.row(mesh.faces(f, 1))),
+                                      point(mesh.vertices.row(mesh.faces(f, 2))));
+    best = std::min(best, CGAL::squared_distance(point(p), triangle));
   }
-  return best;
+  return std::sqrt(best);
 }
 
 QualityOptions samples(std::int64_t count, std::uint64_t seed = 1) {
@@ -428,11 +422,16 @@ TEST(CompareMeshes, ScaledCubeAreaVolumeAndDistances) {
 
 TEST(CompareMeshes, VerticesOnlyMatchBruteForce) {
   // With no samples, the figures are over the vertices alone: check them
-  // against a brute-force closest point on every triangle.
-  TriangleMesh a = icosphere(1);
-  TriangleMesh b = transformed(icosphere(1), 1.0, Vec::Zero(), Vec::Zero());
-  for (Index v = 0; v < a.num_vertices(); ++v) {
-    a.vertices.row(v) *= 1.0 + 0.05 * std::sin(3.0 * v);
+  // against a brute-force distance to every triangle. The reference is a bumpy
+  // sphere plus a grid of points above a needle triangle and an obtuse one of
+  // the candidate, so that the nearest points fall on faces, edges and
+  // vertices alike.
+  TriangleMesh a = combined(icosphere(3), transformed(plane_grid(7), 2.0, Vec::Zero(), Vec(1.2, -1.0, 0.3)));
+  TriangleMesh b = combined(icosphere(1), make_mesh({Vec(1.5, 0, 0), Vec(2.5, 0, 0), Vec(2.5, 1e-6, 0), Vec(1.4, 0.2, 0.1),
+                                                     Vec(3.3, 0.4, -0.1), Vec(2.0, 0.5, 0.0)},
+                                                    {{0, 1, 2}, {3, 4, 5}}));
+  for (Index v = 0; v < 642; ++v) a.vertices.row(v) *= 1.0 + 0.05 * std::sin(3.0 * v);
+  for (Index v = 0; v < 42; ++v) {
     b.vertices.row(v) = b.vertices.row(v) * (1.0 + 0.04 * std::cos(5.0 * v)) + Eigen::RowVector3d(0.01, -0.02, 0.03);
   }
   const QualityReport report = compare_meshes(a, b, samples(0));

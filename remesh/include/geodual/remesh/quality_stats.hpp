@@ -85,11 +85,13 @@ TriangleQuality triangle_quality(const TriangleMesh& mesh);
 ///
 /// Distances: each side's sample set is its referenced vertices plus
 /// `samples_per_side` points drawn area-uniformly on its faces; every sample's
-/// distance to the other mesh's surface is exact (closest point on its
-/// triangles, CGAL AABB tree). Hausdorff = max over both sample sets; RMS =
-/// sqrt of the mean squared distance over both sample sets together. Since the
-/// samples are finite, the Hausdorff figure is a lower bound of the true one
-/// (exact where the farthest point is a vertex, as for nested convex shapes).
+/// distance to the other mesh's surface is exact up to rounding (the nearest
+/// of its faces of non-zero area, found through a CGAL AABB tree). Hausdorff =
+/// max over both sample sets; RMS = sqrt of the mean squared distance over
+/// both sample sets together (vertices included, so densely meshed regions
+/// weigh a little more). Since the samples are finite, the Hausdorff figure is
+/// a lower bound of the true one (exact where the farthest point is a vertex,
+/// as for nested convex shapes).
 /// The _pct figures are in percent of the reference's bounding-box diagonal.
 ///
 /// Same meshes and options give the same bits whatever the number of threads.
