@@ -1,0 +1,240 @@
+// The geodesic Voronoi diagram against Euclidean geometry on flat meshes and
+// against CGAL's exact geodesics on real scans.
+
+#include "voronoi/cgal_oracle.hpp"
+#include "voronoi/test_meshes.hpp"
+
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace geodual {
+namespace {
+
+using voronoi::VoronoiArc;
+using voronoi::VoronoiDiagram;
+
+double mesh_area(const TriangleMesh& mesh) {
+  double area = 0;
+  for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+                          c = mesh.vertices.row(mesh.faces(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return area;
+}
+
+/// Area of the Euclidean Voronoi cell of sites[i] inside the unit square:
+/// the square clipped by the half-plane of every other site.
+double euclidean_cell_area(const std::vector<Eigen::Vector2d>& sites, std::size_t i) {
+  std::vector<Eigen::Vector2d> polygon = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (std::size_t j = 0; j < sites.size(); ++j) {
+    if (j == i) continue;
+    const Eigen::Vector2d normal = sites[j] - sites[i];
+    const double offset = normal.dot(0.5 * (sites[i] + sites[j]));
+    std::vector<Eigen::Vector2d> clipped;
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      const Eigen::Vector2d& p = polygon[k];
+      const Eigen::Vector2d& q = polygon[(k + 1) % polygon.size()];
+      const double fp = normal.dot(p) - offset, fq = normal.dot(q) - offset;
+      if (fp <= 0) clipped.push_back(p);
+      if ((fp < 0) != (fq < 0) && fp != fq) clipped.push_back(p + (q - p) * (fp / (fp - fq)));
+    }
+    polygon = clipped;
+  }
+  double twice = 0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Eigen::Vector2d& p = polygon[k];
+    const Eigen::Vector2d& q = polygon[(k + 1) % polygon.size()];
+    twice += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * twice;
+}
+
+/// Checks that hold for any diagram: areas tile the surface, arcs are
+/// consistent, vertices list distinct sites.
+void expect_consistent(const TriangleMesh& mesh, const VoronoiDiagram& diagram) {
+  double total = 0;
+  for (const double area : diagram.cell_area) total += area;
+  EXPECT_NEAR(total, mesh_area(mesh), 1e-9 * mesh_area(mesh));
+  for (const VoronoiArc& arc : diagram.arcs) {
+    EXPECT_NE(arc.left_site, arc.right_site);
+    EXPECT_GE(arc.point_end - arc.point_begin, 2);
+    if (arc.closed) {
+      EXPECT_EQ(arc.start_vertex, -1);
+    }
+  }
+  for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
+    const auto sites = diagram.sites_of(vertex);
+    EXPECT_GE(sites.size(), 3u);
+    std::set<Index> distinct(sites.begin(), sites.end());
+    EXPECT_EQ(distinct.size(), sites.size());
+  }
+  EXPECT_EQ(diagram.points.size(), diagram.point_locations.size());
+  EXPECT_EQ(diagram.stats.unresolved_regions, 0);
+}
+
+TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
+  const TriangleMesh mesh = test::flat_square(40, 0.3, 21);
+  std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 24, 22);
+  for (const SurfacePoint& s : test::random_vertex_sites(mesh, 6, 23)) sites.push_back(s);
+  const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
+  expect_consistent(mesh, diagram);
+
+  std::vector<Eigen::Vector2d> planar;
+  for (const SurfacePoint& s : sites) planar.push_back(s.position(mesh).head<2>());
+  auto distance_to = [&](Index site, const Eigen::Vector3d& p) { return (p.head<2>() - planar[site]).norm(); };
+  auto nearest = [&](const Eigen::Vector3d& p) {
+    double best = INFINITY;
+    for (Index s = 0; s < static_cast<Index>(sites.size()); ++s) best = std::min(best, distance_to(s, p));
+    return best;
+  };
+
+  // Voronoi vertices: equidistant to their sites, and no site is nearer.
+  ASSERT_FALSE(diagram.vertices.empty());
+  for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
+    for (const Index site : diagram.sites_of(vertex)) {
+      EXPECT_NEAR(distance_to(site, vertex.position), vertex.distance, 1e-10);
+    }
+    EXPECT_NEAR(nearest(vertex.position), vertex.distance, 1e-10);
+  }
+  // The Euclidean diagram's vertices inside the square: circumcentres of
+  // triples with no site nearer. Same number.
+  int expected_vertices = 0;
+  const int n = static_cast<int>(planar.size());
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      for (int c = b + 1; c < n; ++c) {
+        const Eigen::Vector2d pa = planar[a], pb = planar[b], pc = planar[c];
+        const double d = 2 * (pa.x() * (pb.y() - pc.y()) + pb.x() * (pc.y() - pa.y()) + pc.x() * (pa.y() - pb.y()));
+        if (std::abs(d) < 1e-15) continue;
+        const Eigen::Vector2d centre(
+            (pa.squaredNorm() * (pb.y() - pc.y()) + pb.squaredNorm() * (pc.y() - pa.y()) +
+             pc.squaredNorm() * (pa.y() - pb.y())) / d,
+            (pa.squaredNorm() * (pc.x() - pb.x()) + pb.squaredNorm() * (pa.x() - pc.x()) +
+             pc.squaredNorm() * (pb.x() - pa.x())) / d);
+        if (centre.minCoeff() <= 0 || centre.maxCoeff() >= 1) continue;
+        const double r = (centre - pa).norm();
+        bool empty = true;
+        for (int s = 0; s < n && empty; ++s) empty = (centre - planar[s]).norm() >= r - 1e-12;
+        expected_vertices += empty;
+      }
+    }
+  }
+  EXPECT_EQ(static_cast<int>(diagram.vertices.size()), expected_vertices);
+
+  // Every polyline point lies on its bisector, with those two sites nearest.
+  for (const VoronoiArc& arc : diagram.arcs) {
+    for (const Eigen::Vector3d& p : diagram.polyline(arc)) {
+      const double left = distance_to(arc.left_site, p), right = distance_to(arc.right_site, p);
+      EXPECT_NEAR(left, right, 1e-10);
+      EXPECT_NEAR(nearest(p), std::min(left, right), 1e-10);
+    }
+    // The left site lies to the left of the arc's first segment.
+    const auto line = diagram.polyline(arc);
+    const Eigen::Vector2d direction = (line[1] - line[0]).head<2>();
+    const Eigen::Vector2d to_left = planar[arc.left_site] - line[0].head<2>();
+    EXPECT_GT(direction.x() * to_left.y() - direction.y() * to_left.x(), 0);
+  }
+  // Cells: the Euclidean areas; cells in a convex square meet along one arc.
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
+  }
+  for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
+}
+
+TEST(VoronoiDiagram, CoCircularSitesMeetAtOnePoint) {
+  // Four sites on a circle about the centre of a regular (unjittered) grid,
+  // with a bisector along grid lines through mesh vertices.
+  const TriangleMesh mesh = test::flat_square(16, 0.0, 1);
+  std::vector<SurfacePoint> sites;
+  auto vertex_at = [&](int i, int j) { return SurfacePoint::at_vertex(j * 17 + i); };
+  sites = {vertex_at(4, 8), vertex_at(8, 4), vertex_at(12, 8), vertex_at(8, 12)};
+  const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
+  expect_consistent(mesh, diagram);
+  std::set<Index> at_centre;
+  for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
+    EXPECT_NEAR((vertex.position - Eigen::Vector3d(0.5, 0.5, 0)).norm(), 0, 1e-9);
+    for (const Index site : diagram.sites_of(vertex)) at_centre.insert(site);
+  }
+  EXPECT_EQ(at_centre.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(diagram.cell_area[i], 0.25, 1e-9);
+}
+
+/// Voronoi vertices and arc points on a real scan, checked with CGAL's exact
+/// geodesics from each site separately.
+void expect_matches_cgal(const std::string& file, int face_sites, int vertex_sites, std::uint64_t seed) {
+  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path(file));
+  std::vector<SurfacePoint> sites = test::random_face_sites(mesh, face_sites, seed);
+  for (const SurfacePoint& s : test::random_vertex_sites(mesh, vertex_sites, seed + 1)) sites.push_back(s);
+  const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
+  expect_consistent(mesh, diagram);
+  const double tolerance = 1e-8 * test::bbox_diagonal(mesh);
+  ASSERT_FALSE(diagram.vertices.empty());
+
+  // Per site: the vertices and the arc points (every fourth) it owns.
+  std::vector<std::vector<SurfacePoint>> queries(sites.size());
+  std::vector<std::vector<double>> expected(sites.size());
+  for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
+    for (const Index site : diagram.sites_of(vertex)) {
+      queries[site].push_back(vertex.location);
+      expected[site].push_back(vertex.distance);
+    }
+  }
+  // Arc points: the left and right sites are equally far; the distance comes
+  // from the left site's query, so check pairs through a map.
+  std::vector<std::vector<std::size_t>> arc_point_query(sites.size());
+  std::vector<std::pair<std::size_t, std::size_t>> arc_pairs;  // (left query id, right query id) flattened
+  std::vector<std::pair<Index, Index>> arc_pair_sites;
+  for (const VoronoiArc& arc : diagram.arcs) {
+    for (Index i = arc.point_begin; i < arc.point_end; i += 4) {
+      const SurfacePoint& p = diagram.point_locations[i];
+      queries[arc.left_site].push_back(p);
+      expected[arc.left_site].push_back(-1);
+      queries[arc.right_site].push_back(p);
+      expected[arc.right_site].push_back(-1);
+      arc_pairs.emplace_back(queries[arc.left_site].size() - 1, queries[arc.right_site].size() - 1);
+      arc_pair_sites.emplace_back(arc.left_site, arc.right_site);
+    }
+  }
+  std::vector<std::vector<double>> cgal(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    if (queries[s].empty()) continue;
+    const std::vector<SurfacePoint> one = {sites[s]};
+    cgal[s] = test::cgal_geodesic(mesh, one, queries[s]).query_distance;
+    for (std::size_t q = 0; q < queries[s].size(); ++q) {
+      if (expected[s][q] >= 0) {
+        EXPECT_NEAR(cgal[s][q], expected[s][q], tolerance) << file << ": vertex of site " << s;
+      }
+    }
+  }
+  double worst = 0;
+  for (std::size_t i = 0; i < arc_pairs.size(); ++i) {
+    const auto [left, right] = arc_pair_sites[i];
+    worst = std::max(worst, std::abs(cgal[left][arc_pairs[i].first] - cgal[right][arc_pairs[i].second]));
+  }
+  EXPECT_LE(worst, tolerance) << file << ": bisector points";
+  EXPECT_LE(diagram.stats.max_vertex_residual, tolerance);
+}
+
+TEST(VoronoiDiagram, FertilityMatchesCgal) { expect_matches_cgal("fertility.ply", 30, 10, 31); }
+
+TEST(VoronoiDiagram, BunnyMatchesCgal) { expect_matches_cgal("bunny.ply", 8, 4, 41); }
+
+TEST(VoronoiDiagram, DenseSitesOnASmallMeshStayConsistent) {
+  // More sites than faces on parts of the mesh: cells inside single faces.
+  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path("fertility.ply"));
+  const std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 3000, 51);
+  const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
+  expect_consistent(mesh, diagram);
+  for (std::size_t s = 0; s < sites.size(); ++s) EXPECT_GT(diagram.cell_area[s], 0) << s;
+}
+
+}  // namespace
+}  // namespace geodual

@@ -1,0 +1,630 @@
+#include "face_boundary.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace geodual::voronoi::detail {
+namespace {
+
+constexpr int samples_per_inner_side = 8;
+constexpr int bisection_steps = 56;  // 2^-56 of a segment: below double precision
+constexpr int max_polyline_depth = 12;
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double signed_area(std::span<const Eigen::Vector2d> polygon) {
+  double twice = 0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  }
+  return 0.5 * twice;
+}
+
+double triangle_area(const std::array<Eigen::Vector2d, 3>& c) { return 0.5 * cross(c[1] - c[0], c[2] - c[0]); }
+
+double bounding_box_diagonal(const TriangleMesh& mesh) {
+  if (mesh.vertices.rows() == 0) return 0;
+  return (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
+}
+
+/// Where the edge lies in the face's layout: its frame's origin
+/// (edge_vertices[e][0]) and unit direction.
+struct EdgeInFace {
+  Eigen::Vector2d origin;
+  Eigen::Vector2d direction;
+  bool forward = true;  ///< the face's side k runs from edge_vertices[e][0] to [1]
+};
+
+EdgeInFace edge_in_face(const GeodesicField& field, const TriangleMesh& mesh, const FaceLayout& layout, Index face,
+                        int k) {
+  const Index e = field.face_edges[face][k];
+  EdgeInFace result;
+  result.forward = mesh.faces(face, k) == field.edge_vertices[e][0];
+  const int origin_corner = result.forward ? k : (k + 1) % 3;
+  const int end_corner = result.forward ? (k + 1) % 3 : k;
+  result.origin = layout.corner[origin_corner];
+  const Eigen::Vector2d along = layout.corner[end_corner] - result.origin;
+  const double length = along.norm();
+  result.direction = length > 0 ? Eigen::Vector2d(along / length) : Eigen::Vector2d(1, 0);
+  return result;
+}
+
+}  // namespace
+
+FaceBoundaryTracer::FaceBoundaryTracer(const TriangleMesh& mesh, const GeodesicField& field,
+                                       const VoronoiOptions& options, BoundaryGraph& graph, VoronoiStats& stats)
+    : mesh_(mesh), field_(field), options_(options), graph_(graph), stats_(stats) {
+  tolerance_ = options.boundary_tolerance * bounding_box_diagonal(mesh);
+  vertex_tolerance_ = 1e-11 * bounding_box_diagonal(mesh);
+  edge_first_.assign(field.edge_length.size(), -1);
+  edge_count_.assign(field.edge_length.size(), 0);
+}
+
+bool FaceBoundaryTracer::may_hold_boundary(Index face) const {
+  if (field_.face_edges[face][0] < 0) return false;
+  if (field_.valid_face[face]) return true;
+  const Index s0 = field_.nearest_site[mesh_.faces(face, 0)];
+  if (s0 != field_.nearest_site[mesh_.faces(face, 1)] || s0 != field_.nearest_site[mesh_.faces(face, 2)]) {
+    return true;
+  }
+  const auto it = std::lower_bound(
+      field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
+      [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  return it != field_.face_point_sources.end() && it->face == face;
+}
+
+std::span<const EdgeCrossing> FaceBoundaryTracer::edge_crossings(Index edge) {
+  if (edge_first_[edge] >= 0) {
+    return {edge_crossings_.data() + edge_first_[edge], static_cast<std::size_t>(edge_count_[edge])};
+  }
+  const Index first = static_cast<Index>(edge_crossings_.size());
+  const double length = field_.edge_length[edge];
+  const Index v0 = field_.edge_vertices[edge][0], v1 = field_.edge_vertices[edge][1];
+  const Index site0 = field_.nearest_site[v0], site1 = field_.nearest_site[v1];
+  build_edge_envelope(field_, mesh_, edge, edge_envelope_);
+
+  // Only one site here: no crossing. Otherwise sample the nearest site at the
+  // ends of every window (where the envelope's pieces change) and between,
+  // and find each change of site by bisection.
+  if (edge_envelope_.slot_count() > 1 && site0 >= 0 && site1 >= 0 && length > 0) {
+    samples_.clear();
+    for (int i = 0; i <= 4; ++i) samples_.push_back(length * i / 4);
+    for (Index i = field_.window_begin[edge]; i < field_.window_begin[edge + 1]; ++i) {
+      for (const double x : {field_.windows[i].b0, field_.windows[i].b1}) {
+        if (x > 0 && x < length) samples_.push_back(x);
+      }
+    }
+    std::sort(samples_.begin(), samples_.end());
+    samples_.erase(std::unique(samples_.begin(), samples_.end()), samples_.end());
+    // And inside each stretch: at a window's ends its neighbours tie with it.
+    const std::size_t ends = samples_.size();
+    for (std::size_t i = 1; i < ends; ++i) samples_.push_back(0.5 * (samples_[i - 1] + samples_[i]));
+    std::sort(samples_.begin(), samples_.end());
+    changes_.clear();
+    Index previous_site = site0;
+    double previous_x = 0;
+    for (std::size_t i = 1; i < samples_.size(); ++i) {
+      const double x = samples_[i];
+      const Index site = i + 1 == samples_.size() ? site1 : edge_envelope_.nearest_site(Eigen::Vector2d(x, 0));
+      if (site < 0 || site == previous_site) continue;
+      find_site_changes(edge_envelope_, Eigen::Vector2d::Zero(), Eigen::Vector2d(length, 0), previous_x / length,
+                        x / length, previous_site, site);
+      previous_site = site;
+      previous_x = x;
+    }
+    for (const SiteChange& change : changes_) {
+      EdgeCrossing crossing;
+      crossing.x = std::clamp(change.t * length, 0.0, length);
+      crossing.from = change.from;
+      crossing.to = change.to;
+      // The node, located in the edge's first face.
+      const Index face = field_.edge_faces[edge][0] >= 0 ? field_.edge_faces[edge][0] : field_.edge_faces[edge][1];
+      const double t = crossing.x / length;
+      Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+      for (int c = 0; c < 3; ++c) {
+        if (mesh_.faces(face, c) == v0) barycentric[c] = 1 - t;
+        if (mesh_.faces(face, c) == v1) barycentric[c] = t;
+      }
+      BoundaryNode node;
+      node.kind = BoundaryNode::Kind::mesh_edge_crossing;
+      node.location = SurfacePoint::in_face(face, barycentric[0], barycentric[1], barycentric[2]);
+      node.position = (1 - t) * mesh_.vertices.row(v0).transpose() + t * mesh_.vertices.row(v1).transpose();
+      node.distance = edge_envelope_.distance(edge_envelope_.slot_of(change.to), Eigen::Vector2d(crossing.x, 0));
+      crossing.node = static_cast<Index>(graph_.nodes.size());
+      graph_.nodes.push_back(node);
+      edge_crossings_.push_back(crossing);
+    }
+  }
+  edge_first_[edge] = first;
+  edge_count_[edge] = static_cast<Index>(edge_crossings_.size()) - first;
+  return {edge_crossings_.data() + first, static_cast<std::size_t>(edge_count_[edge])};
+}
+
+Eigen::Vector2d FaceBoundaryTracer::bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
+                                                        const Eigen::Vector2d& b, Index from, Index to) const {
+  // g = d_from - d_to is <= 0 near a (from's side) and > 0 near b.
+  double lo = 0, hi = 1;
+  const bool negative_at_a = envelope.difference(from, to, a) <= 0;
+  for (int step = 0; step < bisection_steps && hi - lo > 0; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    const bool negative = envelope.difference(from, to, a + mid * (b - a)) <= 0;
+    (negative == negative_at_a ? lo : hi) = mid;
+  }
+  return a + 0.5 * (lo + hi) * (b - a);
+}
+
+void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p,
+                                           const Eigen::Vector2d& q, double t0, double t1, Index site0,
+                                           Index site1) {
+  // Bisection on the nearest site itself, not on a difference of distances:
+  // a third site met at a midpoint owns a stretch in between, and is split
+  // out rather than stepped over.
+  double lo = t0, hi = t1;
+  for (int step = 0; step < bisection_steps; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    const Index site = envelope.nearest_site(p + mid * (q - p));
+    if (site == site1) {
+      hi = mid;
+    } else if (site == site0 || site < 0) {
+      lo = mid;
+    } else {
+      find_site_changes(envelope, p, q, lo, mid, site0, site);
+      find_site_changes(envelope, p, q, mid, hi, site, site1);
+      return;
+    }
+  }
+  changes_.push_back({0.5 * (lo + hi), site0, site1});
+}
+
+Eigen::Vector3d FaceBoundaryTracer::to_space(const Eigen::Vector2d& p) const {
+  const Eigen::Vector3d b = layout_.barycentric(p);
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c) x += b[c] * mesh_.vertices.row(mesh_.faces(face_, c)).transpose();
+  return x;
+}
+
+Index FaceBoundaryTracer::add_node(const Eigen::Vector2d& p, BoundaryNode::Kind kind) {
+  BoundaryNode node;
+  node.kind = kind;
+  const Eigen::Vector3d b = layout_.barycentric(p);
+  node.location = SurfacePoint::in_face(face_, b[0], b[1], b[2]);
+  node.position = to_space(p);
+  graph_.nodes.push_back(node);
+  return static_cast<Index>(graph_.nodes.size()) - 1;
+}
+
+void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) {
+  face_ = face;
+  layout_ = FaceLayout::of(field_, face);
+  SubTriangle root;
+  for (int c = 0; c < 3; ++c) {
+    root.corner[c] = layout_.corner[c];
+    root.site[c] = field_.nearest_site[mesh_.faces(face, c)];
+    if (root.site[c] < 0) return;  // not reached by any site
+  }
+  build_face_envelope(field_, mesh_, face, layout_, envelope_);
+  face_sites_.clear();
+  face_site_ids_.clear();
+  const auto first = std::lower_bound(
+      field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
+      [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  for (auto it = first; it != field_.face_point_sources.end() && it->face == face; ++it) {
+    if (it->sigma == 0) {  // a site itself, not a pseudo-source seen through a neighbour
+      face_sites_.push_back(layout_.point(it->barycentric));
+      face_site_ids_.push_back(it->site);
+    }
+  }
+
+  sides_.clear();
+  crossings_.clear();
+  for (int k = 0; k < 3; ++k) {
+    const Index e = field_.face_edges[face][k];
+    const std::span<const EdgeCrossing> along = edge_crossings(e);
+    const EdgeInFace frame = edge_in_face(field_, mesh_, layout_, face, k);
+    Side side;
+    side.start = root.corner[k];
+    side.end = root.corner[(k + 1) % 3];
+    side.start_site = root.site[k];
+    side.end_site = root.site[(k + 1) % 3];
+    side.crossing_begin = static_cast<Index>(crossings_.size());
+    auto add = [&](const EdgeCrossing& c, bool forward) {
+      crossings_.push_back({frame.origin + c.x * frame.direction, forward ? c.from : c.to, forward ? c.to : c.from,
+                            c.node});
+    };
+    if (frame.forward) {
+      for (const EdgeCrossing& c : along) add(c, true);
+    } else {
+      for (auto it = along.rbegin(); it != along.rend(); ++it) add(*it, false);
+    }
+    side.crossing_end = static_cast<Index>(crossings_.size());
+    sides_.push_back(side);
+    root.side[k] = {static_cast<Index>(k), false};
+  }
+  face_refined_ = false;
+  ++stats_.boundary_faces;
+  trace(root, 0, cell_area);
+  if (face_refined_) ++stats_.refined_faces;
+}
+
+void FaceBoundaryTracer::collect_cycle(const SubTriangle& triangle) {
+  cycle_.clear();
+  for (int k = 0; k < 3; ++k) {
+    const SideUse use = triangle.side[k];
+    const Side& side = sides_[use.side];
+    if (!use.reversed) {
+      for (Index i = side.crossing_begin; i < side.crossing_end; ++i) cycle_.push_back({crossings_[i], k});
+    } else {
+      for (Index i = side.crossing_end; i-- > side.crossing_begin;) {
+        Crossing c = crossings_[i];
+        std::swap(c.from, c.to);
+        cycle_.push_back({c, k});
+      }
+    }
+  }
+}
+
+bool FaceBoundaryTracer::holds_island(const SubTriangle& triangle) const {
+  for (std::size_t i = 0; i < face_sites_.size(); ++i) {
+    const Eigen::Vector2d& p = face_sites_[i];
+    bool inside = true;
+    for (int k = 0; k < 3 && inside; ++k) {
+      inside = cross(triangle.corner[(k + 1) % 3] - triangle.corner[k], p - triangle.corner[k]) >= 0;
+    }
+    if (!inside) continue;
+    const Index site = face_site_ids_[i];
+    bool seen = triangle.site[0] == site || triangle.site[1] == site || triangle.site[2] == site;
+    for (const CycleCrossing& c : cycle_) seen = seen || c.crossing.to == site;
+    if (!seen) return true;
+  }
+  return false;
+}
+
+void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vector<double>& cell_area) {
+  collect_cycle(triangle);
+  const std::size_t n = cycle_.size();
+  const double area = triangle_area(triangle.corner);
+  const bool at_limit = depth >= options_.max_refinement;
+
+  // Are the crossings consistent (each leaves the site the previous one
+  // entered) and does every site own one stretch of the boundary?
+  bool consistent = true, distinct = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    consistent = consistent && cycle_[i].crossing.to == cycle_[(i + 1) % n].crossing.from;
+    for (std::size_t j = 0; j < i; ++j) distinct = distinct && cycle_[i].crossing.to != cycle_[j].crossing.to;
+  }
+  const bool island = holds_island(triangle);
+
+  // The corners met walking counter-clockwise from crossing i to crossing j.
+  auto corners_between = [&](std::size_t i, std::size_t j, std::vector<Eigen::Vector2d>& polygon) {
+    const int count = j > i ? cycle_[j].after_corner - cycle_[i].after_corner
+                            : cycle_[j].after_corner + 3 - cycle_[i].after_corner;
+    for (int c = 1; c <= count; ++c) polygon.push_back(triangle.corner[(cycle_[i].after_corner + c) % 3]);
+  };
+
+  if (!island && consistent && n == 0) {
+    cell_area[triangle.site[0]] += area;
+    return;
+  }
+
+  if (!island && consistent && n == 2) {
+    // One bisector piece: from the crossing into site B to the crossing back
+    // out of it, with A (the site before the first crossing) on its left.
+    const CycleCrossing first = cycle_[0], second = cycle_[1];
+    piece_points_.clear();
+    add_piece(first.crossing.node, second.crossing.node, first.crossing.from, first.crossing.to,
+              first.crossing.point, second.crossing.point, triangle);
+    std::vector<Eigen::Vector2d>& polygon = polygon_;
+    polygon.clear();
+    polygon.push_back(first.crossing.point);
+    corners_between(0, 1, polygon);
+    polygon.push_back(second.crossing.point);
+    for (auto it = piece_points_.rbegin(); it != piece_points_.rend(); ++it) polygon.push_back(*it);
+    const double inside = std::clamp(signed_area(polygon), 0.0, std::max(area, 0.0));
+    cell_area[first.crossing.to] += inside;
+    cell_area[first.crossing.from] += std::max(area, 0.0) - inside;
+    return;
+  }
+
+  if (!island && consistent && distinct && n >= 3 && (n == 3 || at_limit)) {
+    // A Voronoi vertex: every stretch of the boundary belongs to a different
+    // site, so their cells meet at one point inside.
+    std::vector<Index> sites;
+    sites.reserve(n);
+    Eigen::Vector2d start = Eigen::Vector2d::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      sites.push_back(cycle_[i].crossing.to);
+      start += cycle_[i].crossing.point / static_cast<double>(n);
+    }
+    double spread = 0;
+    Eigen::Vector2d vertex = solve_vertex(sites, triangle, start, spread);
+    bool inside = true;
+    const double scale = (triangle.corner[1] - triangle.corner[0]).norm() +
+                         (triangle.corner[2] - triangle.corner[1]).norm() +
+                         (triangle.corner[0] - triangle.corner[2]).norm();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d edge = triangle.corner[(k + 1) % 3] - triangle.corner[k];
+      const double length = edge.norm();
+      if (length > 0 && cross(edge, vertex - triangle.corner[k]) / length < -1e-9 * scale) inside = false;
+    }
+    // Newton converges once it starts near the vertex, where every site's
+    // envelope is exact; from farther away it can stall (an envelope is only
+    // an upper bound outside its cell), and refining brings the start closer.
+    const bool converged = spread <= vertex_tolerance_;
+    if ((inside && converged) || at_limit) {
+      if (!inside || !std::isfinite(vertex.x()) || !std::isfinite(vertex.y())) {
+        vertex = start;  // clamp: the combinatorics decide, the point stays in this triangle
+        spread = 0;
+        const Eigen::Vector3d b = layout_.barycentric(vertex);
+        vertex = layout_.point(b);
+      }
+      const Index node = add_node(vertex, BoundaryNode::Kind::voronoi_vertex);
+      graph_.nodes[node].site_begin = static_cast<Index>(graph_.vertex_sites.size());
+      graph_.nodes[node].degree = static_cast<int>(n);
+      graph_.nodes[node].distance = envelope_.distance(envelope_.slot_of(sites[0]), vertex);
+      graph_.vertex_sites.insert(graph_.vertex_sites.end(), sites.begin(), sites.end());
+      stats_.max_vertex_residual = std::max(stats_.max_vertex_residual, spread);
+
+      // Pieces from each crossing in to the vertex, and each site's region:
+      // from its entering crossing, round the corners to its leaving
+      // crossing, then in along that piece and back out along the first.
+      piece_offsets_.assign(1, 0);
+      piece_points_.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        const Crossing& c = cycle_[i].crossing;
+        add_piece(c.node, node, c.from, c.to, c.point, vertex, triangle);
+        piece_offsets_.push_back(static_cast<Index>(piece_points_.size()));
+      }
+      double assigned = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t j = (i + 1) % n;
+        std::vector<Eigen::Vector2d>& polygon = polygon_;
+        polygon.clear();
+        polygon.push_back(cycle_[i].crossing.point);
+        corners_between(i, j, polygon);
+        polygon.push_back(cycle_[j].crossing.point);
+        for (Index p = piece_offsets_[j]; p < piece_offsets_[j + 1]; ++p) polygon.push_back(piece_points_[p]);
+        polygon.push_back(vertex);
+        for (Index p = piece_offsets_[i + 1]; p-- > piece_offsets_[i];) polygon.push_back(piece_points_[p]);
+        const double region = std::max(0.0, signed_area(polygon));
+        cell_area[cycle_[i].crossing.to] += region;
+        assigned += region;
+      }
+      stats_.max_area_mismatch = std::max(stats_.max_area_mismatch, std::abs(assigned - std::max(area, 0.0)));
+      return;
+    }
+  }
+
+  if (!at_limit) {
+    subdivide(triangle, depth, cell_area);
+    return;
+  }
+
+  // Finer than the refinement limit allows: join the crossings in pairs with
+  // straight pieces and give the area to the site at the centre.
+  ++stats_.unresolved_regions;
+  for (std::size_t i = 0; i + 1 < n; i += 2) {
+    const Crossing& a = cycle_[i].crossing;
+    const Crossing& b = cycle_[i + 1].crossing;
+    BoundaryPiece piece;
+    piece.from = a.node;
+    piece.to = b.node;
+    piece.left = a.from;
+    piece.right = a.to;
+    piece.point_begin = piece.point_end = static_cast<Index>(graph_.points.size());
+    piece.length = (b.point - a.point).norm();
+    graph_.pieces.push_back(piece);
+  }
+  const Eigen::Vector2d centre = (triangle.corner[0] + triangle.corner[1] + triangle.corner[2]) / 3;
+  const Index site = envelope_.nearest_site(centre);
+  cell_area[site >= 0 ? site : triangle.site[0]] += std::max(area, 0.0);
+}
+
+void FaceBoundaryTracer::add_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p,
+                                   const Eigen::Vector2d& q, const SubTriangle& triangle) {
+  BoundaryPiece piece;
+  piece.from = from;
+  piece.to = to;
+  piece.left = left;
+  piece.right = right;
+  const std::size_t first = piece_points_.size();
+  trace_bisector(p, q, left, right, triangle, 0);
+  piece.point_begin = static_cast<Index>(graph_.points.size());
+  Eigen::Vector2d previous = p;
+  for (std::size_t i = first; i < piece_points_.size(); ++i) {
+    const Eigen::Vector3d b = layout_.barycentric(piece_points_[i]);
+    graph_.points.push_back(to_space(piece_points_[i]));
+    graph_.point_locations.push_back(SurfacePoint::in_face(face_, b[0], b[1], b[2]));
+    piece.length += (piece_points_[i] - previous).norm();
+    previous = piece_points_[i];
+  }
+  piece.length += (q - previous).norm();
+  piece.point_end = static_cast<Index>(graph_.points.size());
+  graph_.pieces.push_back(piece);
+}
+
+double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left,
+                                          Index right, const SubTriangle& triangle, int depth) {
+  const Eigen::Vector2d chord = q - p;
+  const double length = chord.norm();
+  if (depth >= max_polyline_depth || !(length > tolerance_)) return 0;
+  const Eigen::Vector2d middle = 0.5 * (p + q);
+  const Eigen::Vector2d normal(-chord.y() / length, chord.x() / length);
+  // The stretch of the line middle + s normal inside the triangle.
+  double s_min = -length, s_max = length;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector2d a = triangle.corner[k], edge = triangle.corner[(k + 1) % 3] - a;
+    const double at_middle = cross(edge, middle - a), rate = cross(edge, normal);
+    if (rate > 0) {
+      s_min = std::max(s_min, -at_middle / rate);
+    } else if (rate < 0) {
+      s_max = std::min(s_max, -at_middle / rate);
+    } else if (at_middle < 0) {
+      return 0;
+    }
+  }
+  if (!(s_min < s_max)) return 0;
+  const Eigen::Vector2d low = middle + s_min * normal, high = middle + s_max * normal;
+  const double g_low = envelope_.difference(left, right, low), g_high = envelope_.difference(left, right, high);
+  if (!((g_low <= 0) != (g_high <= 0))) return 0;
+  const Eigen::Vector2d on_curve = bisector_on_segment(envelope_, low, high, left, right);
+  if ((on_curve - middle).norm() <= tolerance_) return 0;
+  trace_bisector(p, on_curve, left, right, triangle, depth + 1);
+  piece_points_.push_back(on_curve);
+  trace_bisector(on_curve, q, left, right, triangle, depth + 1);
+  return 0;
+}
+
+Eigen::Vector2d FaceBoundaryTracer::solve_vertex(std::span<const Index> sites, const SubTriangle& triangle,
+                                                 const Eigen::Vector2d& start, double& spread) const {
+  // Gauss-Newton on r_i = d_i(x) - d_0(x), i = 1..k-1 (Newton for k = 3);
+  // each d_i is a cone near x, so its gradient is the unit vector from the
+  // active cone's apex.
+  Eigen::Vector2d x = start;
+  const double scale = std::max(std::sqrt(std::max(layout_.area, 0.0)), tolerance_);
+  std::vector<double> distance(sites.size());
+  std::vector<Eigen::Vector2d> gradient(sites.size());
+  auto evaluate = [&](const Eigen::Vector2d& at) {
+    double worst = 0;
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      const int slot = envelope_.slot_of(sites[i]);
+      distance[i] = slot >= 0 ? envelope_.distance(slot, at, &gradient[i]) : std::numeric_limits<double>::infinity();
+      if (i > 0) worst = std::max(worst, std::abs(distance[i] - distance[0]));
+    }
+    return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
+  };
+  spread = evaluate(x);
+  for (int iteration = 0; iteration < 40 && spread > 0 && std::isfinite(spread); ++iteration) {
+    Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
+    for (std::size_t i = 1; i < sites.size(); ++i) {
+      const Eigen::Vector2d row = gradient[i] - gradient[0];
+      normal += row * row.transpose();
+      rhs += row * (distance[i] - distance[0]);
+    }
+    normal += 1e-14 * Eigen::Matrix2d::Identity();
+    Eigen::Vector2d step = -normal.ldlt().solve(rhs);
+    if (!step.allFinite()) break;
+    if (step.norm() > scale) step *= scale / step.norm();
+    // Stay in the triangle: its boundary says the vertex is inside, and
+    // outside it the envelopes are only upper bounds.
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = triangle.corner[k], edge = triangle.corner[(k + 1) % 3] - a;
+      const double now = cross(edge, x - a), rate = cross(edge, step);
+      if (rate < 0 && now + rate < 0) step *= std::max(0.0, now) / -rate;
+    }
+    // Backtrack until the spread falls.
+    bool improved = false;
+    for (int halving = 0; halving < 30; ++halving) {
+      const Eigen::Vector2d candidate = x + step;
+      std::vector<double> saved_distance = distance;
+      std::vector<Eigen::Vector2d> saved_gradient = gradient;
+      const double candidate_spread = evaluate(candidate);
+      if (candidate_spread < spread) {
+        x = candidate;
+        spread = candidate_spread;
+        improved = true;
+        break;
+      }
+      distance = saved_distance;
+      gradient = saved_gradient;
+      step *= 0.5;
+    }
+    if (!improved || step.norm() < 1e-17 * scale) break;
+  }
+  return x;
+}
+
+FaceBoundaryTracer::SideUse FaceBoundaryTracer::half_of(const SideUse& use, int which) {
+  // Split the stored side at its midpoint once; both triangles that share it
+  // then see the same halves and the same crossings.
+  Side& side = sides_[use.side];
+  if (side.halves[0] < 0) {
+    const Eigen::Vector2d start = side.start, end = side.end, middle = 0.5 * (start + end);
+    const Eigen::Vector2d along = end - start;
+    Index split = side.crossing_begin;
+    while (split < side.crossing_end && (crossings_[split].point - start).dot(along) < 0.5 * along.squaredNorm()) {
+      ++split;
+    }
+    const Index middle_site = split > side.crossing_begin ? crossings_[split - 1].to : side.start_site;
+    Side first{start, middle, side.start_site, middle_site, side.crossing_begin, split, {-1, -1}};
+    Side second{middle, end, middle_site, side.end_site, split, side.crossing_end, {-1, -1}};
+    const Index index = static_cast<Index>(sides_.size());
+    sides_.push_back(first);
+    sides_.push_back(second);
+    sides_[use.side].halves = {index, index + 1};
+  }
+  const std::array<Index, 2> halves = sides_[use.side].halves;
+  // `which` counts from the corner where the use starts.
+  if (!use.reversed) return {halves[which], false};
+  return {halves[1 - which], true};
+}
+
+Index FaceBoundaryTracer::midpoint_site(const SideUse& use) {
+  const SideUse first_half = half_of(use, 0);
+  const Side& side = sides_[first_half.side];
+  return first_half.reversed ? side.start_site : side.end_site;
+}
+
+Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::Vector2d& end, Index start_site,
+                                     Index end_site) {
+  Side side;
+  side.start = start;
+  side.end = end;
+  side.start_site = start_site;
+  side.end_site = end_site;
+  side.crossing_begin = static_cast<Index>(crossings_.size());
+  changes_.clear();
+  Index previous_site = start_site;
+  double previous_t = 0;
+  for (int i = 1; i <= samples_per_inner_side; ++i) {
+    const double t = static_cast<double>(i) / samples_per_inner_side;
+    const Index site = i == samples_per_inner_side ? end_site : envelope_.nearest_site(start + t * (end - start));
+    if (site < 0 || site == previous_site) continue;
+    find_site_changes(envelope_, start, end, previous_t, t, previous_site, site);
+    previous_site = site;
+    previous_t = t;
+  }
+  for (const SiteChange& change : changes_) {
+    const Eigen::Vector2d crossing = start + change.t * (end - start);
+    crossings_.push_back(
+        {crossing, change.from, change.to, add_node(crossing, BoundaryNode::Kind::inner_crossing)});
+  }
+  side.crossing_end = static_cast<Index>(crossings_.size());
+  sides_.push_back(side);
+  return static_cast<Index>(sides_.size()) - 1;
+}
+
+void FaceBoundaryTracer::subdivide(const SubTriangle& triangle, int depth, std::vector<double>& cell_area) {
+  face_refined_ = true;
+  const auto& c = triangle.corner;
+  // Midpoints of sides 0 (c0-c1), 1 (c1-c2) and 2 (c2-c0).
+  const std::array<Eigen::Vector2d, 3> m = {0.5 * (c[0] + c[1]), 0.5 * (c[1] + c[2]), 0.5 * (c[2] + c[0])};
+  std::array<Index, 3> m_site{};
+  for (int k = 0; k < 3; ++k) m_site[k] = midpoint_site(triangle.side[k]);
+  // The three new sides inside, each shared by the centre triangle and a corner one.
+  const Index inner0 = inner_side(m[0], m[2], m_site[0], m_site[2]);  // corner 0's triangle
+  const Index inner1 = inner_side(m[1], m[0], m_site[1], m_site[0]);  // corner 1's triangle
+  const Index inner2 = inner_side(m[2], m[1], m_site[2], m_site[1]);  // corner 2's triangle
+
+  std::array<SubTriangle, 4> children;
+  children[0] = {{c[0], m[0], m[2]},
+                 {triangle.site[0], m_site[0], m_site[2]},
+                 {half_of(triangle.side[0], 0), SideUse{inner0, false}, half_of(triangle.side[2], 1)}};
+  children[1] = {{m[0], c[1], m[1]},
+                 {m_site[0], triangle.site[1], m_site[1]},
+                 {half_of(triangle.side[0], 1), half_of(triangle.side[1], 0), SideUse{inner1, false}}};
+  children[2] = {{m[2], m[1], c[2]},
+                 {m_site[2], m_site[1], triangle.site[2]},
+                 {SideUse{inner2, false}, half_of(triangle.side[1], 1), half_of(triangle.side[2], 0)}};
+  children[3] = {{m[0], m[1], m[2]},
+                 {m_site[0], m_site[1], m_site[2]},
+                 {SideUse{inner1, true}, SideUse{inner2, true}, SideUse{inner0, true}}};
+  for (const SubTriangle& child : children) trace(child, depth + 1, cell_area);
+}
+
+}  // namespace geodual::voronoi::detail

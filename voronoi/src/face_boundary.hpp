@@ -1,0 +1,172 @@
+#pragma once
+// Cell boundaries inside single faces: where the nearest site changes along
+// each mesh edge, and, inside each face crossed by a boundary, the bisector
+// pieces and Voronoi vertices that join those crossings. The pieces of all
+// faces form one graph that voronoi_diagram.cpp chains into arcs.
+
+#include "face_distance.hpp"
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace geodual::voronoi::detail {
+
+/// A point where boundary pieces meet: a crossing of a mesh edge (shared by
+/// the faces on both sides), a crossing of an edge between the parts of a
+/// refined face, or a Voronoi vertex.
+struct BoundaryNode {
+  enum class Kind { mesh_edge_crossing, inner_crossing, voronoi_vertex };
+  Kind kind = Kind::mesh_edge_crossing;
+  SurfacePoint location;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double distance = 0;
+  /// Voronoi vertices only: their sites in counter-clockwise order are
+  /// vertex_sites[site_begin .. site_begin + degree).
+  Index site_begin = 0;
+  int degree = 0;
+};
+
+/// A piece of bisector inside one face, from node `from` to node `to`, with
+/// `left`'s cell on its left. Its polyline between the two nodes is
+/// points[point_begin .. point_end).
+struct BoundaryPiece {
+  Index from = -1, to = -1;
+  Index left = -1, right = -1;
+  Index point_begin = 0, point_end = 0;
+  double length = 0;
+};
+
+struct BoundaryGraph {
+  std::vector<BoundaryNode> nodes;
+  std::vector<Index> vertex_sites;
+  std::vector<BoundaryPiece> pieces;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<SurfacePoint> point_locations;
+};
+
+/// Where the nearest site changes along a mesh edge, in the edge's frame
+/// (x from edge_vertices[e][0]); `from` is the site on the side of smaller x.
+struct EdgeCrossing {
+  double x = 0;
+  Index from = -1, to = -1;
+  Index node = -1;
+};
+
+/// Traces the cell boundaries face by face. Not thread-safe; one per thread.
+class FaceBoundaryTracer {
+ public:
+  FaceBoundaryTracer(const TriangleMesh& mesh, const GeodesicField& field, const VoronoiOptions& options,
+                     BoundaryGraph& graph, VoronoiStats& stats);
+
+  /// True if `face` may hold a boundary: the engine marked it valid, its
+  /// corners have different nearest sites, or a site lies in it.
+  bool may_hold_boundary(Index face) const;
+  /// The crossings of a mesh edge, computed the first time they are asked for.
+  std::span<const EdgeCrossing> edge_crossings(Index edge);
+  /// Adds the face's boundary pieces and Voronoi vertices to the graph and its
+  /// area, split among the cells, to `cell_area`.
+  void trace_face(Index face, std::vector<double>& cell_area);
+
+ private:
+  struct Crossing {
+    Eigen::Vector2d point;
+    Index from = -1, to = -1;
+    Index node = -1;
+  };
+  struct Side {
+    Eigen::Vector2d start, end;
+    Index start_site = -1, end_site = -1;
+    Index crossing_begin = 0, crossing_end = 0;  ///< into crossings_, ordered from start to end
+    std::array<Index, 2> halves{-1, -1};
+  };
+  struct SideUse {
+    Index side = -1;
+    bool reversed = false;
+  };
+  struct SubTriangle {
+    std::array<Eigen::Vector2d, 3> corner;
+    std::array<Index, 3> site;  ///< nearest site at each corner
+    std::array<SideUse, 3> side;  ///< side k runs from corner k to corner k + 1
+  };
+  /// A crossing met walking a sub-triangle's boundary counter-clockwise, with
+  /// its orientation along the walk, and the corner it comes after.
+  struct SiteChange {
+    double t = 0;
+    Index from = -1, to = -1;
+  };
+  struct CycleCrossing {
+    Crossing crossing;
+    int after_corner = 0;
+  };
+
+  void trace(const SubTriangle& triangle, int depth, std::vector<double>& cell_area);
+  void subdivide(const SubTriangle& triangle, int depth, std::vector<double>& cell_area);
+  void collect_cycle(const SubTriangle& triangle);
+  bool holds_island(const SubTriangle& triangle) const;
+  /// The part of a side from its corner `which` (0: start, 1: end as used) to its midpoint.
+  SideUse half_of(const SideUse& use, int which);
+  Index midpoint_site(const SideUse& use);
+  Index inner_side(const Eigen::Vector2d& start, const Eigen::Vector2d& end, Index start_site, Index end_site);
+  Index add_node(const Eigen::Vector2d& p, BoundaryNode::Kind kind);
+  Eigen::Vector3d to_space(const Eigen::Vector2d& p) const;
+  /// Appends to changes_ every change of nearest site along p + t (q - p)
+  /// for t from t0 (where site0 is nearest) to t1 (site1), in order.
+  void find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double t0,
+                         double t1, Index site0, Index site1);
+  /// The point on segment [a, b] where sites `from` and `to` are equally far.
+  Eigen::Vector2d bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
+                                      const Eigen::Vector2d& b, Index from, Index to) const;
+  /// Appends the polyline strictly between p and q that follows the bisector of
+  /// `left` and `right` within the tolerance; returns its length.
+  double trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left, Index right,
+                        const SubTriangle& triangle, int depth);
+  /// Adds the piece from node `from` at p to node `to` at q; its 2D polyline
+  /// (without p and q) is left at the end of piece_points_.
+  void add_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p,
+                 const Eigen::Vector2d& q, const SubTriangle& triangle);
+  /// The point where the sites are equally far (Gauss-Newton from `start`);
+  /// `spread` receives the largest difference of their distances there.
+  Eigen::Vector2d solve_vertex(std::span<const Index> sites, const SubTriangle& triangle, const Eigen::Vector2d& start,
+                               double& spread) const;
+
+  const TriangleMesh& mesh_;
+  const GeodesicField& field_;
+  const VoronoiOptions& options_;
+  BoundaryGraph& graph_;
+  VoronoiStats& stats_;
+  double tolerance_ = 0;         ///< polyline deviation allowed
+  double vertex_tolerance_ = 0;  ///< spread of site distances accepted at a Voronoi vertex
+
+  // Per mesh edge: its crossings are edge_crossings_[edge_first_[e] ..
+  // + edge_count_[e]) once computed (edge_first_[e] = -1 before).
+  std::vector<Index> edge_first_;
+  std::vector<Index> edge_count_;
+  std::vector<EdgeCrossing> edge_crossings_;
+  ConeEnvelope edge_envelope_;
+  std::vector<double> samples_;
+  std::vector<SiteChange> changes_;
+
+  // The face being traced.
+  Index face_ = -1;
+  FaceLayout layout_;
+  ConeEnvelope envelope_;
+  std::vector<Eigen::Vector2d> face_sites_;  ///< sites in the face
+  std::vector<Index> face_site_ids_;
+  std::vector<Side> sides_;
+  std::vector<Crossing> crossings_;
+  std::vector<CycleCrossing> cycle_;         ///< scratch: the boundary walk of one sub-triangle
+  std::vector<Eigen::Vector2d> piece_points_;  ///< scratch: polylines of the pieces being traced
+  std::vector<Index> piece_offsets_;
+  std::vector<Eigen::Vector2d> polygon_;     ///< scratch: one cell's part of a sub-triangle
+  bool face_refined_ = false;
+};
+
+}  // namespace geodual::voronoi::detail

@@ -1,0 +1,227 @@
+#include "face_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace geodual::voronoi::detail {
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// The sites' point sources that lie in `face`: face_point_sources is sorted by face.
+std::pair<const FacePointSource*, const FacePointSource*> point_sources_in(const GeodesicField& field, Index face) {
+  const auto range = std::equal_range(
+      field.face_point_sources.begin(), field.face_point_sources.end(), FacePointSource{face},
+      [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  return {field.face_point_sources.data() + (range.first - field.face_point_sources.begin()),
+          field.face_point_sources.data() + (range.second - field.face_point_sources.begin())};
+}
+
+}  // namespace
+
+FaceLayout FaceLayout::of(const GeodesicField& field, Index face) {
+  const auto& edges = field.face_edges[face];
+  const double l0 = field.edge_length[edges[0]];  // corners 0-1
+  const double l1 = field.edge_length[edges[1]];  // corners 1-2
+  const double l2 = field.edge_length[edges[2]];  // corners 2-0
+  FaceLayout layout;
+  layout.corner[0] = Eigen::Vector2d::Zero();
+  layout.corner[1] = Eigen::Vector2d(l0, 0);
+  const double x = l0 > 0 ? (l0 * l0 + l2 * l2 - l1 * l1) / (2 * l0) : 0;
+  layout.corner[2] = Eigen::Vector2d(x, std::sqrt(std::max(0.0, l2 * l2 - x * x)));
+  layout.area = 0.5 * l0 * layout.corner[2].y();
+  return layout;
+}
+
+Eigen::Vector3d FaceLayout::barycentric(const Eigen::Vector2d& p) const {
+  const double twice_area = cross(corner[1] - corner[0], corner[2] - corner[0]);
+  Eigen::Vector3d b;
+  if (!(twice_area > 0)) {
+    // A zero-area face: place the point along its longest side.
+    int k = 0;
+    double longest = -1;
+    for (int i = 0; i < 3; ++i) {
+      const double length = (corner[(i + 1) % 3] - corner[i]).norm();
+      if (length > longest) longest = length, k = i;
+    }
+    const Eigen::Vector2d side = corner[(k + 1) % 3] - corner[k];
+    const double t = longest > 0 ? std::clamp((p - corner[k]).dot(side) / side.squaredNorm(), 0.0, 1.0) : 0.0;
+    b.setZero();
+    b[k] = 1 - t;
+    b[(k + 1) % 3] = t;
+    return b;
+  }
+  b[0] = cross(corner[1] - p, corner[2] - p) / twice_area;
+  b[1] = cross(corner[2] - p, corner[0] - p) / twice_area;
+  b = b.cwiseMax(0.0);
+  b[2] = 0;
+  const double sum = b[0] + b[1];
+  if (sum > 1) b /= sum;
+  b[2] = std::max(0.0, 1 - b[0] - b[1]);
+  return b;
+}
+
+bool DistanceCone::sees(const Eigen::Vector2d& p) const {
+  if (!in_wedge_only) return true;
+  const Eigen::Vector2d q = p - apex;
+  if (!(cross(ray0, ray1) > 0)) {
+    // The apex lies on the line of the interval: only the interval itself.
+    return cross(ray0, q) == 0 && (q - ray0).dot(q - ray1) <= 0;
+  }
+  return cross(ray0, q) >= 0 && cross(q, ray1) >= 0;
+}
+
+void ConeEnvelope::clear() {
+  cones_.clear();
+  slot_site_.clear();
+}
+
+int ConeEnvelope::slot_of(Index site) const {
+  for (int slot = 0; slot < slot_count(); ++slot) {
+    if (slot_site_[slot] == site) return slot;
+  }
+  return -1;
+}
+
+int ConeEnvelope::slot_for(Index site) {
+  const int slot = slot_of(site);
+  if (slot >= 0) return slot;
+  slot_site_.push_back(site);
+  return slot_count() - 1;
+}
+
+void ConeEnvelope::add(const Eigen::Vector2d& apex, double sigma, Index site) {
+  if (site < 0 || !std::isfinite(sigma)) return;
+  DistanceCone cone;
+  cone.apex = apex;
+  cone.sigma = sigma;
+  cone.slot = slot_for(site);
+  cones_.push_back(cone);
+}
+
+void ConeEnvelope::add_wedge(const Eigen::Vector2d& apex, double sigma, Index site, const Eigen::Vector2d& end0,
+                             const Eigen::Vector2d& end1) {
+  if (site < 0 || !std::isfinite(sigma)) return;
+  DistanceCone cone;
+  cone.apex = apex;
+  cone.sigma = sigma;
+  cone.slot = slot_for(site);
+  cone.in_wedge_only = true;
+  cone.ray0 = end0 - apex;
+  cone.ray1 = end1 - apex;
+  if (cross(cone.ray0, cone.ray1) < 0) std::swap(cone.ray0, cone.ray1);
+  cones_.push_back(cone);
+  // The paths that bend at either end of the window's interval.
+  add(end0, sigma + (end0 - apex).norm(), site);
+  add(end1, sigma + (end1 - apex).norm(), site);
+}
+
+double ConeEnvelope::distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
+  double best = infinity;
+  const DistanceCone* best_cone = nullptr;
+  for (const DistanceCone& cone : cones_) {
+    if (cone.slot != slot || !cone.sees(p)) continue;
+    const double d = cone.sigma + (p - cone.apex).norm();
+    if (d < best) best = d, best_cone = &cone;
+  }
+  if (gradient) {
+    gradient->setZero();
+    if (best_cone) {
+      const Eigen::Vector2d r = p - best_cone->apex;
+      const double length = r.norm();
+      if (length > 0) *gradient = r / length;
+    }
+  }
+  return best;
+}
+
+Index ConeEnvelope::nearest_site(const Eigen::Vector2d& p) const {
+  double best = infinity;
+  Index site = -1;
+  for (const DistanceCone& cone : cones_) {
+    if (!cone.sees(p)) continue;
+    const double d = cone.sigma + (p - cone.apex).norm();
+    const Index s = slot_site_[cone.slot];
+    if (d < best || (d == best && s < site)) best = d, site = s;
+  }
+  return site;
+}
+
+double ConeEnvelope::difference(Index site_a, Index site_b, const Eigen::Vector2d& p) const {
+  const int a = slot_of(site_a), b = slot_of(site_b);
+  const double da = a >= 0 ? distance(a, p) : infinity;
+  const double db = b >= 0 ? distance(b, p) : infinity;
+  if (da == db) return 0;  // also both infinite
+  return da - db;
+}
+
+void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index face,
+                         const FaceLayout& layout, ConeEnvelope& envelope) {
+  envelope.clear();
+  for (int c = 0; c < 3; ++c) {
+    const Index v = mesh.faces(face, c);
+    envelope.add(layout.corner[c], field.distance[v], field.nearest_site[v]);
+  }
+  const auto [first, last] = point_sources_in(field, face);
+  for (const FacePointSource* source = first; source != last; ++source) {
+    envelope.add(layout.point(source->barycentric), source->sigma, source->site);
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Index e = field.face_edges[face][k];
+    const int side = field.edge_faces[e][0] == face ? 0 : 1;
+    // The edge's frame in the face's plane: origin at edge_vertices[e][0],
+    // x along the edge, and the face's side of the edge (y > 0 for side 0,
+    // y < 0 for side 1) mapped into the face.
+    const Index v0 = field.edge_vertices[e][0];
+    const int origin_corner = mesh.faces(face, k) == v0 ? k : (k + 1) % 3;
+    const int end_corner = origin_corner == k ? (k + 1) % 3 : k;
+    const Eigen::Vector2d origin = layout.corner[origin_corner];
+    const Eigen::Vector2d along = layout.corner[end_corner] - origin;
+    const double length = along.norm();
+    if (!(length > 0)) continue;
+    const Eigen::Vector2d u = along / length;
+    Eigen::Vector2d inward(-u.y(), u.x());
+    if (inward.dot(layout.corner[(k + 2) % 3] - origin) < 0) inward = -inward;
+    const double flip = side == 0 ? 1.0 : -1.0;
+    for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
+      const EdgeWindow& w = field.windows[i];
+      if ((w.source_y < 0) != (side == 0)) continue;  // runs out of this face, not into it
+      const Eigen::Vector2d source = origin + w.source_x * u + flip * w.source_y * inward;
+      envelope.add_wedge(source, w.sigma, w.site, origin + w.b0 * u, origin + w.b1 * u);
+    }
+  }
+}
+
+void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge,
+                         ConeEnvelope& envelope) {
+  envelope.clear();
+  const double length = field.edge_length[edge];
+  const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
+  envelope.add(Eigen::Vector2d::Zero(), field.distance[v0], field.nearest_site[v0]);
+  envelope.add(Eigen::Vector2d(length, 0), field.distance[v1], field.nearest_site[v1]);
+  for (Index i = field.window_begin[edge]; i < field.window_begin[edge + 1]; ++i) {
+    const EdgeWindow& w = field.windows[i];
+    envelope.add_wedge(Eigen::Vector2d(w.source_x, w.source_y), w.sigma, w.site, Eigen::Vector2d(w.b0, 0),
+                       Eigen::Vector2d(w.b1, 0));
+  }
+  // Sites on the edge itself: the barycentric coordinate of the corner
+  // opposite the edge is zero.
+  for (const Index face : field.edge_faces[edge]) {
+    if (face < 0) continue;
+    const auto [first, last] = point_sources_in(field, face);
+    for (const FacePointSource* source = first; source != last; ++source) {
+      for (int c = 0; c < 3; ++c) {
+        const Index a = mesh.faces(face, (c + 1) % 3), b = mesh.faces(face, (c + 2) % 3);
+        const bool on_edge = source->barycentric[c] == 0 && ((a == v0 && b == v1) || (a == v1 && b == v0));
+        if (!on_edge) continue;
+        const double along_from_v0 = a == v0 ? source->barycentric[(c + 2) % 3] : source->barycentric[(c + 1) % 3];
+        envelope.add(Eigen::Vector2d(along_from_v0 * length, 0), source->sigma, source->site);
+      }
+    }
+  }
+}
+
+}  // namespace geodual::voronoi::detail

@@ -1,0 +1,92 @@
+#pragma once
+// Exact distance to each nearby site at any point of one face, or of one edge,
+// rebuilt from the windows a GeodesicField keeps: the building block of the
+// Voronoi diagram extraction.
+//
+// In the face's plane the windows on its edges are cones sigma + |p - s| seen
+// through an interval of the edge (Surazhsky et al. 2005, §3). Outside its
+// wedge, a window still bounds the distance from above by the path that bends
+// at the nearer end of its interval; adding those two bends as unrestricted
+// cones makes the per-site lower envelope continuous, and it stays exact: the
+// shortest path to p enters the face through some window's interval, a corner
+// or a site in the face.
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/geodesic_field.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace geodual::voronoi::detail {
+
+/// A face laid out in its plane from its intrinsic edge lengths: corner 0 at
+/// the origin, corner 1 on the +x axis, corner 2 in the upper half plane, so
+/// counter-clockwise is the face's orientation.
+struct FaceLayout {
+  std::array<Eigen::Vector2d, 3> corner;
+  double area = 0;
+
+  static FaceLayout of(const GeodesicField& field, Index face);
+  /// Barycentric coordinates of a point of the plane (clamped to the face).
+  Eigen::Vector3d barycentric(const Eigen::Vector2d& p) const;
+  Eigen::Vector2d point(const Eigen::Vector3d& barycentric) const {
+    return barycentric[0] * corner[0] + barycentric[1] * corner[1] + barycentric[2] * corner[2];
+  }
+};
+
+/// sigma + |p - apex|, either everywhere or only for p inside the wedge that
+/// opens from `apex` counter-clockwise from `ray0` to `ray1`.
+struct DistanceCone {
+  Eigen::Vector2d apex = Eigen::Vector2d::Zero();
+  double sigma = 0;
+  int slot = 0;  ///< which site, as an index into the evaluator's site list
+  bool in_wedge_only = false;
+  Eigen::Vector2d ray0 = Eigen::Vector2d::Zero();
+  Eigen::Vector2d ray1 = Eigen::Vector2d::Zero();
+
+  bool sees(const Eigen::Vector2d& p) const;
+};
+
+/// The lower envelopes, one per site, of a set of cones in one plane.
+class ConeEnvelope {
+ public:
+  void clear();
+  void add(const Eigen::Vector2d& apex, double sigma, Index site);
+  void add_wedge(const Eigen::Vector2d& apex, double sigma, Index site, const Eigen::Vector2d& end0,
+                 const Eigen::Vector2d& end1);
+
+  int slot_count() const { return static_cast<int>(slot_site_.size()); }
+  Index site(int slot) const { return slot_site_[slot]; }
+  /// The slot of a site, or -1 if no cone of it reaches here.
+  int slot_of(Index site) const;
+  bool has_site(Index site) const { return slot_of(site) >= 0; }
+
+  /// Distance to one site at p (+inf if none of its cones sees p) and its
+  /// gradient there.
+  double distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2d* gradient = nullptr) const;
+  /// The nearest site at p; ties go to the smaller site index. -1 if none.
+  Index nearest_site(const Eigen::Vector2d& p) const;
+  /// distance(site a) - distance(site b) at p, 0 where both are unreachable.
+  double difference(Index site_a, Index site_b, const Eigen::Vector2d& p) const;
+
+ private:
+  int slot_for(Index site);
+
+  std::vector<DistanceCone> cones_;
+  std::vector<Index> slot_site_;
+};
+
+/// Builds the envelopes valid inside `face` (laid out as `layout`): its
+/// corners, the sites in it, and the windows entering it through its edges.
+void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index face,
+                         const FaceLayout& layout, ConeEnvelope& envelope);
+
+/// Builds the envelopes valid on edge `edge`, laid out along the x axis from
+/// edge_vertices[edge][0] at 0 to the other end at edge_length[edge]: both end
+/// vertices, the windows on the edge and sites that lie on it.
+void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge,
+                         ConeEnvelope& envelope);
+
+}  // namespace geodual::voronoi::detail
