@@ -89,7 +89,7 @@ class StatsCommand final : public Command {
     command.add_option("--samples", options_.samples_per_side,
                        "Area-uniform samples per mesh for the distances, besides the vertices")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(std::int64_t{0}, remesh::max_samples_per_side));
     command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str();
     return command;
   }

@@ -263,9 +263,9 @@ auto naming(const char* which, F&& f) {
 
 QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
                              const QualityOptions& options) {
-  if (options.samples_per_side < 0) {
+  if (options.samples_per_side < 0 || options.samples_per_side > max_samples_per_side) {
     throw Error("compare_meshes: samples_per_side is " + std::to_string(options.samples_per_side) +
-                "; give 0 or more");
+                "; give 0 to " + std::to_string(max_samples_per_side));
   }
   QualityReport report;
   report.reference = naming("reference mesh", [&] { return triangle_quality(reference); });

@@ -164,6 +164,8 @@ TEST(StatsCommand, BadCommandLinesAreUsageErrors) {
   expect_one_error_line(run_cli({"stats"}), 2, "REFERENCE");
   expect_one_error_line(run_cli({"stats", reference_mesh}), 2, "CANDIDATE");
   expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--samples", "-5"}), 2, "--samples");
+  expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--samples", "1000000000001"}), 2,
+                        "--samples");
   expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--frobnicate"}), 2, "--frobnicate");
 }
 

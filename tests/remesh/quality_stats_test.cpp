@@ -500,6 +500,7 @@ TEST(CompareMeshes, DeterministicForAnyThreadCount) {
 TEST(CompareMeshes, BadRequestsAreErrors) {
   const TriangleMesh cube = unit_cube();
   EXPECT_THROW(compare_meshes(cube, cube, samples(-1)), Error);
+  EXPECT_THROW(compare_meshes(cube, cube, samples(max_samples_per_side + 1)), Error);
   const TriangleMesh flat = make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(2, 0, 0)}, {{0, 1, 2}, {0, 1, 1}});
   try {
     compare_meshes(cube, flat, samples(10));

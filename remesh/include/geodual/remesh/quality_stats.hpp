@@ -25,6 +25,9 @@
 
 namespace geodual::remesh {
 
+/// More samples than this would take days: refused.
+inline constexpr std::int64_t max_samples_per_side = 1'000'000'000'000;
+
 struct QualityOptions {
   /// Points drawn area-uniformly on each mesh for the distances, besides all
   /// of its referenced vertices. 10^6 keeps the sampling error of the Hausdorff
@@ -116,7 +119,7 @@ struct QualityReport {
 
 /// Compares `candidate` with `reference`. Throws geodual::Error (naming which
 /// mesh) for what triangle_quality refuses, for a mesh whose faces all have
-/// zero area, and for a negative sample count.
+/// zero area, and for a sample count below 0 or above max_samples_per_side.
 QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
                              const QualityOptions& options = {});
 
