@@ -84,7 +84,7 @@ std::span<const EdgeCrossing> FaceBoundaryTracer::edge_crossings(Index edge) {
   const double length = field_.edge_length[edge];
   const Index v0 = field_.edge_vertices[edge][0], v1 = field_.edge_vertices[edge][1];
   const Index site0 = field_.nearest_site[v0], site1 = field_.nearest_site[v1];
-  build_edge_envelope(field_, mesh_, edge, edge_envelope_);
+  build_edge_envelope(field_, mesh_, edge, edge_envelope_, face_scratch_);
 
   // Only one site here: no crossing. Otherwise sample the nearest site at the
   // ends of every window (where the envelope's pieces change) and between,
@@ -287,118 +287,13 @@ bool FaceBoundaryTracer::holds_island(const SubTriangle& triangle) const {
 void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vector<double>& cell_area) {
   collect_cycle(triangle);
   const std::size_t n = cycle_.size();
-  const double area = triangle_area(triangle.corner);
   const bool at_limit = depth >= options_.max_refinement;
-
-  // Are the crossings consistent (each leaves the site the previous one
-  // entered) and does every site own one stretch of the boundary?
-  bool consistent = true, distinct = true;
+  // Consistent: each crossing leaves the site the previous one entered.
+  bool consistent = true;
   for (std::size_t i = 0; i < n; ++i) {
     consistent = consistent && cycle_[i].crossing.to == cycle_[(i + 1) % n].crossing.from;
-    for (std::size_t j = 0; j < i; ++j) distinct = distinct && cycle_[i].crossing.to != cycle_[j].crossing.to;
   }
-  const bool island = holds_island(triangle);
-
-  // The corners met walking counter-clockwise from crossing i to crossing j.
-  auto corners_between = [&](std::size_t i, std::size_t j, std::vector<Eigen::Vector2d>& polygon) {
-    const int count = j > i ? cycle_[j].after_corner - cycle_[i].after_corner
-                            : cycle_[j].after_corner + 3 - cycle_[i].after_corner;
-    for (int c = 1; c <= count; ++c) polygon.push_back(triangle.corner[(cycle_[i].after_corner + c) % 3]);
-  };
-
-  if (!island && consistent && n == 0) {
-    cell_area[triangle.site[0]] += area;
-    return;
-  }
-
-  if (!island && consistent && n == 2) {
-    // One bisector piece: from the crossing into site B to the crossing back
-    // out of it, with A (the site before the first crossing) on its left.
-    const CycleCrossing first = cycle_[0], second = cycle_[1];
-    piece_points_.clear();
-    add_piece(first.crossing.node, second.crossing.node, first.crossing.from, first.crossing.to,
-              first.crossing.point, second.crossing.point, triangle);
-    std::vector<Eigen::Vector2d>& polygon = polygon_;
-    polygon.clear();
-    polygon.push_back(first.crossing.point);
-    corners_between(0, 1, polygon);
-    polygon.push_back(second.crossing.point);
-    for (auto it = piece_points_.rbegin(); it != piece_points_.rend(); ++it) polygon.push_back(*it);
-    const double inside = std::clamp(signed_area(polygon), 0.0, std::max(area, 0.0));
-    cell_area[first.crossing.to] += inside;
-    cell_area[first.crossing.from] += std::max(area, 0.0) - inside;
-    return;
-  }
-
-  if (!island && consistent && distinct && n >= 3 && (n == 3 || at_limit)) {
-    // A Voronoi vertex: every stretch of the boundary belongs to a different
-    // site, so their cells meet at one point inside.
-    std::vector<Index> sites;
-    sites.reserve(n);
-    Eigen::Vector2d start = Eigen::Vector2d::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
-      sites.push_back(cycle_[i].crossing.to);
-      start += cycle_[i].crossing.point / static_cast<double>(n);
-    }
-    double spread = 0;
-    Eigen::Vector2d vertex = solve_vertex(sites, triangle, start, spread);
-    bool inside = true;
-    const double scale = (triangle.corner[1] - triangle.corner[0]).norm() +
-                         (triangle.corner[2] - triangle.corner[1]).norm() +
-                         (triangle.corner[0] - triangle.corner[2]).norm();
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d edge = triangle.corner[(k + 1) % 3] - triangle.corner[k];
-      const double length = edge.norm();
-      if (length > 0 && cross(edge, vertex - triangle.corner[k]) / length < -1e-9 * scale) inside = false;
-    }
-    // Newton converges once it starts near the vertex, where every site's
-    // envelope is exact; from farther away it can stall (an envelope is only
-    // an upper bound outside its cell), and refining brings the start closer.
-    const bool converged = spread <= vertex_tolerance_;
-    if ((inside && converged) || at_limit) {
-      if (!inside || !std::isfinite(vertex.x()) || !std::isfinite(vertex.y())) {
-        vertex = start;  // clamp: the combinatorics decide, the point stays in this triangle
-        spread = 0;
-        const Eigen::Vector3d b = layout_.barycentric(vertex);
-        vertex = layout_.point(b);
-      }
-      const Index node = add_node(vertex, BoundaryNode::Kind::voronoi_vertex);
-      graph_.nodes[node].site_begin = static_cast<Index>(graph_.vertex_sites.size());
-      graph_.nodes[node].degree = static_cast<int>(n);
-      graph_.nodes[node].distance = envelope_.distance(envelope_.slot_of(sites[0]), vertex);
-      graph_.vertex_sites.insert(graph_.vertex_sites.end(), sites.begin(), sites.end());
-      stats_.max_vertex_residual = std::max(stats_.max_vertex_residual, spread);
-
-      // Pieces from each crossing in to the vertex, and each site's region:
-      // from its entering crossing, round the corners to its leaving
-      // crossing, then in along that piece and back out along the first.
-      piece_offsets_.assign(1, 0);
-      piece_points_.clear();
-      for (std::size_t i = 0; i < n; ++i) {
-        const Crossing& c = cycle_[i].crossing;
-        add_piece(c.node, node, c.from, c.to, c.point, vertex, triangle);
-        piece_offsets_.push_back(static_cast<Index>(piece_points_.size()));
-      }
-      double assigned = 0;
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t j = (i + 1) % n;
-        std::vector<Eigen::Vector2d>& polygon = polygon_;
-        polygon.clear();
-        polygon.push_back(cycle_[i].crossing.point);
-        corners_between(i, j, polygon);
-        polygon.push_back(cycle_[j].crossing.point);
-        for (Index p = piece_offsets_[j]; p < piece_offsets_[j + 1]; ++p) polygon.push_back(piece_points_[p]);
-        polygon.push_back(vertex);
-        for (Index p = piece_offsets_[i + 1]; p-- > piece_offsets_[i];) polygon.push_back(piece_points_[p]);
-        const double region = std::max(0.0, signed_area(polygon));
-        cell_area[cycle_[i].crossing.to] += region;
-        assigned += region;
-      }
-      stats_.max_area_mismatch = std::max(stats_.max_area_mismatch, std::abs(assigned - std::max(area, 0.0)));
-      return;
-    }
-  }
-
+  if (consistent && !holds_island(triangle) && resolve(triangle, at_limit, cell_area)) return;
   if (!at_limit) {
     subdivide(triangle, depth, cell_area);
     return;
@@ -421,26 +316,168 @@ void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vect
   }
   const Eigen::Vector2d centre = (triangle.corner[0] + triangle.corner[1] + triangle.corner[2]) / 3;
   const Index site = envelope_.nearest_site(centre);
-  cell_area[site >= 0 ? site : triangle.site[0]] += std::max(area, 0.0);
+  cell_area[site >= 0 ? site : triangle.site[0]] += std::max(triangle_area(triangle.corner), 0.0);
 }
 
-void FaceBoundaryTracer::add_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p,
-                                   const Eigen::Vector2d& q, const SubTriangle& triangle) {
+bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std::vector<double>& cell_area) {
+  // 1. Caps: a crossing into site X followed by one back out of it, where X
+  //    owns no other stretch of the boundary, are joined by one bisector arc
+  //    that cuts X's part off (peeled repeatedly, so nested caps work too).
+  const std::size_t n = cycle_.size();
+  remaining_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) remaining_[i] = static_cast<Index>(i);
+  caps_.clear();
+  Index outer_site = n == 0 ? triangle.site[0] : -1;
+  for (bool peeled = true; peeled && remaining_.size() >= 2;) {
+    peeled = false;
+    const std::size_t m = remaining_.size();
+    for (std::size_t r = 0; r < m && !peeled; ++r) {
+      const Crossing& into = cycle_[remaining_[r]].crossing;
+      const Crossing& out_of = cycle_[remaining_[(r + 1) % m]].crossing;
+      if (into.from != out_of.to) continue;
+      int stretches = 0;
+      for (const Index k : remaining_) stretches += cycle_[k].crossing.to == into.to;
+      if (stretches != 1) continue;
+      caps_.push_back({remaining_[r], remaining_[(r + 1) % m]});
+      outer_site = into.from;
+      const std::size_t second = (r + 1) % m;
+      remaining_.erase(remaining_.begin() + static_cast<std::ptrdiff_t>(std::max(r, second)));
+      remaining_.erase(remaining_.begin() + static_cast<std::ptrdiff_t>(std::min(r, second)));
+      peeled = true;
+    }
+  }
+  // 2. What is left must be empty or one Voronoi vertex: every stretch a
+  //    different site (more than three only at the refinement limit).
+  const std::size_t m = remaining_.size();
+  if (m == 1 || m == 2) return false;
+  for (std::size_t r = 0; r < m; ++r) {
+    for (std::size_t q = 0; q < r; ++q) {
+      if (cycle_[remaining_[r]].crossing.to == cycle_[remaining_[q]].crossing.to) return false;
+    }
+  }
+  if (m > 3 && !at_limit) return false;
+
+  // 3. Trace everything into scratch space, checking that no third site is
+  //    nearer along the way; nothing is added to the graph before all passes.
+  trace_valid_ = true;
+  piece_points_.clear();
+  piece_offsets_.assign(1, 0);
+  for (const auto& [i, j] : caps_) {
+    const Crossing& into = cycle_[i].crossing;
+    trace_bisector(into.point, cycle_[j].crossing.point, into.from, into.to, triangle, 0);
+    piece_offsets_.push_back(static_cast<Index>(piece_points_.size()));
+  }
+  Eigen::Vector2d vertex = Eigen::Vector2d::Zero();
+  double spread = 0;
+  if (m > 0) {
+    star_sites_.clear();
+    Eigen::Vector2d start = Eigen::Vector2d::Zero();
+    for (const Index k : remaining_) {
+      star_sites_.push_back(cycle_[k].crossing.to);
+      start += cycle_[k].crossing.point / static_cast<double>(m);
+    }
+    vertex = solve_vertex(star_sites_, triangle, start, spread);
+    // Newton converges once it starts near the vertex, where every site's
+    // envelope is exact; from farther away it can stall (an envelope is only
+    // an upper bound outside its cell), and refining brings the start closer.
+    const bool found = spread <= vertex_tolerance_ && vertex.allFinite() && inside(triangle, vertex);
+    if (!found) {
+      if (!at_limit) return false;
+      vertex = layout_.point(layout_.barycentric(start));
+      spread = 0;
+    }
+    for (const Index k : remaining_) {
+      const Crossing& c = cycle_[k].crossing;
+      trace_bisector(c.point, vertex, c.from, c.to, triangle, 0);
+      piece_offsets_.push_back(static_cast<Index>(piece_points_.size()));
+    }
+  }
+  if (!trace_valid_ && !at_limit) return false;
+
+  // 4. Commit: the vertex, the pieces, and the area of every site's part.
+  auto piece_span = [&](std::size_t piece) {
+    return std::span<const Eigen::Vector2d>(piece_points_.data() + piece_offsets_[piece],
+                                            static_cast<std::size_t>(piece_offsets_[piece + 1] - piece_offsets_[piece]));
+  };
+  // The corners met walking counter-clockwise from crossing i to crossing j.
+  auto corners_between = [&](Index i, Index j) {
+    const int count = j > i ? cycle_[j].after_corner - cycle_[i].after_corner
+                            : cycle_[j].after_corner + 3 - cycle_[i].after_corner;
+    for (int c = 1; c <= count; ++c) polygon_.push_back(triangle.corner[(cycle_[i].after_corner + c) % 3]);
+  };
+  for (std::size_t c = 0; c < caps_.size(); ++c) {
+    const auto [i, j] = caps_[c];
+    const Crossing& into = cycle_[i].crossing;
+    const Crossing& out_of = cycle_[j].crossing;
+    commit_piece(into.node, out_of.node, into.from, into.to, into.point, out_of.point, piece_span(c));
+    polygon_.assign(1, into.point);
+    corners_between(i, j);
+    polygon_.push_back(out_of.point);
+    const auto line = piece_span(c);
+    polygon_.insert(polygon_.end(), line.rbegin(), line.rend());
+    const double part = std::max(0.0, signed_area(polygon_));
+    cell_area[into.to] += part;
+    cell_area[into.from] -= part;
+  }
+  if (m == 0) {
+    cell_area[outer_site] += std::max(0.0, triangle_area(triangle.corner));
+    return true;
+  }
+  const Index node = add_node(vertex, BoundaryNode::Kind::voronoi_vertex);
+  graph_.nodes[node].site_begin = static_cast<Index>(graph_.vertex_sites.size());
+  graph_.nodes[node].degree = static_cast<int>(m);
+  graph_.nodes[node].distance = envelope_.distance(envelope_.slot_of(star_sites_[0]), vertex);
+  graph_.vertex_sites.insert(graph_.vertex_sites.end(), star_sites_.begin(), star_sites_.end());
+  stats_.max_vertex_residual = std::max(stats_.max_vertex_residual, spread);
+  for (std::size_t r = 0; r < m; ++r) {
+    const Crossing& c = cycle_[remaining_[r]].crossing;
+    commit_piece(c.node, node, c.from, c.to, c.point, vertex, piece_span(caps_.size() + r));
+  }
+  // Each star site's part: from its entering crossing round the corners to
+  // its leaving crossing, in along that piece to the vertex, out along the first.
+  for (std::size_t r = 0; r < m; ++r) {
+    const std::size_t next = (r + 1) % m;
+    const Index i = remaining_[r], j = remaining_[next];
+    polygon_.assign(1, cycle_[i].crossing.point);
+    corners_between(i, j);
+    polygon_.push_back(cycle_[j].crossing.point);
+    const auto in = piece_span(caps_.size() + next);
+    polygon_.insert(polygon_.end(), in.begin(), in.end());
+    polygon_.push_back(vertex);
+    const auto out = piece_span(caps_.size() + r);
+    polygon_.insert(polygon_.end(), out.rbegin(), out.rend());
+    cell_area[cycle_[i].crossing.to] += std::max(0.0, signed_area(polygon_));
+  }
+  return true;
+}
+
+bool FaceBoundaryTracer::inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const {
+  const double scale = (triangle.corner[1] - triangle.corner[0]).norm() +
+                       (triangle.corner[2] - triangle.corner[1]).norm() +
+                       (triangle.corner[0] - triangle.corner[2]).norm();
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector2d edge = triangle.corner[(k + 1) % 3] - triangle.corner[k];
+    const double length = edge.norm();
+    if (length > 0 && cross(edge, p - triangle.corner[k]) / length < -1e-9 * scale) return false;
+  }
+  return true;
+}
+
+void FaceBoundaryTracer::commit_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p,
+                                      const Eigen::Vector2d& q, std::span<const Eigen::Vector2d> line) {
   BoundaryPiece piece;
   piece.from = from;
   piece.to = to;
   piece.left = left;
   piece.right = right;
-  const std::size_t first = piece_points_.size();
-  trace_bisector(p, q, left, right, triangle, 0);
   piece.point_begin = static_cast<Index>(graph_.points.size());
   Eigen::Vector2d previous = p;
-  for (std::size_t i = first; i < piece_points_.size(); ++i) {
-    const Eigen::Vector3d b = layout_.barycentric(piece_points_[i]);
-    graph_.points.push_back(to_space(piece_points_[i]));
+  for (const Eigen::Vector2d& x : line) {
+    const Eigen::Vector3d b = layout_.barycentric(x);
+    graph_.points.push_back(to_space(x));
     graph_.point_locations.push_back(SurfacePoint::in_face(face_, b[0], b[1], b[2]));
-    piece.length += (piece_points_[i] - previous).norm();
-    previous = piece_points_[i];
+    piece.length += (x - previous).norm();
+    previous = x;
   }
   piece.length += (q - previous).norm();
   piece.point_end = static_cast<Index>(graph_.points.size());
@@ -472,6 +509,9 @@ double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen:
   const double g_low = envelope_.difference(left, right, low), g_high = envelope_.difference(left, right, high);
   if (!((g_low <= 0) != (g_high <= 0))) return 0;
   const Eigen::Vector2d on_curve = bisector_on_segment(envelope_, low, high, left, right);
+  if (const Index nearest = envelope_.nearest_site(on_curve); nearest != left && nearest != right) {
+    trace_valid_ = false;  // a third site's part lies across the way
+  }
   if ((on_curve - middle).norm() <= tolerance_) return 0;
   trace_bisector(p, on_curve, left, right, triangle, depth + 1);
   piece_points_.push_back(on_curve);

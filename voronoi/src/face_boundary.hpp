@@ -128,10 +128,15 @@ class FaceBoundaryTracer {
   /// `left` and `right` within the tolerance; returns its length.
   double trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left, Index right,
                         const SubTriangle& triangle, int depth);
-  /// Adds the piece from node `from` at p to node `to` at q; its 2D polyline
-  /// (without p and q) is left at the end of piece_points_.
-  void add_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p,
-                 const Eigen::Vector2d& q, const SubTriangle& triangle);
+  /// Resolves a sub-triangle whose boundary it can explain: caps (a site
+  /// entered and left again, cut off by one arc) and at most one Voronoi
+  /// vertex. False, with nothing added, if it needs refining.
+  bool resolve(const SubTriangle& triangle, bool at_limit, std::vector<double>& cell_area);
+  bool inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const;
+  /// Adds the piece from node `from` at p to node `to` at q with the 2D
+  /// polyline `line` between them.
+  void commit_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
+                    std::span<const Eigen::Vector2d> line);
   /// The point where the sites are equally far (Gauss-Newton from `start`);
   /// `spread` receives the largest difference of their distances there.
   Eigen::Vector2d solve_vertex(std::span<const Index> sites, const SubTriangle& triangle, const Eigen::Vector2d& start,
@@ -151,6 +156,7 @@ class FaceBoundaryTracer {
   std::vector<Index> edge_count_;
   std::vector<EdgeCrossing> edge_crossings_;
   ConeEnvelope edge_envelope_;
+  ConeEnvelope face_scratch_;
   std::vector<double> samples_;
   std::vector<SiteChange> changes_;
 
@@ -166,6 +172,10 @@ class FaceBoundaryTracer {
   std::vector<Eigen::Vector2d> piece_points_;  ///< scratch: polylines of the pieces being traced
   std::vector<Index> piece_offsets_;
   std::vector<Eigen::Vector2d> polygon_;     ///< scratch: one cell's part of a sub-triangle
+  std::vector<Index> remaining_;             ///< scratch: crossings not explained by caps
+  std::vector<std::array<Index, 2>> caps_;   ///< scratch: (into, out of) crossing pairs
+  std::vector<Index> star_sites_;            ///< scratch: the sites of a Voronoi vertex
+  bool trace_valid_ = true;
   bool face_refined_ = false;
 };
 

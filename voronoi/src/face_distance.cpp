@@ -195,32 +195,60 @@ void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
   }
 }
 
+void ConeEnvelope::add_moved(const ConeEnvelope& other, const Eigen::Vector2d& origin, const Eigen::Vector2d& x_axis,
+                             const Eigen::Vector2d& y_axis) {
+  auto move = [&](const Eigen::Vector2d& v) { return Eigen::Vector2d(v.dot(x_axis), v.dot(y_axis)); };
+  const bool reflects = cross(x_axis, y_axis) < 0;
+  for (const DistanceCone& cone : other.cones_) {
+    DistanceCone moved = cone;
+    moved.apex = move(cone.apex - origin);
+    moved.slot = slot_for(other.slot_site_[cone.slot]);
+    if (cone.in_wedge_only) {
+      moved.ray0 = move(cone.ray0);
+      moved.ray1 = move(cone.ray1);
+      if (reflects) std::swap(moved.ray0, moved.ray1);
+    }
+    cones_.push_back(moved);
+  }
+}
+
 void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge,
-                         ConeEnvelope& envelope) {
+                         ConeEnvelope& envelope, ConeEnvelope& scratch) {
   envelope.clear();
-  const double length = field.edge_length[edge];
-  const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
-  envelope.add(Eigen::Vector2d::Zero(), field.distance[v0], field.nearest_site[v0]);
-  envelope.add(Eigen::Vector2d(length, 0), field.distance[v1], field.nearest_site[v1]);
   for (Index i = field.window_begin[edge]; i < field.window_begin[edge + 1]; ++i) {
     const EdgeWindow& w = field.windows[i];
     envelope.add_wedge(Eigen::Vector2d(w.source_x, w.source_y), w.sigma, w.site, Eigen::Vector2d(w.b0, 0),
                        Eigen::Vector2d(w.b1, 0));
   }
-  // Sites on the edge itself: the barycentric coordinate of the corner
-  // opposite the edge is zero.
-  for (const Index face : field.edge_faces[edge]) {
+  const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
+  const std::array<Index, 2>& faces = field.edge_faces[edge];
+  if (faces[0] >= 0 && faces[1] >= 0) {
+    // Between two faces the windows cover the edge (MMP's invariant), and
+    // paths that bend at an end vertex are the ends' cones.
+    envelope.add(Eigen::Vector2d::Zero(), field.distance[v0], field.nearest_site[v0]);
+    envelope.add(Eigen::Vector2d(field.edge_length[edge], 0), field.distance[v1], field.nearest_site[v1]);
+    return;
+  }
+  // A boundary edge keeps only the windows that reached it last: take the
+  // face's envelope (corners, sites in it, windows entering it), moved into
+  // the edge's frame: origin at v0, x along the edge, the face on the y > 0
+  // side for edge_faces[edge][0], y < 0 for [1].
+  for (int side = 0; side < 2; ++side) {
+    const Index face = faces[side];
     if (face < 0) continue;
-    const auto [first, last] = point_sources_in(field, face);
-    for (const FacePointSource* source = first; source != last; ++source) {
-      for (int c = 0; c < 3; ++c) {
-        const Index a = mesh.faces(face, (c + 1) % 3), b = mesh.faces(face, (c + 2) % 3);
-        const bool on_edge = source->barycentric[c] == 0 && ((a == v0 && b == v1) || (a == v1 && b == v0));
-        if (!on_edge) continue;
-        const double along_from_v0 = a == v0 ? source->barycentric[(c + 2) % 3] : source->barycentric[(c + 1) % 3];
-        envelope.add(Eigen::Vector2d(along_from_v0 * length, 0), source->sigma, source->site);
-      }
-    }
+    const FaceLayout layout = FaceLayout::of(field, face);
+    build_face_envelope(field, mesh, face, layout, scratch);
+    int k = 0;
+    while (k < 2 && field.face_edges[face][k] != edge) ++k;
+    const bool forward = mesh.faces(face, k) == v0;
+    const Eigen::Vector2d origin = layout.corner[forward ? k : (k + 1) % 3];
+    const Eigen::Vector2d along = layout.corner[forward ? (k + 1) % 3 : k] - origin;
+    const double length = along.norm();
+    if (!(length > 0)) continue;
+    const Eigen::Vector2d x_axis = along / length;
+    Eigen::Vector2d inward(-x_axis.y(), x_axis.x());
+    if (inward.dot(layout.corner[(k + 2) % 3] - origin) < 0) inward = -inward;
+    envelope.add_moved(scratch, origin, x_axis, side == 0 ? inward : Eigen::Vector2d(-inward));
   }
 }
 

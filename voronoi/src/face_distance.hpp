@@ -57,6 +57,11 @@ class ConeEnvelope {
   void add_wedge(const Eigen::Vector2d& apex, double sigma, Index site, const Eigen::Vector2d& end0,
                  const Eigen::Vector2d& end1);
 
+  /// Adds the cones of `other`, moved by p -> ((p - origin) . x_axis, (p - origin) . y_axis)
+  /// for orthonormal axes (a reflection when they are left-handed).
+  void add_moved(const ConeEnvelope& other, const Eigen::Vector2d& origin, const Eigen::Vector2d& x_axis,
+                 const Eigen::Vector2d& y_axis);
+
   int slot_count() const { return static_cast<int>(slot_site_.size()); }
   Index site(int slot) const { return slot_site_[slot]; }
   /// The slot of a site, or -1 if no cone of it reaches here.
@@ -84,9 +89,11 @@ void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
                          const FaceLayout& layout, ConeEnvelope& envelope);
 
 /// Builds the envelopes valid on edge `edge`, laid out along the x axis from
-/// edge_vertices[edge][0] at 0 to the other end at edge_length[edge]: both end
-/// vertices, the windows on the edge and sites that lie on it.
+/// edge_vertices[edge][0] at 0 to the other end at edge_length[edge]: the
+/// windows on the edge and its end vertices; on a boundary edge, where the
+/// engine keeps only some windows, also its face's envelope. `scratch` is
+/// working space.
 void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge,
-                         ConeEnvelope& envelope);
+                         ConeEnvelope& envelope, ConeEnvelope& scratch);
 
 }  // namespace geodual::voronoi::detail
