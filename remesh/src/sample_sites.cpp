@@ -1,0 +1,314 @@
+// sample_sites: shares the sites among components and boundary loops, places
+// the boundary sites, lets the strategy place the interior ones, and makes
+// sure no two sites coincide and none sits on a vertex.
+
+#include "geodual/remesh/sample_sites.hpp"
+
+#include "geodual/error.hpp"
+#include "sampling_strategies.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <optional>
+
+namespace geodual::remesh {
+namespace {
+
+using detail::BoundaryLoop;
+using detail::Rng;
+using detail::SamplingSurface;
+
+// Random streams of one seed: per component and purpose, plus one for repairs.
+enum Purpose : std::uint64_t { interior_random = 1, interior_poisson = 2, interior_fps = 3, repair = 4 };
+std::uint64_t stream(Index component, Purpose purpose) {
+  return (static_cast<std::uint64_t>(component) + 1) << 8 | purpose;
+}
+
+/// Splits `total` into integer parts proportional to `weights` (all > 0),
+/// part i at least minimum[i] (total >= sum of the minimums): parts whose
+/// share falls below their minimum are fixed there and the rest is shared
+/// again; then largest remainders, ties to the lower index.
+std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
+                                             const std::vector<std::int64_t>& minimum, std::int64_t total) {
+  const std::size_t n = weights.size();
+  std::vector<std::int64_t> part(n, 0);
+  std::vector<std::uint8_t> fixed(n, 0);
+  for (;;) {
+    std::int64_t rest = total;
+    double weight = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (fixed[i]) {
+        rest -= minimum[i];
+      } else {
+        weight += weights[i];
+      }
+    }
+    bool changed = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!fixed[i] && static_cast<double>(rest) * weights[i] / weight < static_cast<double>(minimum[i])) {
+        fixed[i] = 1;
+        changed = true;
+      }
+    }
+    if (changed) continue;
+    std::vector<std::pair<double, std::size_t>> remainders;
+    std::int64_t given = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (fixed[i]) {
+        part[i] = minimum[i];
+      } else {
+        const double share = static_cast<double>(rest) * weights[i] / weight;
+        part[i] = std::max(minimum[i], static_cast<std::int64_t>(share));
+        remainders.push_back({share - static_cast<double>(part[i]), i});
+      }
+      given += part[i];
+    }
+    std::stable_sort(remainders.begin(), remainders.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    // Rounding may leave a part or two over or under; settle it on the
+    // largest remainders (or take from the smallest, never below minimum).
+    for (std::size_t k = 0; given < total && !remainders.empty(); k = (k + 1) % remainders.size(), ++given) {
+      ++part[remainders[k].second];
+    }
+    for (bool progress = true; given > total && progress;) {
+      progress = false;
+      for (std::size_t k = remainders.size(); k-- > 0 && given > total;) {
+        const std::size_t i = remainders[k].second;
+        if (part[i] > minimum[i]) {
+          --part[i];
+          --given;
+          progress = true;
+        }
+      }
+    }
+    return part;
+  }
+}
+
+std::string plural(std::int64_t n, const std::string& word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+/// Sites per component (0 for components without area).
+std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
+                                              const std::vector<std::int64_t>& loops_per_component,
+                                              std::int64_t count) {
+  std::vector<Index> with_area;
+  for (Index c = 0; c < surface.num_components; ++c) {
+    if (surface.component_area[c] > 0) with_area.push_back(c);
+  }
+  std::vector<double> areas;
+  std::vector<std::int64_t> minimum, loop_minimum;
+  std::int64_t needed = 0, needed_by_loops = 0, num_loops = 0;
+  for (const Index c : with_area) {
+    areas.push_back(surface.component_area[c]);
+    loop_minimum.push_back(3 * loops_per_component[c]);
+    minimum.push_back(std::max<std::int64_t>(4, loop_minimum.back()));
+    needed += minimum.back();
+    needed_by_loops += loop_minimum.back();
+    num_loops += loops_per_component[c];
+  }
+  if (count < needed_by_loops) {
+    throw UsageError("site count " + std::to_string(count) + " is too small for the mesh's " +
+                     plural(num_loops, "boundary loop") + ": at least " + std::to_string(needed_by_loops) +
+                     " sites are needed (3 per loop), " + std::to_string(needed) +
+                     " to give every component at least 4; or turn sites on the boundary off");
+  }
+  std::vector<std::int64_t> parts;
+  if (count >= needed) {
+    parts = proportional_split(areas, minimum, count);
+  } else {
+    // Too few for every component: each loop keeps its 3 sites; the rest
+    // tops components up to their minimum, largest area first.
+    parts = loop_minimum;
+    std::int64_t rest = count - needed_by_loops;
+    std::vector<std::size_t> by_area(with_area.size());
+    std::iota(by_area.begin(), by_area.end(), std::size_t{0});
+    std::stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) { return areas[a] > areas[b]; });
+    for (const std::size_t i : by_area) {
+      const std::int64_t add = std::min(rest, minimum[i] - parts[i]);
+      parts[i] += add;
+      rest -= add;
+    }
+  }
+  std::vector<std::int64_t> sites(static_cast<std::size_t>(surface.num_components), 0);
+  for (std::size_t i = 0; i < with_area.size(); ++i) sites[with_area[i]] = parts[i];
+  return sites;
+}
+
+/// Sites per loop of one component with `sites` sites in all: about one per
+/// hexagonal spacing of boundary, at least 3 per loop, at most sites - 1 in
+/// all (but never below 3 per loop).
+std::vector<std::int64_t> sites_per_loop(const std::vector<const BoundaryLoop*>& loops, double area,
+                                         std::int64_t sites) {
+  const double spacing = detail::hexagonal_spacing(area, sites);
+  std::vector<std::int64_t> parts;
+  std::vector<double> lengths;
+  std::int64_t sum = 0;
+  for (const BoundaryLoop* loop : loops) {
+    const double ratio = std::min(loop->length / spacing, static_cast<double>(sites));
+    parts.push_back(std::max<std::int64_t>(3, std::llround(ratio)));
+    lengths.push_back(loop->length);
+    sum += parts.back();
+  }
+  const auto num_loops = static_cast<std::int64_t>(loops.size());
+  const std::int64_t cap = std::max(3 * num_loops, sites - 1);
+  if (sum <= cap) return parts;
+  return proportional_split(lengths, std::vector<std::int64_t>(loops.size(), 3), cap);
+}
+
+/// `k` sites evenly by arc length along the loop: at (j + 1/2) L / k.
+void place_on_loop(const BoundaryLoop& loop, std::int64_t k, std::vector<SurfacePoint>& out) {
+  std::size_t edge = 0;
+  double start = 0;  // arc length where `edge` starts
+  for (std::int64_t j = 0; j < k; ++j) {
+    const double at = (static_cast<double>(j) + 0.5) * loop.length / static_cast<double>(k);
+    while (edge + 1 < loop.edges.size() && at >= start + loop.edges[edge].length) {
+      start += loop.edges[edge].length;
+      ++edge;
+    }
+    const detail::BoundaryEdge& e = loop.edges[edge];
+    out.push_back(detail::point_on_face_edge(e.face, e.corner, (at - start) / e.length));
+  }
+}
+
+/// Moves sites that sit exactly on a corner of their face or on another
+/// site's position (the later one moves): interior sites to a new random
+/// point of their face, boundary sites a little along their edge.
+void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoint>& sites, std::uint64_t seed) {
+  Rng rng(seed, stream(-1, repair));
+  std::vector<Eigen::Vector3d> positions(sites.size());
+  std::vector<std::size_t> order(sites.size());
+  std::vector<std::size_t> bad;
+  constexpr int kRounds = 64;
+  for (int round = 0; round < kRounds; ++round) {
+    bad.clear();
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      positions[i] = detail::site_position(mesh, sites[i]);
+      for (int k = 0; k < 3; ++k) {
+        if (positions[i] == mesh.vertices.row(mesh.faces(sites[i].element, k)).transpose()) {
+          bad.push_back(i);
+          break;
+        }
+      }
+    }
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    auto less = [&](std::size_t a, std::size_t b) {
+      const Eigen::Vector3d &p = positions[a], &q = positions[b];
+      if (p.x() != q.x()) return p.x() < q.x();
+      if (p.y() != q.y()) return p.y() < q.y();
+      if (p.z() != q.z()) return p.z() < q.z();
+      return a < b;
+    };
+    std::sort(order.begin(), order.end(), less);
+    for (std::size_t i = 1; i < order.size(); ++i) {
+      if (positions[order[i]] == positions[order[i - 1]]) bad.push_back(order[i]);
+    }
+    if (bad.empty()) return;
+    std::sort(bad.begin(), bad.end());
+    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+    for (const std::size_t i : bad) {
+      SurfacePoint& site = sites[i];
+      int zero = -1;
+      for (int k = 0; k < 3; ++k) {
+        if (site.barycentric[k] == 0) zero = k;
+      }
+      if (zero < 0) {
+        site = detail::random_point_in_face(site.element, rng);
+      } else {
+        const int from = (zero + 1) % 3;  // the edge runs from corner zero + 1 to zero + 2
+        const double t = site.barycentric[(zero + 2) % 3] + 0x1p-16 * (rng.uniform() - 0.5);
+        site = detail::point_on_face_edge(site.element, from, t);
+      }
+    }
+  }
+  throw Error("sample_sites: could not place " + std::to_string(sites.size()) +
+              " sites at distinct positions off the vertices (the faces are too small for their coordinates)");
+}
+
+}  // namespace
+
+std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
+  if (count < 4) {
+    throw UsageError("site count " + std::to_string(count) + " is too small: at least 4 sites are needed");
+  }
+  if (count > std::numeric_limits<Index>::max()) {
+    throw UsageError("site count " + std::to_string(count) + " is too large: at most " +
+                     std::to_string(std::numeric_limits<Index>::max()) + " sites");
+  }
+  const SamplingSurface surface = detail::build_sampling_surface(mesh, options.sites_on_boundary);
+  if (std::none_of(surface.component_area.begin(), surface.component_area.end(), [](double a) { return a > 0; })) {
+    throw Error("sample_sites: the mesh has no face with positive area and three distinct corners: nowhere to put sites");
+  }
+
+  std::vector<std::vector<const BoundaryLoop*>> loops(static_cast<std::size_t>(surface.num_components));
+  std::vector<std::int64_t> loops_per_component(loops.size(), 0);
+  for (const BoundaryLoop& loop : surface.boundary_loops) {
+    loops[loop.component].push_back(&loop);
+    ++loops_per_component[loop.component];
+  }
+  const std::vector<std::int64_t> sites = sites_per_component(surface, loops_per_component, count);
+
+  std::vector<SurfacePoint> boundary_sites, interior_sites;
+  boundary_sites.reserve(static_cast<std::size_t>(count));
+  interior_sites.reserve(static_cast<std::size_t>(count));
+  std::optional<detail::FarthestPointSampler> fps;
+  if (options.strategy == SamplingStrategy::fps) fps.emplace(surface);
+  for (Index c = 0; c < surface.num_components; ++c) {
+    if (sites[c] == 0) continue;
+    const std::size_t first_boundary = boundary_sites.size();
+    if (!loops[c].empty()) {
+      const std::vector<std::int64_t> per_loop = sites_per_loop(loops[c], surface.component_area[c], sites[c]);
+      for (std::size_t l = 0; l < loops[c].size(); ++l) place_on_loop(*loops[c][l], per_loop[l], boundary_sites);
+    }
+    detail::ComponentTask task;
+    task.component = c;
+    task.boundary_sites = std::span<const SurfacePoint>(boundary_sites).subspan(first_boundary);
+    task.total = sites[c];
+    task.interior = sites[c] - static_cast<std::int64_t>(task.boundary_sites.size());
+    switch (options.strategy) {
+      case SamplingStrategy::random: {
+        Rng rng(options.seed, stream(c, interior_random));
+        detail::sample_interior_random(surface, task, rng, interior_sites);
+        break;
+      }
+      case SamplingStrategy::poisson: {
+        Rng rng(options.seed, stream(c, interior_poisson));
+        detail::sample_interior_poisson(surface, task, rng, interior_sites);
+        break;
+      }
+      case SamplingStrategy::fps: {
+        Rng rng(options.seed, stream(c, interior_fps));
+        fps->sample(task, rng, interior_sites);
+        break;
+      }
+    }
+  }
+  std::vector<SurfacePoint> result = std::move(boundary_sites);
+  result.insert(result.end(), interior_sites.begin(), interior_sites.end());
+  if (static_cast<std::int64_t>(result.size()) != count) {
+    throw Error("sample_sites: internal error: placed " + std::to_string(result.size()) + " sites instead of " +
+                std::to_string(count));
+  }
+  separate_coincident_sites(mesh, result, options.seed);
+  return result;
+}
+
+SamplingStrategy parse_sampling_strategy(std::string_view name) {
+  if (name == "random") return SamplingStrategy::random;
+  if (name == "poisson") return SamplingStrategy::poisson;
+  if (name == "fps") return SamplingStrategy::fps;
+  throw UsageError("unknown sampling strategy '" + std::string(name) + "': expected random, poisson or fps");
+}
+
+std::string sampling_strategy_name(SamplingStrategy strategy) {
+  switch (strategy) {
+    case SamplingStrategy::random: return "random";
+    case SamplingStrategy::poisson: return "poisson";
+    case SamplingStrategy::fps: return "fps";
+  }
+  throw UsageError("unknown sampling strategy value " + std::to_string(static_cast<int>(strategy)));
+}
+
+}  // namespace geodual::remesh

@@ -1,0 +1,317 @@
+#include "sampling_surface.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace geodual::remesh::detail {
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+bool has_repeated_corner(const TriangleMesh& mesh, Index f) {
+  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+  return a == b || b == c || c == a;
+}
+
+Index find_root(std::vector<Index>& parent, Index v) {
+  while (parent[v] != v) {
+    parent[v] = parent[parent[v]];
+    v = parent[v];
+  }
+  return v;
+}
+
+/// Groups `items` (face indices) by `key` (component) into CSR arrays, keeping
+/// the items' order within a group.
+void group_by_component(const std::vector<Index>& items, const std::vector<Index>& face_component,
+                        Index num_components, std::vector<Index>& begin, std::vector<Index>& grouped) {
+  begin.assign(static_cast<std::size_t>(num_components) + 1, 0);
+  for (const Index f : items) ++begin[face_component[f] + 1];
+  for (Index c = 0; c < num_components; ++c) begin[c + 1] += begin[c];
+  grouped.resize(items.size());
+  std::vector<Index> fill(begin.begin(), begin.end() - 1);
+  for (const Index f : items) grouped[fill[face_component[f]]++] = f;
+}
+
+void find_boundary_loops(SamplingSurface& surface) {
+  const TriangleMesh& mesh = *surface.mesh;
+  // Half-edges of faces with distinct corners, sorted by undirected vertex
+  // pair: a pair used exactly once is a boundary edge (twice: interior; three
+  // or more times: non-manifold, not a boundary).
+  struct HalfEdge {
+    std::uint64_t key;
+    Index face;
+    int corner;
+  };
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(surface.component_faces.size() * 3);
+  for (const Index f : surface.component_faces) {
+    for (int k = 0; k < 3; ++k) {
+      const auto u = static_cast<std::uint64_t>(static_cast<std::uint32_t>(mesh.faces(f, k)));
+      const auto w = static_cast<std::uint64_t>(static_cast<std::uint32_t>(mesh.faces(f, (k + 1) % 3)));
+      half_edges.push_back({std::min(u, w) << 32 | std::max(u, w), f, k});
+    }
+  }
+  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.key != y.key ? x.key < y.key : (x.face != y.face ? x.face < y.face : x.corner < y.corner);
+  });
+  std::vector<HalfEdge> boundary;
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i + 1;
+    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) ++j;
+    if (j - i == 1) boundary.push_back(half_edges[i]);
+    i = j;
+  }
+  half_edges.clear();
+  half_edges.shrink_to_fit();
+  if (boundary.empty()) return;
+
+  // Boundary edges around each vertex (CSR, edges in increasing order).
+  auto from = [&](const HalfEdge& e) { return mesh.faces(e.face, e.corner); };
+  auto to = [&](const HalfEdge& e) { return mesh.faces(e.face, (e.corner + 1) % 3); };
+  const auto num_vertices = static_cast<std::size_t>(mesh.num_vertices());
+  std::vector<Index> begin(num_vertices + 1, 0);
+  for (const HalfEdge& e : boundary) {
+    ++begin[from(e) + 1];
+    ++begin[to(e) + 1];
+  }
+  for (std::size_t v = 0; v < num_vertices; ++v) begin[v + 1] += begin[v];
+  std::vector<Index> incident(static_cast<std::size_t>(begin.back()));
+  {
+    std::vector<Index> fill(begin.begin(), begin.end() - 1);
+    for (Index e = 0; e < static_cast<Index>(boundary.size()); ++e) {
+      incident[fill[from(boundary[e])]++] = e;
+      incident[fill[to(boundary[e])]++] = e;
+    }
+  }
+  std::vector<Index> cursor(begin.begin(), begin.end() - 1);  // first incident edge not yet tried
+  std::vector<std::uint8_t> used(boundary.size(), 0);
+  auto next_unused = [&](Index v) -> Index {
+    while (cursor[v] < begin[v + 1]) {
+      const Index e = incident[cursor[v]];
+      if (!used[e]) return e;
+      ++cursor[v];
+    }
+    return -1;
+  };
+
+  // Walks that use every boundary edge once. Loops of a 2-manifold close;
+  // loops that touch at a pinch vertex may be walked as one figure eight;
+  // on broken meshes (a vertex with an odd number of boundary edges) walks
+  // start at such a vertex and end at another, and are sampled as open
+  // chains.
+  std::vector<Index> walk;
+  auto add_walk = [&]() {
+    BoundaryLoop loop;
+    for (const Index e : walk) {
+      const HalfEdge& h = boundary[e];
+      if (!(surface.face_area[h.face] > 0)) continue;
+      const Index a = mesh.faces(h.face, h.corner), b = mesh.faces(h.face, (h.corner + 1) % 3);
+      const double length = (mesh.vertices.row(b) - mesh.vertices.row(a)).norm();
+      loop.edges.push_back({h.face, h.corner, length});
+      loop.length += length;
+    }
+    if (!loop.edges.empty() && loop.length > 0) {
+      loop.component = surface.face_component[loop.edges.front().face];
+      surface.boundary_loops.push_back(std::move(loop));
+    }
+    walk.clear();
+  };
+  auto walk_from = [&](Index v) {
+    for (Index e = next_unused(v); e >= 0; e = next_unused(v)) {
+      used[e] = 1;
+      walk.push_back(e);
+      v = from(boundary[e]) == v ? to(boundary[e]) : from(boundary[e]);
+    }
+  };
+  for (Index v = 0; v < static_cast<Index>(num_vertices); ++v) {
+    if ((begin[v + 1] - begin[v]) % 2 == 1 && next_unused(v) >= 0) {
+      walk_from(v);
+      add_walk();
+    }
+  }
+  for (Index e = 0; e < static_cast<Index>(boundary.size()); ++e) {
+    if (used[e]) continue;
+    // Start along the edge's own direction, so that closed loops run the way
+    // their faces orient them.
+    used[e] = 1;
+    walk.push_back(e);
+    walk_from(to(boundary[e]));
+    add_walk();
+  }
+  // Loops of components without area are of no use (they get no sites).
+  std::erase_if(surface.boundary_loops,
+                [&](const BoundaryLoop& loop) { return !(surface.component_area[loop.component] > 0); });
+}
+
+}  // namespace
+
+Rng::Rng(std::uint64_t seed, std::uint64_t stream) {
+  std::uint64_t state = seed ^ (stream * 0xd1b54a32d192ed03ULL);
+  for (auto& word : s_) word = splitmix64(state);
+}
+
+std::uint64_t Rng::next() {
+  const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+  const std::uint64_t t = s_[1] << 17;
+  s_[2] ^= s_[0];
+  s_[3] ^= s_[1];
+  s_[1] ^= s_[2];
+  s_[0] ^= s_[3];
+  s_[2] ^= t;
+  s_[3] = rotl(s_[3], 45);
+  return result;
+}
+
+std::uint64_t Rng::lattice_interior() {
+  for (;;) {
+    const std::uint64_t x = next() >> 32;
+    if (x != 0) return x;
+  }
+}
+
+SurfacePoint point_in_face_from_square(Index face, std::uint64_t a, std::uint64_t b) {
+  // Folding the half a + b > 2^32 of the lattice square onto the other
+  // (a, b -> 2^32 - a, 2^32 - b) maps it onto the triangle, two to one and
+  // area-preserving; the diagonal a + b = 2^32 would give a point on an edge.
+  if (a + b == kLattice) b > 1 ? --b : --a;
+  if (a + b > kLattice) {
+    a = kLattice - a;
+    b = kLattice - b;
+  }
+  const std::uint64_t c = kLattice - a - b;
+  return SurfacePoint::in_face(face, static_cast<double>(a) * kLatticeUnit, static_cast<double>(b) * kLatticeUnit,
+                               static_cast<double>(c) * kLatticeUnit);
+}
+
+SurfacePoint random_point_in_face(Index face, Rng& rng) {
+  for (;;) {
+    const std::uint64_t a = rng.lattice_interior();
+    const std::uint64_t b = rng.lattice_interior();
+    if (a + b != kLattice) return point_in_face_from_square(face, a, b);  // else draw again: keeps it uniform
+  }
+}
+
+SurfacePoint point_on_face_edge(Index face, int corner, double t) {
+  constexpr double kMargin = 0x1p-20;
+  t = std::clamp(t, kMargin, 1 - kMargin);
+  const auto along = static_cast<std::uint64_t>(std::llround(t * static_cast<double>(kLattice)));
+  Eigen::Vector3d barycentric;
+  barycentric[corner] = static_cast<double>(kLattice - along) * kLatticeUnit;
+  barycentric[(corner + 1) % 3] = static_cast<double>(along) * kLatticeUnit;
+  barycentric[(corner + 2) % 3] = 0.0;
+  return SurfacePoint::in_face(face, barycentric[0], barycentric[1], barycentric[2]);
+}
+
+Index SamplingSurface::random_face(Index component, Rng& rng) const {
+  const auto first = component_cumulative_area.begin() + component_area_face_begin[component];
+  const auto last = component_cumulative_area.begin() + component_area_face_begin[component + 1];
+  const double total = *(last - 1);
+  const double r = rng.uniform() * total;
+  // First face whose running sum exceeds r; r < total unless rounding says
+  // otherwise, hence the clamp to the last face.
+  auto it = std::upper_bound(first, last, r);
+  if (it == last) --it;
+  return component_area_faces[static_cast<std::size_t>(it - component_cumulative_area.begin())];
+}
+
+void SamplingSurface::stratified_points(Index component, std::int64_t count, Rng& rng,
+                                        std::vector<SurfacePoint>& out) const {
+  // R2 sequence (Roberts 2018): steps 1/g and 1/g^2, g the plastic number.
+  constexpr double kPlastic = 1.32471795724474602596;
+  constexpr double kStep[2] = {1 / kPlastic, 1 / (kPlastic * kPlastic)};
+  auto to_lattice = [](double x) {
+    return std::clamp<std::uint64_t>(static_cast<std::uint64_t>(x * static_cast<double>(kLattice)), 1, kLattice - 1);
+  };
+  const Index begin = component_area_face_begin[component], end = component_area_face_begin[component + 1];
+  const double total = component_cumulative_area[end - 1];
+  const double offset = rng.uniform();
+  Index at = begin;
+  Index current = -1;
+  std::int64_t j = 0;
+  double start[2] = {0, 0};
+  for (std::int64_t i = 0; i < count; ++i) {
+    const double target = (static_cast<double>(i) + offset) * total / static_cast<double>(count);
+    while (at + 1 < end && component_cumulative_area[at] <= target) ++at;
+    if (at != current) {
+      current = at;
+      j = 0;
+      start[0] = rng.uniform();
+      start[1] = rng.uniform();
+    }
+    double x[2];
+    for (int k = 0; k < 2; ++k) {
+      x[k] = start[k] + static_cast<double>(j) * kStep[k];
+      x[k] -= std::floor(x[k]);
+    }
+    ++j;
+    out.push_back(point_in_face_from_square(component_area_faces[at], to_lattice(x[0]), to_lattice(x[1])));
+  }
+}
+
+SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_boundary_loops) {
+  SamplingSurface surface;
+  surface.mesh = &mesh;
+  const Index num_faces = mesh.num_faces();
+  const Index num_vertices = mesh.num_vertices();
+
+  // Components: union-find over the corners of faces with distinct corners.
+  std::vector<Index> parent(static_cast<std::size_t>(num_vertices));
+  std::iota(parent.begin(), parent.end(), Index{0});
+  surface.face_area.assign(static_cast<std::size_t>(num_faces), 0.0);
+  std::vector<Index> proper_faces;
+  for (Index f = 0; f < num_faces; ++f) {
+    if (has_repeated_corner(mesh, f)) continue;
+    proper_faces.push_back(f);
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
+    const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
+    const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
+    surface.face_area[f] = 0.5 * (b - a).cross(c - a).norm();
+    for (int k = 1; k < 3; ++k) {
+      const Index r0 = find_root(parent, mesh.faces(f, 0));
+      const Index r1 = find_root(parent, mesh.faces(f, k));
+      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
+    }
+  }
+  // Components numbered in the order of their first face.
+  std::vector<Index> root_component(static_cast<std::size_t>(num_vertices), -1);
+  surface.face_component.assign(static_cast<std::size_t>(num_faces), -1);
+  for (const Index f : proper_faces) {
+    const Index root = find_root(parent, mesh.faces(f, 0));
+    if (root_component[root] < 0) root_component[root] = surface.num_components++;
+    surface.face_component[f] = root_component[root];
+  }
+  group_by_component(proper_faces, surface.face_component, surface.num_components, surface.component_face_begin,
+                     surface.component_faces);
+
+  std::vector<Index> area_faces;
+  for (const Index f : proper_faces) {
+    if (surface.face_area[f] > 0) area_faces.push_back(f);
+  }
+  group_by_component(area_faces, surface.face_component, surface.num_components, surface.component_area_face_begin,
+                     surface.component_area_faces);
+  surface.component_cumulative_area.resize(surface.component_area_faces.size());
+  surface.component_area.assign(static_cast<std::size_t>(surface.num_components), 0.0);
+  for (Index c = 0; c < surface.num_components; ++c) {
+    double sum = 0;
+    for (Index i = surface.component_area_face_begin[c]; i < surface.component_area_face_begin[c + 1]; ++i) {
+      sum += surface.face_area[surface.component_area_faces[i]];
+      surface.component_cumulative_area[i] = sum;
+    }
+    surface.component_area[c] = sum;
+  }
+  if (with_boundary_loops) find_boundary_loops(surface);
+  return surface;
+}
+
+}  // namespace geodual::remesh::detail
