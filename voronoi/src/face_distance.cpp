@@ -186,9 +186,12 @@ void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
     Eigen::Vector2d inward(-u.y(), u.x());
     if (inward.dot(layout.corner[(k + 2) % 3] - origin) < 0) inward = -inward;
     const double flip = side == 0 ? 1.0 : -1.0;
+    // Windows entering the face through the edge cover the part of the face
+    // beyond the edge; windows leaving through it, the part of the face on
+    // their way to the edge (a path to the edge passes there first). Both
+    // are the edge's own values on the edge itself.
     for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
       const EdgeWindow& w = field.windows[i];
-      if ((w.source_y < 0) != (side == 0)) continue;  // runs out of this face, not into it
       const Eigen::Vector2d source = origin + w.source_x * u + flip * w.source_y * inward;
       envelope.add_wedge(source, w.sigma, w.site, origin + w.b0 * u, origin + w.b1 * u);
     }
@@ -222,6 +225,21 @@ void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
   }
   const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
   const std::array<Index, 2>& faces = field.edge_faces[edge];
+  // Sites (and pseudo-sources seen through zero-area faces) on the edge
+  // itself: the barycentric coordinate of the corner opposite it is zero.
+  const double edge_length = field.edge_length[edge];
+  for (const Index face : faces) {
+    if (face < 0) continue;
+    const auto [first, last] = point_sources_in(field, face);
+    for (const FacePointSource* source = first; source != last; ++source) {
+      for (int c = 0; c < 3; ++c) {
+        const Index a = mesh.faces(face, (c + 1) % 3), b = mesh.faces(face, (c + 2) % 3);
+        if (source->barycentric[c] != 0 || !((a == v0 && b == v1) || (a == v1 && b == v0))) continue;
+        const double from_v0 = a == v0 ? source->barycentric[(c + 2) % 3] : source->barycentric[(c + 1) % 3];
+        envelope.add(Eigen::Vector2d(from_v0 * edge_length, 0), source->sigma, source->site);
+      }
+    }
+  }
   if (faces[0] >= 0 && faces[1] >= 0) {
     // Between two faces the windows cover the edge (MMP's invariant), and
     // paths that bend at an end vertex are the ends' cones.

@@ -1,0 +1,46 @@
+#pragma once
+// The dual of a geodesic Voronoi diagram: one vertex per site at its surface
+// position, one triangle per Voronoi vertex (degree k > 3: a fan of k - 2
+// triangles from its smallest site index), oriented like the input.
+//
+// The dual is a faithful remesh only when the diagram has the closed-ball
+// property: every cell a disk, two cells meeting along at most one arc.
+// dual_delaunay checks the result against the input's topology, per
+// connected component, and says where to add sites when it falls short.
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace geodual::remesh {
+
+/// What is wrong with a dual mesh, and where sites would help.
+struct DualCheck {
+  bool valid = true;
+  /// One line per kind of problem found, for error messages.
+  std::vector<std::string> problems;
+  std::int64_t nonmanifold_edges = 0;     ///< dual edges with three or more triangles, or misoriented pairs
+  std::int64_t nonmanifold_vertices = 0;  ///< sites whose triangles form several fans
+  std::int64_t unused_sites = 0;          ///< sites that are no triangle's corner
+  std::int64_t duplicate_triangles = 0;
+  std::int64_t degenerate_triangles = 0;  ///< zero area
+  std::int64_t split_arcs = 0;            ///< cell pairs meeting along more than one arc
+  std::int64_t closed_arcs = 0;           ///< boundaries with no Voronoi vertex (a cell inside another)
+  std::int64_t topology_mismatches = 0;   ///< components whose Euler characteristic or boundary loops differ
+  /// Points where new sites restore the closed-ball property.
+  std::vector<SurfacePoint> repair_sites;
+};
+
+struct DualMesh {
+  TriangleMesh mesh;  ///< vertex i is site i
+  DualCheck check;
+};
+
+/// Builds the dual triangle mesh of `diagram` (computed on `input`) and checks it.
+DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram);
+
+}  // namespace geodual::remesh

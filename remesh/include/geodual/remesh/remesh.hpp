@@ -1,0 +1,45 @@
+#pragma once
+// Remeshing from sites: the geodesic Voronoi diagram of the sites, its dual,
+// and, where the dual falls short of the input's topology (closed-ball
+// property), sites added where it fails and everything recomputed.
+//
+//   auto sites = geodual::remesh::sample_sites(mesh, 4000);
+//   auto result = geodual::remesh::remesh_from_sites(mesh, sites);
+//   result.mesh  // one vertex per site, oriented like the input
+
+#include "geodual/remesh/dual_delaunay.hpp"
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace geodual::remesh {
+
+struct RemeshOptions {
+  voronoi::VoronoiOptions voronoi;
+  /// Rounds of "add sites where the dual fails, recompute" before giving up
+  /// with a geodual::Error.
+  int max_repair_rounds = 10;
+};
+
+struct RemeshResult {
+  TriangleMesh mesh;                ///< vertex i is sites[i]
+  std::vector<SurfacePoint> sites;  ///< the given sites, then those added by repair
+  voronoi::VoronoiDiagram diagram;  ///< of the final sites
+  DualCheck check;                  ///< of the final dual (valid)
+  std::int64_t sites_added = 0;
+  int repair_rounds = 0;
+  double geodesic_seconds = 0;  ///< all rounds
+  double diagram_seconds = 0;
+  double dual_seconds = 0;
+};
+
+/// Throws geodual::Error if the dual is still not a valid remesh after
+/// options.max_repair_rounds, naming what is wrong; bad sites as
+/// compute_geodesic_field does.
+RemeshResult remesh_from_sites(const TriangleMesh& input, std::vector<SurfacePoint> sites,
+                               const RemeshOptions& options = {});
+
+}  // namespace geodual::remesh

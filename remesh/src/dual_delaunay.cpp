@@ -1,0 +1,294 @@
+#include "geodual/remesh/dual_delaunay.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <map>
+#include <numeric>
+#include <string>
+#include <utility>
+
+namespace geodual::remesh {
+namespace {
+
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(Index n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
+  Index find(Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(Index a, Index b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+/// Euler characteristic and boundary loops of each vertex-connected component
+/// of a triangle soup, keyed by the component's smallest vertex.
+struct ComponentTopology {
+  std::int64_t vertices = 0, edges = 0, faces = 0, boundary_loops = 0;
+  std::int64_t euler() const { return vertices - edges + faces; }
+};
+
+/// Faces with a repeated index are skipped. Boundary loops are the connected
+/// pieces of the graph of edges with one face (loops that touch at a vertex
+/// count once, as in MeshReport).
+std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mesh, UnionFind& components) {
+  const Index n = static_cast<Index>(mesh.vertices.rows());
+  std::vector<std::array<Index, 2>> edges;
+  std::vector<std::uint8_t> used(n, 0);
+  for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a == b || b == c || c == a) continue;
+    components.unite(a, b);
+    components.unite(b, c);
+    used[a] = used[b] = used[c] = 1;
+    for (int k = 0; k < 3; ++k) {
+      const Index u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
+      edges.push_back({std::min(u, v), std::max(u, v)});
+    }
+  }
+  std::map<Index, ComponentTopology> result;
+  for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a == b || b == c || c == a) continue;
+    ++result[components.find(a)].faces;
+  }
+  for (Index v = 0; v < n; ++v) {
+    if (used[v]) ++result[components.find(v)].vertices;
+  }
+  std::sort(edges.begin(), edges.end());
+  UnionFind boundary(n);
+  std::vector<std::uint8_t> on_boundary(n, 0);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    ++result[components.find(edges[i][0])].edges;
+    if (j - i == 1) {
+      boundary.unite(edges[i][0], edges[i][1]);
+      on_boundary[edges[i][0]] = on_boundary[edges[i][1]] = 1;
+    }
+    i = j;
+  }
+  for (Index v = 0; v < n; ++v) {
+    if (on_boundary[v] && boundary.find(v) == v) ++result[components.find(v)].boundary_loops;
+  }
+  return result;
+}
+
+Index vertex_of(const TriangleMesh& mesh, const SurfacePoint& p) {
+  return p.kind == SurfacePoint::Kind::vertex ? p.element : mesh.faces(p.element, 0);
+}
+
+}  // namespace
+
+DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const Index num_sites = static_cast<Index>(field.sites.size());
+  DualMesh dual;
+  DualCheck& check = dual.check;
+
+  // Vertices and triangles.
+  dual.mesh.vertices.resize(num_sites, 3);
+  for (Index s = 0; s < num_sites; ++s) dual.mesh.vertices.row(s) = field.sites[s].position(input).transpose();
+  std::vector<std::array<Index, 3>> triangles;
+  triangles.reserve(diagram.vertices.size());
+  for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
+    const auto sites = diagram.sites_of(vertex);
+    const std::size_t k = sites.size();
+    const std::size_t apex =
+        static_cast<std::size_t>(std::min_element(sites.begin(), sites.end()) - sites.begin());
+    for (std::size_t i = 1; i + 1 < k; ++i) {
+      triangles.push_back({sites[apex], sites[(apex + i) % k], sites[(apex + i + 1) % k]});
+    }
+  }
+  dual.mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) dual.mesh.faces(static_cast<Index>(t), c) = triangles[t][c];
+  }
+
+  // Where to add sites: far from a site, at the vertex of its cell farthest
+  // from it; between two cells, halfway along an arc.
+  std::vector<Index> farthest_vertex(num_sites, -1);
+  for (Index v = 0; v < static_cast<Index>(field.distance.size()); ++v) {
+    const Index s = field.nearest_site[v];
+    if (s < 0) continue;
+    if (farthest_vertex[s] < 0 || field.distance[v] > field.distance[farthest_vertex[s]]) farthest_vertex[s] = v;
+  }
+  auto repair_far_from = [&](Index site) {
+    if (site >= 0 && farthest_vertex[site] >= 0 && field.distance[farthest_vertex[site]] > 0) {
+      check.repair_sites.push_back(SurfacePoint::at_vertex(farthest_vertex[site]));
+    }
+  };
+  auto repair_on_arc = [&](const voronoi::VoronoiArc& arc) {
+    check.repair_sites.push_back(diagram.point_locations[(arc.point_begin + arc.point_end) / 2]);
+  };
+
+  // Triangles: degenerate, duplicated; edges: at most two triangles, opposite.
+  const double diagonal = input.vertices.rows() > 0
+                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
+                              : 0.0;
+  std::vector<std::array<Index, 3>> sorted = triangles;
+  for (auto& t : sorted) std::sort(t.begin(), t.end());
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i) {
+    if (sorted[i] == sorted[i - 1]) {
+      ++check.duplicate_triangles;
+      repair_far_from(sorted[i][0]);
+    }
+  }
+  std::map<std::pair<Index, Index>, std::array<int, 2>> edge_uses;  // (min, max) -> uses along, against
+  for (const auto& t : triangles) {
+    const Eigen::Vector3d a = dual.mesh.vertices.row(t[0]), b = dual.mesh.vertices.row(t[1]),
+                          c = dual.mesh.vertices.row(t[2]);
+    if (!((b - a).cross(c - a).norm() > 1e-14 * diagonal * diagonal)) {
+      ++check.degenerate_triangles;
+      repair_far_from(t[0]);
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Index u = t[k], v = t[(k + 1) % 3];
+      ++edge_uses[{std::min(u, v), std::max(u, v)}][u < v ? 0 : 1];
+    }
+  }
+  for (const auto& [edge, uses] : edge_uses) {
+    if (uses[0] + uses[1] > 2 || uses[0] > 1 || uses[1] > 1) {
+      ++check.nonmanifold_edges;
+      repair_far_from(edge.first);
+      repair_far_from(edge.second);
+    }
+  }
+
+  // Vertices: each site a corner, its triangles one fan (joined through
+  // shared edges).
+  std::vector<std::vector<Index>> site_triangles(num_sites);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (const Index s : triangles[t]) site_triangles[s].push_back(static_cast<Index>(t));
+  }
+  for (Index s = 0; s < num_sites; ++s) {
+    const auto& around = site_triangles[s];
+    if (around.empty()) {
+      ++check.unused_sites;
+      repair_far_from(s);
+      continue;
+    }
+    // Fans: triangles around s joined when they share an edge s-x.
+    std::map<Index, std::vector<std::size_t>> by_neighbour;
+    for (std::size_t i = 0; i < around.size(); ++i) {
+      for (const Index x : triangles[around[i]]) {
+        if (x != s) by_neighbour[x].push_back(i);
+      }
+    }
+    UnionFind fans(static_cast<Index>(around.size()));
+    for (const auto& [x, list] : by_neighbour) {
+      for (std::size_t i = 1; i < list.size(); ++i) fans.unite(static_cast<Index>(list[0]), static_cast<Index>(list[i]));
+    }
+    int count = 0;
+    for (std::size_t i = 0; i < around.size(); ++i) count += fans.find(static_cast<Index>(i)) == static_cast<Index>(i);
+    if (count > 1) {
+      ++check.nonmanifold_vertices;
+      repair_far_from(s);
+    }
+  }
+
+  // Arcs: two cells along one arc, every boundary ending at vertices.
+  for (const voronoi::CellAdjacency& pair : diagram.adjacency) {
+    if (pair.arc_count <= 1) continue;
+    ++check.split_arcs;
+    for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+      const Index a = std::min(arc.left_site, arc.right_site), b = std::max(arc.left_site, arc.right_site);
+      if (a == pair.site_a && b == pair.site_b) repair_on_arc(arc);
+    }
+  }
+  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+    if (arc.closed) {
+      ++check.closed_arcs;
+      repair_on_arc(arc);
+    }
+  }
+
+  // Topology per component: the input's (faces with a repeated index aside)
+  // against the dual's, matched through the sites.
+  UnionFind input_components(static_cast<Index>(input.vertices.rows()));
+  const auto input_topology = topology_by_component(input, input_components);
+  UnionFind dual_components(num_sites);
+  const auto dual_topology = topology_by_component(dual.mesh, dual_components);
+  std::map<Index, std::vector<Index>> sites_by_component;
+  for (Index s = 0; s < num_sites; ++s) {
+    sites_by_component[input_components.find(vertex_of(input, field.sites[s]))].push_back(s);
+  }
+  for (const auto& [component, sites] : sites_by_component) {
+    const Index dual_root = dual_components.find(sites[0]);
+    bool same = std::all_of(sites.begin(), sites.end(), [&](Index s) { return dual_components.find(s) == dual_root; });
+    const auto dual_it = dual_topology.find(dual_root);
+    const ComponentTopology& expected = input_topology.at(component);
+    same = same && dual_it != dual_topology.end() && dual_it->second.euler() == expected.euler() &&
+           dual_it->second.boundary_loops == expected.boundary_loops;
+    if (same) continue;
+    ++check.topology_mismatches;
+    // Local problems explain most mismatches; without any, refine where
+    // cells are largest (a handle or hole inside one): their farthest vertices.
+    if (!check.repair_sites.empty()) continue;
+    std::vector<std::pair<double, Index>> by_area;
+    for (const Index s : sites) by_area.emplace_back(-diagram.cell_area[s], s);
+    std::sort(by_area.begin(), by_area.end());
+    const std::size_t count = std::max<std::size_t>(1, sites.size() / 20);
+    for (std::size_t i = 0; i < count && i < by_area.size(); ++i) repair_far_from(by_area[i].second);
+  }
+
+  // Repair sites: apart from each other and from the sites (the engine
+  // rejects two sites at one point; points 1e-9 of the diagonal apart are
+  // one point here).
+  const double spacing = std::max(1e-9 * diagonal, 1e-300);
+  std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
+  auto cell_of = [&](const Eigen::Vector3d& x) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / spacing)),
+                                       static_cast<std::int64_t>(std::floor(x.y() / spacing)),
+                                       static_cast<std::int64_t>(std::floor(x.z() / spacing))};
+  };
+  auto taken = [&](const Eigen::Vector3d& x) {
+    const auto cell = cell_of(x);
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (it == grid.end()) continue;
+          for (const Eigen::Vector3d& y : it->second) {
+            if ((x - y).norm() <= spacing) return true;
+          }
+        }
+      }
+    }
+    return false;
+  };
+  for (const SurfacePoint& site : field.sites) {
+    const Eigen::Vector3d x = site.position(input);
+    grid[cell_of(x)].push_back(x);
+  }
+  std::vector<SurfacePoint> repairs;
+  for (const SurfacePoint& p : check.repair_sites) {
+    const Eigen::Vector3d x = p.position(input);
+    if (taken(x)) continue;
+    grid[cell_of(x)].push_back(x);
+    repairs.push_back(p);
+  }
+  check.repair_sites = std::move(repairs);
+
+  auto note = [&](std::int64_t count, const std::string& what) {
+    if (count > 0) check.problems.push_back(std::to_string(count) + " " + what);
+  };
+  note(check.nonmanifold_edges, "non-manifold or misoriented dual edges");
+  note(check.nonmanifold_vertices, "sites whose triangles form several fans");
+  note(check.unused_sites, "sites with no Voronoi vertex");
+  note(check.duplicate_triangles, "duplicate triangles");
+  note(check.degenerate_triangles, "zero-area triangles");
+  note(check.split_arcs, "cell pairs meeting along several arcs");
+  note(check.closed_arcs, "cells enclosed by another");
+  note(check.topology_mismatches, "components whose Euler characteristic or boundary loops differ from the input's");
+  check.valid = check.problems.empty();
+  return dual;
+}
+
+}  // namespace geodual::remesh
