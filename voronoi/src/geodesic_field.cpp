@@ -117,8 +117,7 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   field.windows.reserve(static_cast<std::size_t>(store.live()));
   for (Index e = 0; e < pm.num_edges(); ++e) {
     field.window_begin[e] = static_cast<Index>(field.windows.size());
-    for (Index id = store.head(e); id != -1; id = store[id].next) {
-      const detail::Window& w = store[id];
+    for (const detail::Window& w : store.on_edge(e)) {
       field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, w.sigma, w.site});
     }
   }

@@ -4,7 +4,8 @@
 // through one sequence of faces. Coordinates are in the canonical frame of
 // the edge (see PropagationMesh): the edge lies on the x axis from 0 to its
 // length. A source below the axis (y < 0) sends the window into face [0] of
-// the edge, a source above it into face [1].
+// the edge, a source above it into face [1]. The edge itself is implied by
+// where the window is stored (WindowStore keeps one sorted array per edge).
 
 #include "geodual/triangle_mesh.hpp"
 
@@ -19,8 +20,8 @@ struct Window {
   double source_x = 0, source_y = 0;
   double sigma = 0;
   Index site = -1;
-  Index edge = -1;
-  Index next = -1;  ///< next window along the same edge, -1 at the end
+  /// Waiting in the FIFO to be propagated into the face it enters.
+  std::uint8_t queued = 0;
 
   /// Distance at abscissa x of the edge through this window.
   double distance_at(double x) const {
@@ -37,5 +38,7 @@ struct Window {
   /// The side of the edge whose face the window enters: 0 or 1.
   int entering_side() const { return source_y < 0 ? 0 : 1; }
 };
+
+static_assert(sizeof(Window) == 48, "windows are packed in per-edge arrays; keep them small");
 
 }  // namespace geodual::voronoi::detail

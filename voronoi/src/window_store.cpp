@@ -1,8 +1,13 @@
 #include "window_store.hpp"
 
+#include "geodual/error.hpp"
+
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace geodual::voronoi::detail {
 namespace {
@@ -87,52 +92,55 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
 
 }  // namespace
 
-Index WindowStore::allocate(const Window& w) {
-  Index id;
-  if (!free_.empty()) {
-    id = free_.back();
-    free_.pop_back();
-    pool_[id] = w;
-    queued_[id] = 0;
-  } else if (!free_lists_.empty()) {
-    // Take the first window of a cleared edge's list; its successor heads
-    // the rest. The slot is about to be written anyway, so following the
-    // list here costs nothing extra.
-    id = free_lists_.back();
-    const Index next = pool_[id].next;
-    if (next == -1) {
-      free_lists_.pop_back();
-    } else {
-      free_lists_.back() = next;
-    }
-    pool_[id] = w;
-    queued_[id] = 0;
-  } else {
-    id = static_cast<Index>(pool_.size());
-    pool_.push_back(w);
-    queued_.push_back(0);
+std::uint32_t WindowStore::allocate_block(std::uint32_t capacity) {
+  std::vector<std::uint32_t>& free = free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))];
+  if (!free.empty()) {
+    const std::uint32_t begin = free.back();
+    free.pop_back();
+    return begin;
   }
-  ++edge_count_[w.edge];
-  peak_ = std::max(peak_, ++live_);
-  return id;
+  const std::size_t begin = arena_.size();
+  if (begin + capacity > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("geodesic propagation needs more than 2^32 windows at once");
+  }
+  arena_.resize(begin + capacity);
+  return static_cast<std::uint32_t>(begin);
 }
 
-void WindowStore::release(Index id) {
-  queued_[id] = 0;
-  free_.push_back(id);
-  --edge_count_[pool_[id].edge];
-  --live_;
+void WindowStore::free_block(std::uint32_t begin, std::uint32_t capacity) {
+  if (capacity > 0) free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))].push_back(begin);
 }
 
 void WindowStore::clear_edge(Index edge) {
-  // The whole list becomes free at once, without walking it: allocate()
-  // takes its windows one by one. None of them is queued (RWR clears only
-  // edges of inactive faces, after the FIFO has run dry).
-  if (head_[edge] != -1) free_lists_.push_back(head_[edge]);
-  live_ -= edge_count_[edge];
-  edge_count_[edge] = 0;
-  head_[edge] = -1;
+  Slot& slot = slots_[edge];
+  live_ -= slot.count;
+  free_block(slot.begin, slot.capacity);
+  slot = Slot{};
   edge_site_[edge] = kNoSite;
+}
+
+Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added) {
+  Slot& slot = slots_[edge];
+  const std::uint32_t count = slot.count - removed + added;
+  const std::uint32_t tail = slot.count - at - removed;
+  if (count <= slot.capacity) {
+    Window* w = arena_.data() + slot.begin;
+    if (added != removed && tail > 0) std::memmove(w + at + added, w + at + removed, tail * sizeof(Window));
+  } else {
+    const std::uint32_t capacity = std::max<std::uint32_t>(2, std::bit_ceil(count));
+    const std::uint32_t begin = allocate_block(capacity);  // may move the arena
+    Window* from = arena_.data() + slot.begin;
+    Window* to = arena_.data() + begin;
+    std::copy(from, from + at, to);
+    std::copy(from + at + removed, from + at + removed + tail, to + at + added);
+    free_block(slot.begin, slot.capacity);
+    slot.begin = begin;
+    slot.capacity = capacity;
+  }
+  live_ += static_cast<std::int64_t>(count) - slot.count;
+  peak_ = std::max(peak_, live_);
+  slot.count = count;
+  return arena_.data() + slot.begin;
 }
 
 void WindowStore::push_segment(double lo, double hi, int owner) {
@@ -144,8 +152,7 @@ void WindowStore::push_segment(double lo, double hi, int owner) {
   segments_.push_back({lo, hi, owner});
 }
 
-void WindowStore::split_overlap(const Window& candidate, int k, double lo, double hi) {
-  const Window& existing = pool_[overlaps_[k]];
+void WindowStore::split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi) {
   const double f_lo = difference(candidate, existing, lo);
   const double f_hi = difference(candidate, existing, hi);
   // Each distance changes by at most |dx| along the edge, so the difference
@@ -172,33 +179,27 @@ void WindowStore::split_overlap(const Window& candidate, int k, double lo, doubl
   }
 }
 
-void WindowStore::insert(const Window& candidate, double edge_length, std::vector<Index>& created) {
+void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Index>& created) {
   min_length_ = 1e-12 * edge_length;
-  const Index edge = candidate.edge;
   Index& site_summary = edge_site_[edge];
   if (site_summary == kNoSite) {
     site_summary = candidate.site;
   } else if (site_summary != candidate.site) {
     site_summary = kMixedSites;
   }
-  Index prev = -1;
-  Index cur = head_[edge];
-  while (cur != -1 && pool_[cur].b1 <= candidate.b0) {
-    prev = cur;
-    cur = pool_[cur].next;
-  }
-  overlaps_.clear();
-  Index after = cur;
-  while (after != -1 && pool_[after].b0 < candidate.b1) {
-    overlaps_.push_back(after);
-    after = pool_[after].next;
-  }
+  const std::span<const Window> windows = on_edge(edge);
+  const auto n = static_cast<std::uint32_t>(windows.size());
+  // The windows overlapping the candidate: [first, last).
+  std::uint32_t first = 0;
+  while (first < n && windows[first].b1 <= candidate.b0) ++first;
+  std::uint32_t last = first;
+  while (last < n && windows[last].b0 < candidate.b1) ++last;
 
-  if (overlaps_.empty()) {
-    Index id = allocate(candidate);
-    pool_[id].next = after;
-    (prev == -1 ? head_[edge] : pool_[prev].next) = id;
-    created.push_back(id);
+  if (first == last) {
+    Window* w = splice(edge, first, 0, 1);
+    w[first] = candidate;
+    w[first].queued = 0;
+    created.push_back(static_cast<Index>(first));
     return;
   }
 
@@ -206,8 +207,9 @@ void WindowStore::insert(const Window& candidate, double edge_length, std::vecto
   // windows, as segments in increasing x.
   segments_.clear();
   double x = candidate.b0;
-  for (int k = 0; k < static_cast<int>(overlaps_.size()); ++k) {
-    const Window& existing = pool_[overlaps_[k]];
+  for (std::uint32_t i = first; i < last; ++i) {
+    const Window& existing = windows[i];
+    const int k = static_cast<int>(i - first);
     if (existing.b0 < x) {
       push_segment(existing.b0, x, k);  // only the first can start before the candidate
     } else if (existing.b0 > x) {
@@ -215,53 +217,27 @@ void WindowStore::insert(const Window& candidate, double edge_length, std::vecto
     }
     const double lo = std::max(existing.b0, x);
     const double hi = std::min(existing.b1, candidate.b1);
-    if (hi > lo) split_overlap(candidate, k, lo, hi);
+    if (hi > lo) split_overlap(candidate, existing, k, lo, hi);
     if (existing.b1 > candidate.b1) push_segment(candidate.b1, existing.b1, k);
     x = std::max(x, hi);
   }
   if (x < candidate.b1) push_segment(x, candidate.b1, -1);
 
-  // Rebuild the list between prev and after. Each existing window keeps its id
-  // for its first piece (so a queued entry still finds it); further pieces and
-  // the candidate's pieces get new ids.
-  Index link = prev;
-  auto append = [&](Index id) {
-    (link == -1 ? head_[edge] : pool_[link].next) = id;
-    link = id;
-  };
-  constexpr std::uint8_t kUnused = 0, kUsed = 1;
-  std::vector<std::uint8_t>& used = used_;  // which existing windows kept a piece
-  used.assign(overlaps_.size(), kUnused);
+  // The pieces replace the overlapped windows; pieces of an existing window
+  // keep its data, including whether it waits to be propagated.
+  replacement_.clear();
   for (const Segment& s : segments_) {
+    Window piece = s.owner < 0 ? candidate : windows[first + static_cast<std::uint32_t>(s.owner)];
+    piece.b0 = s.lo;
+    piece.b1 = s.hi;
     if (s.owner < 0) {
-      Window piece = candidate;
-      piece.b0 = s.lo;
-      piece.b1 = s.hi;
-      const Index id = allocate(piece);
-      created.push_back(id);
-      append(id);
-      continue;
+      piece.queued = 0;
+      created.push_back(static_cast<Index>(first + replacement_.size()));
     }
-    const Index original = overlaps_[s.owner];
-    if (used[s.owner] == kUnused) {
-      used[s.owner] = kUsed;
-      pool_[original].b0 = s.lo;
-      pool_[original].b1 = s.hi;
-      append(original);
-    } else {
-      Window piece = pool_[original];
-      piece.b0 = s.lo;
-      piece.b1 = s.hi;
-      const bool was_queued = queued_[original] != 0;
-      const Index id = allocate(piece);
-      if (was_queued) created.push_back(id);
-      append(id);
-    }
+    replacement_.push_back(piece);
   }
-  (link == -1 ? head_[edge] : pool_[link].next) = after;
-  for (std::size_t k = 0; k < overlaps_.size(); ++k) {
-    if (used[k] == kUnused) release(overlaps_[k]);
-  }
+  Window* w = splice(edge, first, last - first, static_cast<std::uint32_t>(replacement_.size()));
+  std::copy(replacement_.begin(), replacement_.end(), w + first);
 }
 
 }  // namespace geodual::voronoi::detail

@@ -2,6 +2,7 @@
 
 #include "geodual/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -27,8 +28,10 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       emitted_at_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
       popped_(static_cast<std::size_t>(mesh.num_vertices()), 0),
       face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
-      store_(mesh.num_edges()) {
-  window_limit_ = static_cast<std::int64_t>(options.window_memory_limit_bytes / (sizeof(Window) + 1));
+      store_(mesh.num_edges()),
+      in_fifo_(static_cast<std::size_t>(mesh.num_edges()), 0) {
+  window_bytes_limit_ = static_cast<std::int64_t>(
+      std::min<std::size_t>(options.window_memory_limit_bytes, std::numeric_limits<std::int64_t>::max()));
 }
 
 // ---------------------------------------------------------------- seeding --
@@ -109,7 +112,7 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
-    submit({0.0, pm_.edge_length[e], s.x(), s.y(), sigma, site, e, -1});
+    submit(e, {0.0, pm_.edge_length[e], s.x(), s.y(), sigma, site, 0});
   }
 }
 
@@ -131,14 +134,13 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, f), l.apex);
-    submit({0.0, l.length, s.x(), s.y(), sigma, site, e, -1});
+    submit(e, {0.0, l.length, s.x(), s.y(), sigma, site, 0});
   }
 }
 
 // ------------------------------------------------------------ propagation --
 
-void WindowVtp::submit(Window w) {
-  const Index e = w.edge;
+void WindowVtp::submit(Index e, const Window& w) {
   const double length = pm_.edge_length[e];
   const Index v0 = pm_.edge_vertices[e][0], v1 = pm_.edge_vertices[e][1];
   if (!(w.b1 > w.b0)) return;
@@ -155,41 +157,46 @@ void WindowVtp::submit(Window w) {
   if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0)) return;
 
   created_.clear();
-  store_.insert(w, length, created_);
+  store_.insert(e, w, length, created_);
   stats_.windows_created += static_cast<std::int64_t>(created_.size());
-  if (store_.live() > window_limit_) {
+  if (store_.bytes() > window_bytes_limit_) {
     throw Error("geodesic propagation needs more than the window memory limit of " +
                 std::to_string(options_.window_memory_limit_bytes >> 20) +
                 " MiB; raise the limit, use fewer sites, or keep redundant window removal on");
   }
-  for (const Index id : created_) {
-    const Window& piece = store_[id];
+  peak_window_bytes_ = std::max(peak_window_bytes_, store_.bytes());
+  const std::span<Window> windows = store_.on_edge(e);
+  for (const Index i : created_) {
+    const Window& piece = windows[i];
     if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0), piece.site);
     if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length), piece.site);
-    schedule(id);
+    schedule(e, windows[i]);
   }
 }
 
-void WindowVtp::schedule(Index id) {
-  const Window& w = store_[id];
-  const Index face = pm_.edge_faces[w.edge][w.entering_side()];
+void WindowVtp::schedule(Index e, Window& w) {
+  const Index face = pm_.edge_faces[e][w.entering_side()];
   if (face < 0) return;
   if (face_flags_[face] & kTraversed) {
-    if (!store_.queued(id)) {
-      store_.set_queued(id, true);
-      fifo_.push_back(id);
+    if (!w.queued) {
+      w.queued = 1;
+      enqueue_edge(e);
     }
     return;
   }
   // A wavefront window: its edge's end points wait in the vertex queue.
   const double key = w.min_distance();
-  push_expand(pm_.edge_vertices[w.edge][0], key);
-  push_expand(pm_.edge_vertices[w.edge][1], key);
+  push_expand(pm_.edge_vertices[e][0], key);
+  push_expand(pm_.edge_vertices[e][1], key);
 }
 
-void WindowVtp::propagate(Index id) {
-  const Window w = store_[id];  // a copy: submit() may grow the pool
-  const Index e = w.edge;
+void WindowVtp::enqueue_edge(Index e) {
+  if (in_fifo_[e]) return;
+  in_fifo_[e] = 1;
+  fifo_.push_back(e);
+}
+
+void WindowVtp::propagate(Index e, const Window& w) {
   const int side = w.entering_side();
   const Index g = pm_.edge_faces[e][side];
   if (g < 0) return;
@@ -238,18 +245,27 @@ void WindowVtp::propagate(Index id) {
     const int side_j = pm_.side_of(ej, g);
     const Eigen::Vector2d src = face_frame_to_edge_frame(pm_, ej, side_j, source_local);
     const bool flip_j = side_j == 1 && pm_.edge_reversed_in_face1[ej];
-    submit({flip_j ? len - hi : lo, flip_j ? len - lo : hi, src.x(), src.y(), w.sigma, w.site, ej, -1});
+    submit(ej, {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src.x(), src.y(), w.sigma, w.site, 0});
   };
   if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
   if (x_c < b1) emit_child((k + 1) % 3, b, c, std::max(b0, x_c), b1);
 }
 
 void WindowVtp::drain_fifo() {
+  // Edges with windows waiting to be propagated; each pass takes all of an
+  // edge's waiting windows. Propagation only adds windows to other edges
+  // (the entered face's two others), so the edge's array keeps its order,
+  // though the arena may move: windows are addressed by position.
   while (fifo_head_ < fifo_.size()) {
-    const Index id = fifo_[fifo_head_++];
-    if (!store_.queued(id)) continue;  // freed, or a second entry
-    store_.set_queued(id, false);
-    propagate(id);
+    const Index e = fifo_[fifo_head_++];
+    in_fifo_[e] = 0;
+    const std::size_t count = store_.on_edge(e).size();
+    for (std::size_t i = 0; i < count; ++i) {
+      Window& w = store_.on_edge(e)[i];
+      if (!w.queued) continue;
+      w.queued = 0;
+      propagate(e, Window(w));  // a copy: propagation may move the arena
+    }
   }
   fifo_.clear();
   fifo_head_ = 0;
@@ -271,12 +287,14 @@ void WindowVtp::expand(Index v) {
     for (int k = 0; k < 3; ++k) {
       const Index e = pm_.face_edges[f][k];
       const int side = pm_.side_of(e, f);
-      for (Index id = store_.head(e); id != -1; id = store_[id].next) {
-        if (store_[id].entering_side() == side && !store_.queued(id)) {
-          store_.set_queued(id, true);
-          fifo_.push_back(id);
+      bool any = false;
+      for (Window& w : store_.on_edge(e)) {
+        if (w.entering_side() == side && !w.queued) {
+          w.queued = 1;
+          any = true;
         }
       }
+      if (any) enqueue_edge(e);
     }
   }
   drain_fifo();
@@ -355,8 +373,8 @@ bool WindowVtp::face_is_redundant(Index face) const {
     const Index summary = store_.edge_site(e);
     if (summary == site || summary == WindowStore::kNoSite) continue;
     if (summary != WindowStore::kMixedSites) return false;
-    for (Index id = store_.head(e); id != -1; id = store_[id].next) {
-      if (store_[id].site != site) return false;
+    for (const Window& w : store_.on_edge(e)) {
+      if (w.site != site) return false;
     }
   }
   return true;
@@ -414,7 +432,7 @@ void WindowVtp::run() {
   if (options_.progress && !options_.progress(1.0)) throw Cancelled("geodesic computation cancelled");
   stats_.windows_stored = store_.live();
   stats_.peak_windows = store_.peak();
-  stats_.peak_window_bytes = store_.peak() * static_cast<std::int64_t>(sizeof(Window) + 1);
+  stats_.peak_window_bytes = peak_window_bytes_;
 }
 
 std::vector<bool> WindowVtp::valid_faces() const {

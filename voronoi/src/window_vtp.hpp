@@ -74,9 +74,15 @@ class WindowVtp {
   /// Pseudo-source (or vertex site) v: windows on the edges opposite v.
   void emit_from_vertex(Index v, double sigma, Index site);
 
-  void submit(Window window);
-  void schedule(Index id);
-  void propagate(Index id);
+  /// Inserts a window on edge e; its surviving pieces relax the edge's end
+  /// points and are scheduled.
+  void submit(Index e, const Window& window);
+  /// A window on e goes into the FIFO if the face it enters is traversed;
+  /// otherwise it is on the wavefront and its edge's end points wait in the
+  /// vertex queue.
+  void schedule(Index e, Window& window);
+  void enqueue_edge(Index e);
+  void propagate(Index e, const Window& window);
   void drain_fifo();
   void expand(Index v);
   void relax(Index v, double d, Index site);
@@ -103,11 +109,13 @@ class WindowVtp {
   WindowStore store_;
   std::priority_queue<Event, std::vector<Event>, std::greater<>> events_;
   std::priority_queue<FaceEvent, std::vector<FaceEvent>, std::greater<>> face_events_;
-  std::vector<Index> fifo_;
+  std::vector<Index> fifo_;            // edges with queued windows
+  std::vector<std::uint8_t> in_fifo_;  // per edge
   std::size_t fifo_head_ = 0;
   std::vector<Index> created_;     // scratch for WindowStore::insert
   std::vector<Index> new_faces_;   // scratch for expand
-  std::int64_t window_limit_ = 0;  // windows allowed at once
+  std::int64_t window_bytes_limit_ = 0;
+  std::int64_t peak_window_bytes_ = 0;
   std::int64_t steps_ = 0;
   std::vector<FacePointSource> point_sources_;
 };
