@@ -17,6 +17,21 @@ double twice_area_from_lengths(double a, double b, double c) {
   return product > 0 ? 0.5 * std::sqrt(product) : 0.0;
 }
 
+/// Lays out a face with edge lengths `lengths` for its edge k.
+EdgeLayout compute_layout(const std::array<double, 3>& lengths, int k) {
+  const double length = lengths[k];
+  const double next = lengths[(k + 1) % 3];  // corners k+1, k+2
+  const double prev = lengths[(k + 2) % 3];  // corners k+2, k
+  EdgeLayout l;
+  l.length = length;
+  if (length <= 0) return l;
+  // Law of cosines for the apex's x; its height from the stable area, which
+  // keeps needles and slivers accurate.
+  l.apex.x() = (length * length + prev * prev - next * next) / (2 * length);
+  l.apex.y() = twice_area_from_lengths(length, next, prev) / length;
+  return l;
+}
+
 /// Interior angle at each corner of a face, from its planar layout.
 std::array<double, 3> corner_angles(const PropagationMesh& pm, Index face) {
   const EdgeLayout l = pm.layout(face, 0);
@@ -53,21 +68,6 @@ Index fan_size(const PropagationMesh& pm, Index v, Index start) {
 }
 
 }  // namespace
-
-EdgeLayout PropagationMesh::layout(Index face, int k) const {
-  const std::array<double, 3>& lengths = face_edge_lengths[face];
-  const double length = lengths[k];
-  const double next = lengths[(k + 1) % 3];  // corners k+1, k+2
-  const double prev = lengths[(k + 2) % 3];  // corners k+2, k
-  EdgeLayout l;
-  l.length = length;
-  if (length <= 0) return l;
-  // Law of cosines for the apex's x; its height from the stable area, which
-  // keeps needles and slivers accurate.
-  l.apex.x() = (length * length + prev * prev - next * next) / (2 * length);
-  l.apex.y() = twice_area_from_lengths(length, next, prev) / length;
-  return l;
-}
 
 PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   PropagationMesh pm;
@@ -130,10 +130,12 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   half_edges.clear();
   half_edges.shrink_to_fit();
 
-  pm.face_edge_lengths.assign(num_faces, {0.0, 0.0, 0.0});
+  pm.face_layouts.assign(num_faces, {});
   for (Index f = 0; f < num_faces; ++f) {
     if (!pm.included(f)) continue;
-    for (int k = 0; k < 3; ++k) pm.face_edge_lengths[f][k] = pm.edge_length[pm.face_edges[f][k]];
+    std::array<double, 3> lengths{};
+    for (int k = 0; k < 3; ++k) lengths[k] = pm.edge_length[pm.face_edges[f][k]];
+    for (int k = 0; k < 3; ++k) pm.face_layouts[f][k] = compute_layout(lengths, k);
   }
 
   // Vertex -> faces, by counting sort (faces in increasing order).

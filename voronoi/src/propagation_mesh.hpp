@@ -38,9 +38,9 @@ struct PropagationMesh {
   /// orientation); false where it runs v0 -> v1 like face [0].
   std::vector<std::uint8_t> edge_reversed_in_face1;
   std::vector<double> edge_length;
-  /// Per face, the lengths of its edges 0, 1, 2 (a copy kept next to each
-  /// other: laying a face out is the innermost step of propagation).
-  std::vector<std::array<double, 3>> face_edge_lengths;
+  /// Per face, its layout for each of its edges 0, 1, 2 (see EdgeLayout),
+  /// computed once: laying a face out is the innermost step of propagation.
+  std::vector<std::array<EdgeLayout, 3>> face_layouts;
 
   /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
   std::vector<Index> vertex_face_begin;
@@ -61,8 +61,8 @@ struct PropagationMesh {
 
   Index vertex(Index face, int corner) const { return mesh->faces(face, corner); }
 
-  /// Lays out face `face` for its local edge `k` using intrinsic edge lengths.
-  EdgeLayout layout(Index face, int k) const;
+  /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
+  const EdgeLayout& layout(Index face, int k) const { return face_layouts[face][k]; }
   /// Which side of edge e face `face` is on: 0 or 1.
   int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }
 };
