@@ -115,6 +115,7 @@ std::span<const EdgeCrossing> FaceBoundaryTracer::edge_crossings(Index edge) {
       previous_site = site;
       previous_x = x;
     }
+    drop_zero_width_stretches();
     for (const SiteChange& change : changes_) {
       EdgeCrossing crossing;
       crossing.x = std::clamp(change.t * length, 0.0, length);
@@ -155,6 +156,23 @@ Eigen::Vector2d FaceBoundaryTracer::bisector_on_segment(const ConeEnvelope& enve
     (negative == negative_at_a ? lo : hi) = mid;
   }
   return a + 0.5 * (lo + hi) * (b - a);
+}
+
+void FaceBoundaryTracer::drop_zero_width_stretches() {
+  // Where two sites tie along a stretch (a bisector running through mesh
+  // vertices or along an edge), rounding can flip the nearest site back and
+  // forth at one point: A -> B -> A with nothing between is no boundary.
+  constexpr double zero_width = 1e-9;  // of the segment
+  for (std::size_t i = 0; i + 1 < changes_.size();) {
+    const SiteChange& a = changes_[i];
+    const SiteChange& b = changes_[i + 1];
+    if (a.from == b.to && b.t - a.t < zero_width) {
+      changes_.erase(changes_.begin() + static_cast<std::ptrdiff_t>(i), changes_.begin() + static_cast<std::ptrdiff_t>(i + 2));
+      i = i > 0 ? i - 1 : 0;
+    } else {
+      ++i;
+    }
+  }
 }
 
 void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p,
@@ -629,6 +647,7 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
     previous_site = site;
     previous_t = t;
   }
+  drop_zero_width_stretches();
   for (const SiteChange& change : changes_) {
     const Eigen::Vector2d crossing = start + change.t * (end - start);
     crossings_.push_back(

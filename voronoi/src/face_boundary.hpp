@@ -121,6 +121,8 @@ class FaceBoundaryTracer {
   /// for t from t0 (where site0 is nearest) to t1 (site1), in order.
   void find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double t0,
                          double t1, Index site0, Index site1);
+  /// Removes from changes_ the pairs A -> B -> A that enclose no length.
+  void drop_zero_width_stretches();
   /// The point on segment [a, b] where sites `from` and `to` are equally far.
   Eigen::Vector2d bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
                                       const Eigen::Vector2d& b, Index from, Index to) const;

@@ -1,0 +1,128 @@
+// remesh_from_sites end to end: the dual is a 2-manifold with the input's
+// topology, per component, on analytic surfaces and real scans.
+
+#include "remesh/analytic_surfaces.hpp"
+
+#include "geodual/error.hpp"
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh_report.hpp"
+#include "geodual/remesh/dual_delaunay.hpp"
+#include "geodual/remesh/remesh.hpp"
+#include "geodual/remesh/sample_sites.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace geodual {
+namespace {
+
+void expect_faithful_remesh(const TriangleMesh& input, std::int64_t count, const std::string& label) {
+  SCOPED_TRACE(label + ", " + std::to_string(count) + " sites");
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(input, count);
+  const remesh::RemeshResult result = remesh::remesh_from_sites(input, sites);
+  const MeshReport in = analyze_mesh(input);
+  const MeshReport out = analyze_mesh(result.mesh);
+
+  // Every site is a vertex, the given ones first.
+  ASSERT_EQ(result.mesh.vertices.rows(), static_cast<Index>(result.sites.size()));
+  EXPECT_EQ(static_cast<std::int64_t>(result.sites.size()), count + result.sites_added);
+  for (std::int64_t i = 0; i < count; ++i) {
+    EXPECT_EQ(result.mesh.vertices.row(static_cast<Index>(i)).transpose(), sites[i].position(input));
+  }
+  EXPECT_EQ(out.unreferenced_vertices, 0);
+  // A clean 2-manifold, oriented, with the input's topology.
+  EXPECT_EQ(out.nonmanifold_edges, 0);
+  EXPECT_EQ(out.nonmanifold_vertices, 0);
+  EXPECT_EQ(out.duplicate_faces, 0);
+  EXPECT_EQ(out.degenerate_faces, 0);
+  EXPECT_TRUE(out.oriented);
+  EXPECT_EQ(out.components, in.components);
+  EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
+  EXPECT_EQ(out.boundary_loops, in.boundary_loops);
+  EXPECT_TRUE(result.check.valid);
+  // Repair stays local.
+  EXPECT_LE(result.sites_added, count / 10 + 10);
+}
+
+TriangleMesh scan(const std::string& name) { return io::read_mesh("../shared/data/meshes/" + name).mesh; }
+
+TEST(Remesh, SphereTorusDoubleTorusAndDisk) {
+  const TriangleMesh sphere = test::icosphere(5);
+  const TriangleMesh torus = test::torus(1.0, 0.4, 128, 64);
+  const TriangleMesh double_torus = test::double_torus(1.0, 0.4, 128, 64, 8);
+  const TriangleMesh disk = test::disk(48, 192);
+  ASSERT_EQ(analyze_mesh(double_torus).euler_characteristic, -2);
+  ASSERT_TRUE(analyze_mesh(double_torus).oriented);
+  ASSERT_EQ(analyze_mesh(double_torus).nonmanifold_edges, 0);
+  for (const std::int64_t count : {500, 2000, 5000}) {
+    expect_faithful_remesh(sphere, count, "sphere");
+    expect_faithful_remesh(torus, count, "torus");
+    expect_faithful_remesh(double_torus, count, "double torus");
+    expect_faithful_remesh(disk, count, "disk");
+  }
+}
+
+TEST(Remesh, RealScans) {
+  // fertility: genus 4; bunny: 5 boundary loops and unreferenced vertices.
+  for (const std::string name : {"fertility.ply", "bunny.ply", "armadillo_86k.ply", "homer.ply"}) {
+    const TriangleMesh mesh = scan(name);
+    for (const std::int64_t count : {500, 2000, 5000}) expect_faithful_remesh(mesh, count, name);
+  }
+}
+
+TEST(Remesh, SameSitesGiveTheSameMesh) {
+  const TriangleMesh mesh = scan("fertility.ply");
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 800);
+  const remesh::RemeshResult a = remesh::remesh_from_sites(mesh, sites);
+  const remesh::RemeshResult b = remesh::remesh_from_sites(mesh, sites);
+  EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
+  EXPECT_EQ(a.mesh.faces, b.mesh.faces);
+}
+
+TEST(DualDelaunay, CoCircularSitesGiveTwoTrianglesWithoutOverlap) {
+  // Four sites at the corners of a square around the centre of a flat disk:
+  // one Voronoi vertex of degree four, split into two triangles.
+  const TriangleMesh disk = test::disk(32, 128);
+  std::vector<SurfacePoint> sites;
+  for (const Index ring_vertex : {1 + 15 * 128 + 0, 1 + 15 * 128 + 32, 1 + 15 * 128 + 64, 1 + 15 * 128 + 96}) {
+    sites.push_back(SurfacePoint::at_vertex(ring_vertex));
+  }
+  const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(disk, sites);
+  const remesh::DualMesh dual = remesh::dual_delaunay(disk, diagram);
+  EXPECT_TRUE(dual.check.valid) << (dual.check.problems.empty() ? "" : dual.check.problems[0]);
+  ASSERT_EQ(dual.mesh.faces.rows(), 2);
+  const MeshReport report = analyze_mesh(dual.mesh);
+  EXPECT_EQ(report.euler_characteristic, 1);
+  EXPECT_EQ(report.boundary_loops, 1);
+  EXPECT_TRUE(report.oriented);
+  // Oriented like the disk (normal +z).
+  for (Index f = 0; f < 2; ++f) {
+    const Eigen::Vector3d a = dual.mesh.vertices.row(dual.mesh.faces(f, 0)),
+                          b = dual.mesh.vertices.row(dual.mesh.faces(f, 1)),
+                          c = dual.mesh.vertices.row(dual.mesh.faces(f, 2));
+    EXPECT_GT((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x(), 0);
+  }
+}
+
+TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
+  const TriangleMesh torus = test::torus(1.0, 0.4, 64, 32);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(torus, 5);
+  const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(torus, sites);
+  const remesh::DualMesh dual = remesh::dual_delaunay(torus, diagram);
+  EXPECT_FALSE(dual.check.valid);
+  EXPECT_FALSE(dual.check.problems.empty());
+  EXPECT_FALSE(dual.check.repair_sites.empty());
+  // Without repair rounds: a clear error, never an invalid mesh.
+  remesh::RemeshOptions no_repair;
+  no_repair.max_repair_rounds = 0;
+  EXPECT_THROW(remesh::remesh_from_sites(torus, sites, no_repair), Error);
+  // With them: a torus.
+  const remesh::RemeshResult repaired = remesh::remesh_from_sites(torus, sites);
+  EXPECT_GT(repaired.sites_added, 0);
+  EXPECT_EQ(analyze_mesh(repaired.mesh).euler_characteristic, 0);
+  EXPECT_EQ(analyze_mesh(repaired.mesh).nonmanifold_edges, 0);
+}
+
+}  // namespace
+}  // namespace geodual
