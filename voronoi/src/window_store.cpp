@@ -153,16 +153,52 @@ void WindowStore::push_segment(double lo, double hi, int owner) {
 }
 
 void WindowStore::split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi) {
-  const double f_lo = difference(candidate, existing, lo);
-  const double f_hi = difference(candidate, existing, hi);
-  // Each distance changes by at most |dx| along the edge, so the difference
-  // is 2-Lipschitz: it cannot reach zero inside when both ends are farther
-  // from zero than that allows, and one window wins the whole overlap.
-  if ((f_lo > 0) == (f_hi > 0) && std::abs(f_lo) + std::abs(f_hi) > 2 * (hi - lo)) {
-    const double mid = 0.5 * (lo + hi);
-    const double de = existing.distance_at(mid);
-    push_segment(lo, hi, candidate.distance_at(mid) < de - kTieMargin * de ? -1 : k);
-    return;
+  // Both distances and their slopes at the ends of the overlap. Each slope
+  // (x - source_x) / r grows along the edge, so the difference's slope lies
+  // in [slope_lo, slope_hi]; with its end values that bounds the difference
+  // over the whole overlap. Where it cannot reach zero, one window wins the
+  // whole overlap (the candidate only by the tie margin, as below).
+  const double dx_c_lo = lo - candidate.source_x, dx_c_hi = hi - candidate.source_x;
+  const double dx_e_lo = lo - existing.source_x, dx_e_hi = hi - existing.source_x;
+  const double h_c = candidate.source_y * candidate.source_y, h_e = existing.source_y * existing.source_y;
+  const double r_c_lo = std::sqrt(dx_c_lo * dx_c_lo + h_c), r_c_hi = std::sqrt(dx_c_hi * dx_c_hi + h_c);
+  const double r_e_lo = std::sqrt(dx_e_lo * dx_e_lo + h_e), r_e_hi = std::sqrt(dx_e_hi * dx_e_hi + h_e);
+  const double d_e_lo = existing.sigma + r_e_lo, d_e_hi = existing.sigma + r_e_hi;
+  const double f_lo = (candidate.sigma + r_c_lo) - d_e_lo;
+  const double f_hi = (candidate.sigma + r_c_hi) - d_e_hi;
+  const double slope_lo = dx_c_lo / r_c_lo - dx_e_hi / r_e_hi;
+  const double slope_hi = dx_c_hi / r_c_hi - dx_e_lo / r_e_lo;
+  if (f_lo > 0 && f_hi > 0) {
+    // The difference stays above both lines f_lo + slope_lo (x - lo) and
+    // f_hi + slope_hi (x - hi); the lowest point of the higher one bounds it.
+    double floor = std::min(f_lo, f_hi);
+    if (slope_lo >= 0) {
+      floor = f_lo;
+    } else if (slope_hi <= 0) {
+      floor = f_hi;
+    } else {
+      const double x = std::clamp((f_hi - f_lo + slope_lo * lo - slope_hi * hi) / (slope_lo - slope_hi), lo, hi);
+      floor = std::max(f_lo + slope_lo * (x - lo), f_hi + slope_hi * (x - hi));
+    }
+    if (floor > 0) {
+      push_segment(lo, hi, k);
+      return;
+    }
+  } else if (f_lo < 0 && f_hi < 0) {
+    // Likewise from above, with the slopes exchanged.
+    double ceiling = std::max(f_lo, f_hi);
+    if (slope_hi <= 0) {
+      ceiling = f_lo;
+    } else if (slope_lo >= 0) {
+      ceiling = f_hi;
+    } else {
+      const double x = std::clamp((f_hi - f_lo + slope_hi * lo - slope_lo * hi) / (slope_hi - slope_lo), lo, hi);
+      ceiling = std::min(f_lo + slope_hi * (x - lo), f_hi + slope_lo * (x - hi));
+    }
+    if (ceiling < -kTieMargin * std::max(d_e_lo, d_e_hi)) {
+      push_segment(lo, hi, -1);
+      return;
+    }
   }
   std::array<double, 2> roots{};
   const int count = crossings(candidate, existing, lo, hi, roots);
