@@ -110,10 +110,12 @@ std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
     num_loops += loops_per_component[c];
   }
   if (count < needed_by_loops) {
+    const std::string also = needed > needed_by_loops ? " (" + std::to_string(needed) +
+                                                            " to give every component at least 4 as well)"
+                                                      : "";
     throw UsageError("site count " + std::to_string(count) + " is too small for the mesh's " +
                      plural(num_loops, "boundary loop") + ": at least " + std::to_string(needed_by_loops) +
-                     " sites are needed (3 per loop), " + std::to_string(needed) +
-                     " to give every component at least 4; or turn sites on the boundary off");
+                     " sites are needed, 3 per loop" + also + "; or turn sites on the boundary off");
   }
   std::vector<std::int64_t> parts;
   if (count >= needed) {

@@ -23,8 +23,13 @@
 // edges, which lets sites come closer than intended; the straight line is
 // the geodesic distance at the scale of the spacing, up to curvature.
 //
-// Sites: the boundary sites are the first sources (with none, candidate 0, a
-// uniformly random point, is the first site); then, n times, the candidate
+// A search stops where it improves nothing, so a site's field only spreads
+// through the region it is nearest to, along the surface: it cannot reach
+// the far side of a thin part through nodes that other sites hold, however
+// close that side is in space.
+//
+// Sites: the boundary sites are the first sources (with none, a candidate
+// drawn at random is the first site); then, n times, the candidate
 // farthest from all sites so far becomes a site (ties: the lower grid slot)
 // and a Dijkstra search from it lowers the distances it improves, stopping
 // where it improves none. The sites are candidates: face points, never
@@ -169,7 +174,7 @@ void FarthestPointSampler::Impl::build_graph(const ComponentTask& task, Rng& rng
       const Index corner = vertex_node(mesh.faces(face, k));
       arcs.push_back({corner, node, static_cast<float>((grid.position(corner) - grid.position(node)).norm())});
     }
-    grid.for_each_within(grid.position(node), link_radius, [&](Index other, double d2) {
+    grid.for_each_near(node, [&](Index other, double d2) {
       if (other <= node || kind_index(other) < num_vertices) return;
       if (!faces_touch(mesh, face, point_of(other).element)) return;
       arcs.push_back({node, other, static_cast<float>(std::sqrt(d2))});
@@ -254,8 +259,10 @@ void FarthestPointSampler::Impl::sample(const ComponentTask& task, Rng& rng, std
     grow_from(node);
   };
   if (task.boundary_sites.empty()) {
-    Index first = 0;  // candidate 0: a uniformly random point
-    while (kind_index(first) != num_vertices) ++first;
+    const auto drawn = std::min(static_cast<Index>(rng.uniform() * static_cast<double>(num_candidates)),
+                                static_cast<Index>(num_candidates - 1));
+    Index first = 0;
+    while (kind_index(first) != num_vertices + drawn) ++first;
     choose(first);
   } else {
     for (Index node = 0; node < num_nodes; ++node) {

@@ -3,70 +3,131 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 
 namespace geodual::remesh::detail {
+namespace {
 
-PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double cell_size) {
-  if (points.empty()) return;
-  Eigen::Vector3d lo = points[0], hi = points[0];
-  for (const Eigen::Vector3d& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  origin_ = lo;
-  // Keep cell coordinates far from int64 overflow whatever the caller asks.
-  const double extent = (hi - lo).maxCoeff();
-  cell_size = std::max(cell_size, extent * 0x1p-40);
-  if (!(cell_size > 0)) cell_size = 1;
-  inverse_cell_size_ = 1 / cell_size;
+using CellCoordinates = std::array<std::int64_t, 3>;
 
-  struct Keyed {
-    std::array<std::int64_t, 3> cell;
-    Index point;
-  };
-  std::vector<Keyed> keyed(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    keyed[i] = {{coordinate(points[i][0], 0), coordinate(points[i][1], 1), coordinate(points[i][2], 2)},
-                static_cast<Index>(i)};
-  }
-  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    return a.cell != b.cell ? a.cell < b.cell : a.point < b.point;
-  });
-  slot_point_.resize(points.size());
-  slot_position_.resize(points.size());
-  for (std::size_t i = 0; i < keyed.size(); ++i) {
-    slot_point_[i] = keyed[i].point;
-    slot_position_[i] = points[keyed[i].point];
-    if (i == 0 || keyed[i].cell != keyed[i - 1].cell) {
-      cells_.push_back({keyed[i].cell[0], keyed[i].cell[1], keyed[i].cell[2], static_cast<Index>(i), 0});
-    }
-    cells_.back().end = static_cast<Index>(i + 1);
-  }
-  const std::uint64_t table_size = std::bit_ceil(static_cast<std::uint64_t>(cells_.size()) * 2);
-  mask_ = table_size - 1;
-  table_.assign(table_size, -1);
-  for (Index c = 0; c < static_cast<Index>(cells_.size()); ++c) {
-    std::uint64_t slot = hash(cells_[c].x, cells_[c].y, cells_[c].z) & mask_;
-    while (table_[slot] >= 0) slot = (slot + 1) & mask_;
-    table_[slot] = c;
-  }
+/// Spreads the low 21 bits of x to every third bit.
+std::uint64_t spread_bits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
 }
 
-std::uint64_t PointGrid::hash(std::int64_t x, std::int64_t y, std::int64_t z) {
-  std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9e3779b97f4a7c15ULL;
-  h ^= static_cast<std::uint64_t>(y) * 0xc2b2ae3d27d4eb4fULL;
-  h ^= static_cast<std::uint64_t>(z) * 0x165667b19e3779f9ULL;
+std::uint64_t hash_cell(const CellCoordinates& c) {
+  std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 0x9e3779b97f4a7c15ULL;
+  h ^= static_cast<std::uint64_t>(c[1]) * 0xc2b2ae3d27d4eb4fULL;
+  h ^= static_cast<std::uint64_t>(c[2]) * 0x165667b19e3779f9ULL;
   h ^= h >> 29;
   h *= 0xbf58476d1ce4e5b9ULL;
   return h ^ (h >> 32);
 }
 
-Index PointGrid::find_cell(std::int64_t x, std::int64_t y, std::int64_t z) const {
-  if (table_.empty()) return -1;
-  for (std::uint64_t slot = hash(x, y, z) & mask_;; slot = (slot + 1) & mask_) {
-    const Index c = table_[slot];
-    if (c < 0) return -1;
-    if (cells_[c].x == x && cells_[c].y == y && cells_[c].z == z) return c;
+}  // namespace
+
+PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
+  radius2_ = radius * radius;
+  const std::size_t n = points.size();
+  if (n == 0) {
+    neighbour_begin_.assign(1, 0);
+    cell_begin_.assign(1, 0);
+    return;
+  }
+  Eigen::Vector3d lo = points[0], hi = points[0];
+  for (const Eigen::Vector3d& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  // Cells at least as large as the radius (so 3 x 3 x 3 cells cover it), and
+  // large enough to keep coordinates far from int64 overflow.
+  const double extent = (hi - lo).maxCoeff();
+  double cell_size = std::max(radius, extent * 0x1p-40);
+  if (!(cell_size > 0)) cell_size = 1;
+  const double inverse = 1 / cell_size;
+
+  struct Keyed {
+    CellCoordinates cell;
+    std::uint64_t morton;
+    Index point;
+  };
+  std::vector<Keyed> keyed(n);
+  std::int64_t largest = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    Keyed& k = keyed[i];
+    for (int a = 0; a < 3; ++a) {
+      k.cell[a] = static_cast<std::int64_t>(std::floor((points[i][a] - lo[a]) * inverse));
+      largest = std::max(largest, k.cell[a]);
+    }
+    k.point = static_cast<Index>(i);
+  }
+  // Z-order when the coordinates fit in 21 bits (always, unless a component
+  // is millions of spacings long); row order otherwise.
+  const bool z_order = largest < (std::int64_t{1} << 21);
+  for (Keyed& k : keyed) {
+    k.morton = z_order ? spread_bits(static_cast<std::uint64_t>(k.cell[0])) |
+                             spread_bits(static_cast<std::uint64_t>(k.cell[1])) << 1 |
+                             spread_bits(static_cast<std::uint64_t>(k.cell[2])) << 2
+                       : 0;
+  }
+  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
+    if (a.morton != b.morton) return a.morton < b.morton;
+    if (a.cell != b.cell) return a.cell < b.cell;
+    return a.point < b.point;
+  });
+
+  slot_point_.resize(n);
+  slot_position_.resize(n);
+  slot_cell_.resize(n);
+  std::vector<CellCoordinates> cells;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == 0 || keyed[i].cell != keyed[i - 1].cell) {
+      cells.push_back(keyed[i].cell);
+      cell_begin_.push_back(static_cast<Index>(i));
+    }
+    slot_point_[i] = keyed[i].point;
+    slot_position_[i] = points[keyed[i].point];
+    slot_cell_[i] = static_cast<Index>(cells.size()) - 1;
+  }
+  cell_begin_.push_back(static_cast<Index>(n));
+  keyed.clear();
+  keyed.shrink_to_fit();
+
+  // Occupied neighbour cells, found once per cell through a hash table.
+  const std::uint64_t table_size = std::bit_ceil(static_cast<std::uint64_t>(cells.size()) * 2);
+  const std::uint64_t mask = table_size - 1;
+  std::vector<Index> table(table_size, -1);
+  for (Index c = 0; c < static_cast<Index>(cells.size()); ++c) {
+    std::uint64_t slot = hash_cell(cells[c]) & mask;
+    while (table[slot] >= 0) slot = (slot + 1) & mask;
+    table[slot] = c;
+  }
+  auto find = [&](const CellCoordinates& cell) -> Index {
+    for (std::uint64_t slot = hash_cell(cell) & mask;; slot = (slot + 1) & mask) {
+      const Index c = table[slot];
+      if (c < 0 || cells[c] == cell) return c;
+    }
+  };
+  neighbour_begin_.reserve(cells.size() + 1);
+  neighbour_begin_.push_back(0);
+  for (const CellCoordinates& cell : cells) {
+    const std::size_t first = neighbours_.size();
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const Index c = find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (c >= 0) neighbours_.push_back(c);
+        }
+      }
+    }
+    std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first), neighbours_.end());
+    neighbour_begin_.push_back(static_cast<Index>(neighbours_.size()));
   }
 }
 

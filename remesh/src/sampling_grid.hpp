@@ -1,76 +1,59 @@
 #pragma once
-// A uniform grid over a fixed point set, hashed so that only occupied cells
-// cost memory: fixed-radius neighbour queries for Poisson sample elimination
-// and for the candidate graph of farthest point sampling.
+// Fixed-radius neighbours within a fixed point set: a uniform grid whose cell
+// is the radius, so that the points near a point lie in the 3 x 3 x 3 cells
+// around its own. Used by Poisson sample elimination and by the candidate
+// graph of farthest point sampling, where every query is about a point of the
+// set itself.
 
 #include "geodual/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 
-#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace geodual::remesh::detail {
 
-/// The grid keeps its own copy of the points sorted by cell ("slots"), so
-/// that a query reads memory in order; callers that index their own arrays
-/// by slot get the same locality.
+/// The grid keeps its own copy of the points, sorted by cell along a Z-order
+/// curve ("slots"): the cells around a point, and the points in them, lie
+/// close together in memory. Callers that index their own arrays by slot get
+/// the same locality.
 class PointGrid {
  public:
-  /// cell_size > 0; queries are fastest with a radius of about one cell.
-  PointGrid(std::span<const Eigen::Vector3d> points, double cell_size);
+  /// radius > 0: the distance below which points are neighbours.
+  PointGrid(std::span<const Eigen::Vector3d> points, double radius);
 
   Index size() const { return static_cast<Index>(slot_point_.size()); }
   /// The index in the constructor's `points` of the point in `slot`.
   Index original(Index slot) const { return slot_point_[slot]; }
   const Eigen::Vector3d& position(Index slot) const { return slot_position_[slot]; }
 
-  /// Calls visit(slot, squared_distance) for every point at distance
-  /// < radius from p (p itself included if it is one of the points), cell by
-  /// cell, each cell's slots in increasing order.
+  /// Calls visit(other_slot, squared_distance) for every point closer than
+  /// the radius to the point in `slot` (itself included), cell by cell in
+  /// increasing order, each cell's slots in increasing order.
   template <typename Visit>
-  void for_each_within(const Eigen::Vector3d& p, double radius, Visit&& visit) const {
-    const double radius2 = radius * radius;
-    std::int64_t lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = coordinate(p[k] - radius, k);
-      hi[k] = coordinate(p[k] + radius, k);
-    }
-    for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
-      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-          const Index cell = find_cell(x, y, z);
-          if (cell < 0) continue;
-          for (Index slot = cells_[cell].begin; slot < cells_[cell].end; ++slot) {
-            const double d2 = (slot_position_[slot] - p).squaredNorm();
-            if (d2 < radius2) visit(slot, d2);
-          }
-        }
+  void for_each_near(Index slot, Visit&& visit) const {
+    const Eigen::Vector3d& p = slot_position_[slot];
+    const Index cell = slot_cell_[slot];
+    for (Index i = neighbour_begin_[cell]; i < neighbour_begin_[cell + 1]; ++i) {
+      const Index other_cell = neighbours_[i];
+      for (Index other = cell_begin_[other_cell]; other < cell_begin_[other_cell + 1]; ++other) {
+        const double d2 = (slot_position_[other] - p).squaredNorm();
+        if (d2 < radius2_) visit(other, d2);
       }
     }
   }
 
  private:
-  struct Cell {
-    std::int64_t x, y, z;
-    Index begin, end;
-  };
-
-  std::int64_t coordinate(double value, int axis) const {
-    return static_cast<std::int64_t>(std::floor((value - origin_[axis]) * inverse_cell_size_));
-  }
-  static std::uint64_t hash(std::int64_t x, std::int64_t y, std::int64_t z);
-  Index find_cell(std::int64_t x, std::int64_t y, std::int64_t z) const;
-
-  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
-  double inverse_cell_size_ = 1;
-  std::vector<Index> slot_point_;  ///< point indices sorted by cell
+  double radius2_ = 0;
+  std::vector<Index> slot_point_;
   std::vector<Eigen::Vector3d> slot_position_;
-  std::vector<Cell> cells_;
-  std::vector<Index> table_;  ///< open addressing: cell index or -1
-  std::uint64_t mask_ = 0;
+  std::vector<Index> slot_cell_;
+  std::vector<Index> cell_begin_;  ///< slots of each cell (CSR)
+  /// Occupied cells among the 27 around each cell, itself included (CSR).
+  std::vector<Index> neighbour_begin_;
+  std::vector<Index> neighbours_;
 };
 
 }  // namespace geodual::remesh::detail

@@ -112,7 +112,7 @@ void sample_interior_poisson(const SamplingSurface& surface, const ComponentTask
     if (!is_candidate(slot)) continue;
     candidate_slots.push_back(slot);
     double sum = 0;
-    grid.for_each_within(grid.position(slot), reach, [&](Index other, double d2) {
+    grid.for_each_near(slot, [&](Index other, double d2) {
       if (other != slot) sum += weight_of(d2);
     });
     weight[slot] = sum;
@@ -123,7 +123,7 @@ void sample_interior_poisson(const SamplingSurface& surface, const ComponentTask
   for (std::int64_t k = 0; k < m - n; ++k) {
     const Index slot = heap.pop();
     removed[slot] = 1;
-    grid.for_each_within(grid.position(slot), reach, [&](Index other, double d2) {
+    grid.for_each_near(slot, [&](Index other, double d2) {
       if (removed[other] || !is_candidate(other)) return;
       weight[other] -= weight_of(d2);
       heap.decreased(other);
