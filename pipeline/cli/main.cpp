@@ -26,6 +26,8 @@ namespace geodual::cli {
 // below (the order `geodual --help` lists them in).
 CommandFactory make_info_command;
 CommandFactory make_geodesic_command;
+CommandFactory make_voronoi_command;
+CommandFactory make_remesh_command;
 CommandFactory make_stats_command;
 
 namespace {
@@ -33,6 +35,8 @@ namespace {
 constexpr CommandFactory* command_factories[] = {
     &make_info_command,
     &make_geodesic_command,
+    &make_voronoi_command,
+    &make_remesh_command,
     &make_stats_command,
 };
 

@@ -1,0 +1,35 @@
+#include "site_source.hpp"
+
+#include "geodual/error.hpp"
+#include "geodual/pipeline/sites.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace geodual::cli {
+
+void SiteSource::add_to(CLI::App& command) {
+  CLI::Option* sites = command.add_option("--sites", count_, "Number of sites to sample on the surface");
+  CLI::Option* file = command.add_option("--site-file", file_, "Read the sites from this file");
+  sites->excludes(file);
+  file->excludes(sites);
+  command.add_option("--sampling", sampling_, "How to sample: random (by area), poisson (blue noise) or fps")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"random", "poisson", "fps"}));
+  command.add_option("--seed", seed_, "Seed for the sampling")->capture_default_str();
+}
+
+void SiteSource::validate(const std::string& command_name) const {
+  if (file_.empty() && count_ <= 0) {
+    throw UsageError(command_name + ": give --sites N or --site-file FILE");
+  }
+}
+
+std::vector<SurfacePoint> SiteSource::sites(const TriangleMesh& mesh) const {
+  if (!file_.empty()) return read_site_file(file_, mesh);
+  remesh::SamplingOptions options;
+  options.strategy = remesh::parse_sampling_strategy(sampling_);
+  options.seed = seed_;
+  return remesh::sample_sites(mesh, count_, options);
+}
+
+}  // namespace geodual::cli

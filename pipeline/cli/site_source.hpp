@@ -1,0 +1,39 @@
+#pragma once
+// Where the voronoi and remesh commands take their sites from:
+// --sites N [--sampling random|poisson|fps] [--seed S], or --site-file F.
+
+#include "geodual/remesh/sample_sites.hpp"
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace geodual::cli {
+
+class SiteSource {
+ public:
+  /// Adds --sites, --site-file, --sampling and --seed to `command`.
+  void add_to(CLI::App& command);
+  /// Throws geodual::UsageError unless exactly one source was given.
+  void validate(const std::string& command_name) const;
+  std::vector<SurfacePoint> sites(const TriangleMesh& mesh) const;
+
+  const std::string& file() const { return file_; }
+  std::int64_t count() const { return count_; }
+  std::string sampling() const { return sampling_; }
+  std::uint64_t seed() const { return seed_; }
+
+ private:
+  std::int64_t count_ = 0;
+  std::string file_;
+  std::string sampling_ = "random";
+  std::uint64_t seed_ = 1;
+};
+
+}  // namespace geodual::cli

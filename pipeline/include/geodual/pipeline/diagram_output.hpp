@@ -1,0 +1,35 @@
+#pragma once
+// Writing Voronoi diagrams and remeshes, and the pictures of them.
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace geodual {
+
+/// .glb / .gltf: the input mesh coloured by nearest site at its vertices
+/// (COLOR_0) with a `_DISTANCE` attribute, the cell boundaries as a LINES
+/// primitive ("voronoi_boundaries"), the sites as POINTS ("sites") and the
+/// Voronoi vertices as POINTS ("voronoi_vertices"); `extras_json` (a JSON
+/// object, or empty) goes to asset.extras. Throws geodual::Error for other
+/// extensions.
+void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh& mesh,
+                           const voronoi::VoronoiDiagram& diagram, const std::string& extras_json = {});
+
+/// A remeshed surface by extension: .ply, .obj, .glb or .gltf (with
+/// `extras_json` in asset.extras).
+void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json = {});
+
+/// A PNG picture of the input coloured by cell with the boundaries and sites.
+void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
+                           const voronoi::VoronoiDiagram& diagram);
+
+/// A PNG picture of a mesh, shaded with its wireframe.
+void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+/// The process's peak resident memory in bytes (0 where unknown).
+std::int64_t peak_memory_bytes();
+
+}  // namespace geodual

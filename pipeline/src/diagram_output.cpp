@@ -1,0 +1,131 @@
+#include "geodual/pipeline/diagram_output.hpp"
+
+#include "geodual/error.hpp"
+#include "geodual/io/gltf.hpp"
+#include "geodual/io/mesh_format.hpp"
+#include "geodual/io/preview.hpp"
+#include "geodual/io/write_mesh.hpp"
+#include "geodual/pipeline/field_output.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace geodual {
+namespace {
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+}  // namespace
+
+void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh& mesh,
+                           const voronoi::VoronoiDiagram& diagram, const std::string& extras_json) {
+  const std::string extension = lower_extension(path);
+  if (extension != ".glb" && extension != ".gltf") {
+    throw Error(path.string() + ": a Voronoi diagram is written as .glb or .gltf");
+  }
+  const voronoi::GeodesicField& field = diagram.field;
+  io::GltfScene scene;
+  scene.extras_json = extras_json;
+
+  io::GltfTriangleMesh surface;
+  surface.name = "cells";
+  surface.mesh = mesh;
+  surface.colors.resize(mesh.vertices.rows(), 3);
+  io::GltfVertexScalar distance{"_DISTANCE", std::vector<float>(static_cast<std::size_t>(mesh.vertices.rows()))};
+  for (Index v = 0; v < mesh.vertices.rows(); ++v) {
+    const std::array<float, 3> color = site_color(field.nearest_site[v]);
+    for (int c = 0; c < 3; ++c) surface.colors(v, c) = color[c];
+    distance.values[v] = std::isfinite(field.distance[v]) ? static_cast<float>(field.distance[v]) : -1.0f;
+  }
+  surface.scalars.push_back(std::move(distance));
+  scene.triangle_meshes.push_back(std::move(surface));
+
+  if (!diagram.arcs.empty()) {
+    io::GltfLineSet lines;
+    lines.name = "voronoi_boundaries";
+    lines.points.resize(static_cast<Index>(diagram.points.size()), 3);
+    for (std::size_t i = 0; i < diagram.points.size(); ++i) lines.points.row(static_cast<Index>(i)) = diagram.points[i].transpose();
+    Index segments = 0;
+    for (const voronoi::VoronoiArc& arc : diagram.arcs) segments += arc.point_end - arc.point_begin - 1;
+    lines.segments.resize(segments, 2);
+    Index row = 0;
+    for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+      for (Index i = arc.point_begin; i + 1 < arc.point_end; ++i, ++row) lines.segments.row(row) << i, i + 1;
+    }
+    scene.line_sets.push_back(std::move(lines));
+  }
+  io::GltfPointSet sites;
+  sites.name = "sites";
+  sites.points.resize(static_cast<Index>(field.sites.size()), 3);
+  for (std::size_t s = 0; s < field.sites.size(); ++s) {
+    sites.points.row(static_cast<Index>(s)) = field.sites[s].position(mesh).transpose();
+  }
+  scene.point_sets.push_back(std::move(sites));
+  if (!diagram.vertices.empty()) {
+    io::GltfPointSet vertices;
+    vertices.name = "voronoi_vertices";
+    vertices.points.resize(static_cast<Index>(diagram.vertices.size()), 3);
+    for (std::size_t i = 0; i < diagram.vertices.size(); ++i) {
+      vertices.points.row(static_cast<Index>(i)) = diagram.vertices[i].position.transpose();
+    }
+    scene.point_sets.push_back(std::move(vertices));
+  }
+  io::write_gltf(path, scene);
+}
+
+void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json) {
+  const std::string extension = lower_extension(path);
+  if (extension == ".glb" || extension == ".gltf") {
+    io::GltfScene scene;
+    scene.extras_json = extras_json;
+    scene.triangle_meshes.push_back({"remesh", mesh, {}, {}});
+    io::write_gltf(path, scene);
+    return;
+  }
+  if (extension == ".ply" || extension == ".obj") {
+    io::write_mesh(path, mesh);
+    return;
+  }
+  throw Error(path.string() + ": a remesh is written as .glb, .gltf, .ply or .obj");
+}
+
+void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
+                           const voronoi::VoronoiDiagram& diagram) {
+  io::PreviewScene scene;
+  scene.mesh = &mesh;
+  scene.wireframe = false;
+  scene.vertex_colors.resize(static_cast<std::size_t>(mesh.vertices.rows()));
+  for (Index v = 0; v < mesh.vertices.rows(); ++v) {
+    const std::array<float, 3> color = site_color(diagram.field.nearest_site[v]);
+    scene.vertex_colors[v] = Eigen::Vector3f(color[0], color[1], color[2]);
+  }
+  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+    const auto line = diagram.polyline(arc);
+    scene.polylines.emplace_back(line.begin(), line.end());
+  }
+  for (const SurfacePoint& site : diagram.field.sites) scene.points.push_back(site.position(mesh));
+  io::write_preview_png(path, scene);
+}
+
+void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh) {
+  io::PreviewScene scene;
+  scene.mesh = &mesh;
+  scene.wireframe = true;
+  io::write_preview_png(path, scene);
+}
+
+std::int64_t peak_memory_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<std::int64_t>(usage.ru_maxrss) * 1024;  // kilobytes on Linux
+}
+
+}  // namespace geodual
