@@ -29,6 +29,7 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       popped_(static_cast<std::size_t>(mesh.num_vertices()), 0),
       face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
       store_(mesh.num_edges()),
+      events_(mesh.num_vertices()),
       in_fifo_(static_cast<std::size_t>(mesh.num_edges()), 0) {
   window_bytes_limit_ = static_cast<std::int64_t>(
       std::min<std::size_t>(options.window_memory_limit_bytes, std::numeric_limits<std::int64_t>::max()));
@@ -309,7 +310,7 @@ void WindowVtp::relax(Index v, double d, Index site) {
   const bool first_time = distance_[v] == kInfinity;
   distance_[v] = d;
   label_[v] = site;
-  if (pm_.is_pseudo_source[v]) events_.push({d, v, EventKind::emit});
+  if (pm_.is_pseudo_source[v]) events_.push_or_decrease({d, v, EventKind::emit});
   if (first_time && options_.remove_redundant_windows) {
     for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
       const Index f = pm_.vertex_faces[i];
@@ -321,35 +322,20 @@ void WindowVtp::relax(Index v, double d, Index site) {
 void WindowVtp::push_expand(Index v, double key) {
   if (popped_[v] || !(key < best_key_[v])) return;
   best_key_[v] = key;
-  events_.push({key, v, EventKind::expand});
+  events_.push_or_decrease({key, v, EventKind::expand});
 }
 
 bool WindowVtp::pop_event(Event& event) {
   while (!events_.empty()) {
     event = events_.top();
     events_.pop();
-    const Index v = event.vertex;
-    if (event.kind == EventKind::expand) {
-      if (!popped_[v] && event.key == best_key_[v]) return true;
-    } else if (event.key == distance_[v] && emitted_at_[v] > distance_[v]) {
-      return true;
-    }
+    // A vertex site emits at once, not from the queue.
+    if (event.kind == EventKind::expand || emitted_at_[event.vertex] > distance_[event.vertex]) return true;
   }
   return false;
 }
 
-double WindowVtp::next_event_key() {
-  while (!events_.empty()) {
-    const Event& event = events_.top();
-    const Index v = event.vertex;
-    const bool live = event.kind == EventKind::expand
-                          ? (!popped_[v] && event.key == best_key_[v])
-                          : (event.key == distance_[v] && emitted_at_[v] > distance_[v]);
-    if (live) return event.key;
-    events_.pop();
-  }
-  return kInfinity;
-}
+double WindowVtp::next_event_key() const { return events_.empty() ? kInfinity : events_.top().key; }
 
 // --------------------------------------------------------------------- RWR --
 

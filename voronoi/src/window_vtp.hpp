@@ -13,6 +13,7 @@
 // windows are freed (Procedure 1, Step 4).
 
 #include "geodual/voronoi/geodesic_field.hpp"
+#include "event_queue.hpp"
 #include "propagation_mesh.hpp"
 #include "window_store.hpp"
 
@@ -45,17 +46,6 @@ class WindowVtp {
 
  private:
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
-  enum class EventKind : std::uint8_t { expand = 0, emit = 1 };
-  struct Event {
-    double key;
-    Index vertex;
-    EventKind kind;
-    bool operator>(const Event& o) const {
-      if (key != o.key) return key > o.key;
-      if (kind != o.kind) return kind > o.kind;
-      return vertex > o.vertex;
-    }
-  };
   struct FaceEvent {
     double key;
     Index face;
@@ -89,7 +79,7 @@ class WindowVtp {
   void push_expand(Index v, double key);
   void push_face_key(Index face);
   bool pop_event(Event& event);
-  double next_event_key();
+  double next_event_key() const;
   void remove_redundant_windows(double lower_bound);
   bool face_is_redundant(Index face) const;
   void report_progress();
@@ -107,7 +97,7 @@ class WindowVtp {
   Index faces_traversed_ = 0;
 
   WindowStore store_;
-  std::priority_queue<Event, std::vector<Event>, std::greater<>> events_;
+  EventQueue events_;
   std::priority_queue<FaceEvent, std::vector<FaceEvent>, std::greater<>> face_events_;
   std::vector<Index> fifo_;            // edges with queued windows
   std::vector<std::uint8_t> in_fifo_;  // per edge

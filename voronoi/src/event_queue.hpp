@@ -1,0 +1,109 @@
+#pragma once
+// The vertex queue of window-VTP: at most one entry per vertex and kind
+// (expand: the vertex's faces join the traversed area; emit: a pseudo-source
+// sends its windows), keyed by distance. An indexed 4-ary heap whose keys only
+// decrease in place, so it holds no stale duplicates: its top is always the
+// true smallest pending key, which RWR needs as its lower bound.
+
+#include "geodual/triangle_mesh.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace geodual::voronoi::detail {
+
+enum class EventKind : std::uint8_t { expand = 0, emit = 1 };
+
+struct Event {
+  double key = 0;
+  Index vertex = -1;
+  EventKind kind = EventKind::expand;
+
+  /// Total order: by key, then expand before emit, then by vertex.
+  bool before(const Event& o) const {
+    if (key != o.key) return key < o.key;
+    if (kind != o.kind) return kind < o.kind;
+    return vertex < o.vertex;
+  }
+};
+
+class EventQueue {
+ public:
+  explicit EventQueue(Index num_vertices) : position_(2 * static_cast<std::size_t>(num_vertices), kAbsent) {}
+
+  bool empty() const { return heap_.empty(); }
+  const Event& top() const { return heap_.front(); }
+
+  /// Inserts the event, or lowers the key of the vertex's pending event of the
+  /// same kind (a key that is not lower is ignored).
+  void push_or_decrease(const Event& event) {
+    std::uint32_t& slot = position_[slot_index(event)];
+    if (slot == kAbsent) {
+      slot = static_cast<std::uint32_t>(heap_.size());
+      heap_.push_back(event);
+    } else if (event.key < heap_[slot].key) {
+      heap_[slot].key = event.key;
+    } else {
+      return;
+    }
+    sift_up(slot);
+  }
+
+  void pop() {
+    position_[slot_index(heap_.front())] = kAbsent;
+    const Event last = heap_.back();
+    heap_.pop_back();
+    if (heap_.empty()) return;
+    heap_.front() = last;
+    position_[slot_index(last)] = 0;
+    sift_down(0);
+  }
+
+ private:
+  static constexpr std::uint32_t kAbsent = 0xffffffffu;
+  static constexpr std::size_t kArity = 4;
+
+  static std::size_t slot_index(const Event& e) {
+    return 2 * static_cast<std::size_t>(e.vertex) + static_cast<std::size_t>(e.kind);
+  }
+
+  void place(std::size_t i, const Event& e) {
+    heap_[i] = e;
+    position_[slot_index(e)] = static_cast<std::uint32_t>(i);
+  }
+
+  void sift_up(std::size_t i) {
+    const Event e = heap_[i];
+    while (i > 0) {
+      const std::size_t parent = (i - 1) / kArity;
+      if (!e.before(heap_[parent])) break;
+      place(i, heap_[parent]);
+      i = parent;
+    }
+    place(i, e);
+  }
+
+  void sift_down(std::size_t i) {
+    const Event e = heap_[i];
+    const std::size_t n = heap_.size();
+    for (;;) {
+      const std::size_t first = kArity * i + 1;
+      if (first >= n) break;
+      std::size_t best = first;
+      const std::size_t end = first + kArity < n ? first + kArity : n;
+      for (std::size_t c = first + 1; c < end; ++c) {
+        if (heap_[c].before(heap_[best])) best = c;
+      }
+      if (!heap_[best].before(e)) break;
+      place(i, heap_[best]);
+      i = best;
+    }
+    place(i, e);
+  }
+
+  std::vector<Event> heap_;
+  std::vector<std::uint32_t> position_;  ///< per vertex and kind: index in heap_, or kAbsent
+};
+
+}  // namespace geodual::voronoi::detail
