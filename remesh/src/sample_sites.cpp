@@ -241,7 +241,8 @@ std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t co
   }
   const SamplingSurface surface = detail::build_sampling_surface(mesh, options.sites_on_boundary);
   if (std::none_of(surface.component_area.begin(), surface.component_area.end(), [](double a) { return a > 0; })) {
-    throw Error("sample_sites: the mesh has no face with positive area and three distinct corners: nowhere to put sites");
+    throw Error(
+        "sample_sites: the mesh has no face with positive area and three distinct corners: nowhere to put sites");
   }
 
   std::vector<std::vector<const BoundaryLoop*>> loops(static_cast<std::size_t>(surface.num_components));

@@ -1,10 +1,13 @@
 #include "sampling_surface.hpp"
 
+#include "geodual/error.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 
 namespace geodual::remesh::detail {
 namespace {
@@ -271,12 +274,25 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
   surface.face_area.assign(static_cast<std::size_t>(num_faces), 0.0);
   std::vector<Index> proper_faces;
   for (Index f = 0; f < num_faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.faces(f, k) < 0 || mesh.faces(f, k) >= num_vertices) {
+        throw Error("sample_sites: face " + std::to_string(f) + " refers to vertex " +
+                    std::to_string(mesh.faces(f, k)) + ", out of range [0, " + std::to_string(num_vertices) + ")");
+      }
+    }
     if (has_repeated_corner(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      if (!mesh.vertices.row(mesh.faces(f, k)).allFinite()) {
+        throw Error("sample_sites: vertex " + std::to_string(mesh.faces(f, k)) + " (a corner of face " +
+                    std::to_string(f) + ") has a coordinate that is not a finite number");
+      }
+    }
     proper_faces.push_back(f);
     const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
     const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
     const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
-    surface.face_area[f] = 0.5 * (b - a).cross(c - a).norm();
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    surface.face_area[f] = std::isfinite(area) ? area : 0.0;  // overflow: no site there
     for (int k = 1; k < 3; ++k) {
       const Index r0 = find_root(parent, mesh.faces(f, 0));
       const Index r1 = find_root(parent, mesh.faces(f, k));

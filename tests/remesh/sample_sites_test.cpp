@@ -569,8 +569,9 @@ TEST(SampleSites, ComponentsShareSitesByArea) {
     // 4 first, the small one the remaining 2.
     const auto few = sample_sites(mesh, 6, options_for(strategy, 1, false));
     expect_valid_sites(mesh, few, 6);
-    EXPECT_EQ(std::count_if(few.begin(), few.end(), [&](const SurfacePoint& s) { return s.element < small.num_faces(); }),
-              2);
+    const auto few_on_small =
+        std::count_if(few.begin(), few.end(), [&](const SurfacePoint& s) { return s.element < small.num_faces(); });
+    EXPECT_EQ(few_on_small, 2);
   }
 }
 
@@ -607,6 +608,14 @@ TEST(SampleSites, BadRequests) {
     EXPECT_EQ(parse_sampling_strategy(sampling_strategy_name(strategy)), strategy);
   }
   EXPECT_EQ(sampling_strategy_name(SamplingStrategy::poisson), "poisson");
+  TriangleMesh broken = mesh;
+  broken.faces(1, 2) = 4;  // only vertices 0..3 exist
+  EXPECT_THROW(sample_sites(broken, 10), Error);
+  TriangleMesh infinite = mesh;
+  infinite.vertices(3, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(sample_sites(infinite, 10), Error);
+  infinite.vertices(3, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(sample_sites(infinite, 10), Error);
 }
 
 TEST(SampleSites, BunnyScanEveryLoopGetsSites) {

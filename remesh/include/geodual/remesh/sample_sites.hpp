@@ -73,10 +73,13 @@ struct SamplingOptions {
 /// of length L gets max(3, round(L / s)) sites, but all the loops of a
 /// component together take at most n - 1 sites (never fewer than 3 each).
 /// Sites go evenly by arc length along the parts of the loop whose face has
-/// positive area; a loop with no such part gets none.
+/// positive area, k of them at (j + 1/2) L / k; a loop with no such part
+/// gets none. Loops are walks along the boundary edges: two loops touching at
+/// a pinch vertex may be walked as one figure eight, and on broken meshes (a
+/// vertex with an odd number of boundary edges) a walk may be an open chain.
 ///
-/// Spacing figures above are without boundary sites: a loop shorter than 3 s
-/// still gets 3 sites, closer together than s.
+/// The spacing figures of SamplingStrategy are without boundary sites: a
+/// loop shorter than 3 s still gets 3 sites, closer together than s.
 ///
 /// Cost, one thread, measured on igea.ply (268K faces) on a shared machine:
 /// random 10^6 sites 0.5 s; poisson 10^5 1.5 s, 10^6 26 s (0.7 GB);
@@ -84,7 +87,8 @@ struct SamplingOptions {
 ///
 /// Throws geodual::UsageError when count < 4, count > 2^31 - 1, or count is
 /// below 3 x the number of boundary loops (the message says how many are
-/// needed); geodual::Error when the mesh has no face of positive area.
+/// needed); geodual::Error when the mesh has no face of positive area, a face
+/// refers to a vertex that does not exist, or a face's corner is not finite.
 std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t count,
                                        const SamplingOptions& options = {});
 
