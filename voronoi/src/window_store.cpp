@@ -215,7 +215,7 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
   }
 }
 
-void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Index>& created) {
+void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created) {
   min_length_ = 1e-12 * edge_length;
   Index& site_summary = edge_site_[edge];
   if (site_summary == kNoSite) {
@@ -235,7 +235,7 @@ void WindowStore::insert(Index edge, const Window& candidate, double edge_length
     Window* w = splice(edge, first, 0, 1);
     w[first] = candidate;
     w[first].queued = 0;
-    created.push_back(static_cast<Index>(first));
+    created.push_back({static_cast<Index>(first), candidate.b0, candidate.b1});
     return;
   }
 
@@ -268,7 +268,7 @@ void WindowStore::insert(Index edge, const Window& candidate, double edge_length
     piece.b1 = s.hi;
     if (s.owner < 0) {
       piece.queued = 0;
-      created.push_back(static_cast<Index>(first + replacement_.size()));
+      created.push_back({static_cast<Index>(first + replacement_.size()), s.lo, s.hi});
     }
     replacement_.push_back(piece);
   }

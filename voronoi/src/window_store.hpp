@@ -39,13 +39,20 @@ class WindowStore {
     return {arena_.data() + s.begin, s.count};
   }
 
+  /// A surviving piece of an inserted window: its position in on_edge() and
+  /// its interval (the rest is the candidate's), so that callers need not
+  /// read back what was just written.
+  struct Piece {
+    Index position;
+    double b0, b1;
+  };
+
   /// Inserts `candidate` on `edge` keeping the edge's array the pointwise
   /// minimum. Where the candidate is not strictly better (by a relative
   /// margin) the existing windows win, so ties never churn. Appends to
-  /// `created` the positions in on_edge(edge) of the candidate's surviving
-  /// pieces, in increasing order (the candidate's `queued` flag is cleared;
-  /// pieces of existing windows keep theirs).
-  void insert(Index edge, const Window& candidate, double edge_length, std::vector<Index>& created);
+  /// `created` the candidate's surviving pieces, in increasing order (their
+  /// `queued` flag is cleared; pieces of existing windows keep theirs).
+  void insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created);
 
   /// The site of every window ever inserted on the edge since it was last
   /// cleared, kNoSite if none, kMixedSites if several (the windows held now

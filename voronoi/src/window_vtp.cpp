@@ -166,23 +166,22 @@ void WindowVtp::submit(Index e, const Window& w) {
                 " MiB; raise the limit, use fewer sites, or keep redundant window removal on");
   }
   peak_window_bytes_ = std::max(peak_window_bytes_, store_.bytes());
-  const std::span<Window> windows = store_.on_edge(e);
-  for (const Index i : created_) {
-    const Window& piece = windows[i];
+  for (const WindowStore::Piece& created : created_) {
+    Window piece = w;
+    piece.b0 = created.b0;
+    piece.b1 = created.b1;
     if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0), piece.site);
     if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length), piece.site);
-    schedule(e, windows[i]);
+    schedule(e, piece, created.position);
   }
 }
 
-void WindowVtp::schedule(Index e, Window& w) {
+void WindowVtp::schedule(Index e, const Window& w, Index position) {
   const Index face = pm_.edge_faces[e][w.entering_side()];
   if (face < 0) return;
   if (face_flags_[face] & kTraversed) {
-    if (!w.queued) {
-      w.queued = 1;
-      enqueue_edge(e);
-    }
+    store_.on_edge(e)[position].queued = 1;
+    enqueue_edge(e);
     return;
   }
   // A wavefront window: its edge's end points wait in the vertex queue.

@@ -70,7 +70,7 @@ class WindowVtp {
   /// A window on e goes into the FIFO if the face it enters is traversed;
   /// otherwise it is on the wavefront and its edge's end points wait in the
   /// vertex queue.
-  void schedule(Index e, Window& window);
+  void schedule(Index e, const Window& window, Index position);
   void enqueue_edge(Index e);
   void propagate(Index e, const Window& window);
   void drain_fifo();
@@ -102,7 +102,7 @@ class WindowVtp {
   std::vector<Index> fifo_;            // edges with queued windows
   std::vector<std::uint8_t> in_fifo_;  // per edge
   std::size_t fifo_head_ = 0;
-  std::vector<Index> created_;     // scratch for WindowStore::insert
+  std::vector<WindowStore::Piece> created_;  // scratch for WindowStore::insert
   std::vector<Index> new_faces_;   // scratch for expand
   std::int64_t window_bytes_limit_ = 0;
   std::int64_t peak_window_bytes_ = 0;
