@@ -17,21 +17,6 @@ double twice_area_from_lengths(double a, double b, double c) {
   return product > 0 ? 0.5 * std::sqrt(product) : 0.0;
 }
 
-/// Lays out a face with edge lengths `lengths` for its edge k.
-EdgeLayout compute_layout(const std::array<double, 3>& lengths, int k) {
-  const double length = lengths[k];
-  const double next = lengths[(k + 1) % 3];  // corners k+1, k+2
-  const double prev = lengths[(k + 2) % 3];  // corners k+2, k
-  EdgeLayout l;
-  l.length = length;
-  if (length <= 0) return l;
-  // Law of cosines for the apex's x; its height from the stable area, which
-  // keeps needles and slivers accurate.
-  l.apex.x() = (length * length + prev * prev - next * next) / (2 * length);
-  l.apex.y() = twice_area_from_lengths(length, next, prev) / length;
-  return l;
-}
-
 /// Interior angle at each corner of a face, from its planar layout.
 std::array<double, 3> corner_angles(const PropagationMesh& pm, Index face) {
   const EdgeLayout l = pm.layout(face, 0);
@@ -130,12 +115,20 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   half_edges.clear();
   half_edges.shrink_to_fit();
 
-  pm.face_layouts.assign(num_faces, {});
+  pm.face_records.assign(num_faces, FaceRecord{});
   for (Index f = 0; f < num_faces; ++f) {
     if (!pm.included(f)) continue;
-    std::array<double, 3> lengths{};
-    for (int k = 0; k < 3; ++k) lengths[k] = pm.edge_length[pm.face_edges[f][k]];
-    for (int k = 0; k < 3; ++k) pm.face_layouts[f][k] = compute_layout(lengths, k);
+    FaceRecord& r = pm.face_records[f];
+    for (int k = 0; k < 3; ++k) {
+      const Index e = pm.face_edges[f][k];
+      r.edge[k] = e;
+      r.vertex[k] = mesh.faces(f, k);
+      r.length[k] = pm.edge_length[e];
+      const bool side1 = pm.edge_faces[e][0] != f;
+      r.side_flags[k] = static_cast<std::uint8_t>(
+          (side1 ? FaceRecord::kSide1 : 0) | (side1 && pm.edge_reversed_in_face1[e] ? FaceRecord::kReversed : 0));
+    }
+    r.twice_area = twice_area_from_lengths(r.length[0], r.length[1], r.length[2]);
   }
 
   // Vertex -> faces, by counting sort (faces in increasing order).

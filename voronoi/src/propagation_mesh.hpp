@@ -22,6 +22,41 @@ struct EdgeLayout {
   Eigen::Vector2d apex = Eigen::Vector2d::Zero();
 };
 
+/// What propagating a window through a face needs, in one cache line: the
+/// face's edges, corners and edge lengths, twice its area (the layouts follow
+/// from these without a square root), and per edge which side of it the face
+/// is on and whether the face runs along it against the edge's direction.
+struct alignas(64) FaceRecord {
+  static constexpr std::uint8_t kSide1 = 1;    ///< the face is edge_faces[e][1]
+  static constexpr std::uint8_t kReversed = 2; ///< and runs from v1 to v0
+  std::array<double, 3> length{};
+  double twice_area = 0;
+  std::array<Index, 3> edge{-1, -1, -1};
+  std::array<Index, 3> vertex{-1, -1, -1};
+  std::array<std::uint8_t, 3> side_flags{};
+
+  int side(int k) const { return side_flags[k] & kSide1; }
+  /// The face's coordinate along edge k runs against the edge's frame.
+  bool flipped(int k) const { return (side_flags[k] & kReversed) != 0; }
+  /// The edge's end vertices in the order of the edge's frame (v0, v1).
+  Index edge_start(int k) const { return flipped(k) ? vertex[(k + 1) % 3] : vertex[k]; }
+  Index edge_end(int k) const { return flipped(k) ? vertex[k] : vertex[(k + 1) % 3]; }
+
+  /// The face laid out for its edge k (see EdgeLayout). Law of cosines for
+  /// the apex's x; its height from the cancellation-free area, which keeps
+  /// needles and slivers accurate.
+  EdgeLayout layout(int k) const {
+    EdgeLayout l;
+    const double a = length[k];
+    l.length = a;
+    if (!(a > 0)) return l;
+    const double next = length[(k + 1) % 3], prev = length[(k + 2) % 3];
+    l.apex = Eigen::Vector2d((a * a + prev * prev - next * next) / (2 * a), twice_area / a);
+    return l;
+  }
+};
+static_assert(sizeof(FaceRecord) == 64);
+
 struct PropagationMesh {
   const TriangleMesh* mesh = nullptr;
 
@@ -38,9 +73,9 @@ struct PropagationMesh {
   /// orientation); false where it runs v0 -> v1 like face [0].
   std::vector<std::uint8_t> edge_reversed_in_face1;
   std::vector<double> edge_length;
-  /// Per face, its layout for each of its edges 0, 1, 2 (see EdgeLayout),
-  /// computed once: laying a face out is the innermost step of propagation.
-  std::vector<std::array<EdgeLayout, 3>> face_layouts;
+  /// Per face, the data propagation reads (see FaceRecord); default records
+  /// for faces that take no part.
+  std::vector<FaceRecord> face_records;
 
   /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
   std::vector<Index> vertex_face_begin;
@@ -62,7 +97,7 @@ struct PropagationMesh {
   Index vertex(Index face, int corner) const { return mesh->faces(face, corner); }
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
-  const EdgeLayout& layout(Index face, int k) const { return face_layouts[face][k]; }
+  EdgeLayout layout(Index face, int k) const { return face_records[face].layout(k); }
   /// Which side of edge e face `face` is on: 0 or 1.
   int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }
 };

@@ -142,8 +142,10 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
 // ------------------------------------------------------------ propagation --
 
 void WindowVtp::submit(Index e, const Window& w) {
-  const double length = pm_.edge_length[e];
-  const Index v0 = pm_.edge_vertices[e][0], v1 = pm_.edge_vertices[e][1];
+  submit(e, pm_.edge_length[e], pm_.edge_vertices[e][0], pm_.edge_vertices[e][1], w);
+}
+
+void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w) {
   if (!(w.b1 > w.b0)) return;
   if (w.source_y == 0 || !(length > 0)) {
     // Paths along the edge's line: they matter only at its end points.
@@ -172,11 +174,11 @@ void WindowVtp::submit(Index e, const Window& w) {
     piece.b1 = created.b1;
     if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0), piece.site);
     if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length), piece.site);
-    schedule(e, piece, created.position);
+    schedule(e, v0, v1, piece, created.position);
   }
 }
 
-void WindowVtp::schedule(Index e, const Window& w, Index position) {
+void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, Index position) {
   const Index face = pm_.edge_faces[e][w.entering_side()];
   if (face < 0) return;
   if (face_flags_[face] & kTraversed) {
@@ -186,8 +188,8 @@ void WindowVtp::schedule(Index e, const Window& w, Index position) {
   }
   // A wavefront window: its edge's end points wait in the vertex queue.
   const double key = w.min_distance();
-  push_expand(pm_.edge_vertices[e][0], key);
-  push_expand(pm_.edge_vertices[e][1], key);
+  push_expand(v0, key);
+  push_expand(v1, key);
 }
 
 void WindowVtp::enqueue_edge(Index e) {
@@ -201,12 +203,13 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const Index g = pm_.edge_faces[e][side];
   if (g < 0) return;
   const int k = pm_.edge_local[e][side];
-  const EdgeLayout l = pm_.layout(g, k);
+  const FaceRecord& face = pm_.face_records[g];
+  const EdgeLayout l = face.layout(k);
   const double length = l.length;
 
   // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex
   // above the axis, the source below it.
-  const bool flip = side == 1 && pm_.edge_reversed_in_face1[e];
+  const bool flip = face.flipped(k);
   const Eigen::Vector2d s(flip ? length - w.source_x : w.source_x, side == 0 ? w.source_y : -w.source_y);
   const double b0 = flip ? length - w.b1 : w.b0;
   const double b1 = flip ? length - w.b0 : w.b1;
@@ -218,14 +221,13 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const double x_c = s.x() + (c.x() - s.x()) * t;
   const double tolerance = kEndpointTolerance * length;
   if (x_c >= b0 - tolerance && x_c <= b1 + tolerance) {
-    relax(pm_.vertex(g, (k + 2) % 3), w.sigma + (c - s).norm(), w.site);
+    relax(face.vertex[(k + 2) % 3], w.sigma + (c - s).norm(), w.site);
   }
 
   // Child windows: the part of the cone left of C lands on edge C -> A
   // (local edge k + 2), the part right of C on edge B -> C (local edge k + 1).
   auto emit_child = [&](int j, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double x_lo, double x_hi) {
-    const Index ej = pm_.face_edges[g][j];
-    const double len = pm_.edge_length[ej];
+    const double len = face.length[j];
     const Eigen::Vector2d pq = q - p;
     const double pq_norm = pq.norm();
     if (!(len > 0) || !(pq_norm > 0)) return;
@@ -242,10 +244,12 @@ void WindowVtp::propagate(Index e, const Window& w) {
     const Eigen::Vector2d u = pq / pq_norm;
     const Eigen::Vector2d r = s - p;
     const Eigen::Vector2d source_local(r.dot(u), u.x() * r.y() - u.y() * r.x());
-    const int side_j = pm_.side_of(ej, g);
-    const Eigen::Vector2d src = face_frame_to_edge_frame(pm_, ej, side_j, source_local);
-    const bool flip_j = side_j == 1 && pm_.edge_reversed_in_face1[ej];
-    submit(ej, {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src.x(), src.y(), w.sigma, w.site, 0});
+    // In the frame of edge j (see face_frame_to_edge_frame).
+    const bool flip_j = face.flipped(j);
+    const double src_x = flip_j ? len - source_local.x() : source_local.x();
+    const double src_y = face.side(j) == 0 ? source_local.y() : -source_local.y();
+    submit(face.edge[j], len, face.edge_start(j), face.edge_end(j),
+           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.sigma, w.site, 0});
   };
   if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
   if (x_c < b1) emit_child((k + 1) % 3, b, c, std::max(b0, x_c), b1);
@@ -284,9 +288,10 @@ void WindowVtp::expand(Index v) {
   }
   // Step 3: the windows waiting on the new faces' edges go in.
   for (const Index f : new_faces_) {
+    const FaceRecord& face = pm_.face_records[f];
     for (int k = 0; k < 3; ++k) {
-      const Index e = pm_.face_edges[f][k];
-      const int side = pm_.side_of(e, f);
+      const Index e = face.edge[k];
+      const int side = face.side(k);
       bool any = false;
       for (Window& w : store_.on_edge(e)) {
         if (w.entering_side() == side && !w.queued) {

@@ -64,13 +64,14 @@ class WindowVtp {
   /// Pseudo-source (or vertex site) v: windows on the edges opposite v.
   void emit_from_vertex(Index v, double sigma, Index site);
 
-  /// Inserts a window on edge e; its surviving pieces relax the edge's end
-  /// points and are scheduled.
+  /// Inserts a window on edge e (of the given length, from v0 to v1); its
+  /// surviving pieces relax the edge's end points and are scheduled.
+  void submit(Index e, double length, Index v0, Index v1, const Window& window);
   void submit(Index e, const Window& window);
   /// A window on e goes into the FIFO if the face it enters is traversed;
   /// otherwise it is on the wavefront and its edge's end points wait in the
   /// vertex queue.
-  void schedule(Index e, const Window& window, Index position);
+  void schedule(Index e, Index v0, Index v1, const Window& window, Index position);
   void enqueue_edge(Index e);
   void propagate(Index e, const Window& window);
   void drain_fifo();
