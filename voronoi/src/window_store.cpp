@@ -116,7 +116,6 @@ void WindowStore::clear_edge(Index edge) {
   live_ -= slot.count;
   free_block(slot.begin, slot.capacity);
   slot = Slot{};
-  edge_site_[edge] = kNoSite;
 }
 
 Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added) {
@@ -217,7 +216,7 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
 
 void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created) {
   min_length_ = 1e-12 * edge_length;
-  Index& site_summary = edge_site_[edge];
+  Index& site_summary = slots_[edge].site;
   if (site_summary == kNoSite) {
     site_summary = candidate.site;
   } else if (site_summary != candidate.site) {

@@ -23,7 +23,7 @@ namespace geodual::voronoi::detail {
 class WindowStore {
  public:
   explicit WindowStore(Index num_edges)
-      : slots_(static_cast<std::size_t>(num_edges)), edge_site_(static_cast<std::size_t>(num_edges), kNoSite) {}
+      : slots_(static_cast<std::size_t>(num_edges)) {}
 
   static constexpr Index kNoSite = -1;
   static constexpr Index kMixedSites = -2;
@@ -57,7 +57,7 @@ class WindowStore {
   /// The site of every window ever inserted on the edge since it was last
   /// cleared, kNoSite if none, kMixedSites if several (the windows held now
   /// may still all share one site).
-  Index edge_site(Index edge) const { return edge_site_[edge]; }
+  Index edge_site(Index edge) const { return slots_[edge].site; }
 
   /// Frees every window of the edge.
   void clear_edge(Index edge);
@@ -69,10 +69,12 @@ class WindowStore {
   std::int64_t bytes() const { return static_cast<std::int64_t>(arena_.size() * sizeof(Window)); }
 
  private:
+  /// An edge's block and site summary, together: inserting reads both.
   struct Slot {
     std::uint32_t begin = 0;
     std::uint32_t count = 0;
     std::uint32_t capacity = 0;
+    Index site = kNoSite;
   };
   struct Segment {
     double lo, hi;
@@ -90,7 +92,6 @@ class WindowStore {
   std::vector<Window> arena_;
   std::vector<Slot> slots_;
   std::array<std::vector<std::uint32_t>, 32> free_blocks_;  ///< by log2 of the capacity
-  std::vector<Index> edge_site_;
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;
   // Scratch space reused by insert().
