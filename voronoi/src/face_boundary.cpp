@@ -10,7 +10,7 @@ namespace geodual::voronoi::detail {
 namespace {
 
 constexpr int samples_per_inner_side = 8;
-constexpr int bisection_steps = 56;  // 2^-56 of a segment: below double precision
+constexpr int bisection_steps = 46;  // 2^-46 of a segment (at most a triangle's side): ~1e-14 of it
 constexpr int max_polyline_depth = 12;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }

@@ -151,9 +151,16 @@ Index ConeEnvelope::nearest_site(const Eigen::Vector2d& p) const {
 }
 
 double ConeEnvelope::difference(Index site_a, Index site_b, const Eigen::Vector2d& p) const {
+  // One pass over the cones for both sites.
   const int a = slot_of(site_a), b = slot_of(site_b);
-  const double da = a >= 0 ? distance(a, p) : infinity;
-  const double db = b >= 0 ? distance(b, p) : infinity;
+  double da = infinity, db = infinity;
+  for (const DistanceCone& cone : cones_) {
+    if (cone.slot != a && cone.slot != b) continue;
+    if (!cone.sees(p)) continue;
+    const double d = cone.sigma + (p - cone.apex).norm();
+    double& best = cone.slot == a ? da : db;
+    best = std::min(best, d);
+  }
   if (da == db) return 0;  // also both infinite
   return da - db;
 }
