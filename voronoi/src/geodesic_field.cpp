@@ -1,6 +1,7 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include "geodual/error.hpp"
+#include "locality_order.hpp"
 #include "propagation_mesh.hpp"
 #include "window_vtp.hpp"
 
@@ -26,7 +27,7 @@ std::string site_name(std::size_t i) { return "site " + std::to_string(i); }
 /// Checks every site and brings it to a canonical form: a face point with two
 /// zero barycentric coordinates becomes a vertex site.
 std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail::PropagationMesh& pm,
-                                          std::span<const SurfacePoint> sites) {
+                                          const detail::LocalityOrder& locality, std::span<const SurfacePoint> sites) {
   std::vector<SurfacePoint> result(sites.begin(), sites.end());
   for (std::size_t i = 0; i < result.size(); ++i) {
     SurfacePoint& site = result[i];
@@ -48,7 +49,8 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       }
       for (int c = 0; c < 3; ++c) b[c] = b[c] < 1e-14 ? 0.0 : b[c];
       b /= b.sum();
-      if (!pm.included(site.element)) {
+      const Index local_face = locality.new_face[site.element];
+      if (!pm.included(local_face)) {
         throw Error(site_name(i) + ": face " + std::to_string(site.element) +
                     " repeats a vertex index and takes no part in the surface");
       }
@@ -58,13 +60,14 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       }
       if (nonzero == 1) {
         site = SurfacePoint::at_vertex(mesh.faces(site.element, corner));
-      } else if (!(pm.layout(site.element, 0).apex.y() > 0)) {
+      } else if (!(pm.layout(local_face, 0).apex.y() > 0)) {
         throw Error(site_name(i) + ": face " + std::to_string(site.element) +
                     " has zero area; place the site on a neighbouring face");
       }
     }
     if (site.kind == SurfacePoint::Kind::vertex &&
-        pm.vertex_face_begin[site.element] == pm.vertex_face_begin[site.element + 1]) {
+        pm.vertex_face_begin[locality.new_vertex[site.element]] ==
+            pm.vertex_face_begin[locality.new_vertex[site.element] + 1]) {
       throw Error(site_name(i) + ": vertex " + std::to_string(site.element) + " is used by no triangle");
     }
   }
@@ -92,23 +95,39 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
 GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                      const GeodesicOptions& options) {
   const auto start = Clock::now();
-  detail::PropagationMesh pm = detail::build_propagation_mesh(mesh);
+  // Propagation runs on a copy renumbered for memory locality; everything it
+  // returns is mapped back to the caller's numbering.
+  const detail::LocalityOrder order = detail::locality_order(mesh);
+  detail::PropagationMesh pm = detail::build_propagation_mesh(order.mesh);
   GeodesicField field;
-  field.sites = validated_sites(mesh, pm, sites);
+  field.sites = validated_sites(mesh, pm, order, sites);
+  std::vector<SurfacePoint> local_sites = field.sites;
+  for (SurfacePoint& site : local_sites) {
+    site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
+  }
   const double setup_seconds = seconds_since(start);
 
   const auto propagation_start = Clock::now();
   detail::WindowVtp vtp(pm, options);
-  vtp.add_sites(field.sites);
+  vtp.add_sites(local_sites);
   vtp.run();
   field.stats = vtp.stats();
   field.stats.setup_seconds = setup_seconds;
   field.stats.propagation_seconds = seconds_since(propagation_start);
 
-  field.distance = vtp.distance();
-  field.nearest_site = vtp.label();
-  field.valid_face = vtp.valid_faces();
+  const std::size_t num_vertices = static_cast<std::size_t>(mesh.num_vertices());
+  const std::size_t num_faces = static_cast<std::size_t>(mesh.num_faces());
+  field.distance.resize(num_vertices);
+  field.nearest_site.resize(num_vertices);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    field.distance[v] = vtp.distance()[order.new_vertex[v]];
+    field.nearest_site[v] = vtp.label()[order.new_vertex[v]];
+  }
+  const std::vector<bool> valid = vtp.valid_faces();
+  field.valid_face.resize(num_faces);
+  for (std::size_t f = 0; f < num_faces; ++f) field.valid_face[f] = valid[order.new_face[f]];
   field.face_point_sources = vtp.point_sources();
+  for (FacePointSource& source : field.face_point_sources) source.face = order.old_face[source.face];
   std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
                    [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
 
@@ -122,12 +141,18 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
     }
   }
   field.window_begin.back() = static_cast<Index>(field.windows.size());
-  // The topology moves into the result rather than being copied: it is the
-  // largest thing held, and the propagation no longer needs it.
+  // The topology moves into the result rather than being copied (it is the
+  // largest thing held, and the propagation no longer needs it), renumbered
+  // back; edges keep the propagation's numbering.
   field.edge_vertices = std::move(pm.edge_vertices);
+  for (auto& ends : field.edge_vertices) ends = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
   field.edge_faces = std::move(pm.edge_faces);
+  for (auto& faces : field.edge_faces) {
+    for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
+  }
   field.edge_length = std::move(pm.edge_length);
-  field.face_edges = std::move(pm.face_edges);
+  field.face_edges.resize(num_faces);
+  for (std::size_t f = 0; f < num_faces; ++f) field.face_edges[f] = pm.face_edges[order.new_face[f]];
   field.stats.total_seconds = seconds_since(start);
   return field;
 }

@@ -1,0 +1,89 @@
+#include "locality_order.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+
+namespace geodual::voronoi::detail {
+namespace {
+
+/// Spreads the low 21 bits of x to every third bit.
+std::uint64_t spread_bits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
+}  // namespace
+
+LocalityOrder locality_order(const TriangleMesh& mesh) {
+  const Index num_vertices = mesh.num_vertices();
+  const Index num_faces = mesh.num_faces();
+  LocalityOrder order;
+
+  // Morton codes of the face centroids in the bounding box of the mesh.
+  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::RowVector3d hi = -lo;
+  for (Index v = 0; v < num_vertices; ++v) {
+    lo = lo.cwiseMin(mesh.vertices.row(v));
+    hi = hi.cwiseMax(mesh.vertices.row(v));
+  }
+  const double extent = num_vertices > 0 ? (hi - lo).maxCoeff() : 0.0;
+  constexpr double kCells = (1 << 21) - 1;
+  const double scale = extent > 0 && std::isfinite(extent) ? kCells / extent : 0.0;
+  std::vector<std::uint64_t> code(static_cast<std::size_t>(num_faces));
+  for (Index f = 0; f < num_faces; ++f) {
+    const Eigen::RowVector3d c =
+        (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) + mesh.vertices.row(mesh.faces(f, 2))) /
+        3.0;
+    std::uint64_t key = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double q = (c[axis] - lo[axis]) * scale;
+      const double cell = q > 0 ? std::min(q, kCells) : 0.0;  // also for NaN
+      key |= spread_bits(static_cast<std::uint64_t>(cell)) << axis;
+    }
+    code[f] = key;
+  }
+  order.old_face.resize(static_cast<std::size_t>(num_faces));
+  std::iota(order.old_face.begin(), order.old_face.end(), Index{0});
+  std::sort(order.old_face.begin(), order.old_face.end(),
+            [&](Index a, Index b) { return code[a] != code[b] ? code[a] < code[b] : a < b; });
+  order.new_face.resize(static_cast<std::size_t>(num_faces));
+  for (Index f = 0; f < num_faces; ++f) order.new_face[order.old_face[f]] = f;
+
+  // Vertices in the order the sorted faces first use them, then the rest.
+  order.new_vertex.assign(static_cast<std::size_t>(num_vertices), -1);
+  order.old_vertex.clear();
+  order.old_vertex.reserve(static_cast<std::size_t>(num_vertices));
+  for (const Index f : order.old_face) {
+    for (int c = 0; c < 3; ++c) {
+      const Index v = mesh.faces(f, c);
+      if (order.new_vertex[v] < 0) {
+        order.new_vertex[v] = static_cast<Index>(order.old_vertex.size());
+        order.old_vertex.push_back(v);
+      }
+    }
+  }
+  for (Index v = 0; v < num_vertices; ++v) {
+    if (order.new_vertex[v] < 0) {
+      order.new_vertex[v] = static_cast<Index>(order.old_vertex.size());
+      order.old_vertex.push_back(v);
+    }
+  }
+
+  order.mesh.vertices.resize(num_vertices, 3);
+  for (Index v = 0; v < num_vertices; ++v) order.mesh.vertices.row(v) = mesh.vertices.row(order.old_vertex[v]);
+  order.mesh.faces.resize(num_faces, 3);
+  for (Index f = 0; f < num_faces; ++f) {
+    for (int c = 0; c < 3; ++c) order.mesh.faces(f, c) = order.new_vertex[mesh.faces(order.old_face[f], c)];
+  }
+  return order;
+}
+
+}  // namespace geodual::voronoi::detail
