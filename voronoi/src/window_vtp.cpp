@@ -120,11 +120,11 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
 void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
   for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
     const Index f = pm_.vertex_faces[i];
+    const FaceRecord& face = pm_.face_records[f];
     int corner = 0;
-    while (pm_.vertex(f, corner) != v) ++corner;
+    while (face.vertex[corner] != v) ++corner;
     const int k = (corner + 1) % 3;  // the edge opposite v
-    const Index e = pm_.face_edges[f][k];
-    const EdgeLayout l = pm_.layout(f, k);
+    const EdgeLayout l = face.layout(k);
     if (!(l.apex.y() > 0) || !(l.length > 0)) {
       // A zero-area face: v lies on the line of its opposite edge. Its end
       // points are reached along the line; where v lies inside the edge, v is
@@ -134,8 +134,10 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
       if (l.apex.x() > 0 && l.apex.x() < l.length) emit_across_edge(f, k, l.apex.x(), sigma, site, 0);
       continue;
     }
-    const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, f), l.apex);
-    submit(e, {0.0, l.length, s.x(), s.y(), sigma, site, 0});
+    // The apex in the frame of the opposite edge (see face_frame_to_edge_frame).
+    const double x = face.flipped(k) ? l.length - l.apex.x() : l.apex.x();
+    const double y = face.side(k) == 0 ? l.apex.y() : -l.apex.y();
+    submit(face.edge[k], l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, sigma, site, 0});
   }
 }
 
