@@ -1,5 +1,5 @@
 // geodual remesh MESH -o OUT (--sites N [--sampling S] [--seed S] | --site-file F)
-//                     [--json] [--preview OUT.png] [--max-repair-rounds K]
+//                     [--lloyd K] [--lloyd-tol T] [--json] [--preview OUT.png] [--max-repair-rounds K]
 // The main job: a dense scan in, an isotropic mesh of about N vertices out,
 // through the dual of the exact geodesic Voronoi diagram.
 
@@ -38,6 +38,14 @@ class RemeshCommand final : public Command {
     command.add_option("MESH", mesh_path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
     command.add_option("-o,--output", output_path_, "The remeshed surface: .glb, .gltf, .ply or .obj")->required();
     sites_.add_to(command);
+    command.add_option("--lloyd", options_.lloyd.iterations,
+                       "Lloyd iterations towards the geodesic centroids (0: the dual of the sampled sites)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    command.add_option("--lloyd-tol", options_.lloyd.tolerance,
+                       "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     command.add_option("--max-repair-rounds", options_.max_repair_rounds,
                        "Rounds of adding sites where the dual fails before giving up")
         ->capture_default_str()
@@ -70,6 +78,8 @@ class RemeshCommand final : public Command {
     json["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     json["seed"] = sites_.seed();
     json["sites"] = given;
+    json["lloyd_iterations"] = result.lloyd_iterations;
+    json["energy_history"] = result.energy;
     json["sites_added"] = result.sites_added;
     json["repair_rounds"] = result.repair_rounds;
     json["vertices"] = result.mesh.num_vertices();
@@ -84,6 +94,7 @@ class RemeshCommand final : public Command {
     json["sample_s"] = sample_seconds;
     json["geodesic_s"] = result.geodesic_seconds;
     json["diagram_s"] = result.diagram_seconds;
+    json["lloyd_move_s"] = result.lloyd_seconds;
     json["dual_s"] = result.dual_seconds;
     const auto write_start = std::chrono::steady_clock::now();
     write_remesh(output_path_, result.mesh, json.dump());
@@ -104,6 +115,10 @@ class RemeshCommand final : public Command {
                            (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                                   : " (" + sites_.file() + ")") +
                            (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
+    if (!result.energy.empty()) {
+      table.add("lloyd", std::to_string(result.lloyd_iterations) + " iterations, CVT energy " +
+                             significant(result.energy.front(), 4) + " -> " + significant(result.energy.back(), 4));
+    }
     table.add("output", output_path_ + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
     table.add("topology", "Euler characteristic " + std::to_string(quality.euler_characteristic) + ", " +
@@ -113,7 +128,8 @@ class RemeshCommand final : public Command {
                              significant(quality.pct_angles_lt30, 3) + " % of angles < 30 deg");
     table.add("time", duration(seconds_since(start)) + " (load " + duration(load_seconds) + ", sample " +
                           duration(sample_seconds) + ", geodesics " + duration(result.geodesic_seconds) +
-                          ", diagram " + duration(result.diagram_seconds) + ", dual " + duration(result.dual_seconds) +
+                          ", diagram " + duration(result.diagram_seconds) + ", lloyd steps " +
+                          duration(result.lloyd_seconds) + ", dual " + duration(result.dual_seconds) +
                           ", write " + duration(write_seconds) + ")");
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
     if (!preview_path_.empty()) table.add("preview", preview_path_);

@@ -11,11 +11,20 @@ namespace geodual::remesh {
 RemeshResult remesh_from_sites(const TriangleMesh& input, std::vector<SurfacePoint> sites,
                                const RemeshOptions& options) {
   RemeshResult result;
-  result.sites = std::move(sites);
+  LloydResult relaxed = lloyd_relax(input, std::move(sites), options.lloyd);
+  result.lloyd_seconds = relaxed.move_seconds;
+  result.geodesic_seconds = relaxed.geodesic_seconds;
+  result.diagram_seconds = relaxed.diagram_seconds;
+  result.sites = std::move(relaxed.sites);
+  result.energy = std::move(relaxed.energy);
+  result.lloyd_iterations = relaxed.iterations;
+  result.diagram = std::move(relaxed.diagram);
   for (int round = 0;; ++round) {
-    result.diagram = voronoi::compute_voronoi(input, result.sites, options.voronoi);
-    result.geodesic_seconds += result.diagram.stats.geodesic_seconds;
-    result.diagram_seconds += result.diagram.stats.extraction_seconds;
+    if (round > 0) {
+      result.diagram = voronoi::compute_voronoi(input, result.sites, options.lloyd.voronoi);
+      result.geodesic_seconds += result.diagram.stats.geodesic_seconds;
+      result.diagram_seconds += result.diagram.stats.extraction_seconds;
+    }
     const auto start = std::chrono::steady_clock::now();
     DualMesh dual = dual_delaunay(input, result.diagram);
     result.dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

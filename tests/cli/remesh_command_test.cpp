@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 namespace geodual::cli_test {
 namespace {
@@ -32,7 +33,7 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
   const MeshReport input = analyze_mesh(io::read_mesh(open_scan).mesh);
   for (const char* extension : {".glb", ".gltf", ".ply", ".obj"}) {
     const auto out = folder.path() / (std::string("bunny") + extension);
-    const CliRun run = run_cli({"remesh", open_scan, "--sites", "600", "-o", out.string(), "--json"});
+    const CliRun run = run_cli({"remesh", open_scan, "--sites", "600", "--lloyd", "1", "-o", out.string(), "--json"});
     ASSERT_EQ(run.exit_status, 0) << run.err;
     const nlohmann::json json = nlohmann::json::parse(run.out);
     const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
@@ -42,8 +43,11 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
     EXPECT_EQ(output.euler_characteristic, input.euler_characteristic);
     EXPECT_EQ(output.boundary_loops, input.boundary_loops);
     EXPECT_EQ(output.nonmanifold_edges, 0);
+    const auto energy = json["energy_history"].get<std::vector<double>>();
+    ASSERT_EQ(energy.size(), json["lloyd_iterations"].get<std::size_t>() + 1);
+    for (std::size_t i = 1; i < energy.size(); ++i) EXPECT_LE(energy[i], energy[i - 1]);
     for (const char* key : {"load_s", "sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s",
-                            "peak_memory_bytes", "q_min", "q_avg"}) {
+                            "peak_memory_bytes", "q_min", "q_avg", "lloyd_iterations", "energy_history"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
   }
@@ -54,8 +58,8 @@ TEST(RemeshCommand, SameInputSameBytesForEverySampling) {
   for (const char* sampling : {"random", "poisson", "fps"}) {
     const auto a = folder.path() / (std::string(sampling) + "-a.ply"), b = folder.path() / (std::string(sampling) + "-b.ply");
     for (const auto& out : {a, b}) {
-      const CliRun run = run_cli({"remesh", genus_four, "--sites", "700", "--sampling", sampling, "--seed", "3", "-o",
-                                  out.string()});
+      const CliRun run = run_cli({"remesh", genus_four, "--sites", "700", "--sampling", sampling, "--seed", "3",
+                                  "--lloyd", "1", "-o", out.string()});
       ASSERT_EQ(run.exit_status, 0) << run.err;
       EXPECT_NE(run.out.find("Euler characteristic -6"), std::string::npos) << run.out;
     }
@@ -83,7 +87,7 @@ TEST(RemeshCommand, BadRequestsFailCleanly) {
   EXPECT_EQ(run.exit_status, 1);
   EXPECT_NE(run.err.find("no-such-scan.ply"), std::string::npos);
   // Too few sites and no repair: a reason, no output.
-  run = run_cli({"remesh", genus_four, "--sites", "6", "--max-repair-rounds", "0", "-o", out.string()});
+  run = run_cli({"remesh", genus_four, "--sites", "6", "--lloyd", "0", "--max-repair-rounds", "0", "-o", out.string()});
   EXPECT_EQ(run.exit_status, 1);
   EXPECT_NE(run.err.find("not a valid remesh"), std::string::npos) << run.err;
   EXPECT_FALSE(std::filesystem::exists(out));

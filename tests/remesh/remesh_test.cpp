@@ -20,7 +20,9 @@ namespace {
 void expect_faithful_remesh(const TriangleMesh& input, std::int64_t count, const std::string& label) {
   SCOPED_TRACE(label + ", " + std::to_string(count) + " sites");
   const std::vector<SurfacePoint> sites = remesh::sample_sites(input, count);
-  const remesh::RemeshResult result = remesh::remesh_from_sites(input, sites);
+  remesh::RemeshOptions options;
+  options.lloyd.iterations = 0;  // the dual of the sampled sites themselves
+  const remesh::RemeshResult result = remesh::remesh_from_sites(input, sites, options);
   const MeshReport in = analyze_mesh(input);
   const MeshReport out = analyze_mesh(result.mesh);
 
@@ -74,8 +76,10 @@ TEST(Remesh, RealScans) {
 TEST(Remesh, SameSitesGiveTheSameMesh) {
   const TriangleMesh mesh = scan("fertility.ply");
   const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 800);
-  const remesh::RemeshResult a = remesh::remesh_from_sites(mesh, sites);
-  const remesh::RemeshResult b = remesh::remesh_from_sites(mesh, sites);
+  remesh::RemeshOptions options;
+  options.lloyd.iterations = 3;
+  const remesh::RemeshResult a = remesh::remesh_from_sites(mesh, sites, options);
+  const remesh::RemeshResult b = remesh::remesh_from_sites(mesh, sites, options);
   EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
   EXPECT_EQ(a.mesh.faces, b.mesh.faces);
 }
@@ -115,10 +119,13 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
   EXPECT_FALSE(dual.check.repair_sites.empty());
   // Without repair rounds: a clear error, never an invalid mesh.
   remesh::RemeshOptions no_repair;
+  no_repair.lloyd.iterations = 0;
   no_repair.max_repair_rounds = 0;
   EXPECT_THROW(remesh::remesh_from_sites(torus, sites, no_repair), Error);
   // With them: a torus.
-  const remesh::RemeshResult repaired = remesh::remesh_from_sites(torus, sites);
+  remesh::RemeshOptions repair;
+  repair.lloyd.iterations = 0;
+  const remesh::RemeshResult repaired = remesh::remesh_from_sites(torus, sites, repair);
   EXPECT_GT(repaired.sites_added, 0);
   EXPECT_EQ(analyze_mesh(repaired.mesh).euler_characteristic, 0);
   EXPECT_EQ(analyze_mesh(repaired.mesh).nonmanifold_edges, 0);

@@ -30,9 +30,9 @@ double mesh_area(const TriangleMesh& mesh) {
   return area;
 }
 
-/// Area of the Euclidean Voronoi cell of sites[i] inside the unit square:
-/// the square clipped by the half-plane of every other site.
-double euclidean_cell_area(const std::vector<Eigen::Vector2d>& sites, std::size_t i) {
+/// The Euclidean Voronoi cell of sites[i] inside the unit square: the square
+/// clipped by the half-plane of every other site (counter-clockwise).
+std::vector<Eigen::Vector2d> euclidean_cell(const std::vector<Eigen::Vector2d>& sites, std::size_t i) {
   std::vector<Eigen::Vector2d> polygon = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (std::size_t j = 0; j < sites.size(); ++j) {
     if (j == i) continue;
@@ -48,6 +48,11 @@ double euclidean_cell_area(const std::vector<Eigen::Vector2d>& sites, std::size_
     }
     polygon = clipped;
   }
+  return polygon;
+}
+
+double euclidean_cell_area(const std::vector<Eigen::Vector2d>& sites, std::size_t i) {
+  const std::vector<Eigen::Vector2d> polygon = euclidean_cell(sites, i);
   double twice = 0;
   for (std::size_t k = 0; k < polygon.size(); ++k) {
     const Eigen::Vector2d& p = polygon[k];
@@ -147,6 +152,29 @@ TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
     EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
   }
   for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
+
+  // Cell moments: on a plane log_s(x) = x - s, so the first moment is
+  // area * (centroid - s) and the energy the polar moment about the site,
+  // both exact on the Euclidean cell polygon (the midpoint rule is exact for
+  // quadratics on a fan of triangles).
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const std::vector<Eigen::Vector2d> cell = euclidean_cell(planar, i);
+    double energy = 0;
+    Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+    for (std::size_t k = 1; k + 1 < cell.size(); ++k) {
+      const Eigen::Vector2d &p = cell[0], &q = cell[k], &r = cell[k + 1];
+      const double area = 0.5 * ((q - p).x() * (r - p).y() - (q - p).y() * (r - p).x());
+      for (const Eigen::Vector2d& m : {Eigen::Vector2d(0.5 * (p + q)), Eigen::Vector2d(0.5 * (q + r)),
+                                       Eigen::Vector2d(0.5 * (r + p))}) {
+        energy += area / 3 * (m - planar[i]).squaredNorm();
+        moment += area / 3 * (m - planar[i]);
+      }
+    }
+    EXPECT_NEAR(diagram.cell_energy[i], energy, 1e-9) << "site " << i;
+    EXPECT_NEAR(diagram.cell_log_moment[i].x(), moment.x(), 1e-9) << "site " << i;
+    EXPECT_NEAR(diagram.cell_log_moment[i].y(), moment.y(), 1e-9) << "site " << i;
+    EXPECT_NEAR(diagram.cell_log_moment[i].z(), 0, 1e-12);
+  }
 }
 
 TEST(VoronoiDiagram, CoCircularSitesMeetAtOnePoint) {

@@ -55,8 +55,9 @@ EdgeInFace edge_in_face(const GeodesicField& field, const TriangleMesh& mesh, co
 }  // namespace
 
 FaceBoundaryTracer::FaceBoundaryTracer(const TriangleMesh& mesh, const GeodesicField& field,
-                                       const VoronoiOptions& options, BoundaryGraph& graph, VoronoiStats& stats)
-    : mesh_(mesh), field_(field), options_(options), graph_(graph), stats_(stats) {
+                                       const VoronoiOptions& options, BoundaryGraph& graph, VoronoiStats& stats,
+                                       CellMoments* moments)
+    : mesh_(mesh), field_(field), options_(options), graph_(graph), stats_(stats), moments_(moments) {
   tolerance_ = options.boundary_tolerance * bounding_box_diagonal(mesh);
   vertex_tolerance_ = 1e-11 * bounding_box_diagonal(mesh);
   edge_first_.assign(field.edge_length.size(), -1);
@@ -226,6 +227,7 @@ void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) 
     if (root.site[c] < 0) return;  // not reached by any site
   }
   build_face_envelope(field_, mesh_, face, layout_, envelope_);
+  if (moments_) moments_->set_face(face, layout_);
   face_sites_.clear();
   face_site_ids_.clear();
   const auto first = std::lower_bound(
@@ -335,6 +337,7 @@ void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vect
   const Eigen::Vector2d centre = (triangle.corner[0] + triangle.corner[1] + triangle.corner[2]) / 3;
   const Index site = envelope_.nearest_site(centre);
   cell_area[site >= 0 ? site : triangle.site[0]] += std::max(triangle_area(triangle.corner), 0.0);
+  if (moments_) moments_->add_polygon(site >= 0 ? site : triangle.site[0], triangle.corner, envelope_, 1.0);
 }
 
 bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std::vector<double>& cell_area) {
@@ -345,7 +348,6 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std
   remaining_.resize(n);
   for (std::size_t i = 0; i < n; ++i) remaining_[i] = static_cast<Index>(i);
   caps_.clear();
-  Index outer_site = n == 0 ? triangle.site[0] : -1;
   for (bool peeled = true; peeled && remaining_.size() >= 2;) {
     peeled = false;
     const std::size_t m = remaining_.size();
@@ -357,7 +359,6 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std
       for (const Index k : remaining_) stretches += cycle_[k].crossing.to == into.to;
       if (stretches != 1) continue;
       caps_.push_back({remaining_[r], remaining_[(r + 1) % m]});
-      outer_site = into.from;
       const std::size_t second = (r + 1) % m;
       remaining_.erase(remaining_.begin() + static_cast<std::ptrdiff_t>(std::max(r, second)));
       remaining_.erase(remaining_.begin() + static_cast<std::ptrdiff_t>(std::min(r, second)));
@@ -412,61 +413,91 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std
   }
   if (!trace_valid_ && !at_limit) return false;
 
-  // 4. Commit: the vertex, the pieces, and the area of every site's part.
+  // 4. Commit: the vertex and the pieces.
   auto piece_span = [&](std::size_t piece) {
     return std::span<const Eigen::Vector2d>(piece_points_.data() + piece_offsets_[piece],
                                             static_cast<std::size_t>(piece_offsets_[piece + 1] - piece_offsets_[piece]));
   };
-  // The corners met walking counter-clockwise from crossing i to crossing j.
-  auto corners_between = [&](Index i, Index j) {
-    const int count = j > i ? cycle_[j].after_corner - cycle_[i].after_corner
-                            : cycle_[j].after_corner + 3 - cycle_[i].after_corner;
-    for (int c = 1; c <= count; ++c) polygon_.push_back(triangle.corner[(cycle_[i].after_corner + c) % 3]);
-  };
   for (std::size_t c = 0; c < caps_.size(); ++c) {
-    const auto [i, j] = caps_[c];
-    const Crossing& into = cycle_[i].crossing;
-    const Crossing& out_of = cycle_[j].crossing;
+    const Crossing& into = cycle_[caps_[c][0]].crossing;
+    const Crossing& out_of = cycle_[caps_[c][1]].crossing;
     commit_piece(into.node, out_of.node, into.from, into.to, into.point, out_of.point, piece_span(c));
-    polygon_.assign(1, into.point);
-    corners_between(i, j);
-    polygon_.push_back(out_of.point);
-    const auto line = piece_span(c);
-    polygon_.insert(polygon_.end(), line.rbegin(), line.rend());
-    const double part = std::max(0.0, signed_area(polygon_));
-    cell_area[into.to] += part;
-    cell_area[into.from] -= part;
   }
-  if (m == 0) {
-    cell_area[outer_site] += std::max(0.0, triangle_area(triangle.corner));
+  if (m > 0) {
+    const Index node = add_node(vertex, BoundaryNode::Kind::voronoi_vertex);
+    graph_.nodes[node].site_begin = static_cast<Index>(graph_.vertex_sites.size());
+    graph_.nodes[node].degree = static_cast<int>(m);
+    graph_.nodes[node].distance = envelope_.distance(envelope_.slot_of(star_sites_[0]), vertex);
+    graph_.vertex_sites.insert(graph_.vertex_sites.end(), star_sites_.begin(), star_sites_.end());
+    stats_.max_vertex_residual = std::max(stats_.max_vertex_residual, spread);
+    for (std::size_t r = 0; r < m; ++r) {
+      const Crossing& c = cycle_[remaining_[r]].crossing;
+      commit_piece(c.node, node, c.from, c.to, c.point, vertex, piece_span(caps_.size() + r));
+    }
+  }
+
+  // 5. Every site's part of the triangle, walked as a polygon with the part
+  //    on the left: along the triangle's boundary to the crossing where the
+  //    part ends, then through the inside along the piece that starts there
+  //    (a cap's arc, or a star piece to the vertex and the previous star
+  //    piece back out) to the crossing where the boundary is the part's again.
+  if (n == 0) {
+    add_part(triangle.site[0], triangle.corner, cell_area);
     return true;
   }
-  const Index node = add_node(vertex, BoundaryNode::Kind::voronoi_vertex);
-  graph_.nodes[node].site_begin = static_cast<Index>(graph_.vertex_sites.size());
-  graph_.nodes[node].degree = static_cast<int>(m);
-  graph_.nodes[node].distance = envelope_.distance(envelope_.slot_of(star_sites_[0]), vertex);
-  graph_.vertex_sites.insert(graph_.vertex_sites.end(), star_sites_.begin(), star_sites_.end());
-  stats_.max_vertex_residual = std::max(stats_.max_vertex_residual, spread);
-  for (std::size_t r = 0; r < m; ++r) {
-    const Crossing& c = cycle_[remaining_[r]].crossing;
-    commit_piece(c.node, node, c.from, c.to, c.point, vertex, piece_span(caps_.size() + r));
+  // Where the inside path from crossing k leads: its far crossing, and how.
+  std::vector<std::array<Index, 3>>& jump = jump_;  // {to crossing, piece, forward (1) / reverse (0) / star (2)}
+  jump.assign(n, {-1, -1, 0});
+  for (std::size_t c = 0; c < caps_.size(); ++c) {
+    jump[caps_[c][0]] = {caps_[c][1], static_cast<Index>(c), 1};
+    jump[caps_[c][1]] = {caps_[c][0], static_cast<Index>(c), 0};
   }
-  // Each star site's part: from its entering crossing round the corners to
-  // its leaving crossing, in along that piece to the vertex, out along the first.
   for (std::size_t r = 0; r < m; ++r) {
-    const std::size_t next = (r + 1) % m;
-    const Index i = remaining_[r], j = remaining_[next];
-    polygon_.assign(1, cycle_[i].crossing.point);
-    corners_between(i, j);
-    polygon_.push_back(cycle_[j].crossing.point);
-    const auto in = piece_span(caps_.size() + next);
-    polygon_.insert(polygon_.end(), in.begin(), in.end());
-    polygon_.push_back(vertex);
-    const auto out = piece_span(caps_.size() + r);
-    polygon_.insert(polygon_.end(), out.rbegin(), out.rend());
-    cell_area[cycle_[i].crossing.to] += std::max(0.0, signed_area(polygon_));
+    jump[remaining_[r]] = {remaining_[(r + m - 1) % m], static_cast<Index>(r), 2};
+  }
+  visited_.assign(n, 0);
+  for (std::size_t start = 0; start < n; ++start) {
+    if (visited_[start]) continue;
+    const Index site = cycle_[start].crossing.to;
+    polygon_.clear();
+    std::size_t k = start;
+    for (std::size_t guard = 0; guard <= 2 * n; ++guard) {
+      visited_[k] = 1;
+      // Along the boundary from crossing k to the next one.
+      const std::size_t next = (k + 1) % n;
+      polygon_.push_back(cycle_[k].crossing.point);
+      const int count = next > k ? cycle_[next].after_corner - cycle_[k].after_corner
+                                 : cycle_[next].after_corner + 3 - cycle_[k].after_corner;
+      for (int c = 1; c <= count; ++c) polygon_.push_back(triangle.corner[(cycle_[k].after_corner + c) % 3]);
+      polygon_.push_back(cycle_[next].crossing.point);
+      // Then inside, from `next`.
+      const auto [to, piece, how] = jump[next];
+      if (how == 1) {
+        const auto line = piece_span(static_cast<std::size_t>(piece));
+        polygon_.insert(polygon_.end(), line.begin(), line.end());
+      } else if (how == 0) {
+        const auto line = piece_span(static_cast<std::size_t>(piece));
+        polygon_.insert(polygon_.end(), line.rbegin(), line.rend());
+      } else {
+        const auto in = piece_span(caps_.size() + static_cast<std::size_t>(piece));
+        polygon_.insert(polygon_.end(), in.begin(), in.end());
+        polygon_.push_back(vertex);
+        const std::size_t back = (static_cast<std::size_t>(piece) + m - 1) % m;
+        const auto out = piece_span(caps_.size() + back);
+        polygon_.insert(polygon_.end(), out.rbegin(), out.rend());
+      }
+      k = static_cast<std::size_t>(to);
+      if (k == start) break;
+    }
+    add_part(site, polygon_, cell_area);
   }
   return true;
+}
+
+void FaceBoundaryTracer::add_part(Index site, std::span<const Eigen::Vector2d> polygon,
+                                  std::vector<double>& cell_area) {
+  cell_area[site] += std::max(0.0, signed_area(polygon));
+  if (moments_) moments_->add_polygon(site, polygon, envelope_, 1.0);
 }
 
 bool FaceBoundaryTracer::inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const {

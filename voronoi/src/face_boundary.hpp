@@ -4,6 +4,7 @@
 // pieces and Voronoi vertices that join those crossings. The pieces of all
 // faces form one graph that voronoi_diagram.cpp chains into arcs.
 
+#include "cell_moments.hpp"
 #include "face_distance.hpp"
 
 #include "geodual/triangle_mesh.hpp"
@@ -63,8 +64,9 @@ struct EdgeCrossing {
 /// Traces the cell boundaries face by face. Not thread-safe; one per thread.
 class FaceBoundaryTracer {
  public:
+  /// `moments`, if not null, receives the integrals of every cell piece.
   FaceBoundaryTracer(const TriangleMesh& mesh, const GeodesicField& field, const VoronoiOptions& options,
-                     BoundaryGraph& graph, VoronoiStats& stats);
+                     BoundaryGraph& graph, VoronoiStats& stats, CellMoments* moments = nullptr);
 
   /// True if `face` may hold a boundary: the engine marked it valid, its
   /// corners have different nearest sites, or a site lies in it.
@@ -135,6 +137,8 @@ class FaceBoundaryTracer {
   /// vertex. False, with nothing added, if it needs refining.
   bool resolve(const SubTriangle& triangle, bool at_limit, std::vector<double>& cell_area);
   bool inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const;
+  /// Gives a site's part of a sub-triangle (a polygon) to its cell.
+  void add_part(Index site, std::span<const Eigen::Vector2d> polygon, std::vector<double>& cell_area);
   /// Adds the piece from node `from` at p to node `to` at q with the 2D
   /// polyline `line` between them.
   void commit_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
@@ -149,6 +153,7 @@ class FaceBoundaryTracer {
   const VoronoiOptions& options_;
   BoundaryGraph& graph_;
   VoronoiStats& stats_;
+  CellMoments* moments_ = nullptr;
   double tolerance_ = 0;         ///< polyline deviation allowed
   double vertex_tolerance_ = 0;  ///< spread of site distances accepted at a Voronoi vertex
 
@@ -177,6 +182,8 @@ class FaceBoundaryTracer {
   std::vector<Index> remaining_;             ///< scratch: crossings not explained by caps
   std::vector<std::array<Index, 2>> caps_;   ///< scratch: (into, out of) crossing pairs
   std::vector<Index> star_sites_;            ///< scratch: the sites of a Voronoi vertex
+  std::vector<std::array<Index, 3>> jump_;   ///< scratch: per crossing, the inside path from it
+  std::vector<std::uint8_t> visited_;
   bool trace_valid_ = true;
   bool face_refined_ = false;
 };

@@ -144,7 +144,8 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   diagram.cell_area.assign(f.sites.size(), 0.0);
 
   BoundaryGraph graph;
-  detail::FaceBoundaryTracer tracer(mesh, f, options, graph, diagram.stats);
+  detail::CellMoments moments(mesh, f, diagram.cell_energy, diagram.cell_log_moment);
+  detail::FaceBoundaryTracer tracer(mesh, f, options, graph, diagram.stats, &moments);
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   // Faces that may hold a boundary, then those next to an edge a boundary crosses.
   std::vector<std::uint8_t> traced(num_faces, 0);
@@ -168,7 +169,10 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     if (traced[face]) {
       tracer.trace_face(face, diagram.cell_area);
     } else if (const Index site = f.nearest_site[mesh.faces(face, 0)]; site >= 0) {
-      diagram.cell_area[site] += detail::FaceLayout::of(f, face).area;
+      const detail::FaceLayout layout = detail::FaceLayout::of(f, face);
+      diagram.cell_area[site] += layout.area;
+      moments.set_face(face, layout);
+      moments.add_face_from_corners(site);
     }
   }
 

@@ -4,10 +4,11 @@
 // property), sites added where it fails and everything recomputed.
 //
 //   auto sites = geodual::remesh::sample_sites(mesh, 4000);
-//   auto result = geodual::remesh::remesh_from_sites(mesh, sites);
+//   auto result = geodual::remesh::remesh_from_sites(mesh, sites);  // 10 Lloyd iterations first
 //   result.mesh  // one vertex per site, oriented like the input
 
 #include "geodual/remesh/dual_delaunay.hpp"
+#include "geodual/remesh/lloyd.hpp"
 #include "geodual/triangle_mesh.hpp"
 #include "geodual/voronoi/surface_point.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
@@ -18,7 +19,9 @@
 namespace geodual::remesh {
 
 struct RemeshOptions {
-  voronoi::VoronoiOptions voronoi;
+  /// Lloyd relaxation of the given sites first (iterations = 0: none). Its
+  /// `voronoi` options are used for every diagram.
+  LloydOptions lloyd;
   /// Rounds of "add sites where the dual fails, recompute" before giving up
   /// with a geodual::Error.
   int max_repair_rounds = 10;
@@ -31,7 +34,10 @@ struct RemeshResult {
   DualCheck check;                  ///< of the final dual (valid)
   std::int64_t sites_added = 0;
   int repair_rounds = 0;
-  double geodesic_seconds = 0;  ///< all rounds
+  std::vector<double> energy;   ///< CVT energy before and after each Lloyd iteration
+  int lloyd_iterations = 0;
+  double lloyd_seconds = 0;     ///< Lloyd's centroid steps (its diagrams count below)
+  double geodesic_seconds = 0;  ///< every diagram: Lloyd iterations and repair rounds
   double diagram_seconds = 0;
   double dual_seconds = 0;
 };

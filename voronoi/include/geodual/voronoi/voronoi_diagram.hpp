@@ -96,6 +96,15 @@ struct VoronoiDiagram {
   /// Per site: the area of its cell. Cells of sites on components that no
   /// other site reaches are whole components.
   std::vector<double> cell_area;
+  /// Per site: the CVT energy of its cell, the integral of d(x, site)^2 over it.
+  std::vector<double> cell_energy;
+  /// Per site: the integral over its cell of the log map at the site (the
+  /// vector of length d(x, site) pointing, in the site's tangent plane, along
+  /// the geodesic to x), as a 3D vector in the plane of the site's face (for
+  /// a vertex site, normal to its area-weighted normal). Divided by the cell's
+  /// area it is the step of one Lloyd iteration towards the geodesic centroid.
+  /// See voronoi/src/cell_moments.hpp for what is exact.
+  std::vector<Eigen::Vector3d> cell_log_moment;
   /// Sorted by (site_a, site_b).
   std::vector<CellAdjacency> adjacency;
   VoronoiStats stats;

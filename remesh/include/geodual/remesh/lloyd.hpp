@@ -1,0 +1,48 @@
+#pragma once
+// Lloyd relaxation towards a geodesic centroidal Voronoi tessellation: each
+// iteration moves every site to (one Riemannian centre-of-mass step towards)
+// its cell's geodesic centroid and recomputes the diagram.
+//
+//   auto relaxed = geodual::remesh::lloyd_relax(mesh, sites, {.iterations = 10});
+//   relaxed.energy  // CVT energy per accepted iteration, never increasing
+//
+// One step: m_i = (1 / |cell_i|) int_cell log_{s_i}(x) dA (the mean of the
+// log map at the site, VoronoiDiagram::cell_log_moment), then
+// s_i <- exp_{s_i}(m_i), walking a straightest geodesic. The energy
+// E = sum_i int_cell d(x, s_i)^2 dA is recorded each iteration; a step that
+// would raise it is not taken and the relaxation stops there (so the
+// recorded energies never increase).
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <vector>
+
+namespace geodual::remesh {
+
+struct LloydOptions {
+  /// At most this many iterations (0: none, the diagram of the given sites).
+  int iterations = 10;
+  /// Stop once an iteration lowers the energy by less than this fraction.
+  double tolerance = 1e-5;
+  /// Sites on the mesh boundary stay where they are (they carry the
+  /// boundary loops into the remesh); true moves them like the others.
+  bool move_boundary_sites = false;
+  voronoi::VoronoiOptions voronoi;
+};
+
+struct LloydResult {
+  std::vector<SurfacePoint> sites;  ///< the relaxed sites, in the given order
+  voronoi::VoronoiDiagram diagram;  ///< of the relaxed sites
+  std::vector<double> energy;       ///< CVT energy of the given sites, then after each accepted iteration
+  int iterations = 0;               ///< iterations accepted
+  double geodesic_seconds = 0;      ///< all diagrams
+  double diagram_seconds = 0;
+  double move_seconds = 0;          ///< centroid steps
+};
+
+/// Throws as compute_voronoi does.
+LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options = {});
+
+}  // namespace geodual::remesh

@@ -1,0 +1,109 @@
+// Lloyd relaxation: the energy never rises, quality improves on a real scan,
+// flat cells move to their centroids, and threads do not change the result.
+
+#include "remesh/analytic_surfaces.hpp"
+
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh_report.hpp"
+#include "geodual/remesh/lloyd.hpp"
+#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/remesh/remesh.hpp"
+#include "geodual/remesh/sample_sites.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace geodual {
+namespace {
+
+TriangleMesh scan(const std::string& name) { return io::read_mesh("../shared/data/meshes/" + name).mesh; }
+
+TEST(Lloyd, EnergyNeverRisesAndQualityImprovesOnAScan) {
+  const TriangleMesh mesh = scan("bunny.ply");
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 1500);
+  remesh::RemeshOptions none, some;
+  none.lloyd.iterations = 0;
+  some.lloyd.iterations = 6;
+  const remesh::RemeshResult before = remesh::remesh_from_sites(mesh, sites, none);
+  const remesh::RemeshResult after = remesh::remesh_from_sites(mesh, sites, some);
+  ASSERT_GE(after.energy.size(), 3u);
+  for (std::size_t i = 1; i < after.energy.size(); ++i) EXPECT_LE(after.energy[i], after.energy[i - 1]);
+  EXPECT_LT(after.energy.back(), 0.8 * after.energy.front());
+  EXPECT_DOUBLE_EQ(after.energy.front(), before.energy.front());
+  const remesh::TriangleQuality q0 = remesh::triangle_quality(before.mesh), q1 = remesh::triangle_quality(after.mesh);
+  EXPECT_GT(q1.q_avg, q0.q_avg + 0.1);
+  EXPECT_GT(q1.theta_min_deg, q0.theta_min_deg);
+  EXPECT_LT(q1.pct_angles_lt30, q0.pct_angles_lt30);
+  // Still a faithful remesh: bunny's topology.
+  const MeshReport in = analyze_mesh(mesh), out = analyze_mesh(after.mesh);
+  EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
+  EXPECT_EQ(out.boundary_loops, in.boundary_loops);
+  EXPECT_EQ(out.nonmanifold_edges, 0);
+}
+
+TEST(Lloyd, BoundarySitesStayOnTheBoundary) {
+  const TriangleMesh disk = test::disk(40, 160);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(disk, 300);
+  remesh::LloydOptions options;
+  options.iterations = 4;
+  const remesh::LloydResult relaxed = remesh::lloyd_relax(disk, sites, options);
+  int on_rim = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const double r0 = sites[i].position(disk).norm(), r1 = relaxed.sites[i].position(disk).norm();
+    if (r0 > std::cos(std::numbers::pi / 160) - 1e-9) {  // on a rim edge (a chord of the circle)
+      ++on_rim;
+      EXPECT_EQ(relaxed.sites[i].position(disk), sites[i].position(disk));
+    } else {
+      EXPECT_LE(r1, 1 + 1e-12);  // never off the surface
+    }
+  }
+  EXPECT_GE(on_rim, 3);
+  for (std::size_t i = 1; i < relaxed.energy.size(); ++i) EXPECT_LE(relaxed.energy[i], relaxed.energy[i - 1]);
+}
+
+TEST(Lloyd, ConvergesToTheRegularCentroidalTessellationOnAPlane) {
+  // On a flat disk the geodesic CVT is the Euclidean one: after enough
+  // iterations each interior site sits at its cell's centroid, i.e. the
+  // mean log map (cell_log_moment / area) is small against the spacing.
+  const TriangleMesh disk = test::disk(32, 128);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(disk, 120);
+  remesh::LloydOptions options;
+  options.iterations = 30;
+  options.tolerance = 0;
+  const remesh::LloydResult relaxed = remesh::lloyd_relax(disk, sites, options);
+  const double spacing = std::sqrt(3.14159 / 120);
+  double worst = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    if (relaxed.sites[i].position(disk).norm() > std::cos(std::numbers::pi / 128) - 1e-9) continue;  // fixed on the rim
+    worst = std::max(worst, (relaxed.diagram.cell_log_moment[i] / relaxed.diagram.cell_area[i]).norm());
+  }
+  EXPECT_LT(worst, 0.05 * spacing);
+}
+
+TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {
+  const TriangleMesh mesh = scan("fertility.ply");
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 600);
+  remesh::LloydOptions options;
+  options.iterations = 3;
+  remesh::LloydResult one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = remesh::lloyd_relax(mesh, sites, options);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = remesh::lloyd_relax(mesh, sites, options);
+  }
+  ASSERT_EQ(one.sites.size(), two.sites.size());
+  for (std::size_t i = 0; i < one.sites.size(); ++i) {
+    EXPECT_EQ(one.sites[i].element, two.sites[i].element);
+    EXPECT_EQ(one.sites[i].barycentric, two.sites[i].barycentric);
+  }
+  EXPECT_EQ(one.energy, two.energy);
+}
+
+}  // namespace
+}  // namespace geodual
