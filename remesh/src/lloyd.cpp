@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace geodual::remesh {
@@ -31,6 +32,42 @@ bool on_boundary(const TriangleMesh& mesh, const voronoi::GeodesicField& field, 
   return false;
 }
 
+/// Every movable site stepped `factor` times its mean log map along the
+/// surface; a pair landing on one point keeps its old places.
+std::vector<SurfacePoint> step_sites(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
+                                     const voronoi::VoronoiDiagram& diagram, double factor,
+                                     const LloydOptions& options) {
+  std::vector<SurfacePoint> moved = sites;
+  // Each site's step is independent of the others: bit-identical for any
+  // number of threads.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const double area = diagram.cell_area[i];
+      if (!(area > 0)) continue;
+      const SurfacePoint& site = sites[i];
+      if (site.kind != SurfacePoint::Kind::face) continue;
+      if (!options.move_boundary_sites && on_boundary(mesh, diagram.field, site)) continue;
+      const Eigen::Vector3d step = factor * diagram.cell_log_moment[i] / area;
+      const double length = step.norm();
+      if (!(length > 0)) continue;
+      moved[i] = detail::walk_on_surface(mesh, diagram.field, site, step, length);
+    }
+  });
+  std::vector<std::size_t> order(moved.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<Eigen::Vector3d> position(moved.size());
+  for (std::size_t i = 0; i < moved.size(); ++i) position[i] = moved[i].position(mesh);
+  auto key = [&](std::size_t i) { return std::tuple(position[i].x(), position[i].y(), position[i].z()); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    if (key(order[k]) == key(order[k - 1])) {
+      moved[order[k]] = sites[order[k]];
+      moved[order[k - 1]] = sites[order[k - 1]];
+    }
+  }
+  return moved;
+}
+
 }  // namespace
 
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options) {
@@ -45,43 +82,24 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
   result.diagram = diagram_of(result.sites);
   result.energy.push_back(total_energy(result.diagram));
 
+  double factor = options.over_relaxation;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const auto start = std::chrono::steady_clock::now();
-    const voronoi::VoronoiDiagram& diagram = result.diagram;
-    std::vector<SurfacePoint> moved = result.sites;
-    // Each site's step is independent of the others: bit-identical for any
-    // number of threads.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()), [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const double area = diagram.cell_area[i];
-        if (!(area > 0)) continue;
-        const SurfacePoint& site = result.sites[i];
-        if (site.kind != SurfacePoint::Kind::face) continue;
-        if (!options.move_boundary_sites && on_boundary(mesh, diagram.field, site)) continue;
-        const Eigen::Vector3d step = diagram.cell_log_moment[i] / area;
-        const double length = step.norm();
-        if (!(length > 0)) continue;
-        moved[i] = detail::walk_on_surface(mesh, diagram.field, site, step, length);
-      }
-    });
-    // Two sites may not land on one point: such a pair keeps its old places.
-    std::vector<std::size_t> order(moved.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::vector<Eigen::Vector3d> position(moved.size());
-    for (std::size_t i = 0; i < moved.size(); ++i) position[i] = moved[i].position(mesh);
-    auto key = [&](std::size_t i) { return std::tuple(position[i].x(), position[i].y(), position[i].z()); };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-    for (std::size_t k = 1; k < order.size(); ++k) {
-      if (key(order[k]) == key(order[k - 1])) {
-        moved[order[k]] = result.sites[order[k]];
-        moved[order[k - 1]] = result.sites[order[k - 1]];
-      }
-    }
+    std::vector<SurfacePoint> moved = step_sites(mesh, result.sites, result.diagram, factor, options);
     result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
     voronoi::VoronoiDiagram next = diagram_of(moved);
-    const double energy = total_energy(next);
+    double energy = total_energy(next);
     const double previous = result.energy.back();
+    if (!(energy <= previous) && factor > 1) {
+      // Over-relaxed too far: the plain Lloyd step (which lowers the energy
+      // of an exact CVT iteration) from here on.
+      factor = 1;
+      const auto again = std::chrono::steady_clock::now();
+      moved = step_sites(mesh, result.sites, result.diagram, factor, options);
+      result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - again).count();
+      next = diagram_of(moved);
+      energy = total_energy(next);
+    }
     if (!(energy <= previous)) break;  // the step would not lower the energy: stop here
     result.sites = std::move(moved);
     result.diagram = std::move(next);

@@ -8,7 +8,8 @@
 //
 // One step: m_i = (1 / |cell_i|) int_cell log_{s_i}(x) dA (the mean of the
 // log map at the site, VoronoiDiagram::cell_log_moment), then
-// s_i <- exp_{s_i}(m_i), walking a straightest geodesic. The energy
+// s_i <- exp_{s_i}(w m_i) (w: over_relaxation), walking a straightest
+// geodesic. The energy
 // E = sum_i int_cell d(x, s_i)^2 dA is recorded each iteration; a step that
 // would raise it is not taken and the relaxation stops there (so the
 // recorded energies never increase).
@@ -26,6 +27,10 @@ struct LloydOptions {
   int iterations = 10;
   /// Stop once an iteration lowers the energy by less than this fraction.
   double tolerance = 1e-5;
+  /// Each step goes this many times the way to the centroid (over-relaxed
+  /// Lloyd; 1 is the plain one). When an over-relaxed step would raise the
+  /// energy, the relaxation falls back to 1 from there on.
+  double over_relaxation = 1.6;
   /// Sites on the mesh boundary stay where they are (they carry the
   /// boundary loops into the remesh); true moves them like the others.
   bool move_boundary_sites = false;
