@@ -10,6 +10,7 @@
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 
@@ -61,7 +62,10 @@ class RemeshCommand final : public Command {
     if (!preview_path_.empty()) io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
     const auto start = std::chrono::steady_clock::now();
     const io::LoadedMesh loaded = io::read_mesh(mesh_path_);
-    const TriangleMesh& mesh = loaded.mesh;
+    // Sites are sampled on the surface that is remeshed: cut apart at
+    // non-manifold edges and vertices (a no-op on a manifold).
+    const remesh::ManifoldCut cut = remesh::cut_to_manifold(loaded.mesh);
+    const TriangleMesh& mesh = cut.mesh;
     const double load_seconds = seconds_since(start);
     const auto sample_start = std::chrono::steady_clock::now();
     std::vector<SurfacePoint> sites = sites_.sites(mesh);
@@ -73,8 +77,9 @@ class RemeshCommand final : public Command {
     nlohmann::ordered_json json;
     json["mesh"] = mesh_path_;
     json["output"] = output_path_;
-    json["input_vertices"] = mesh.num_vertices();
+    json["input_vertices"] = loaded.mesh.num_vertices();
     json["input_faces"] = mesh.num_faces();
+    json["vertices_split"] = cut.vertices_split;
     json["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     json["seed"] = sites_.seed();
     json["sites"] = given;
@@ -109,8 +114,12 @@ class RemeshCommand final : public Command {
       return 0;
     }
     KeyValueTable table;
-    table.add("input", mesh_path_ + " (" + with_thousands(mesh.num_vertices()) + " vertices, " +
-                           with_thousands(mesh.num_faces()) + " faces)");
+    table.add("input", mesh_path_ + " (" + with_thousands(loaded.mesh.num_vertices()) + " vertices, " +
+                           with_thousands(mesh.num_faces()) + " faces" +
+                           (cut.vertices_split > 0 ? ", " + with_thousands(cut.vertices_split) +
+                                                         " non-manifold vertices cut apart"
+                                                   : std::string()) +
+                           ")");
     table.add("sites", with_thousands(static_cast<std::int64_t>(given)) +
                            (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                                   : " (" + sites_.file() + ")") +

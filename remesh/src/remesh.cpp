@@ -1,6 +1,7 @@
 #include "geodual/remesh/remesh.hpp"
 
 #include "geodual/error.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 
 #include <chrono>
 #include <string>
@@ -8,9 +9,28 @@
 
 namespace geodual::remesh {
 
-RemeshResult remesh_from_sites(const TriangleMesh& input, std::vector<SurfacePoint> sites,
+RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoint> sites,
                                const RemeshOptions& options) {
   RemeshResult result;
+  // The surface to remesh: cut apart at non-manifold edges and vertices.
+  // Face points keep their meaning; vertex sites become face points.
+  ManifoldCut cut = cut_to_manifold(mesh);
+  result.vertices_split = cut.vertices_split;
+  if (cut.vertices_split > 0) {
+    for (SurfacePoint& site : sites) {
+      if (site.kind != SurfacePoint::Kind::vertex || site.element < 0 || site.element >= mesh.vertices.rows()) continue;
+      for (Index f = 0; f < mesh.faces.rows(); ++f) {
+        const auto row = mesh.faces.row(f);
+        if (row[0] == row[1] || row[1] == row[2] || row[2] == row[0]) continue;
+        for (int c = 0; c < 3; ++c) {
+          if (row[c] == site.element && site.kind == SurfacePoint::Kind::vertex) {
+            site = SurfacePoint::in_face(f, c == 0, c == 1, c == 2);
+          }
+        }
+      }
+    }
+  }
+  const TriangleMesh& input = cut.vertices_split > 0 ? cut.mesh : mesh;
   LloydResult relaxed = lloyd_relax(input, std::move(sites), options.lloyd);
   result.lloyd_seconds = relaxed.move_seconds;
   result.geodesic_seconds = relaxed.geodesic_seconds;

@@ -7,12 +7,15 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh_report.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace geodual {
 namespace {
@@ -129,6 +132,76 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
   EXPECT_GT(repaired.sites_added, 0);
   EXPECT_EQ(analyze_mesh(repaired.mesh).euler_characteristic, 0);
   EXPECT_EQ(analyze_mesh(repaired.mesh).nonmanifold_edges, 0);
+}
+
+}  // namespace
+}  // namespace geodual
+
+namespace geodual {
+namespace {
+
+/// Two n x n grids in the plane z = 0 touching at one corner (a pinch).
+TriangleMesh bowtie(int n) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<Index, 3>> triangles;
+  auto id = [&](int square, int i, int j) {
+    if (square == 1 && i == 0 && j == 0) return Index{0};  // the shared corner is square 0's (0, 0)
+    return static_cast<Index>(square * (n + 1) * (n + 1) + j * (n + 1) + i);
+  };
+  for (int square = 0; square < 2; ++square) {
+    const double sign = square == 0 ? 1.0 : -1.0;
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) points.emplace_back(sign * i / double(n), sign * j / double(n), 0);
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        triangles.push_back({id(square, i, j), id(square, i + 1, j), id(square, i + 1, j + 1)});
+        triangles.push_back({id(square, i, j), id(square, i + 1, j + 1), id(square, i, j + 1)});
+      }
+    }
+  }
+  TriangleMesh mesh;
+  mesh.vertices.resize(static_cast<Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) mesh.vertices.row(static_cast<Index>(i)) = points[i].transpose();
+  mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) mesh.faces(static_cast<Index>(t), c) = triangles[t][c];
+  }
+  return mesh;
+}
+
+TEST(ManifoldCut, PinchVerticesAreCutApartAndRemeshed) {
+  const TriangleMesh mesh = bowtie(24);
+  ASSERT_EQ(analyze_mesh(mesh).nonmanifold_vertices, 1);
+  const remesh::ManifoldCut cut = remesh::cut_to_manifold(mesh);
+  EXPECT_EQ(cut.vertices_split, 1);
+  EXPECT_EQ(cut.mesh.vertices.rows(), mesh.vertices.rows() + 1);
+  EXPECT_EQ(cut.mesh.faces.rows(), mesh.faces.rows());
+  const MeshReport report = analyze_mesh(cut.mesh);
+  EXPECT_EQ(report.nonmanifold_vertices, 0);
+  EXPECT_EQ(report.components, 2);
+  EXPECT_EQ(report.boundary_loops, 2);
+  // Same corner positions face by face.
+  for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(cut.mesh.vertices.row(cut.mesh.faces(f, c)), mesh.vertices.row(mesh.faces(f, c)));
+    }
+  }
+  // A manifold mesh is left as it is.
+  const remesh::ManifoldCut again = remesh::cut_to_manifold(cut.mesh);
+  EXPECT_EQ(again.vertices_split, 0);
+  EXPECT_EQ(again.mesh.faces, cut.mesh.faces);
+  // The remesh of the bowtie: two disks.
+  remesh::RemeshOptions options;
+  options.lloyd.iterations = 2;
+  const remesh::RemeshResult result =
+      remesh::remesh_from_sites(mesh, remesh::sample_sites(cut.mesh, 200), options);
+  EXPECT_EQ(result.vertices_split, 1);
+  const MeshReport out = analyze_mesh(result.mesh);
+  EXPECT_EQ(out.components, 2);
+  EXPECT_EQ(out.euler_characteristic, 2);
+  EXPECT_EQ(out.boundary_loops, 2);
+  EXPECT_EQ(out.nonmanifold_vertices, 0);
 }
 
 }  // namespace

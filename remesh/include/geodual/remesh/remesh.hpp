@@ -33,6 +33,9 @@ struct RemeshResult {
   voronoi::VoronoiDiagram diagram;  ///< of the final sites
   DualCheck check;                  ///< of the final dual (valid)
   std::int64_t sites_added = 0;
+  /// Input vertices cut apart first (non-manifold edges and pinch vertices,
+  /// see manifold_cut.hpp); the remesh has the topology of the cut surface.
+  std::int64_t vertices_split = 0;
   int repair_rounds = 0;
   std::vector<double> energy;   ///< CVT energy before and after each Lloyd iteration
   int lloyd_iterations = 0;
@@ -42,7 +45,9 @@ struct RemeshResult {
   double dual_seconds = 0;
 };
 
-/// Throws geodual::Error if the dual is still not a valid remesh after
+/// The surface remeshed is `input` cut to a manifold (cut_to_manifold); the
+/// topology checks compare with that. Throws geodual::Error if the dual is
+/// still not a valid remesh after
 /// options.max_repair_rounds, naming what is wrong; bad sites as
 /// compute_geodesic_field does.
 RemeshResult remesh_from_sites(const TriangleMesh& input, std::vector<SurfacePoint> sites,

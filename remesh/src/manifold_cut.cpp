@@ -1,0 +1,97 @@
+#include "geodual/remesh/manifold_cut.hpp"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <tuple>
+#include <vector>
+
+namespace geodual::remesh {
+namespace {
+
+bool proper(const TriangleMesh& mesh, Index f) {
+  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+  return a != b && b != c && c != a;
+}
+
+Index find(std::vector<Index>& parent, Index x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+}  // namespace
+
+ManifoldCut cut_to_manifold(const TriangleMesh& mesh) {
+  const Index num_faces = static_cast<Index>(mesh.faces.rows());
+  const Index num_vertices = static_cast<Index>(mesh.vertices.rows());
+  // Corners (face * 3 + k) joined when their faces share an edge with exactly
+  // two faces and they sit at the same vertex of it.
+  struct HalfEdge {
+    Index low, high, corner_low, corner_high;
+  };
+  std::vector<HalfEdge> edges;
+  edges.reserve(static_cast<std::size_t>(3 * num_faces));
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!proper(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
+      const Index cu = 3 * f + k, cv = 3 * f + (k + 1) % 3;
+      edges.push_back(u < v ? HalfEdge{u, v, cu, cv} : HalfEdge{v, u, cv, cu});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const HalfEdge& a, const HalfEdge& b) {
+    return std::tie(a.low, a.high, a.corner_low) < std::tie(b.low, b.high, b.corner_low);
+  });
+  std::vector<Index> parent(static_cast<std::size_t>(3 * num_faces));
+  std::iota(parent.begin(), parent.end(), Index{0});
+  auto unite = [&](Index a, Index b) {
+    a = find(parent, a), b = find(parent, b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
+    if (j - i == 2) {
+      unite(edges[i].corner_low, edges[i + 1].corner_low);
+      unite(edges[i].corner_high, edges[i + 1].corner_high);
+    }
+    i = j;
+  }
+  // One vertex per fan: the first fan of a vertex keeps its index, further
+  // fans get new vertices at the end, in the order of their first corner.
+  ManifoldCut cut;
+  cut.mesh.faces = mesh.faces;
+  std::vector<Index> vertex_of_fan(parent.size(), -1);
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0), split(static_cast<std::size_t>(num_vertices), 0);
+  std::vector<Index> extra;  // original vertex of each new vertex
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!proper(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index corner = 3 * f + k, root = find(parent, corner);
+      const Index v = mesh.faces(f, k);
+      if (vertex_of_fan[root] < 0) {
+        if (!taken[v]) {
+          taken[v] = 1;
+          vertex_of_fan[root] = v;
+        } else {
+          split[v] = 1;
+          vertex_of_fan[root] = num_vertices + static_cast<Index>(extra.size());
+          extra.push_back(v);
+        }
+      }
+      cut.mesh.faces(f, k) = vertex_of_fan[root];
+    }
+  }
+  cut.mesh.vertices.resize(num_vertices + static_cast<Index>(extra.size()), 3);
+  cut.mesh.vertices.topRows(num_vertices) = mesh.vertices;
+  cut.original_vertex.resize(static_cast<std::size_t>(num_vertices) + extra.size());
+  std::iota(cut.original_vertex.begin(), cut.original_vertex.begin() + num_vertices, Index{0});
+  for (std::size_t i = 0; i < extra.size(); ++i) {
+    cut.mesh.vertices.row(num_vertices + static_cast<Index>(i)) = mesh.vertices.row(extra[i]);
+    cut.original_vertex[static_cast<std::size_t>(num_vertices) + i] = extra[i];
+  }
+  cut.vertices_split = std::count(split.begin(), split.end(), std::uint8_t{1});
+  return cut;
+}
+
+}  // namespace geodual::remesh
