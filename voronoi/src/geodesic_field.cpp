@@ -97,8 +97,9 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   const auto start = Clock::now();
   // Propagation runs on a copy renumbered for memory locality; everything it
   // returns is mapped back to the caller's numbering.
-  const detail::LocalityOrder order = detail::locality_order(mesh);
+  detail::LocalityOrder order = detail::locality_order(mesh);
   detail::PropagationMesh pm = detail::build_propagation_mesh(order.mesh);
+  order.mesh = TriangleMesh{};  // only the numbering is needed from here on
   GeodesicField field;
   field.sites = validated_sites(mesh, pm, order, sites);
   std::vector<SurfacePoint> local_sites = field.sites;
@@ -151,8 +152,26 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
     for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
   }
   field.edge_length = std::move(pm.edge_length);
-  field.face_edges.resize(num_faces);
-  for (std::size_t f = 0; f < num_faces; ++f) field.face_edges[f] = pm.face_edges[order.new_face[f]];
+  // Faces back to the caller's order in place, cycle by cycle.
+  field.face_edges = std::move(pm.face_edges);
+  std::vector<bool> placed(num_faces, false);
+  for (std::size_t cycle = 0; cycle < num_faces; ++cycle) {
+    if (placed[cycle]) continue;
+    // Old face p takes the row of new face new_face[p], which is still
+    // unwritten until the cycle closes (the first row is kept aside).
+    const std::array<Index, 3> first = field.face_edges[cycle];
+    std::size_t p = cycle;
+    for (;;) {
+      placed[p] = true;
+      const auto from = static_cast<std::size_t>(order.new_face[p]);
+      if (from == cycle) {
+        field.face_edges[p] = first;
+        break;
+      }
+      field.face_edges[p] = field.face_edges[from];
+      p = from;
+    }
+  }
   field.stats.total_seconds = seconds_since(start);
   return field;
 }

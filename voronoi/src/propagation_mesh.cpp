@@ -56,7 +56,6 @@ Index fan_size(const PropagationMesh& pm, Index v, Index start) {
 
 PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   PropagationMesh pm;
-  pm.mesh = &mesh;
   const Index num_vertices = mesh.num_vertices();
   const Index num_faces = mesh.num_faces();
   pm.face_edges.assign(num_faces, {-1, -1, -1});
@@ -148,7 +147,6 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   }
 
   // Longest edge per face; angle sums; boundary vertices.
-  pm.face_longest_edge.assign(num_faces, 0.0);
   std::vector<double> angle_sum(num_vertices, 0.0);
   std::vector<std::uint8_t> on_boundary(num_vertices, 0);
   for (Index f = 0; f < num_faces; ++f) {
@@ -156,7 +154,6 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     const auto angles = corner_angles(pm, f);
     for (int k = 0; k < 3; ++k) {
       const Index e = pm.face_edges[f][k];
-      pm.face_longest_edge[f] = std::max(pm.face_longest_edge[f], pm.edge_length[e]);
       angle_sum[mesh.faces(f, k)] += angles[k];
       if (pm.edge_faces[e][1] < 0) {
         on_boundary[pm.edge_vertices[e][0]] = 1;

@@ -57,9 +57,8 @@ struct alignas(64) FaceRecord {
 };
 static_assert(sizeof(FaceRecord) == 64);
 
+/// Built from a mesh, it keeps no reference to it: the mesh may go once built.
 struct PropagationMesh {
-  const TriangleMesh* mesh = nullptr;
-
   /// Per face, its three edges (edge k joins corners k and k + 1); all -1 for
   /// faces with a repeated vertex index, which take no part.
   std::vector<std::array<Index, 3>> face_edges;
@@ -84,8 +83,6 @@ struct PropagationMesh {
   /// Saddle (angle sum > 2 pi - tol), boundary or non-manifold vertices: paths
   /// may bend around them, so they emit windows once their distance is final.
   std::vector<std::uint8_t> is_pseudo_source;
-  /// Longest edge per face (0 for excluded faces); the RWR key uses it.
-  std::vector<double> face_longest_edge;
 
   Index num_included_faces = 0;
 
@@ -94,7 +91,7 @@ struct PropagationMesh {
   Index num_edges() const { return static_cast<Index>(edge_length.size()); }
   bool included(Index face) const { return face_edges[face][0] >= 0; }
 
-  Index vertex(Index face, int corner) const { return mesh->faces(face, corner); }
+  Index vertex(Index face, int corner) const { return face_records[face].vertex[corner]; }
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
   EdgeLayout layout(Index face, int k) const { return face_records[face].layout(k); }

@@ -351,7 +351,8 @@ void WindowVtp::push_face_key(Index face) {
   for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
   if (d_min == kInfinity) return;  // pushed when a corner is first reached
   face_flags_[face] |= kKeyPushed;
-  face_events_.push({d_min + pm_.face_longest_edge[face], face});
+  const std::array<double, 3>& lengths = pm_.face_records[face].length;
+  face_events_.push({d_min + std::max({lengths[0], lengths[1], lengths[2]}), face});
 }
 
 bool WindowVtp::face_is_redundant(Index face) const {
