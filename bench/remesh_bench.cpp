@@ -1,12 +1,13 @@
 // remesh_bench: the whole remesh, stage by stage, with the peak memory of
 // each run (one forked child per run, so runs do not share memory).
 //
-//   build/bench/remesh_bench [--sites 2000,4000] [--subdivided 1,2] [--time-limit S] MESH...
+//   build/bench/remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--time-limit S] MESH...
 //
 // Stages: load (read the file), sample (random sites by area, on boundaries
 // too), geodesics (window-VTP + RWR), diagram (Voronoi extraction), dual
 // (dual Delaunay and its checks; repair rounds repeat geodesics, diagram and
-// dual and are included in their columns), write (a .glb in a temporary
+// dual and are included in their columns; with --lloyd K, so are the K
+// Lloyd iterations' diagrams), write (a .glb in a temporary
 // folder).
 
 #include "bench_support.hpp"
@@ -28,6 +29,7 @@ namespace {
 
 struct Options {
   std::vector<std::int64_t> site_counts = {2000, 4000};
+  int lloyd = 0;  ///< Lloyd iterations before the dual
   std::vector<int> subdivided_levels;
   std::filesystem::path subdivided_input = "../shared/data/meshes/igea.ply";
   std::filesystem::path cache;
@@ -74,10 +76,12 @@ Options parse_options(int argc, char** argv) {
         if (level < 1 || level > 2) throw UsageError("--subdivided: levels are 1 and 2");
         options.subdivided_levels.push_back(static_cast<int>(level));
       }
+    } else if (arg == "--lloyd") {
+      options.lloyd = static_cast<int>(parse_list(value()).at(0));
     } else if (arg == "--time-limit") {
       options.time_limit_seconds = static_cast<unsigned>(parse_list(value()).at(0));
     } else if (arg == "--help" || arg == "-h") {
-      std::cout << "usage: remesh_bench [--sites 2000,4000] [--subdivided 1,2] [--time-limit S] MESH...\n";
+      std::cout << "usage: remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--time-limit S] MESH...\n";
       std::exit(0);
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option " + arg);
@@ -89,7 +93,8 @@ Options parse_options(int argc, char** argv) {
   return options;
 }
 
-Run remesh_once(const std::filesystem::path& mesh_path, std::int64_t sites, const std::filesystem::path& output) {
+Run remesh_once(const std::filesystem::path& mesh_path, std::int64_t sites, int lloyd,
+                const std::filesystem::path& output) {
   Run run;
   const auto start = Clock::now();
   const io::LoadedMesh loaded = io::read_mesh(mesh_path);
@@ -99,7 +104,9 @@ Run remesh_once(const std::filesystem::path& mesh_path, std::int64_t sites, cons
   std::vector<SurfacePoint> points = remesh::sample_sites(loaded.mesh, sites);
   run.sample = seconds_since(stage);
   run.sites = sites;
-  const remesh::RemeshResult result = remesh::remesh_from_sites(loaded.mesh, std::move(points));
+  remesh::RemeshOptions remesh_options;
+  remesh_options.lloyd.iterations = lloyd;
+  const remesh::RemeshResult result = remesh::remesh_from_sites(loaded.mesh, std::move(points), remesh_options);
   run.geodesics = result.geodesic_seconds;
   run.diagram = result.diagram_seconds;
   run.dual = result.dual_seconds;
@@ -131,7 +138,7 @@ int run_benchmark(const Options& options) {
       ChildLimits limits;
       limits.time_limit_seconds = options.time_limit_seconds;
       const ChildOutcome outcome = run_in_child(limits, [&] {
-        const Run r = remesh_once(mesh, sites, scratch / "out.glb");
+        const Run r = remesh_once(mesh, sites, options.lloyd, scratch / "out.glb");
         ByteWriter out;
         out.put(r);
         return out.bytes();

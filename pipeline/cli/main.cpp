@@ -1,19 +1,23 @@
 // geodual: the command line tool. Parses the command line, runs the chosen
 // subcommand and reports every failure as one line on stderr:
 //   geodual: error: <message>
-// Exit status: 0 success, 1 bad input or failure, 2 bad command line.
+// Exit status: 0 success, 1 bad input or failure, 2 bad command line,
+// 3 cancelled (Ctrl-C; nothing is written).
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 
 #include "geodual/error.hpp"
 #include "geodual/pipeline/version.hpp"
 
 #include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
 
 #include <exception>
 #include <iostream>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -42,6 +46,7 @@ constexpr CommandFactory* command_factories[] = {
 
 constexpr int exit_failure = 1;
 constexpr int exit_usage = 2;
+constexpr int exit_cancelled = 3;
 
 /// Prints "geodual: error: <message>" as one line, without allocating (it
 /// also reports running out of memory).
@@ -57,6 +62,10 @@ int run(int argc, char** argv) {
                "geodual"};
   app.set_version_flag("--version", "geodual " + std::string(version()), "Print the version and exit");
   app.require_subcommand(1);
+  app.fallthrough();  // --threads may come after the subcommand too
+  int threads = 0;
+  app.add_option("--threads", threads, "Worker threads (default: all cores); results do not depend on it")
+      ->check(CLI::NonNegativeNumber);
 
   std::vector<std::pair<CLI::App*, std::unique_ptr<Command>>> commands;
   for (CommandFactory* factory : command_factories) {
@@ -81,6 +90,11 @@ int run(int argc, char** argv) {
     return exit_usage;
   }
 
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) {
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  }
+  catch_interrupts();
   for (auto& [subcommand, command] : commands) {
     if (subcommand->parsed()) {
       const int status = command->run();
@@ -103,6 +117,9 @@ int main(int argc, char** argv) {
   } catch (const geodual::UsageError& error) {
     geodual::cli::report_error(error.what());
     return geodual::cli::exit_usage;
+  } catch (const geodual::Cancelled& error) {
+    geodual::cli::report_error(error.what());
+    return geodual::cli::exit_cancelled;
   } catch (const geodual::Error& error) {
     geodual::cli::report_error(error.what());
   } catch (const std::bad_alloc&) {

@@ -4,19 +4,21 @@
 // through the dual of the exact geodesic Voronoi diagram.
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 #include "site_source.hpp"
 #include "text_table.hpp"
 
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
-#include "geodual/remesh/manifold_cut.hpp"
+#include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <string>
@@ -52,37 +54,46 @@ class RemeshCommand final : public Command {
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     command.add_option("--preview", preview_path_, "Also render a picture of the result: .png");
+    command.add_option("--samples", samples_,
+                       "Points per side for the Hausdorff and RMS distance to the input (-1: no comparison)")
+        ->capture_default_str();
     command.add_flag("--json", json_, "Print the statistics as one JSON object");
+    command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
 
   int run() override {
     sites_.validate("remesh");
+    require_output_extension(output_path_, true);
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
     if (!preview_path_.empty()) io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
     const auto start = std::chrono::steady_clock::now();
-    const io::LoadedMesh loaded = io::read_mesh(mesh_path_);
-    // Sites are sampled on the surface that is remeshed: cut apart at
-    // non-manifold edges and vertices (a no-op on a manifold).
-    const remesh::ManifoldCut cut = remesh::cut_to_manifold(loaded.mesh);
-    const TriangleMesh& mesh = cut.mesh;
-    const double load_seconds = seconds_since(start);
-    const auto sample_start = std::chrono::steady_clock::now();
-    std::vector<SurfacePoint> sites = sites_.sites(mesh);
-    const double sample_seconds = seconds_since(sample_start);
-    const std::size_t given = sites.size();
-    const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, std::move(sites), options_);
-    const remesh::TriangleQuality quality = remesh::triangle_quality(result.mesh);
+    ProgressBar bar(quiet_);
+    pipeline::RemeshPipelineOptions options;
+    options.sites = sites_.count();
+    options.sampling = sites_.sampling_options();
+    options.remesh = options_;
+    options.statistics = samples_ >= 0;
+    options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
+    options.progress = [&](pipeline::Stage stage, double fraction) {
+      return bar.update(pipeline::stage_name(stage), fraction);
+    };
+    io::LoadedMesh loaded = io::read_mesh(mesh_path_);
+    if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
+    const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
+    const remesh::RemeshResult& result = run.remesh;
+    const remesh::TriangleQuality quality =
+        run.statistics ? run.statistics->candidate : remesh::triangle_quality(result.mesh);
 
     nlohmann::ordered_json json;
     json["mesh"] = mesh_path_;
     json["output"] = output_path_;
-    json["input_vertices"] = loaded.mesh.num_vertices();
-    json["input_faces"] = mesh.num_faces();
-    json["vertices_split"] = cut.vertices_split;
+    json["input_vertices"] = run.input.mesh.num_vertices();
+    json["input_faces"] = run.input.mesh.num_faces();
+    json["vertices_split"] = run.surface.vertices_split;
     json["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     json["seed"] = sites_.seed();
-    json["sites"] = given;
+    json["sites"] = run.initial_sites.size();
     json["lloyd_iterations"] = result.lloyd_iterations;
     json["energy_history"] = result.energy;
     json["sites_added"] = result.sites_added;
@@ -94,9 +105,18 @@ class RemeshCommand final : public Command {
     json["q_min"] = quality.q_min;
     json["q_avg"] = quality.q_avg;
     json["theta_min_deg"] = quality.theta_min_deg;
+    json["theta_min_avg_deg"] = quality.theta_min_avg_deg;
     json["pct_angles_lt30"] = quality.pct_angles_lt30;
-    json["load_s"] = load_seconds;
-    json["sample_s"] = sample_seconds;
+    json["p30"] = quality.p30;
+    json["pct_valence6"] = quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
+    if (run.statistics) {
+      json["hausdorff_pct"] = run.statistics->hausdorff_pct;
+      json["rms_pct"] = run.statistics->rms_pct;
+      json["area_change_pct"] = run.statistics->area_change_pct;
+    }
+    for (const pipeline::StageTiming& timing : run.timings) {
+      json[std::string(pipeline::stage_name(timing.stage)) + "_s"] = timing.seconds;
+    }
     json["geodesic_s"] = result.geodesic_seconds;
     json["diagram_s"] = result.diagram_seconds;
     json["lloyd_move_s"] = result.lloyd_seconds;
@@ -105,6 +125,7 @@ class RemeshCommand final : public Command {
     write_remesh(output_path_, result.mesh, json.dump());
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh);
     const double write_seconds = seconds_since(write_start);
+    bar.finish();
     json["write_s"] = write_seconds;
     json["time_s"] = seconds_since(start);
     json["peak_memory_bytes"] = peak_memory_bytes();
@@ -114,13 +135,13 @@ class RemeshCommand final : public Command {
       return 0;
     }
     KeyValueTable table;
-    table.add("input", mesh_path_ + " (" + with_thousands(loaded.mesh.num_vertices()) + " vertices, " +
-                           with_thousands(mesh.num_faces()) + " faces" +
-                           (cut.vertices_split > 0 ? ", " + with_thousands(cut.vertices_split) +
-                                                         " non-manifold vertices cut apart"
-                                                   : std::string()) +
+    table.add("input", mesh_path_ + " (" + with_thousands(run.input.mesh.num_vertices()) + " vertices, " +
+                           with_thousands(run.input.mesh.num_faces()) + " faces" +
+                           (run.surface.vertices_split > 0 ? ", " + with_thousands(run.surface.vertices_split) +
+                                                                 " non-manifold vertices cut apart"
+                                                           : std::string()) +
                            ")");
-    table.add("sites", with_thousands(static_cast<std::int64_t>(given)) +
+    table.add("sites", with_thousands(static_cast<std::int64_t>(run.initial_sites.size())) +
                            (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                                   : " (" + sites_.file() + ")") +
                            (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
@@ -135,11 +156,15 @@ class RemeshCommand final : public Command {
     table.add("quality", "Qmin " + significant(quality.q_min, 3) + ", Qavg " + significant(quality.q_avg, 3) +
                              ", min angle " + significant(quality.theta_min_deg, 3) + " deg, " +
                              significant(quality.pct_angles_lt30, 3) + " % of angles < 30 deg");
-    table.add("time", duration(seconds_since(start)) + " (load " + duration(load_seconds) + ", sample " +
-                          duration(sample_seconds) + ", geodesics " + duration(result.geodesic_seconds) +
-                          ", diagram " + duration(result.diagram_seconds) + ", lloyd steps " +
-                          duration(result.lloyd_seconds) + ", dual " + duration(result.dual_seconds) +
-                          ", write " + duration(write_seconds) + ")");
+    if (run.statistics) {
+      table.add("distance", "Hausdorff " + significant(run.statistics->hausdorff_pct, 3) + " %, RMS " +
+                                significant(run.statistics->rms_pct, 3) + " % of the bounding-box diagonal");
+    }
+    std::string stages;
+    for (const pipeline::StageTiming& timing : run.timings) {
+      stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(timing.stage)) + " " + duration(timing.seconds);
+    }
+    table.add("time", duration(seconds_since(start)) + " (" + stages + ", write " + duration(write_seconds) + ")");
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
     if (!preview_path_.empty()) table.add("preview", preview_path_);
     table.print(std::cout);
@@ -152,7 +177,9 @@ class RemeshCommand final : public Command {
   SiteSource sites_;
   std::string preview_path_;
   remesh::RemeshOptions options_;
+  std::int64_t samples_ = 1'000'000;
   bool json_ = false;
+  bool quiet_ = false;
 };
 
 }  // namespace

@@ -26,10 +26,14 @@ void SiteSource::validate(const std::string& command_name) const {
 
 std::vector<SurfacePoint> SiteSource::sites(const TriangleMesh& mesh) const {
   if (!file_.empty()) return read_site_file(file_, mesh);
+  return remesh::sample_sites(mesh, count_, sampling_options());
+}
+
+remesh::SamplingOptions SiteSource::sampling_options() const {
   remesh::SamplingOptions options;
   options.strategy = remesh::parse_sampling_strategy(sampling_);
   options.seed = seed_;
-  return remesh::sample_sites(mesh, count_, options);
+  return options;
 }
 
 }  // namespace geodual::cli

@@ -23,6 +23,7 @@ class SiteSource {
   /// Throws geodual::UsageError unless exactly one source was given.
   void validate(const std::string& command_name) const;
   std::vector<SurfacePoint> sites(const TriangleMesh& mesh) const;
+  remesh::SamplingOptions sampling_options() const;
 
   const std::string& file() const { return file_; }
   std::int64_t count() const { return count_; }

@@ -49,6 +49,7 @@ class VoronoiCommand final : public Command {
 
   int run() override {
     sites_.validate("voronoi");
+    require_output_extension(output_path_, false);
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
     if (!preview_path_.empty()) io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
     const auto start = std::chrono::steady_clock::now();

@@ -81,6 +81,15 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
   io::write_gltf(path, scene);
 }
 
+void require_output_extension(const std::filesystem::path& path, bool remesh) {
+  const std::string extension = lower_extension(path);
+  const bool gltf = extension == ".glb" || extension == ".gltf";
+  if (remesh && !gltf && extension != ".ply" && extension != ".obj") {
+    throw Error(path.string() + ": a remesh is written as .glb, .gltf, .ply or .obj");
+  }
+  if (!remesh && !gltf) throw Error(path.string() + ": a Voronoi diagram is written as .glb or .gltf");
+}
+
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json) {
   const std::string extension = lower_extension(path);
   if (extension == ".glb" || extension == ".gltf") {

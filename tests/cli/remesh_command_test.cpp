@@ -33,7 +33,7 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
   const MeshReport input = analyze_mesh(io::read_mesh(open_scan).mesh);
   for (const char* extension : {".glb", ".gltf", ".ply", ".obj"}) {
     const auto out = folder.path() / (std::string("bunny") + extension);
-    const CliRun run = run_cli({"remesh", open_scan, "--sites", "600", "--lloyd", "1", "-o", out.string(), "--json"});
+    const CliRun run = run_cli({"remesh", open_scan, "--sites", "600", "--lloyd", "1", "--samples", "10000", "-o", out.string(), "--json"});
     ASSERT_EQ(run.exit_status, 0) << run.err;
     const nlohmann::json json = nlohmann::json::parse(run.out);
     const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
@@ -46,8 +46,9 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
     const auto energy = json["energy_history"].get<std::vector<double>>();
     ASSERT_EQ(energy.size(), json["lloyd_iterations"].get<std::size_t>() + 1);
     for (std::size_t i = 1; i < energy.size(); ++i) EXPECT_LE(energy[i], energy[i - 1]);
-    for (const char* key : {"load_s", "sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s",
-                            "peak_memory_bytes", "q_min", "q_avg", "lloyd_iterations", "energy_history"}) {
+    for (const char* key : {"sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s",
+                            "peak_memory_bytes", "q_min", "q_avg", "lloyd_iterations", "energy_history",
+                            "hausdorff_pct", "rms_pct", "relax_s", "statistics_s"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
   }
@@ -59,7 +60,7 @@ TEST(RemeshCommand, SameInputSameBytesForEverySampling) {
     const auto a = folder.path() / (std::string(sampling) + "-a.ply"), b = folder.path() / (std::string(sampling) + "-b.ply");
     for (const auto& out : {a, b}) {
       const CliRun run = run_cli({"remesh", genus_four, "--sites", "700", "--sampling", sampling, "--seed", "3",
-                                  "--lloyd", "1", "-o", out.string()});
+                                  "--lloyd", "1", "--samples", "-1", "-o", out.string()});
       ASSERT_EQ(run.exit_status, 0) << run.err;
       EXPECT_NE(run.out.find("Euler characteristic -6"), std::string::npos) << run.out;
     }

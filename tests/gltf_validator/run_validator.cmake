@@ -78,14 +78,14 @@ foreach(ext glb gltf)
   run_or_fail("geodual voronoi -o voronoi.${ext}"
     ${CLI} voronoi ${MESH} --sites 100 --seed 3 -o ${cli_dir}/voronoi.${ext})
   run_or_fail("geodual remesh -o remesh.${ext}"
-    ${CLI} remesh ${MESH} --sites 500 --seed 3 -o ${cli_dir}/remesh.${ext})
+    ${CLI} remesh ${MESH} --sites 500 --seed 3 --lloyd 2 --samples 10000 -o ${cli_dir}/remesh.${ext})
   foreach(name geodesic voronoi remesh)
     list(APPEND files ${cli_dir}/${name}.${ext})
   endforeach()
 endforeach()
 # The bundled scan: open (holes), larger; what remesh-default writes.
 run_or_fail("geodual remesh on the bundled scan -o bunny_remesh.glb"
-  ${CLI} remesh ${BUNDLED_SCAN} --sites 1000 -o ${cli_dir}/bunny_remesh.glb)
+  ${CLI} remesh ${BUNDLED_SCAN} --sites 1000 --lloyd 2 --samples 10000 -o ${cli_dir}/bunny_remesh.glb)
 run_or_fail("geodual voronoi on the bundled scan -o bunny_voronoi.gltf"
   ${CLI} voronoi ${BUNDLED_SCAN} --sites 300 -o ${cli_dir}/bunny_voronoi.gltf)
 list(APPEND files ${cli_dir}/bunny_remesh.glb ${cli_dir}/bunny_voronoi.gltf)

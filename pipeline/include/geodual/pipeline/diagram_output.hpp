@@ -22,6 +22,10 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
 /// `extras_json` in asset.extras).
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json = {});
 
+/// Throws geodual::Error unless `path` ends in an extension write_remesh
+/// (remesh = true) or write_voronoi_diagram (false) knows, before any work.
+void require_output_extension(const std::filesystem::path& path, bool remesh);
+
 /// A PNG picture of the input coloured by cell with the boundaries and sites.
 void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
                            const voronoi::VoronoiDiagram& diagram);

@@ -1,0 +1,77 @@
+#pragma once
+// The remesh pipeline for C++ code: the stages the `geodual remesh` command
+// runs, callable all at once or one at a time, with per-stage timings and
+// peak memory, and a progress callback that can cancel.
+//
+//   geodual::pipeline::RemeshPipelineOptions options;   // 4000 sites, 10 Lloyd iterations
+//   options.sites = 2000;
+//   auto result = geodual::pipeline::run_remesh_pipeline("scan.ply", options);
+//   geodual::io::write_mesh("remeshed.ply", result.remesh.mesh);
+//
+// Stage by stage (each takes plain data and returns plain data):
+//   auto loaded = geodual::io::read_mesh("scan.ply");
+//   auto surface = geodual::remesh::cut_to_manifold(loaded.mesh).mesh;
+//   auto sites = geodual::remesh::sample_sites(surface, 2000);
+//   auto remeshed = geodual::remesh::remesh_from_sites(surface, sites);
+//   auto report = geodual::remesh::compare_meshes(loaded.mesh, remeshed.mesh);
+
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh_report.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
+#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/remesh/remesh.hpp"
+#include "geodual/remesh/sample_sites.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace geodual::pipeline {
+
+enum class Stage { load, sample, relax, dual, statistics };
+
+/// "load", "sample", "relax" (Lloyd and its diagrams), "dual" (the dual and
+/// its repair rounds), "statistics".
+std::string_view stage_name(Stage stage);
+
+/// Called now and then with the stage and its fraction done in [0, 1];
+/// returning false cancels the run (geodual::Cancelled is thrown, nothing is
+/// written).
+using ProgressCallback = std::function<bool(Stage stage, double fraction)>;
+
+struct RemeshPipelineOptions {
+  std::int64_t sites = 4000;            ///< sites sampled on the input (ignored if given_sites is set)
+  std::optional<std::vector<SurfacePoint>> given_sites;  ///< use these sites instead of sampling
+  remesh::SamplingOptions sampling;     ///< random by area, seed 1, sites on boundary loops
+  remesh::RemeshOptions remesh;         ///< 10 Lloyd iterations, up to 10 repair rounds
+  bool statistics = true;               ///< compare the remesh with the input (quality, Hausdorff)
+  remesh::QualityOptions quality;       ///< 10^6 samples per side
+  ProgressCallback progress;
+};
+
+struct StageTiming {
+  Stage stage = Stage::load;
+  double seconds = 0;
+  std::int64_t peak_memory_bytes = 0;  ///< the process's peak resident memory at the stage's end
+};
+
+struct RemeshPipelineResult {
+  io::LoadedMesh input;
+  MeshReport input_report;
+  /// The surface remeshed: the input cut apart at non-manifold vertices.
+  remesh::ManifoldCut surface;
+  std::vector<SurfacePoint> initial_sites;
+  remesh::RemeshResult remesh;  ///< the remeshed mesh, final sites, diagram, energy history
+  std::optional<remesh::QualityReport> statistics;
+  std::vector<StageTiming> timings;
+};
+
+/// Runs every stage on a file.
+RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, const RemeshPipelineOptions& options = {});
+/// Runs every stage after `load` on a mesh already read.
+RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options = {});
+
+}  // namespace geodual::pipeline

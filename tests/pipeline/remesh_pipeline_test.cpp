@@ -1,0 +1,78 @@
+// The C++ pipeline: every stage timed in order, the result holds every
+// intermediate, and the progress callback can cancel.
+
+#include "geodual/error.hpp"
+#include "geodual/pipeline/remesh_pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace geodual {
+namespace {
+
+constexpr const char* genus_four = "../shared/data/meshes/fertility.ply";
+
+pipeline::RemeshPipelineOptions small_options() {
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 400;
+  options.remesh.lloyd.iterations = 2;
+  options.quality.samples_per_side = 20'000;
+  return options;
+}
+
+TEST(RemeshPipeline, RunsEveryStageAndKeepsEveryIntermediate) {
+  std::vector<pipeline::Stage> seen;
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.progress = [&](pipeline::Stage stage, double fraction) {
+    EXPECT_GE(fraction, 0.0);
+    EXPECT_LE(fraction, 1.0);
+    if (seen.empty() || seen.back() != stage) seen.push_back(stage);
+    return true;
+  };
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(genus_four, options);
+  EXPECT_EQ(result.input_report.euler_characteristic, -6);
+  EXPECT_EQ(result.initial_sites.size(), 400u);
+  EXPECT_EQ(result.remesh.mesh.vertices.rows(), 400 + result.remesh.sites_added);
+  EXPECT_EQ(result.remesh.energy.size(), static_cast<std::size_t>(result.remesh.lloyd_iterations) + 1);
+  ASSERT_TRUE(result.statistics.has_value());
+  EXPECT_EQ(result.statistics->candidate.euler_characteristic, -6);
+  EXPECT_GT(result.statistics->hausdorff_pct, 0);
+  std::vector<pipeline::Stage> timed;
+  for (const pipeline::StageTiming& timing : result.timings) {
+    timed.push_back(timing.stage);
+    EXPECT_GE(timing.seconds, 0);
+    EXPECT_GT(timing.peak_memory_bytes, 0);
+  }
+  const std::vector<pipeline::Stage> expected = {pipeline::Stage::load, pipeline::Stage::sample, pipeline::Stage::relax,
+                                                 pipeline::Stage::dual, pipeline::Stage::statistics};
+  EXPECT_EQ(timed, expected);
+  EXPECT_EQ(seen.front(), pipeline::Stage::load);
+  EXPECT_EQ(seen.back(), pipeline::Stage::statistics);
+}
+
+TEST(RemeshPipeline, TheProgressCallbackCancels) {
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.progress = [](pipeline::Stage stage, double fraction) {
+    return !(stage == pipeline::Stage::relax && fraction > 0.3);
+  };
+  EXPECT_THROW(pipeline::run_remesh_pipeline(genus_four, options), Cancelled);
+}
+
+TEST(RemeshPipeline, GivenSitesReplaceSampling) {
+  pipeline::RemeshPipelineOptions options = small_options();
+  const io::LoadedMesh loaded = io::read_mesh(genus_four);
+  options.given_sites = remesh::sample_sites(loaded.mesh, 300, {remesh::SamplingStrategy::fps, 4, true});
+  options.statistics = false;
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(genus_four, options);
+  ASSERT_EQ(result.initial_sites.size(), 300u);
+  EXPECT_FALSE(result.statistics.has_value());
+  for (std::size_t i = 0; i < 300; ++i) {
+    EXPECT_EQ(result.initial_sites[i].element, (*options.given_sites)[i].element);
+  }
+  EXPECT_EQ(pipeline::stage_name(pipeline::Stage::relax), "relax");
+}
+
+}  // namespace
+}  // namespace geodual
