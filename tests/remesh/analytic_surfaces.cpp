@@ -8,9 +8,7 @@
 #include <vector>
 
 namespace geodual::test {
-namespace {
-
-TriangleMesh from_lists(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<Index, 3>>& faces) {
+TriangleMesh mesh_from_lists(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<Index, 3>>& faces) {
   TriangleMesh mesh;
   mesh.vertices.resize(static_cast<Index>(vertices.size()), 3);
   for (std::size_t i = 0; i < vertices.size(); ++i) mesh.vertices.row(static_cast<Index>(i)) = vertices[i].transpose();
@@ -20,6 +18,8 @@ TriangleMesh from_lists(const std::vector<Eigen::Vector3d>& vertices, const std:
   }
   return mesh;
 }
+
+namespace {
 
 /// Vertices and faces of a torus grid, skipping the quads for which `cut` is true.
 template <class Cut>
@@ -73,14 +73,14 @@ TriangleMesh icosphere(int levels) {
     }
     faces = std::move(finer);
   }
-  return from_lists(vertices, faces);
+  return mesh_from_lists(vertices, faces);
 }
 
 TriangleMesh torus(double R, double r, int n, int m, double centre_x) {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<Index, 3>> faces;
   add_torus(R, r, n, m, centre_x, [](int, int) { return false; }, vertices, faces);
-  return from_lists(vertices, faces);
+  return mesh_from_lists(vertices, faces);
 }
 
 TriangleMesh double_torus(double R, double r, int n, int m, int k) {
@@ -116,7 +116,7 @@ TriangleMesh double_torus(double R, double r, int n, int m, int k) {
     faces.push_back({a0, a1, b1});
     faces.push_back({a0, b1, b0});
   }
-  return from_lists(vertices, faces);
+  return mesh_from_lists(vertices, faces);
 }
 
 TriangleMesh disk(int rings, int segments) {
@@ -136,7 +136,7 @@ TriangleMesh disk(int rings, int segments) {
       faces.push_back({id(ring, s), id(ring + 1, s + 1), id(ring, s + 1)});
     }
   }
-  return from_lists(vertices, faces);
+  return mesh_from_lists(vertices, faces);
 }
 
 }  // namespace geodual::test

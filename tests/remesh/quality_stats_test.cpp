@@ -4,6 +4,8 @@
 // a brute-force point-to-triangle distance (CGAL's), and the real bunny scan
 // against the data set manifest.
 
+#include "remesh/analytic_surfaces.hpp"
+
 #include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh_report.hpp"
@@ -74,35 +76,6 @@ TriangleMesh icosahedron() {
     }
   }
   return make_mesh(p, faces);
-}
-
-/// The icosahedron split `levels` times 1-to-4, vertices on the unit sphere.
-TriangleMesh icosphere(int levels) {
-  TriangleMesh mesh = icosahedron();
-  std::vector<Vec> points;
-  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) points.push_back(mesh.vertices.row(v).normalized());
-  std::vector<std::array<Index, 3>> faces;
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) faces.push_back({mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)});
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<Index, Index>, Index> midpoint;
-    const auto middle = [&](Index a, Index b) {
-      const auto key = std::minmax(a, b);
-      const auto found = midpoint.find(key);
-      if (found != midpoint.end()) return found->second;
-      points.push_back((points[a] + points[b]).normalized());
-      return midpoint[key] = static_cast<Index>(points.size() - 1);
-    };
-    std::vector<std::array<Index, 3>> finer;
-    for (const auto& [a, b, c] : faces) {
-      const Index ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
-      finer.push_back({a, ab, ca});
-      finer.push_back({ab, b, bc});
-      finer.push_back({ca, bc, c});
-      finer.push_back({ab, bc, ca});
-    }
-    faces = std::move(finer);
-  }
-  return make_mesh(points, faces);
 }
 
 /// An n x n grid of squares on the plane spanned by u and v (from the
@@ -353,7 +326,7 @@ TEST(TriangleQuality, BadMeshesAreErrors) {
 // ---------------------------------------------------------------- distances
 
 TEST(CompareMeshes, MeshAgainstItselfIsZero) {
-  const TriangleMesh sphere = icosphere(2);
+  const TriangleMesh sphere = test::icosphere(2);
   const QualityReport report = compare_meshes(sphere, sphere, samples(20000));
   EXPECT_LT(report.hausdorff, 1e-15);
   EXPECT_LT(report.rms, 1e-15);
@@ -386,7 +359,7 @@ TEST(CompareMeshes, ScaledSphereHausdorffIsExact) {
   // Nested convex polyhedra P and sP (circumradius 1): the farthest points are
   // the vertices of sP, at exactly s - 1 from P.
   const double s = 1.1;
-  const TriangleMesh sphere = icosphere(2);
+  const TriangleMesh sphere = test::icosphere(2);
   const TriangleMesh larger = transformed(sphere, s, Vec::Zero(), Vec::Zero());
   const QualityReport report = compare_meshes(sphere, larger, samples(20000));
   EXPECT_NEAR(report.hausdorff, s - 1, 1e-12);
@@ -426,8 +399,8 @@ TEST(CompareMeshes, VerticesOnlyMatchBruteForce) {
   // sphere plus a grid of points above a needle triangle and an obtuse one of
   // the candidate, so that the nearest points fall on faces, edges and
   // vertices alike.
-  TriangleMesh a = combined(icosphere(3), transformed(plane_grid(7), 2.0, Vec::Zero(), Vec(1.2, -1.0, 0.3)));
-  TriangleMesh b = combined(icosphere(1), make_mesh({Vec(1.5, 0, 0), Vec(2.5, 0, 0), Vec(2.5, 1e-6, 0), Vec(1.4, 0.2, 0.1),
+  TriangleMesh a = combined(test::icosphere(3), transformed(plane_grid(7), 2.0, Vec::Zero(), Vec(1.2, -1.0, 0.3)));
+  TriangleMesh b = combined(test::icosphere(1), make_mesh({Vec(1.5, 0, 0), Vec(2.5, 0, 0), Vec(2.5, 1e-6, 0), Vec(1.4, 0.2, 0.1),
                                                      Vec(3.3, 0.4, -0.1), Vec(2.0, 0.5, 0.0)},
                                                     {{0, 1, 2}, {3, 4, 5}}));
   for (Index v = 0; v < 642; ++v) a.vertices.row(v) *= 1.0 + 0.05 * std::sin(3.0 * v);
@@ -475,7 +448,7 @@ TEST(CompareMeshes, SamplesAreAreaUniform) {
 }
 
 TEST(CompareMeshes, DeterministicForAnyThreadCount) {
-  const TriangleMesh sphere = icosphere(3);
+  const TriangleMesh sphere = test::icosphere(3);
   TriangleMesh bumpy = sphere;
   for (Index v = 0; v < bumpy.num_vertices(); ++v) bumpy.vertices.row(v) *= 1.0 + 0.02 * std::sin(7.0 * v);
   const QualityReport many = compare_meshes(sphere, bumpy, samples(50000, 7));

@@ -160,14 +160,7 @@ TriangleMesh bowtie(int n) {
       }
     }
   }
-  TriangleMesh mesh;
-  mesh.vertices.resize(static_cast<Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) mesh.vertices.row(static_cast<Index>(i)) = points[i].transpose();
-  mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (int c = 0; c < 3; ++c) mesh.faces(static_cast<Index>(t), c) = triangles[t][c];
-  }
-  return mesh;
+  return test::mesh_from_lists(points, triangles);
 }
 
 TEST(ManifoldCut, PinchVerticesAreCutApartAndRemeshed) {

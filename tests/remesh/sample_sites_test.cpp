@@ -4,6 +4,8 @@
 // (areas, perimeters, arc lengths known in closed form), brute-force
 // distances, and boundary/component structure recomputed independently.
 
+#include "remesh/analytic_surfaces.hpp"
+
 #include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
@@ -81,45 +83,6 @@ TriangleMesh annulus(double r, double R, int segments, int rings) {
       mesh.faces.row(f++) << a, b, b + segments;
       mesh.faces.row(f++) << a, b + segments, a + segments;
     }
-  }
-  return mesh;
-}
-
-/// The unit icosahedron subdivided `levels` times, vertices on the sphere.
-TriangleMesh icosphere(int levels) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  for (auto& p : v) p.normalize();
-  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<int, int>, int> midpoint;
-    auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      const auto it = midpoint.find(key);
-      if (it != midpoint.end()) return it->second;
-      v.push_back((v[a] + v[b]).normalized());
-      return midpoint[key] = static_cast<int>(v.size()) - 1;
-    };
-    std::vector<std::array<int, 3>> next;
-    for (const auto& [a, b, c] : f) {
-      const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-      next.push_back({a, ab, ca});
-      next.push_back({b, bc, ab});
-      next.push_back({c, ca, bc});
-      next.push_back({ab, bc, ca});
-    }
-    f = std::move(next);
-  }
-  TriangleMesh mesh;
-  mesh.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  mesh.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    mesh.faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
   }
   return mesh;
 }
@@ -296,7 +259,7 @@ bool identical(const std::vector<SurfacePoint>& a, const std::vector<SurfacePoin
 // ---------------------------------------------------------------- tests
 
 TEST(SampleSites, ExactCountValidAndDeterministicForEveryStrategy) {
-  const TriangleMesh sphere = icosphere(3);
+  const TriangleMesh sphere = test::icosphere(3);
   const TriangleMesh square = square_grid(12, 0.6);
   for (const SamplingStrategy strategy : kStrategies) {
     SCOPED_TRACE(sampling_strategy_name(strategy));
@@ -346,7 +309,7 @@ TEST(SampleSites, RandomIsUniformOverAJitteredGrid) {
 }
 
 TEST(SampleSites, PoissonAndFpsAreWellSpacedOnASphere) {
-  const TriangleMesh mesh = icosphere(4);
+  const TriangleMesh mesh = test::icosphere(4);
   double area = 0;
   for (Index f = 0; f < mesh.num_faces(); ++f) area += face_area(mesh, f);
   const std::int64_t n = 800;

@@ -45,7 +45,7 @@ struct GeodesicStats {
   std::int64_t windows_created = 0;   ///< windows that survived insertion on an edge
   std::int64_t windows_stored = 0;    ///< windows held at the end
   std::int64_t peak_windows = 0;      ///< most windows held at one time
-  std::int64_t peak_window_bytes = 0; ///< peak_windows times the size of one window
+  std::int64_t peak_window_bytes = 0; ///< peak bytes of window storage (live windows, unused block capacity and freed blocks awaiting reuse); window_memory_limit_bytes is checked against the same figure
   std::int64_t vertices_popped = 0;   ///< vertices taken from the priority queue to expand
   std::int64_t pseudo_sources = 0;    ///< saddle / boundary vertices that emitted windows
   std::int64_t faces_inactive = 0;    ///< faces that reached the inactive region
