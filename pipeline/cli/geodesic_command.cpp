@@ -3,6 +3,7 @@
 // Exact geodesic distance from the nearest of several sites, at every vertex.
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 #include "text_table.hpp"
 
 #include "geodual/error.hpp"
@@ -47,6 +48,7 @@ class GeodesicCommand final : public Command {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     command.add_flag("--json", json_, "Print the statistics as one JSON object");
+    command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
 
@@ -65,7 +67,10 @@ class GeodesicCommand final : public Command {
     voronoi::GeodesicOptions options;
     options.remove_redundant_windows = !no_rwr_;
     options.window_memory_limit_bytes = static_cast<std::size_t>(window_memory_mib_) << 20;
+    ProgressBar bar(quiet_);
+    options.progress = [&](double fraction) { return bar.update("geodesics", fraction); };
     const voronoi::GeodesicField field = voronoi::compute_geodesic_field(mesh, sites, options);
+    bar.finish();
     if (!output_path_.empty()) write_geodesic_field(output_path_, mesh, field);
 
     std::int64_t reached = 0;
@@ -129,6 +134,7 @@ class GeodesicCommand final : public Command {
   bool no_rwr_ = false;
   std::int64_t window_memory_mib_ = 8192;
   bool json_ = false;
+  bool quiet_ = false;
 };
 
 }  // namespace

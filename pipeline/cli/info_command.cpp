@@ -5,6 +5,8 @@
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh_report.hpp"
+#include "geodual/io/atomic_file.hpp"
+#include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/report_json.hpp"
 
 #include <CLI/CLI.hpp>
@@ -34,6 +36,8 @@ class InfoCommand final : public Command {
     command.add_option("FILE", path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")
         ->required();
     command.add_flag("--json", json_, "Print one JSON object instead of a table");
+    command.add_option("--preview", preview_path_, "Also render a picture of the mesh: .png");
+    command.footer("Example:\n  geodual info scan.ply --json\n  geodual info scan.ply --preview scan.png");
     return command;
   }
 
@@ -44,6 +48,10 @@ class InfoCommand final : public Command {
     const auto analysis_start = std::chrono::steady_clock::now();
     const MeshReport report = analyze_mesh(loaded.mesh);
     const double analysis_seconds = seconds_since(analysis_start);
+    if (!preview_path_.empty()) {
+      io::refuse_to_overwrite_inputs(preview_path_, {path_});
+      write_mesh_preview(preview_path_, loaded.mesh);
+    }
 
     if (json_) {
       print_json(loaded.info, report, read_seconds, analysis_seconds);
@@ -103,6 +111,7 @@ class InfoCommand final : public Command {
 
   std::string path_;
   bool json_ = false;
+  std::string preview_path_;
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 // The exact geodesic Voronoi diagram of sites on a mesh.
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 #include "site_source.hpp"
 #include "text_table.hpp"
 
@@ -44,6 +45,7 @@ class VoronoiCommand final : public Command {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     command.add_flag("--json", json_, "Print cells, Voronoi vertices and timings as one JSON object");
+    command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
 
@@ -59,7 +61,11 @@ class VoronoiCommand final : public Command {
     const auto sample_start = std::chrono::steady_clock::now();
     const std::vector<SurfacePoint> sites = sites_.sites(mesh);
     const double sample_seconds = seconds_since(sample_start);
-    const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites, options_);
+    ProgressBar bar(quiet_);
+    voronoi::VoronoiOptions options = options_;
+    options.geodesic.progress = [&](double fraction) { return bar.update("geodesics", fraction); };
+    const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites, options);
+    bar.finish();
     const auto write_start = std::chrono::steady_clock::now();
     write_voronoi_diagram(output_path_, mesh, diagram);
     if (!preview_path_.empty()) write_voronoi_preview(preview_path_, mesh, diagram);
@@ -143,6 +149,7 @@ class VoronoiCommand final : public Command {
   std::string preview_path_;
   voronoi::VoronoiOptions options_;
   bool json_ = false;
+  bool quiet_ = false;
 };
 
 }  // namespace
