@@ -12,6 +12,7 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
+#include "geodual/pipeline/report_json.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 
@@ -59,6 +60,12 @@ class RemeshCommand final : public Command {
         ->capture_default_str();
     command.add_flag("--json", json_, "Print the statistics as one JSON object");
     command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
+    command.add_option("--report", report_path_,
+                       "Also write a JSON report: options, input report, stage times and memory, Lloyd energy, "
+                       "quality and distance figures");
+    command.add_option("--color", color_, "Colour the output and the preview: none or quality (mean Q per vertex)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "quality"}));
     return command;
   }
 
@@ -67,6 +74,7 @@ class RemeshCommand final : public Command {
     require_output_extension(output_path_, true);
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
     if (!preview_path_.empty()) io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
+    if (!report_path_.empty()) io::refuse_to_overwrite_inputs(report_path_, {mesh_path_, sites_.file()});
     const auto start = std::chrono::steady_clock::now();
     ProgressBar bar(quiet_);
     pipeline::RemeshPipelineOptions options;
@@ -122,13 +130,16 @@ class RemeshCommand final : public Command {
     json["lloyd_move_s"] = result.lloyd_seconds;
     json["dual_s"] = result.dual_seconds;
     const auto write_start = std::chrono::steady_clock::now();
-    write_remesh(output_path_, result.mesh, json.dump());
-    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh);
+    const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
+        color_ == "quality" ? quality_colors(result.mesh) : Eigen::Matrix<float, Eigen::Dynamic, 3>();
+    write_remesh(output_path_, result.mesh, json.dump(), colors);
+    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, colors);
     const double write_seconds = seconds_since(write_start);
     bar.finish();
     json["write_s"] = write_seconds;
     json["time_s"] = seconds_since(start);
     json["peak_memory_bytes"] = peak_memory_bytes();
+    if (!report_path_.empty()) write_report(run, json);
 
     if (json_) {
       std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
@@ -172,6 +183,37 @@ class RemeshCommand final : public Command {
   }
 
  private:
+  /// --report: everything a comparison needs, in one JSON file.
+  void write_report(const pipeline::RemeshPipelineResult& run, const nlohmann::ordered_json& figures) const {
+    nlohmann::ordered_json report;
+    nlohmann::ordered_json options;
+    options["sites"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.count()) : nlohmann::ordered_json(nullptr);
+    options["site_file"] = sites_.file().empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sites_.file());
+    options["sampling"] = sites_.sampling();
+    options["seed"] = sites_.seed();
+    options["lloyd"] = options_.lloyd.iterations;
+    options["lloyd_tol"] = options_.lloyd.tolerance;
+    options["max_repair_rounds"] = options_.max_repair_rounds;
+    options["samples"] = samples_;
+    report["options"] = options;
+    report["input"] = pipeline::mesh_report_json(run.input_report);
+    report["input"]["file"] = mesh_path_;
+    nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+    for (const pipeline::StageTiming& timing : run.timings) {
+      stages.push_back({{"stage", pipeline::stage_name(timing.stage)},
+                        {"seconds", timing.seconds},
+                        {"peak_memory_bytes", timing.peak_memory_bytes}});
+    }
+    report["stages"] = stages;
+    report["energy_history"] = run.remesh.energy;
+    report["sites_added"] = run.remesh.sites_added;
+    report["repair_rounds"] = run.remesh.repair_rounds;
+    report["result"] = figures;
+    io::write_file_atomically(report_path_, [&](std::ostream& out) {
+      out << report.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
+    });
+  }
+
   std::string mesh_path_;
   std::string output_path_;
   SiteSource sites_;
@@ -180,6 +222,8 @@ class RemeshCommand final : public Command {
   std::int64_t samples_ = 1'000'000;
   bool json_ = false;
   bool quiet_ = false;
+  std::string report_path_;
+  std::string color_ = "none";
 };
 
 }  // namespace

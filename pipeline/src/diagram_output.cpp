@@ -13,6 +13,8 @@
 #include <cctype>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 namespace geodual {
 namespace {
 
@@ -90,12 +92,15 @@ void require_output_extension(const std::filesystem::path& path, bool remesh) {
   if (!remesh && !gltf) throw Error(path.string() + ": a Voronoi diagram is written as .glb or .gltf");
 }
 
-void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json) {
+void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json,
+                  const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors) {
   const std::string extension = lower_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
     io::GltfScene scene;
     scene.extras_json = extras_json;
-    scene.triangle_meshes.push_back({"remesh", mesh, {}, {}});
+    io::ColorMatrix colors;
+    if (vertex_colors.rows() == mesh.vertices.rows()) colors = vertex_colors;
+    scene.triangle_meshes.push_back({"remesh", mesh, colors, {}});
     io::write_gltf(path, scene);
     return;
   }
@@ -124,10 +129,35 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
   io::write_preview_png(path, scene);
 }
 
-void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh) {
+Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh) {
+  // Q = 6/sqrt(3) A / (p h) per triangle (DESIGN.md), averaged at vertices.
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.vertices.rows()), count = sum;
+  for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+                          c = mesh.vertices.row(mesh.faces(f, 2));
+    const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double p = 0.5 * (ab + bc + ca), h = std::max({ab, bc, ca});
+    const double q = p > 0 && h > 0 ? 6 / std::sqrt(3.0) * area / (p * h) : 0.0;
+    for (int k = 0; k < 3; ++k) sum[mesh.faces(f, k)] += q, count[mesh.faces(f, k)] += 1;
+  }
+  Eigen::Matrix<float, Eigen::Dynamic, 3> colors(mesh.vertices.rows(), 3);
+  for (Index v = 0; v < mesh.vertices.rows(); ++v) {
+    const double q = count[v] > 0 ? std::clamp(sum[v] / count[v], 0.0, 1.0) : 0.0;
+    // red -> yellow at 0.5 -> green
+    colors.row(v) << static_cast<float>(q < 0.5 ? 1.0 : 2 * (1 - q)), static_cast<float>(q < 0.5 ? 2 * q : 1.0), 0.1f;
+  }
+  return colors;
+}
+
+void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
+                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors) {
   io::PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = true;
+  if (vertex_colors.rows() == mesh.vertices.rows()) {
+    for (Index v = 0; v < vertex_colors.rows(); ++v) scene.vertex_colors.emplace_back(vertex_colors.row(v).transpose());
+  }
   io::write_preview_png(path, scene);
 }
 

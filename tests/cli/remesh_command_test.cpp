@@ -131,3 +131,35 @@ TEST(VoronoiCommand, WritesCellsBoundariesAndSites) {
 
 }  // namespace
 }  // namespace geodual::cli_test
+
+namespace geodual::cli_test {
+namespace {
+
+TEST(RemeshCommand, ReportAndQualityColours) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "coloured.glb", report = folder.path() / "report.json",
+             picture = folder.path() / "quality.png";
+  const CliRun run = run_cli({"remesh", genus_four, "--sites", "500", "--lloyd", "2", "--samples", "5000", "--color",
+                              "quality", "--report", report.string(), "--preview", picture.string(), "-o",
+                              out.string()});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(slurp(report));
+  for (const char* key : {"options", "input", "stages", "energy_history", "sites_added", "result"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["options"]["lloyd"].get<int>(), 2);
+  EXPECT_EQ(json["input"]["euler_characteristic"].get<int>(), -6);
+  ASSERT_GE(json["stages"].size(), 4u);
+  for (const auto& stage : json["stages"]) EXPECT_GT(stage["peak_memory_bytes"].get<std::int64_t>(), 0);
+  EXPECT_EQ(json["result"]["euler_characteristic"].get<int>(), -6);
+  EXPECT_GT(json["result"]["q_avg"].get<double>(), 0.5);
+  // The glTF carries COLOR_0 and the figures in asset.extras.
+  const std::string glb = slurp(out);
+  EXPECT_NE(glb.find("COLOR_0"), std::string::npos);
+  EXPECT_NE(glb.find("\"extras\""), std::string::npos);
+  EXPECT_NE(glb.find("q_avg"), std::string::npos);
+  EXPECT_EQ(slurp(picture).substr(1, 3), "PNG");
+}
+
+}  // namespace
+}  // namespace geodual::cli_test

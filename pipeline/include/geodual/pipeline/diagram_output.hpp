@@ -4,6 +4,8 @@
 #include "geodual/triangle_mesh.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include <Eigen/Core>
+
 #include <filesystem>
 #include <string>
 
@@ -19,8 +21,14 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
                            const voronoi::VoronoiDiagram& diagram, const std::string& extras_json = {});
 
 /// A remeshed surface by extension: .ply, .obj, .glb or .gltf (with
-/// `extras_json` in asset.extras).
-void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json = {});
+/// `extras_json` in asset.extras, and `vertex_colors` as COLOR_0 when given:
+/// one row per vertex, linear RGB in [0, 1]).
+void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json = {},
+                  const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors = {});
+
+/// Per vertex, the mean quality Q of its triangles mapped to a colour: red
+/// (Q = 0) through yellow to green (Q = 1).
+Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh);
 
 /// Throws geodual::Error unless `path` ends in an extension write_remesh
 /// (remesh = true) or write_voronoi_diagram (false) knows, before any work.
@@ -30,8 +38,10 @@ void require_output_extension(const std::filesystem::path& path, bool remesh);
 void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
                            const voronoi::VoronoiDiagram& diagram);
 
-/// A PNG picture of a mesh, shaded with its wireframe.
-void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh);
+/// A PNG picture of a mesh, shaded with its wireframe (coloured per vertex
+/// when `vertex_colors` has a row per vertex).
+void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
+                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors = {});
 
 /// The process's peak resident memory in bytes (0 where unknown).
 std::int64_t peak_memory_bytes();
