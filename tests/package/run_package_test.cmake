@@ -1,10 +1,10 @@
 # cmake -P driver of the package_install_and_consume test (see CMakeLists.txt
-# here): -DBUILD_DIR -DCONFIG -DWORK_DIR -DCONSUMER_DIR -DGENERATOR
-# -DCXX_COMPILER -DCXX_FLAGS -DVERSION. Any failed step is a FATAL_ERROR
+# here): -DBUILD_DIR -DCONFIG -DWORK_DIR -DCONSUMER_DIR -DEXAMPLES_DIR
+# -DGENERATOR -DCXX_COMPILER -DCXX_FLAGS -DVERSION. Any failed step is a FATAL_ERROR
 # (non-zero exit) that prints the step's output.
 cmake_minimum_required(VERSION 3.25)
 
-foreach(var BUILD_DIR WORK_DIR CONSUMER_DIR GENERATOR CXX_COMPILER VERSION)
+foreach(var BUILD_DIR WORK_DIR CONSUMER_DIR EXAMPLES_DIR GENERATOR CXX_COMPILER VERSION)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "run_package_test.cmake: -D${var}=... is required")
   endif()
@@ -70,7 +70,8 @@ if(NOT run_output MATCHES "${VERSION}")
 endif()
 
 # 3. A separate project finds the package (and nothing else: no package
-#    registry, no build tree), builds and runs.
+#    registry, no build tree), builds and runs; it also builds one of
+#    geodual's examples (step 4).
 set(consumer_build ${WORK_DIR}/consumer-build)
 run_or_fail("configuring the consumer project with find_package(geodual)"
   ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${consumer_build} -G ${GENERATOR}
@@ -78,6 +79,7 @@ run_or_fail("configuring the consumer project with find_package(geodual)"
     -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
     "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}"
     -DCMAKE_PREFIX_PATH=${prefix}
+    -DGEODUAL_EXAMPLES_DIR=${EXAMPLES_DIR}
     -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
     -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)
 message("${run_output}")
@@ -87,13 +89,33 @@ if(at EQUAL -1)
 endif()
 run_or_fail("building the consumer" ${CMAKE_COMMAND} --build ${consumer_build} --config Release)
 
-set(consumer ${consumer_build}/geodual_consumer)
-if(NOT EXISTS ${consumer})
-  set(consumer ${consumer_build}/Release/geodual_consumer)  # multi-config generators
-endif()
+# The built program, for single- and multi-config generators.
+function(consumer_program name out)
+  set(program ${consumer_build}/${name})
+  if(NOT EXISTS ${program})
+    set(program ${consumer_build}/Release/${name})
+  endif()
+  set(${out} ${program} PARENT_SCOPE)
+endfunction()
+
+consumer_program(geodual_consumer consumer)
 execute_process(COMMAND ${consumer}
   WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if(NOT rc EQUAL 0 OR NOT out MATCHES "geodual consumer: all checks passed")
   message(FATAL_ERROR "package test: the consumer failed (exit ${rc})")
+endif()
+
+# 4. examples/remesh_file.cpp, built against the installed package, remeshes
+#    the bundled scan (few sites, so that it takes seconds).
+consumer_program(remesh_file example)
+set(example_output ${WORK_DIR}/bunny-remeshed.ply)
+execute_process(COMMAND ${example} ${EXAMPLES_DIR}/data/bunny.ply ${example_output} 300
+  WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "vertices  3[0-9][0-9]\nfaces     [0-9]+\nQavg      0\\.[0-9]+\nHausdorff")
+  message(FATAL_ERROR "package test: examples/remesh_file built against the package failed (exit ${rc})")
+endif()
+if(NOT EXISTS ${example_output})
+  message(FATAL_ERROR "package test: examples/remesh_file wrote no ${example_output}")
 endif()
