@@ -30,7 +30,7 @@ struct LloydOptions {
   /// Each step goes this many times the way to the centroid (over-relaxed
   /// Lloyd; 1 is the plain one). When an over-relaxed step would raise the
   /// energy, the relaxation falls back to 1 from there on.
-  double over_relaxation = 1.6;
+  double over_relaxation = 1.8;
   /// Sites on the mesh boundary stay where they are (they carry the
   /// boundary loops into the remesh); true moves them like the others.
   bool move_boundary_sites = false;
