@@ -9,6 +9,7 @@
 #include <geodual/io/read_mesh.hpp>
 #include <geodual/io/write_mesh.hpp>
 #include <geodual/pipeline/remesh_pipeline.hpp>
+#include <geodual/remesh/manifold_cut.hpp>
 #include <geodual/remesh/sample_sites.hpp>
 
 #include <cstdint>
@@ -125,7 +126,8 @@ class FarthestPointSampler {
 };
 
 /// `count` sites: the library's sites on the boundary loops (without them the
-/// dual would close the mesh's holes), then farthest vertices.
+/// dual would close the mesh's holes), then farthest vertices. `mesh` is the
+/// surface the pipeline remeshes (see main).
 std::vector<SurfacePoint> farthest_vertex_sites(const TriangleMesh& mesh, std::int64_t count) {
   FarthestPointSampler sampler(mesh);
   std::vector<SurfacePoint> sites;
@@ -153,9 +155,11 @@ int main(int argc, char** argv) {
     const std::int64_t count = argc == 4 ? std::stoll(argv[3]) : 1000;
 
     geodual::pipeline::RemeshPipelineOptions options;
-    // Face indices of the input stay valid on the surface the pipeline
-    // remeshes (remesh::cut_to_manifold keeps the faces, splits vertices).
-    options.given_sites = farthest_vertex_sites(input.mesh, count);
+    // The pipeline remeshes the input cut apart at non-manifold edges and
+    // vertices (they become boundaries, which need sites); the cut keeps the
+    // faces, so face points on it are face points on the input.
+    const geodual::TriangleMesh surface = geodual::remesh::cut_to_manifold(input.mesh).mesh;
+    options.given_sites = farthest_vertex_sites(surface, count);
     options.quality.samples_per_side = 100'000;  // a quick Hausdorff estimate
     // Progress: one line per stage as it starts. Returning false would cancel
     // the run (geodual::Cancelled is thrown).
