@@ -107,3 +107,23 @@ TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {
 
 }  // namespace
 }  // namespace geodual
+
+namespace geodual {
+namespace {
+
+TEST(Lloyd, VertexSitesMoveToo) {
+  const TriangleMesh sphere = test::icosphere(4);
+  std::vector<SurfacePoint> sites;
+  for (Index v = 0; v < sphere.vertices.rows(); v += 17) sites.push_back(SurfacePoint::at_vertex(v));
+  remesh::LloydOptions options;
+  options.iterations = 3;
+  const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
+  EXPECT_EQ(relaxed.iterations, 3);
+  EXPECT_LT(relaxed.energy.back(), 0.9 * relaxed.energy.front());
+  int moved = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i) moved += relaxed.sites[i].position(sphere) != sites[i].position(sphere);
+  EXPECT_GT(moved, static_cast<int>(sites.size()) / 2);
+}
+
+}  // namespace
+}  // namespace geodual
