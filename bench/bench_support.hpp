@@ -7,6 +7,7 @@
 // Linux only (it reads /proc and forks); header-only so that every bench/*.cpp
 // stays one executable.
 
+#include "geodual/error.hpp"
 #include "geodual/pipeline/sites.hpp"
 #include "geodual/triangle_mesh.hpp"
 
@@ -22,6 +23,7 @@
 #include <exception>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <iomanip>
 #include <limits>
 #include <new>
@@ -45,6 +47,23 @@
 #include <unistd.h>
 
 namespace geodual::bench {
+
+// ---------------------------------------------------------------------------
+// main()
+
+/// Runs a benchmark's body and turns its failures into one line on stderr
+/// and an exit status: 2 for a bad command line, 1 for anything else.
+inline int run_main(std::string_view program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    std::cerr << program << ": " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": " << e.what() << '\n';
+    return 1;
+  }
+}
 
 // ---------------------------------------------------------------------------
 // Time

@@ -888,13 +888,7 @@ int run_benchmark(const Options& options) {
 }  // namespace geodual::bench
 
 int main(int argc, char** argv) {
-  try {
+  return geodual::bench::run_main("geodesic_bench", [&] {
     return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv));
-  } catch (const geodual::UsageError& e) {
-    std::cerr << "geodesic_bench: " << e.what() << '\n';
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "geodesic_bench: " << e.what() << '\n';
-    return 1;
-  }
+  });
 }

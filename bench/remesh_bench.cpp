@@ -166,13 +166,7 @@ int run_benchmark(const Options& options) {
 }  // namespace geodual::bench
 
 int main(int argc, char** argv) {
-  try {
+  return geodual::bench::run_main("remesh_bench", [&] {
     return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv));
-  } catch (const geodual::UsageError& e) {
-    std::cerr << "remesh_bench: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "remesh_bench: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
