@@ -585,13 +585,7 @@ Options parse_options(int argc, char** argv) {
 }  // namespace geodual::bench
 
 int main(int argc, char** argv) {
-  try {
+  return geodual::bench::run_main("quality_bench", [&] {
     return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv));
-  } catch (const geodual::UsageError& e) {
-    std::cerr << "quality_bench: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "quality_bench: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
