@@ -99,6 +99,7 @@ class RemeshCommand final : public Command {
     json["input_vertices"] = run.input.mesh.num_vertices();
     json["input_faces"] = run.input.mesh.num_faces();
     json["vertices_split"] = run.surface.vertices_split;
+    json["faces_disabled"] = run.surface.faces_disabled;
     json["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     json["seed"] = sites_.seed();
     json["sites"] = run.initial_sites.size();
@@ -150,6 +151,9 @@ class RemeshCommand final : public Command {
                            with_thousands(run.input.mesh.num_faces()) + " faces" +
                            (run.surface.vertices_split > 0 ? ", " + with_thousands(run.surface.vertices_split) +
                                                                  " non-manifold vertices cut apart"
+                                                           : std::string()) +
+                           (run.surface.faces_disabled > 0 ? ", " + with_thousands(run.surface.faces_disabled) +
+                                                                 " faces of scraps left out"
                                                            : std::string()) +
                            ")");
     table.add("sites", with_thousands(static_cast<std::int64_t>(run.initial_sites.size())) +

@@ -21,7 +21,7 @@ Index find(std::vector<Index>& parent, Index x) {
 
 }  // namespace
 
-ManifoldCut cut_to_manifold(const TriangleMesh& mesh) {
+ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options) {
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   const Index num_vertices = static_cast<Index>(mesh.vertices.rows());
   // Corners (face * 3 + k) joined when their faces share an edge with exactly
@@ -91,6 +91,31 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh) {
     cut.original_vertex[static_cast<std::size_t>(num_vertices) + i] = extra[i];
   }
   cut.vertices_split = std::count(split.begin(), split.end(), std::uint8_t{1});
+
+  // Scraps: pieces (faces joined through shared vertices) too small to remesh.
+  if (options.min_component_faces > 0) {
+    const Index n = static_cast<Index>(cut.mesh.vertices.rows());
+    std::vector<Index> piece(static_cast<std::size_t>(n));
+    std::iota(piece.begin(), piece.end(), Index{0});
+    auto join = [&](Index a, Index b) {
+      a = find(piece, a), b = find(piece, b);
+      if (a != b) piece[std::max(a, b)] = std::min(a, b);
+    };
+    for (Index f = 0; f < num_faces; ++f) {
+      if (!proper(cut.mesh, f)) continue;
+      join(cut.mesh.faces(f, 0), cut.mesh.faces(f, 1));
+      join(cut.mesh.faces(f, 1), cut.mesh.faces(f, 2));
+    }
+    std::vector<Index> faces_in(static_cast<std::size_t>(n), 0);
+    for (Index f = 0; f < num_faces; ++f) {
+      if (proper(cut.mesh, f)) ++faces_in[find(piece, cut.mesh.faces(f, 0))];
+    }
+    for (Index f = 0; f < num_faces; ++f) {
+      if (!proper(cut.mesh, f) || faces_in[find(piece, cut.mesh.faces(f, 0))] >= options.min_component_faces) continue;
+      cut.mesh.faces(f, 1) = cut.mesh.faces(f, 2) = cut.mesh.faces(f, 0);
+      ++cut.faces_disabled;
+    }
+  }
   return cut;
 }
 

@@ -16,7 +16,9 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   // Face points keep their meaning; vertex sites become face points.
   ManifoldCut cut = cut_to_manifold(mesh);
   result.vertices_split = cut.vertices_split;
-  if (cut.vertices_split > 0) {
+  result.faces_disabled = cut.faces_disabled;
+  const bool changed = cut.vertices_split > 0 || cut.faces_disabled > 0;
+  if (changed) {
     for (SurfacePoint& site : sites) {
       if (site.kind != SurfacePoint::Kind::vertex || site.element < 0 || site.element >= mesh.vertices.rows()) continue;
       for (Index f = 0; f < mesh.faces.rows(); ++f) {
@@ -30,7 +32,7 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
       }
     }
   }
-  const TriangleMesh& input = cut.vertices_split > 0 ? cut.mesh : mesh;
+  const TriangleMesh& input = changed ? cut.mesh : mesh;
   LloydResult relaxed = lloyd_relax(input, std::move(sites), options.lloyd);
   result.lloyd_seconds = relaxed.move_seconds;
   result.geodesic_seconds = relaxed.geodesic_seconds;

@@ -199,3 +199,43 @@ TEST(ManifoldCut, PinchVerticesAreCutApartAndRemeshed) {
 
 }  // namespace
 }  // namespace geodual
+
+namespace geodual {
+namespace {
+
+/// The cut surface without its disabled faces (a repeated index).
+TriangleMesh without_disabled_faces(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3d> points;
+  for (Index v = 0; v < mesh.vertices.rows(); ++v) points.emplace_back(mesh.vertices.row(v).transpose());
+  std::vector<std::array<Index, 3>> faces;
+  for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    if (a != b && b != c && c != a) faces.push_back({a, b, c});
+  }
+  return test::mesh_from_lists(points, faces);
+}
+
+TEST(ManifoldCut, ScansWithNonManifoldEdgesAreRemeshed) {
+  for (const std::string name : {"dragon_100k.ply", "bunny_res2.ply"}) {
+    SCOPED_TRACE(name);
+    const TriangleMesh mesh = scan(name);
+    ASSERT_GT(analyze_mesh(mesh).nonmanifold_edges, 0);
+    const remesh::ManifoldCut cut = remesh::cut_to_manifold(mesh);
+    EXPECT_GT(cut.faces_disabled, 0);  // flaps glued back to back
+    const MeshReport surface = analyze_mesh(without_disabled_faces(cut.mesh));
+    EXPECT_EQ(surface.nonmanifold_edges, 0);
+    remesh::RemeshOptions options;
+    options.lloyd.iterations = 0;
+    const remesh::RemeshResult result = remesh::remesh_from_sites(cut.mesh, remesh::sample_sites(cut.mesh, 2000), options);
+    const MeshReport out = analyze_mesh(result.mesh);
+    EXPECT_EQ(out.nonmanifold_edges, 0);
+    EXPECT_EQ(out.nonmanifold_vertices, 0);
+    EXPECT_TRUE(out.oriented);
+    EXPECT_EQ(out.euler_characteristic, surface.euler_characteristic);
+    EXPECT_EQ(out.boundary_loops, surface.boundary_loops);
+    EXPECT_EQ(out.components, surface.components);
+  }
+}
+
+}  // namespace
+}  // namespace geodual

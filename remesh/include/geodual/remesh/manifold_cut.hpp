@@ -13,13 +13,22 @@
 
 namespace geodual::remesh {
 
+struct ManifoldCutOptions {
+  /// Connected pieces (after the cut) with fewer faces than this are scraps
+  /// no remesh can represent (a flap of two faces glued back to back, a lone
+  /// triangle): their faces are disabled (all three corners set to the
+  /// first), so that every later stage ignores them. 0 keeps everything.
+  Index min_component_faces = 4;
+};
+
 struct ManifoldCut {
   TriangleMesh mesh;                    ///< same faces, vertices split per fan
   std::vector<Index> original_vertex;   ///< per vertex of `mesh`, the input vertex it copies
   std::int64_t vertices_split = 0;      ///< input vertices that got more than one copy
+  std::int64_t faces_disabled = 0;      ///< faces of scraps (see ManifoldCutOptions)
 };
 
 /// Faces with a repeated vertex index keep their indices and join no fan.
-ManifoldCut cut_to_manifold(const TriangleMesh& mesh);
+ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options = {});
 
 }  // namespace geodual::remesh
