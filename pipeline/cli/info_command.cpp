@@ -20,10 +20,6 @@
 namespace geodual::cli {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 std::string point(const Eigen::Vector3d& p) {
   return "(" + significant(p.x()) + ", " + significant(p.y()) + ", " + significant(p.z()) + ")";
 }

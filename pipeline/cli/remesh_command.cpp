@@ -27,10 +27,6 @@
 namespace geodual::cli {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 class RemeshCommand final : public Command {
  public:
   CLI::App& add_to(CLI::App& app) override {

@@ -1,6 +1,7 @@
 #pragma once
 // Human-readable output: aligned "key  value" rows and number formatting.
 
+#include <chrono>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -28,6 +29,11 @@ std::string byte_size(std::uintmax_t bytes);
 
 /// A duration: "12.3 ms", "1.24 s".
 std::string duration(double seconds);
+
+/// Seconds elapsed since `start`.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// A number with `digits` significant digits, e.g. 0.250246.
 std::string significant(double value, int digits = 6);

@@ -22,10 +22,6 @@
 namespace geodual::cli {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 nlohmann::ordered_json point_json(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
 class VoronoiCommand final : public Command {
@@ -102,9 +98,8 @@ class VoronoiCommand final : public Command {
         cells.push_back(std::move(cell));
       }
       for (const voronoi::CellAdjacency& pair : diagram.adjacency) {
-        for (const Index s_index : {pair.site_a, pair.site_b}) {
-          cells[static_cast<std::size_t>(s_index)]["neighbours"].push_back(s_index == pair.site_a ? pair.site_b : pair.site_a);
-        }
+        cells[static_cast<std::size_t>(pair.site_a)]["neighbours"].push_back(pair.site_b);
+        cells[static_cast<std::size_t>(pair.site_b)]["neighbours"].push_back(pair.site_a);
       }
       json["cells"] = std::move(cells);
       nlohmann::ordered_json vertices = nlohmann::ordered_json::array();
