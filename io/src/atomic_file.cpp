@@ -2,6 +2,7 @@
 
 #include "geodual/error.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <fstream>
 #include <string>
@@ -72,6 +73,27 @@ void write_file_atomically(const fs::path& output,
     fs::remove(tmp, ec);
     throw;
   }
+}
+
+std::string lowercase_extension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; });
+  return extension;
+}
+
+void require_output_path(const fs::path& path, std::initializer_list<std::string_view> extensions,
+                         std::string_view what) {
+  const std::string extension = lowercase_extension(path);
+  if (!path.has_filename() || std::find(extensions.begin(), extensions.end(), extension) == extensions.end()) {
+    std::string expected;
+    for (const std::string_view e : extensions) expected += (expected.empty() ? "" : ", ") + std::string(e);
+    throw Error(path.string() + ": " + std::string(what) + " is written as " + expected);
+  }
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) throw Error(path.string() + ": folder " + folder.string() + " does not exist");
+  if (fs::is_directory(path, error)) throw Error(path.string() + ": is a directory");
 }
 
 }  // namespace geodual::io

@@ -1,17 +1,14 @@
 #include "geodual/io/mesh_format.hpp"
 
 #include "geodual/error.hpp"
+#include "geodual/io/atomic_file.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <string>
 
 namespace geodual::io {
 
 MeshFormat format_from_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lowercase_extension(path);
   if (ext == ".obj") return MeshFormat::obj;
   if (ext == ".ply") return MeshFormat::ply;
   if (ext == ".off") return MeshFormat::off;

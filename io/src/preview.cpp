@@ -548,12 +548,6 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
   return rgb;
 }
 
-std::string lowercase_extension(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; });
-  return extension;
-}
 
 }  // namespace
 

@@ -57,6 +57,7 @@ class GeodesicCommand final : public Command {
       throw UsageError("geodesic: give --sites N (N >= 1) or --site-file FILE");
     }
     if (!output_path_.empty()) {
+      io::require_output_path(output_path_, {".ply", ".glb", ".gltf"}, "a distance field");
       io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, site_file_});
     }
     const io::LoadedMesh loaded = io::read_mesh(mesh_path_);

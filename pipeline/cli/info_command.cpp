@@ -38,16 +38,17 @@ class InfoCommand final : public Command {
   }
 
   int run() override {
+    if (!preview_path_.empty()) {
+      io::require_output_path(preview_path_, {".png"}, "a preview");
+      io::refuse_to_overwrite_inputs(preview_path_, {path_});
+    }
     const auto start = std::chrono::steady_clock::now();
     const io::LoadedMesh loaded = io::read_mesh(path_);
     const double read_seconds = seconds_since(start);
     const auto analysis_start = std::chrono::steady_clock::now();
     const MeshReport report = analyze_mesh(loaded.mesh);
     const double analysis_seconds = seconds_since(analysis_start);
-    if (!preview_path_.empty()) {
-      io::refuse_to_overwrite_inputs(preview_path_, {path_});
-      write_mesh_preview(preview_path_, loaded.mesh);
-    }
+    if (!preview_path_.empty()) write_mesh_preview(preview_path_, loaded.mesh);
 
     if (json_) {
       print_json(loaded.info, report, read_seconds, analysis_seconds);

@@ -67,10 +67,17 @@ class RemeshCommand final : public Command {
 
   int run() override {
     sites_.validate("remesh");
-    require_output_extension(output_path_, true);
+    // Every output checked before any work: nothing is written unless all can be.
+    io::require_output_path(output_path_, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
-    if (!preview_path_.empty()) io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
-    if (!report_path_.empty()) io::refuse_to_overwrite_inputs(report_path_, {mesh_path_, sites_.file()});
+    if (!preview_path_.empty()) {
+      io::require_output_path(preview_path_, {".png"}, "a preview");
+      io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
+    }
+    if (!report_path_.empty()) {
+      io::require_output_path(report_path_, {".json"}, "a report");
+      io::refuse_to_overwrite_inputs(report_path_, {mesh_path_, sites_.file()});
+    }
     const auto start = std::chrono::steady_clock::now();
     ProgressBar bar(quiet_);
     pipeline::RemeshPipelineOptions options;

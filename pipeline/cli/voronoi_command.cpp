@@ -47,9 +47,12 @@ class VoronoiCommand final : public Command {
 
   int run() override {
     sites_.validate("voronoi");
-    require_output_extension(output_path_, false);
+    io::require_output_path(output_path_, {".glb", ".gltf"}, "a Voronoi diagram");
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
-    if (!preview_path_.empty()) io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
+    if (!preview_path_.empty()) {
+      io::require_output_path(preview_path_, {".png"}, "a preview");
+      io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
+    }
     const auto start = std::chrono::steady_clock::now();
     const io::LoadedMesh loaded = io::read_mesh(mesh_path_);
     const TriangleMesh& mesh = loaded.mesh;

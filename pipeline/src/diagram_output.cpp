@@ -1,6 +1,7 @@
 #include "geodual/pipeline/diagram_output.hpp"
 
 #include "geodual/error.hpp"
+#include "geodual/io/atomic_file.hpp"
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/io/preview.hpp"
@@ -10,26 +11,14 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include <Eigen/Geometry>
 
 namespace geodual {
-namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
-}  // namespace
-
 void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh& mesh,
                            const voronoi::VoronoiDiagram& diagram, const std::string& extras_json) {
-  const std::string extension = lower_extension(path);
+  const std::string extension = io::lowercase_extension(path);
   if (extension != ".glb" && extension != ".gltf") {
     throw Error(path.string() + ": a Voronoi diagram is written as .glb or .gltf");
   }
@@ -83,18 +72,9 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
   io::write_gltf(path, scene);
 }
 
-void require_output_extension(const std::filesystem::path& path, bool remesh) {
-  const std::string extension = lower_extension(path);
-  const bool gltf = extension == ".glb" || extension == ".gltf";
-  if (remesh && !gltf && extension != ".ply" && extension != ".obj") {
-    throw Error(path.string() + ": a remesh is written as .glb, .gltf, .ply or .obj");
-  }
-  if (!remesh && !gltf) throw Error(path.string() + ": a Voronoi diagram is written as .glb or .gltf");
-}
-
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json,
                   const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors) {
-  const std::string extension = lower_extension(path);
+  const std::string extension = io::lowercase_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
     io::GltfScene scene;
     scene.extras_json = extras_json;

@@ -163,3 +163,29 @@ TEST(RemeshCommand, ReportAndQualityColours) {
 
 }  // namespace
 }  // namespace geodual::cli_test
+
+namespace geodual::cli_test {
+namespace {
+
+TEST(RemeshCommand, BadSideOutputsFailBeforeAnyWork) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "out.glb";
+  const auto picture = folder.path() / "picture.jpg";
+  CliRun run = run_cli({"remesh", genus_four, "--sites", "100", "-o", out.string(), "--preview", picture.string()});
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_NE(run.err.find("picture.jpg"), std::string::npos) << run.err;
+  const auto report = folder.path() / "no-such-folder" / "report.json";
+  run = run_cli({"remesh", genus_four, "--sites", "100", "-o", out.string(), "--report", report.string()});
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_NE(run.err.find("does not exist"), std::string::npos) << run.err;
+  run = run_cli({"voronoi", genus_four, "--sites", "20", "-o", (folder.path() / "cells.glb").string(), "--preview",
+                 (folder.path() / "cells.bmp").string()});
+  EXPECT_EQ(run.exit_status, 1);
+  run = run_cli({"geodesic", genus_four, "--sites", "3", "-o", (folder.path() / "field.stl").string()});
+  EXPECT_EQ(run.exit_status, 1);
+  // Nothing at all was written.
+  EXPECT_TRUE(std::filesystem::is_empty(folder.path()));
+}
+
+}  // namespace
+}  // namespace geodual::cli_test

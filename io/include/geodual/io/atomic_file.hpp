@@ -6,8 +6,20 @@
 #include <functional>
 #include <initializer_list>
 #include <iosfwd>
+#include <string>
+#include <string_view>
 
 namespace geodual::io {
+
+/// The path's extension in lower case (".glb"); empty if it has none.
+std::string lowercase_extension(const std::filesystem::path& path);
+
+/// Checks an output before any work is done: throws geodual::Error, naming
+/// the path, unless it ends in one of `extensions` (lower case, with the dot)
+/// and names a file in an existing folder. `what` says what it is for, e.g.
+/// "a remesh".
+void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
+                         std::string_view what);
 
 /// Throws geodual::Error if `output` is (or links to) one of `inputs`.
 void refuse_to_overwrite_inputs(const std::filesystem::path& output,

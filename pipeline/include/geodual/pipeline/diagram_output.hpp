@@ -30,10 +30,6 @@ void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, c
 /// (Q = 0) through yellow to green (Q = 1).
 Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh);
 
-/// Throws geodual::Error unless `path` ends in an extension write_remesh
-/// (remesh = true) or write_voronoi_diagram (false) knows, before any work.
-void require_output_extension(const std::filesystem::path& path, bool remesh);
-
 /// A PNG picture of the input coloured by cell with the boundaries and sites.
 void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
                            const voronoi::VoronoiDiagram& diagram);
