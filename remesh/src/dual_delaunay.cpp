@@ -1,4 +1,5 @@
 #include "geodual/remesh/dual_delaunay.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 
 #include <Eigen/Geometry>
 
@@ -140,7 +141,9 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
       repair_far_from(sorted[i][0]);
     }
   }
-  std::map<std::pair<Index, Index>, std::array<int, 2>> edge_uses;  // (min, max) -> uses along, against
+  // Each undirected edge with its uses along (u < v) and against.
+  std::vector<std::array<Index, 3>> edges;  // {min, max, 1 if used min -> max}
+  edges.reserve(3 * triangles.size());
   for (const auto& t : triangles) {
     const Eigen::Vector3d a = dual.mesh.vertices.row(t[0]), b = dual.mesh.vertices.row(t[1]),
                           c = dual.mesh.vertices.row(t[2]);
@@ -150,47 +153,43 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     }
     for (int k = 0; k < 3; ++k) {
       const Index u = t[k], v = t[(k + 1) % 3];
-      ++edge_uses[{std::min(u, v), std::max(u, v)}][u < v ? 0 : 1];
+      edges.push_back({std::min(u, v), std::max(u, v), u < v ? 1 : 0});
     }
   }
-  for (const auto& [edge, uses] : edge_uses) {
-    if (uses[0] + uses[1] > 2 || uses[0] > 1 || uses[1] > 1) {
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    int along = 0;
+    for (; j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]; ++j) along += edges[j][2];
+    const int uses = static_cast<int>(j - i);
+    if (uses > 2 || along > 1 || uses - along > 1) {
       ++check.nonmanifold_edges;
-      repair_far_from(edge.first);
-      repair_far_from(edge.second);
+      repair_far_from(edges[i][0]);
+      repair_far_from(edges[i][1]);
     }
+    i = j;
   }
 
-  // Vertices: each site a corner, its triangles one fan (joined through
-  // shared edges).
-  std::vector<std::vector<Index>> site_triangles(num_sites);
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (const Index s : triangles[t]) site_triangles[s].push_back(static_cast<Index>(t));
-  }
+  // Vertices: each site a corner, its triangles one fan. The manifold cut
+  // gives every fan (triangles joined through two-triangle edges) its own
+  // copy of the vertex: a site with copies is not a disk's centre.
+  std::vector<std::uint8_t> used(static_cast<std::size_t>(num_sites), 0);
+  for (const auto& t : triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
   for (Index s = 0; s < num_sites; ++s) {
-    const auto& around = site_triangles[s];
-    if (around.empty()) {
+    if (!used[s]) {
       ++check.unused_sites;
       repair_far_from(s);
-      continue;
     }
-    // Fans: triangles around s joined when they share an edge s-x.
-    std::map<Index, std::vector<std::size_t>> by_neighbour;
-    for (std::size_t i = 0; i < around.size(); ++i) {
-      for (const Index x : triangles[around[i]]) {
-        if (x != s) by_neighbour[x].push_back(i);
-      }
-    }
-    UnionFind fans(static_cast<Index>(around.size()));
-    for (const auto& [x, list] : by_neighbour) {
-      for (std::size_t i = 1; i < list.size(); ++i) fans.unite(static_cast<Index>(list[0]), static_cast<Index>(list[i]));
-    }
-    int count = 0;
-    for (std::size_t i = 0; i < around.size(); ++i) count += fans.find(static_cast<Index>(i)) == static_cast<Index>(i);
-    if (count > 1) {
-      ++check.nonmanifold_vertices;
-      repair_far_from(s);
-    }
+  }
+  const ManifoldCut fans = cut_to_manifold(dual.mesh, {.min_component_faces = 0});
+  std::vector<std::uint8_t> several_fans(static_cast<std::size_t>(num_sites), 0);
+  for (std::size_t copy = static_cast<std::size_t>(num_sites); copy < fans.original_vertex.size(); ++copy) {
+    several_fans[fans.original_vertex[copy]] = 1;
+  }
+  for (Index s = 0; s < num_sites; ++s) {
+    if (!several_fans[s]) continue;
+    ++check.nonmanifold_vertices;
+    repair_far_from(s);
   }
 
   // Arcs: two cells along one arc, every boundary ending at vertices.

@@ -3,6 +3,8 @@
 #include "geodual/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <string>
 #include <utility>
@@ -18,18 +20,19 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   result.vertices_split = cut.vertices_split;
   result.faces_disabled = cut.faces_disabled;
   const bool changed = cut.vertices_split > 0 || cut.faces_disabled > 0;
-  if (changed) {
+  if (changed && std::any_of(sites.begin(), sites.end(),
+                             [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+    // A corner of the vertex's first face that takes part (one pass).
+    std::vector<std::array<Index, 2>> corner_of(static_cast<std::size_t>(mesh.vertices.rows()), {-1, 0});
+    for (Index f = mesh.num_faces(); f-- > 0;) {
+      const auto row = mesh.faces.row(f);
+      if (row[0] == row[1] || row[1] == row[2] || row[2] == row[0]) continue;
+      for (int c = 0; c < 3; ++c) corner_of[row[c]] = {f, c};
+    }
     for (SurfacePoint& site : sites) {
       if (site.kind != SurfacePoint::Kind::vertex || site.element < 0 || site.element >= mesh.vertices.rows()) continue;
-      for (Index f = 0; f < mesh.faces.rows(); ++f) {
-        const auto row = mesh.faces.row(f);
-        if (row[0] == row[1] || row[1] == row[2] || row[2] == row[0]) continue;
-        for (int c = 0; c < 3; ++c) {
-          if (row[c] == site.element && site.kind == SurfacePoint::Kind::vertex) {
-            site = SurfacePoint::in_face(f, c == 0, c == 1, c == 2);
-          }
-        }
-      }
+      const auto [f, c] = corner_of[site.element];
+      if (f >= 0) site = SurfacePoint::in_face(f, c == 0, c == 1, c == 2);
     }
   }
   const TriangleMesh& input = changed ? cut.mesh : mesh;
