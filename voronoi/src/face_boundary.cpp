@@ -569,31 +569,33 @@ double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen:
 }
 
 Eigen::Vector2d FaceBoundaryTracer::solve_vertex(std::span<const Index> sites, const SubTriangle& triangle,
-                                                 const Eigen::Vector2d& start, double& spread) const {
+                                                 const Eigen::Vector2d& start, double& spread) {
   // Gauss-Newton on r_i = d_i(x) - d_0(x), i = 1..k-1 (Newton for k = 3);
   // each d_i is a cone near x, so its gradient is the unit vector from the
   // active cone's apex.
   Eigen::Vector2d x = start;
   const double scale = std::max(std::sqrt(std::max(layout_.area, 0.0)), tolerance_);
-  std::vector<double> distance(sites.size());
-  std::vector<Eigen::Vector2d> gradient(sites.size());
-  auto evaluate = [&](const Eigen::Vector2d& at) {
+  // Distances and gradients at x (`at_x_`) and at a trial point (`trial_`).
+  at_x_.resize(sites.size());
+  trial_.resize(sites.size());
+  auto evaluate = [&](const Eigen::Vector2d& at, std::vector<VertexTerm>& terms) {
     double worst = 0;
     for (std::size_t i = 0; i < sites.size(); ++i) {
       const int slot = envelope_.slot_of(sites[i]);
-      distance[i] = slot >= 0 ? envelope_.distance(slot, at, &gradient[i]) : std::numeric_limits<double>::infinity();
-      if (i > 0) worst = std::max(worst, std::abs(distance[i] - distance[0]));
+      terms[i].distance =
+          slot >= 0 ? envelope_.distance(slot, at, &terms[i].gradient) : std::numeric_limits<double>::infinity();
+      if (i > 0) worst = std::max(worst, std::abs(terms[i].distance - terms[0].distance));
     }
     return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
   };
-  spread = evaluate(x);
+  spread = evaluate(x, at_x_);
   for (int iteration = 0; iteration < 40 && spread > 0 && std::isfinite(spread); ++iteration) {
     Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
     Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
     for (std::size_t i = 1; i < sites.size(); ++i) {
-      const Eigen::Vector2d row = gradient[i] - gradient[0];
+      const Eigen::Vector2d row = at_x_[i].gradient - at_x_[0].gradient;
       normal += row * row.transpose();
-      rhs += row * (distance[i] - distance[0]);
+      rhs += row * (at_x_[i].distance - at_x_[0].distance);
     }
     normal += 1e-14 * Eigen::Matrix2d::Identity();
     Eigen::Vector2d step = -normal.ldlt().solve(rhs);
@@ -609,18 +611,14 @@ Eigen::Vector2d FaceBoundaryTracer::solve_vertex(std::span<const Index> sites, c
     // Backtrack until the spread falls.
     bool improved = false;
     for (int halving = 0; halving < 30; ++halving) {
-      const Eigen::Vector2d candidate = x + step;
-      std::vector<double> saved_distance = distance;
-      std::vector<Eigen::Vector2d> saved_gradient = gradient;
-      const double candidate_spread = evaluate(candidate);
-      if (candidate_spread < spread) {
-        x = candidate;
-        spread = candidate_spread;
+      const double trial_spread = evaluate(x + step, trial_);
+      if (trial_spread < spread) {
+        x += step;
+        spread = trial_spread;
+        std::swap(at_x_, trial_);
         improved = true;
         break;
       }
-      distance = saved_distance;
-      gradient = saved_gradient;
       step *= 0.5;
     }
     if (!improved || step.norm() < 1e-17 * scale) break;

@@ -146,7 +146,7 @@ class FaceBoundaryTracer {
   /// The point where the sites are equally far (Gauss-Newton from `start`);
   /// `spread` receives the largest difference of their distances there.
   Eigen::Vector2d solve_vertex(std::span<const Index> sites, const SubTriangle& triangle, const Eigen::Vector2d& start,
-                               double& spread) const;
+                               double& spread);
 
   const TriangleMesh& mesh_;
   const GeodesicField& field_;
@@ -182,6 +182,11 @@ class FaceBoundaryTracer {
   std::vector<Index> remaining_;             ///< scratch: crossings not explained by caps
   std::vector<std::array<Index, 2>> caps_;   ///< scratch: (into, out of) crossing pairs
   std::vector<Index> star_sites_;            ///< scratch: the sites of a Voronoi vertex
+  struct VertexTerm {
+    double distance = 0;
+    Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  };
+  std::vector<VertexTerm> at_x_, trial_;     ///< scratch: solve_vertex's site distances
   std::vector<std::array<Index, 3>> jump_;   ///< scratch: per crossing, the inside path from it
   std::vector<std::uint8_t> visited_;
   bool trace_valid_ = true;
