@@ -67,6 +67,20 @@ double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+/// The faces of one page: an n x m grid of quads over the vertex ids `id`
+/// (row-major, (n + 1) per row), two triangles each, both tagged with page k.
+void add_page_faces(const std::vector<Index>& id, int n, int m, Index k, std::vector<std::array<Index, 3>>& tris,
+                    std::vector<Index>& face_page) {
+  const auto at = [&](int a, int b) { return id[static_cast<std::size_t>(b * (n + 1) + a)]; };
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < n; ++i) {
+      add_quad(tris, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0);
+      face_page.push_back(k);
+      face_page.push_back(k);
+    }
+  }
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -458,14 +472,7 @@ NonManifold book(int pages, int n, int m, double height, double jitter, std::uin
         points.emplace_back(x, r * std::cos(theta), r * std::sin(theta));
       }
     }
-    for (int j = 0; j < m; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const auto at = [&](int a, int b) { return id[static_cast<std::size_t>(b * (n + 1) + a)]; };
-        add_quad(tris, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0);
-        out.face_page.push_back(k);
-        out.face_page.push_back(k);
-      }
-    }
+    add_page_faces(id, n, m, k, tris, out.face_page);
   }
   out.mesh = to_mesh(points, tris);
   return out;
@@ -497,14 +504,7 @@ NonManifold bowtie(int n, double jitter, std::uint64_t seed) {
         points.emplace_back(sign * x, sign * y, 0.0);
       }
     }
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const auto at = [&](int a, int b) { return id[static_cast<std::size_t>(b * (n + 1) + a)]; };
-        add_quad(tris, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0);
-        out.face_page.push_back(k);
-        out.face_page.push_back(k);
-      }
-    }
+    add_page_faces(id, n, n, k, tris, out.face_page);
   }
   out.mesh = to_mesh(points, tris);
   return out;
