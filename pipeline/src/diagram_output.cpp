@@ -7,13 +7,12 @@
 #include "geodual/io/preview.hpp"
 #include "geodual/io/write_mesh.hpp"
 #include "geodual/pipeline/field_output.hpp"
+#include "geodual/remesh/quality_stats.hpp"
 
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Geometry>
 
 namespace geodual {
 void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh& mesh,
@@ -110,15 +109,10 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
 }
 
 Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh) {
-  // Q = 6/sqrt(3) A / (p h) per triangle (DESIGN.md), averaged at vertices.
+  // Q per triangle (remesh::face_quality), averaged at vertices.
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.vertices.rows()), count = sum;
-  for (Index f = 0; f < mesh.faces.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
-                          c = mesh.vertices.row(mesh.faces(f, 2));
-    const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    const double p = 0.5 * (ab + bc + ca), h = std::max({ab, bc, ca});
-    const double q = p > 0 && h > 0 ? 6 / std::sqrt(3.0) * area / (p * h) : 0.0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const double q = remesh::face_quality(mesh, f);
     for (int k = 0; k < 3; ++k) sum[mesh.faces(f, k)] += q, count[mesh.faces(f, k)] += 1;
   }
   Eigen::Matrix<float, Eigen::Dynamic, 3> colors(mesh.vertices.rows(), 3);

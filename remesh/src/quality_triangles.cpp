@@ -130,6 +130,8 @@ void count_valences(const TriangleMesh& mesh, TriangleQuality& quality) {
 
 }  // namespace
 
+double face_quality(const TriangleMesh& mesh, Index face) { return face_shape(mesh, face).q; }
+
 TriangleQuality triangle_quality(const TriangleMesh& mesh) {
   check_mesh(mesh);
   const MeshReport report = analyze_mesh(mesh);

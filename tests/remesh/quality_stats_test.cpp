@@ -513,3 +513,20 @@ TEST(CompareMeshes, BunnyScanAgainstItself) {
 
 }  // namespace
 }  // namespace geodual::remesh
+
+namespace geodual::remesh {
+namespace {
+
+TEST(FaceQuality, OneForEquilateralZeroForDegenerate) {
+  TriangleMesh mesh;
+  mesh.vertices.resize(4, 3);
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 0.5, std::sqrt(3.0) / 2, 0, 2, 0, 0;
+  mesh.faces.resize(3, 3);
+  mesh.faces << 0, 1, 2, 0, 1, 3, 0, 0, 2;
+  EXPECT_NEAR(face_quality(mesh, 0), 1.0, 1e-15);
+  EXPECT_EQ(face_quality(mesh, 1), 0.0);  // collinear corners
+  EXPECT_EQ(face_quality(mesh, 2), 0.0);  // a repeated index
+}
+
+}  // namespace
+}  // namespace geodual::remesh

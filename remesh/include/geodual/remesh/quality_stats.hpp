@@ -84,6 +84,10 @@ struct TriangleQuality {
 /// a mesh without faces, a face index out of range or a non-finite coordinate.
 TriangleQuality triangle_quality(const TriangleMesh& mesh);
 
+/// Q of one face, 6/sqrt(3) A / (p h): 1 for the equilateral triangle, 0 for
+/// a face with a repeated vertex or exactly zero area.
+double face_quality(const TriangleMesh& mesh, Index face);
+
 /// The candidate's quality and its distance to the reference.
 ///
 /// Distances: each side's sample set is its referenced vertices plus
