@@ -1,4 +1,4 @@
-// geodual remesh MESH -o OUT (--sites N [--sampling S] [--seed S] | --site-file F)
+// geodual remesh MESH -o OUT (--sites N [--sampling S] [--seed S] | --site-file F) [--plain-lloyd]
 //                     [--lloyd K] [--lloyd-tol T] [--json] [--preview OUT.png] [--max-repair-rounds K]
 // The main job: a dense scan in, an isotropic mesh of about N vertices out,
 // through the dual of the exact geodesic Voronoi diagram.
@@ -46,6 +46,9 @@ class RemeshCommand final : public Command {
                        "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
+    command.add_flag_callback(
+        "--plain-lloyd", [this] { options_.lloyd.newton = false; },
+        "Plain (over-relaxed) Lloyd steps instead of the default Newton-accelerated ones");
     command.add_option("--max-repair-rounds", options_.max_repair_rounds,
                        "Rounds of adding sites where the dual fails before giving up")
         ->capture_default_str()
@@ -107,6 +110,7 @@ class RemeshCommand final : public Command {
     json["seed"] = sites_.seed();
     json["sites"] = run.initial_sites.size();
     json["lloyd_iterations"] = result.lloyd_iterations;
+    json["lloyd_diagrams"] = result.lloyd_diagrams;
     json["energy_history"] = result.energy;
     json["sites_added"] = result.sites_added;
     json["repair_rounds"] = result.repair_rounds;
@@ -200,6 +204,7 @@ class RemeshCommand final : public Command {
     options["seed"] = sites_.seed();
     options["lloyd"] = options_.lloyd.iterations;
     options["lloyd_tol"] = options_.lloyd.tolerance;
+    options["lloyd_newton"] = options_.lloyd.newton;
     options["max_repair_rounds"] = options_.max_repair_rounds;
     options["samples"] = samples_;
     report["options"] = options;
@@ -223,7 +228,7 @@ class RemeshCommand final : public Command {
 
   std::string mesh_path_;
   std::string output_path_;
-  SiteSource sites_;
+  SiteSource sites_{"poisson"};  // blue noise: Lloyd converges from it in fewer steps
   std::string preview_path_;
   remesh::RemeshOptions options_;
   std::int64_t samples_ = 1'000'000;

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CLI {
@@ -18,6 +19,8 @@ namespace geodual::cli {
 
 class SiteSource {
  public:
+  /// `default_sampling`: what --sampling is when not given.
+  explicit SiteSource(std::string default_sampling = "random") : sampling_(std::move(default_sampling)) {}
   /// Adds --sites, --site-file, --sampling and --seed to `command`.
   void add_to(CLI::App& command);
   /// Throws geodual::UsageError unless exactly one source was given.
@@ -33,7 +36,7 @@ class SiteSource {
  private:
   std::int64_t count_ = 0;
   std::string file_;
-  std::string sampling_ = "random";
+  std::string sampling_;
   std::uint64_t seed_ = 1;
 };
 

@@ -1,5 +1,6 @@
 #include "geodual/remesh/lloyd.hpp"
 
+#include "cvt_newton.hpp"
 #include "surface_walk.hpp"
 
 #include <Eigen/Geometry>
@@ -19,22 +20,56 @@ double total_energy(const voronoi::VoronoiDiagram& diagram) {
   return std::accumulate(diagram.cell_energy.begin(), diagram.cell_energy.end(), 0.0);
 }
 
-/// True for a site on a boundary edge of the propagation surface.
-bool on_boundary(const TriangleMesh& mesh, const voronoi::GeodesicField& field, const SurfacePoint& site) {
-  (void)mesh;
+/// True for a face point on a boundary edge of the propagation surface.
+bool on_boundary(const voronoi::GeodesicField& field, const SurfacePoint& point) {
   for (int c = 0; c < 3; ++c) {
-    if (site.barycentric[c] != 0) continue;
-    const Index edge = field.face_edges[site.element][(c + 1) % 3];  // the side opposite corner c
+    if (point.barycentric[c] != 0) continue;
+    const Index edge = field.face_edges[point.element][(c + 1) % 3];  // the side opposite corner c
     if (edge >= 0 && (field.edge_faces[edge][0] < 0 || field.edge_faces[edge][1] < 0)) return true;
   }
   return false;
 }
 
-/// Every movable site stepped `factor` times its mean log map along the
-/// surface; a pair landing on one point keeps its old places.
-std::vector<SurfacePoint> step_sites(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                     const voronoi::VoronoiDiagram& diagram, double factor,
-                                     const LloydOptions& options) {
+/// Per site, whether a step may move it: its cell has area, and it is not on
+/// the boundary unless boundary sites move.
+std::vector<bool> movable_sites(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
+                                const voronoi::VoronoiDiagram& diagram, const LloydOptions& options) {
+  const voronoi::GeodesicField& field = diagram.field;
+  std::vector<bool> boundary_vertex;
+  const bool vertex_sites =
+      std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
+  if (vertex_sites && !options.move_boundary_sites) {
+    boundary_vertex.assign(static_cast<std::size_t>(mesh.vertices.rows()), false);
+    for (std::size_t e = 0; e < field.edge_faces.size(); ++e) {
+      if (field.edge_faces[e][0] >= 0 && field.edge_faces[e][1] >= 0) continue;
+      for (const Index v : field.edge_vertices[e]) boundary_vertex[v] = true;
+    }
+  }
+  std::vector<bool> movable(sites.size());
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const SurfacePoint& site = sites[i];
+    const bool boundary = !options.move_boundary_sites && (site.kind == SurfacePoint::Kind::vertex
+                                                                ? bool(boundary_vertex[site.element])
+                                                                : on_boundary(field, site));
+    movable[i] = diagram.cell_area[i] > 0 && !boundary;
+  }
+  return movable;
+}
+
+/// Lloyd's steps, `factor` times each cell's mean log map.
+std::vector<Eigen::Vector3d> lloyd_steps(const voronoi::VoronoiDiagram& diagram, const std::vector<bool>& movable,
+                                         double factor) {
+  std::vector<Eigen::Vector3d> steps(movable.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    if (movable[i]) steps[i] = factor * diagram.cell_log_moment[i] / diagram.cell_area[i];
+  }
+  return steps;
+}
+
+/// Every site walked along the surface by its step (a tangent vector at the
+/// site); a pair landing on one point keeps its old places.
+std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
+                                     const voronoi::VoronoiDiagram& diagram, const std::vector<Eigen::Vector3d>& steps) {
   std::vector<SurfacePoint> moved = sites;
   // A vertex site steps from the corner of the face around it whose angle
   // holds the step's direction.
@@ -76,13 +111,11 @@ std::vector<SurfacePoint> step_sites(const TriangleMesh& mesh, const std::vector
   // number of threads.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const double area = diagram.cell_area[i];
-      if (!(area > 0)) continue;
-      const Eigen::Vector3d step = factor * diagram.cell_log_moment[i] / area;
+      const Eigen::Vector3d& step = steps[i];
+      const double length = step.norm();
+      if (!(length > 0)) continue;
       const SurfacePoint site = as_face_point(sites[i], step);
       if (site.kind != SurfacePoint::Kind::face) continue;
-      if (!options.move_boundary_sites && on_boundary(mesh, diagram.field, site)) continue;
-      const double length = step.norm();
       if (!(length > 0)) continue;
       moved[i] = detail::walk_on_surface(mesh, diagram.field, site, step, length);
     }
@@ -110,6 +143,7 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
     voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, points, options.voronoi);
     result.geodesic_seconds += diagram.stats.geodesic_seconds;
     result.diagram_seconds += diagram.stats.extraction_seconds;
+    ++result.diagrams;
     return diagram;
   };
   result.sites = std::move(sites);
@@ -117,29 +151,47 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
   result.energy.push_back(total_energy(result.diagram));
 
   double factor = options.over_relaxation;
+  double damping = options.newton_damping;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<SurfacePoint> moved = step_sites(mesh, result.sites, result.diagram, factor, options);
-    result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    voronoi::VoronoiDiagram next = diagram_of(moved);
-    double energy = total_energy(next);
     const double previous = result.energy.back();
-    if (!(energy <= previous) && factor > 1) {
-      // Over-relaxed too far: the plain Lloyd step (which lowers the energy
-      // of an exact CVT iteration) from here on.
-      factor = 1;
-      const auto again = std::chrono::steady_clock::now();
-      moved = step_sites(mesh, result.sites, result.diagram, factor, options);
-      result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - again).count();
-      next = diagram_of(moved);
-      energy = total_energy(next);
+    const std::vector<bool> movable = movable_sites(mesh, result.sites, result.diagram, options);
+    // Tries a step; keeps it when it lowers the energy.
+    auto try_step = [&](const std::vector<Eigen::Vector3d>& steps) {
+      const auto start = std::chrono::steady_clock::now();
+      std::vector<SurfacePoint> moved = move_sites(mesh, result.sites, result.diagram, steps);
+      result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      voronoi::VoronoiDiagram next = diagram_of(moved);
+      const double energy = total_energy(next);
+      if (!(energy < previous)) return false;
+      result.sites = std::move(moved);
+      result.diagram = std::move(next);
+      result.energy.push_back(energy);
+      return true;
+    };
+    bool accepted = false;
+    if (options.newton) {
+      // Levenberg–Marquardt on the damping: a Newton step that lowers the
+      // energy lets the next be less damped (down to newton_damping); one
+      // that does not is retried once, more damped, before Lloyd's step is
+      // taken instead.
+      for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
+        const auto start = std::chrono::steady_clock::now();
+        const std::vector<Eigen::Vector3d> steps = detail::cvt_newton_steps(
+            mesh, result.sites, result.diagram, movable, damping, options.newton_max_step);
+        result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        accepted = try_step(steps);
+        damping = accepted ? std::max(damping / 4, options.newton_damping) : damping * 4;
+      }
     }
-    if (!(energy <= previous)) break;  // the step would not lower the energy: stop here
-    result.sites = std::move(moved);
-    result.diagram = std::move(next);
-    result.energy.push_back(energy);
+    if (!accepted && factor > 1) {
+      accepted = try_step(lloyd_steps(result.diagram, movable, factor));
+      // Over-relaxed too far: the plain Lloyd step from here on.
+      if (!accepted) factor = 1;
+    }
+    if (!accepted) accepted = try_step(lloyd_steps(result.diagram, movable, factor));
+    if (!accepted) break;  // not even Lloyd's step lowers the energy: stop here
     ++result.iterations;
-    if (previous - energy < options.tolerance * previous) break;
+    if (previous - result.energy.back() < options.tolerance * previous) break;
   }
   return result;
 }

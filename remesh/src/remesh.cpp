@@ -43,6 +43,7 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   result.sites = std::move(relaxed.sites);
   result.energy = std::move(relaxed.energy);
   result.lloyd_iterations = relaxed.iterations;
+  result.lloyd_diagrams = relaxed.diagrams;
   result.diagram = std::move(relaxed.diagram);
   for (int round = 0;; ++round) {
     if (round > 0) {

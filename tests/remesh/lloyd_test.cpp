@@ -14,6 +14,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace geodual {
@@ -81,6 +82,66 @@ TEST(Lloyd, ConvergesToTheRegularCentroidalTessellationOnAPlane) {
     worst = std::max(worst, (relaxed.diagram.cell_log_moment[i] / relaxed.diagram.cell_area[i]).norm());
   }
   EXPECT_LT(worst, 0.05 * spacing);
+}
+
+/// The largest Lloyd step (distance to the cell's centroid) of the sites
+/// inside the unit disk's rim.
+double largest_interior_lloyd_step(const TriangleMesh& disk, const remesh::LloydResult& relaxed) {
+  double worst = 0;
+  for (std::size_t i = 0; i < relaxed.sites.size(); ++i) {
+    if (relaxed.sites[i].position(disk).norm() > std::cos(std::numbers::pi / 128) - 1e-9) continue;  // fixed on the rim
+    worst = std::max(worst, (relaxed.diagram.cell_log_moment[i] / relaxed.diagram.cell_area[i]).norm());
+  }
+  return worst;
+}
+
+TEST(Lloyd, NewtonStepsConvergeMuchFasterThanLloydOnAPlane) {
+  // On a plane the CVT Hessian of cvt_newton.cpp is exact. From the same
+  // nearly centroidal sites, a few (damped, bounded) Newton steps bring the
+  // sites far closer to their centroids than as many Lloyd steps, whose
+  // convergence is linear and slow.
+  const TriangleMesh disk = test::disk(32, 128);
+  remesh::LloydOptions warm;
+  warm.iterations = 20;
+  warm.tolerance = 0;
+  warm.newton = false;
+  const remesh::LloydResult start = remesh::lloyd_relax(disk, remesh::sample_sites(disk, 120), warm);
+  const double before = largest_interior_lloyd_step(disk, start);
+
+  remesh::LloydOptions newton;
+  newton.iterations = 5;
+  newton.tolerance = 0;
+  remesh::LloydOptions lloyd = newton;
+  lloyd.newton = false;
+  const remesh::LloydResult by_newton = remesh::lloyd_relax(disk, start.sites, newton);
+  const remesh::LloydResult by_lloyd = remesh::lloyd_relax(disk, start.sites, lloyd);
+  const double after_newton = largest_interior_lloyd_step(disk, by_newton);
+  const double after_lloyd = largest_interior_lloyd_step(disk, by_lloyd);
+  std::printf("largest distance to the centroid %.3g; after 5 Newton steps %.3g (energy %.9g, %d diagrams), "
+              "after 5 Lloyd steps %.3g (energy %.9g)\n",
+              before, after_newton, by_newton.energy.back(), by_newton.diagrams, after_lloyd, by_lloyd.energy.back());
+  EXPECT_LT(after_newton, 0.5 * before);
+  EXPECT_GT(after_lloyd, 0.8 * before);
+  const double e0 = start.energy.back();
+  EXPECT_GT(e0 - by_newton.energy.back(), 2 * (e0 - by_lloyd.energy.back()));
+}
+
+TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
+  const TriangleMesh mesh = scan("bunny.ply");
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
+  remesh::RemeshOptions newton;
+  newton.lloyd.iterations = 6;
+  newton.lloyd.tolerance = 0;
+  remesh::RemeshOptions lloyd = newton;
+  lloyd.lloyd.newton = false;
+  const remesh::RemeshResult by_newton = remesh::remesh_from_sites(mesh, sites, newton);
+  const remesh::RemeshResult by_lloyd = remesh::remesh_from_sites(mesh, sites, lloyd);
+  EXPECT_EQ(by_newton.lloyd_iterations, 6);
+  for (std::size_t i = 1; i < by_newton.energy.size(); ++i) EXPECT_LT(by_newton.energy[i], by_newton.energy[i - 1]);
+  // Lloyd's energy above the CVT's decays slowly; Newton's steps go further
+  // down in as many iterations.
+  EXPECT_LT(by_newton.energy.back(), by_lloyd.energy.back());
+  EXPECT_GT(remesh::triangle_quality(by_newton.mesh).q_avg, remesh::triangle_quality(by_lloyd.mesh).q_avg);
 }
 
 TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {

@@ -42,6 +42,7 @@ struct RemeshResult {
   int repair_rounds = 0;
   std::vector<double> energy;   ///< CVT energy before and after each Lloyd iteration
   int lloyd_iterations = 0;
+  int lloyd_diagrams = 0;       ///< diagrams Lloyd computed: one per iteration, one per rejected step, plus the first
   double lloyd_seconds = 0;     ///< Lloyd's centroid steps (its diagrams count below)
   double geodesic_seconds = 0;  ///< every diagram: Lloyd iterations and repair rounds
   double diagram_seconds = 0;

@@ -1,0 +1,35 @@
+#pragma once
+// A damped Newton step on the CVT energy E = sum_i int_{V_i} d(x, z_i)^2 dA
+// (the Lloyd–Newton acceleration of Du & Emelianenko 2006; the Hessian as in
+// Iri, Murota & Ohya 1984 and Liu et al., "On centroidal Voronoi
+// tessellation — energy smoothness and fast computation", TOG 2009, §4).
+//
+// With M_i the cell's integral of the log map at z_i and A_i its area, the
+// gradient is g_i = -2 M_i (a Lloyd step is -g_i / (2 A_i)). For two cells
+// meeting along the boundary arc G_ij, moving z_j moves G_ij, and
+//   d2E / dz_i dz_j = (2 / |z_i - z_j|) int_{G_ij} (x - z_i)(x - z_j)^T ds,
+//   d2E / dz_i^2    = 2 A_i I - sum_j (2 / |z_i - z_j|) int_{G_ij} (x - z_i)(x - z_i)^T ds.
+// These are the flat formulas; on the surface each site gets a 2D frame of
+// its tangent plane and x - z is the chord, so the Hessian is approximate
+// (exact on a plane) and the caller checks that a step lowers the energy.
+// The step solves (H + damping D) d = -g with D = diag(2 A_i): damping 0 is
+// Newton's step, a large damping a short Lloyd step. Away from a CVT, H is
+// indefinite: the system is solved by conjugate gradients that stop at a
+// direction of negative curvature (Steihaug 1983).
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/voronoi_diagram.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace geodual::remesh::detail {
+
+/// Per site, its step as a 3D vector in the site's tangent plane (zero for the
+/// sites not movable), at most max_step * sqrt(cell area) long.
+std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
+                                              const voronoi::VoronoiDiagram& diagram, const std::vector<bool>& movable,
+                                              double damping, double max_step);
+
+}  // namespace geodual::remesh::detail
