@@ -2,7 +2,7 @@
 // remeshing at the same vertex count, with the quality figures of
 // shared/DESIGN.md for all of them (issue 5, deliverable 4).
 //
-//   build/bench/quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T]
+//   build/bench/quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd]
 //                             [--cgal-iterations N] [--cgal-border keep|protect]
 //                             [--tolerance PCT] [--max-runs R] [--samples S]
 //                             [--time-limit S] [MESH...]
@@ -12,10 +12,14 @@
 // process) and each site count n, every run below is a forked child, so its
 // peak RSS is its own (plus the input the parent had already read):
 //
-//   geodual        geodual::pipeline::run_remesh_pipeline, n random sites by
-//                  area (seed 1), no Lloyd relaxation.
-//   geodual+Lloyd  the same sites, K Lloyd iterations (default 10; fewer when
-//                  the energy stalls below --lloyd-tol).
+//   geodual        geodual::pipeline::run_remesh_pipeline, n sites sampled as
+//                  the pipeline does by default (blue noise, seed 1), no Lloyd
+//                  relaxation.
+//   geodual+Lloyd  the same sites, K Lloyd iterations with the default
+//                  (Newton-accelerated) steps (default 10; fewer when the
+//                  energy stalls below --lloyd-tol).
+//   geodual+plain  with --plain-lloyd: the same, plain (over-relaxed) Lloyd
+//                  steps.
 //   CGAL           CGAL::Polygon_mesh_processing::isotropic_remeshing of a
 //                  Surface_mesh built from the input, number_of_iterations N
 //                  (default 3), with a target edge length L searched so that
@@ -93,6 +97,7 @@ struct Options {
   std::vector<std::int64_t> site_counts = {5000, 20000};
   int lloyd = 10;
   double lloyd_tolerance = remesh::LloydOptions{}.tolerance;
+  bool plain_lloyd = false;  ///< also a row with plain Lloyd steps
   unsigned cgal_iterations = 3;
   BorderMode border = BorderMode::keep;
   double tolerance_pct = 3.0;
@@ -166,10 +171,12 @@ RunResult from_bytes(const std::vector<std::byte>& bytes) {
 // ---------------------------------------------------------------------------
 // geodual
 
-RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd, const Options& options) {
+RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd, bool newton,
+                      const Options& options) {
   pipeline::RemeshPipelineOptions pipeline_options;
   pipeline_options.sites = sites;
   pipeline_options.remesh.lloyd.iterations = lloyd;
+  pipeline_options.remesh.lloyd.newton = newton;
   pipeline_options.remesh.lloyd.tolerance = options.lloyd_tolerance;
   pipeline_options.statistics = false;  // measured below, the same way for every row
   RunResult run;
@@ -442,13 +449,18 @@ int run_benchmark(const Options& options) {
     std::optional<Figures> input_figures;
     for (const std::int64_t sites : options.site_counts) {
       std::optional<std::int64_t> target;
-      std::vector<int> lloyd_counts = {0};
-      if (options.lloyd > 0) lloyd_counts.push_back(options.lloyd);
-      for (const int lloyd : lloyd_counts) {
-        const std::string method = lloyd == 0 ? "geodual" : "geodual+Lloyd";
+      struct Variant {
+        int lloyd;
+        bool newton;
+        std::string method;
+      };
+      std::vector<Variant> variants = {{0, true, "geodual"}};
+      if (options.lloyd > 0 && options.plain_lloyd) variants.push_back({options.lloyd, false, "geodual+plain"});
+      if (options.lloyd > 0) variants.push_back({options.lloyd, true, "geodual+Lloyd"});
+      for (const auto& [lloyd, newton, method] : variants) {
         std::cerr << "quality_bench:   " << method << " " << sites << " sites\n";
         const ChildOutcome outcome =
-            run_in_child(limits, [&] { return to_bytes(run_geodual(input, sites, lloyd, options)); });
+            run_in_child(limits, [&] { return to_bytes(run_geodual(input, sites, lloyd, newton, options)); });
         if (outcome.status != ChildOutcome::Status::ok) {
           add_failed_row(table, method, sites, outcome.message, outcome.child_max_rss_bytes);
           ++failures;
@@ -514,7 +526,7 @@ std::int64_t parse_integer(const std::string& option, const std::string& text, s
 }
 
 constexpr const char* usage =
-    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--cgal-iterations N]\n"
+    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd] [--cgal-iterations N]\n"
     "                     [--cgal-border keep|protect] [--tolerance PCT] [--max-runs R] [--samples S]\n"
     "                     [--time-limit S] [MESH...]\n"
     "default meshes: ../shared/data/meshes/{bunny,igea,armadillo_86k,fertility}.ply\n";
@@ -541,6 +553,8 @@ Options parse_options(int argc, char** argv) {
       }
     } else if (arg == "--lloyd") {
       options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
+    } else if (arg == "--plain-lloyd") {
+      options.plain_lloyd = true;
     } else if (arg == "--lloyd-tol") {
       options.lloyd_tolerance = parse_number(arg, value());
       if (options.lloyd_tolerance < 0) throw UsageError("--lloyd-tol must be >= 0");
