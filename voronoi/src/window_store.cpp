@@ -92,6 +92,34 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
 
 }  // namespace
 
+WindowStore::WindowStore(Index num_edges) : slots_(static_cast<std::size_t>(num_edges)) {
+  // Address 0, where empty edges point, always exists.
+  add_pages(kPageWindows);
+}
+
+void WindowStore::add_pages(std::uint32_t end) {
+  auto pages_end = [&] { return static_cast<std::uint64_t>(page_of_.size()) << kPageShift; };
+  while (pages_end() < end) {
+    // A block never straddles pages unless it is larger than one: then it
+    // starts on a page boundary and its pages are one allocation.
+    const std::uint64_t missing = end - pages_end();
+    const std::uint64_t pages = missing > kPageWindows ? (missing + kPageWindows - 1) >> kPageShift : 1;
+    allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
+    for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
+  }
+}
+
+void WindowStore::free_range(std::uint32_t from, std::uint32_t to) {
+  while (from < to) {
+    // The largest block aligned at `from` that fits, and within one page.
+    std::uint32_t size = std::bit_floor(to - from);
+    if (from != 0) size = std::min(size, std::uint32_t{1} << std::countr_zero(from));
+    size = std::min(size, kPageWindows);
+    free_block(from, size);
+    from += size;
+  }
+}
+
 std::uint32_t WindowStore::allocate_block(std::uint32_t capacity) {
   std::vector<std::uint32_t>& free = free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))];
   if (!free.empty()) {
@@ -99,11 +127,17 @@ std::uint32_t WindowStore::allocate_block(std::uint32_t capacity) {
     free.pop_back();
     return begin;
   }
-  const std::size_t begin = arena_.size();
-  if (begin + capacity > std::numeric_limits<std::uint32_t>::max()) {
+  const std::uint64_t begin = (std::uint64_t{next_free_} + capacity - 1) & ~std::uint64_t{capacity - 1};
+  const std::uint64_t end = begin + capacity;
+  if (end > std::numeric_limits<std::uint32_t>::max()) {
     throw Error("geodesic propagation needs more than 2^32 windows at once");
   }
-  arena_.resize(begin + capacity);
+  // Pages up to the block first (an alignment gap may span whole pages),
+  // then the block's own.
+  add_pages(static_cast<std::uint32_t>(begin));
+  free_range(next_free_, static_cast<std::uint32_t>(begin));
+  add_pages(static_cast<std::uint32_t>(end));
+  next_free_ = static_cast<std::uint32_t>(end);
   return static_cast<std::uint32_t>(begin);
 }
 
@@ -123,13 +157,13 @@ Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed,
   const std::uint32_t count = slot.count - removed + added;
   const std::uint32_t tail = slot.count - at - removed;
   if (count <= slot.capacity) {
-    Window* w = arena_.data() + slot.begin;
+    Window* w = window_at(slot.begin);
     if (added != removed && tail > 0) std::memmove(w + at + added, w + at + removed, tail * sizeof(Window));
   } else {
     const std::uint32_t capacity = std::max<std::uint32_t>(2, std::bit_ceil(count));
-    const std::uint32_t begin = allocate_block(capacity);  // may move the arena
-    Window* from = arena_.data() + slot.begin;
-    Window* to = arena_.data() + begin;
+    const std::uint32_t begin = allocate_block(capacity);
+    const Window* from = window_at(slot.begin);
+    Window* to = window_at(begin);
     std::copy(from, from + at, to);
     std::copy(from + at + removed, from + at + removed + tail, to + at + added);
     free_block(slot.begin, slot.capacity);
@@ -139,7 +173,7 @@ Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed,
   live_ += static_cast<std::int64_t>(count) - slot.count;
   peak_ = std::max(peak_, live_);
   slot.count = count;
-  return arena_.data() + slot.begin;
+  return window_at(slot.begin);
 }
 
 void WindowStore::push_segment(double lo, double hi, int owner) {

@@ -4,17 +4,22 @@
 // smallest distance any inserted window offered there (MMP trimming,
 // Surazhsky et al. 2005 §3.3).
 //
-// The arrays are blocks of one arena, of power-of-two capacities, so that the
-// windows of an edge share one or two cache lines: propagation reads them
-// together (expanding a face, trimming, redundancy checks). Freed blocks are
+// The arrays are blocks of power-of-two capacities, so that the windows of an
+// edge share one or two cache lines: propagation reads them together
+// (expanding a face, trimming, redundancy checks). Blocks are carved from
+// fixed-size pages, each block aligned to its capacity, so that the store
+// grows a page at a time and never copies or over-allocates as one growing
+// array would (at its peak that held the old and the new array, three times
+// the windows' bytes). Freed blocks, and the gaps alignment leaves, are
 // reused by size class, newest first, so inserting and freeing do not
-// allocate once the arena has grown.
+// allocate once the pages are there.
 
 #include "window.hpp"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -22,21 +27,20 @@ namespace geodual::voronoi::detail {
 
 class WindowStore {
  public:
-  explicit WindowStore(Index num_edges)
-      : slots_(static_cast<std::size_t>(num_edges)) {}
+  explicit WindowStore(Index num_edges);
 
   static constexpr Index kNoSite = -1;
   static constexpr Index kMixedSites = -2;
 
-  /// The windows of an edge, sorted along it. Valid until the next insert or
-  /// clear on any edge (the arena may move).
+  /// The windows of an edge, sorted along it. Valid until the next insert on
+  /// or clear of the same edge.
   std::span<const Window> on_edge(Index edge) const {
     const Slot& s = slots_[edge];
-    return {arena_.data() + s.begin, s.count};
+    return {window_at(s.begin), s.count};
   }
   std::span<Window> on_edge(Index edge) {
     const Slot& s = slots_[edge];
-    return {arena_.data() + s.begin, s.count};
+    return {window_at(s.begin), s.count};
   }
 
   /// A surviving piece of an inserted window: its position in on_edge() and
@@ -64,11 +68,20 @@ class WindowStore {
 
   std::int64_t live() const { return live_; }
   std::int64_t peak() const { return peak_; }
-  /// Bytes of window storage in use: the arena's extent, including blocks
-  /// that are free for reuse and the unused capacity of the edges' blocks.
-  std::int64_t bytes() const { return static_cast<std::int64_t>(arena_.size() * sizeof(Window)); }
+  /// Bytes of window storage held: every page, including blocks that are
+  /// free for reuse and the unused capacity of the edges' blocks.
+  std::int64_t bytes() const { return static_cast<std::int64_t>(page_of_.size()) * kPageWindows * sizeof(Window); }
 
  private:
+  /// Windows are addressed by a 32-bit number: page (high bits) and
+  /// position in the page (low bits).
+  static constexpr int kPageShift = 12;
+  static constexpr std::uint32_t kPageWindows = std::uint32_t{1} << kPageShift;
+
+  Window* window_at(std::uint32_t address) const {
+    return page_of_[address >> kPageShift] + (address & (kPageWindows - 1));
+  }
+
   /// An edge's block and site summary, together: inserting reads both.
   struct Slot {
     std::uint32_t begin = 0;
@@ -84,12 +97,20 @@ class WindowStore {
   /// Makes on_edge(edge)[at .. at + removed) room for `added` windows
   /// (contents unspecified), moving the tail; returns the edge's first window.
   Window* splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added);
+  /// A block of `capacity` (a power of two) windows, aligned to it.
   std::uint32_t allocate_block(std::uint32_t capacity);
   void free_block(std::uint32_t begin, std::uint32_t capacity);
+  /// Hands [from, to) to the free lists as aligned power-of-two blocks.
+  void free_range(std::uint32_t from, std::uint32_t to);
+  /// Adds pages until addresses below `end` exist; a block larger than a
+  /// page gets pages of its own, contiguous.
+  void add_pages(std::uint32_t end);
   void split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi);
   void push_segment(double lo, double hi, int owner);
 
-  std::vector<Window> arena_;
+  std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
+  std::vector<Window*> page_of_;                        ///< by page number
+  std::uint32_t next_free_ = 0;                         ///< addresses from here on are unused
   std::vector<Slot> slots_;
   std::array<std::vector<std::uint32_t>, 32> free_blocks_;  ///< by log2 of the capacity
   std::int64_t live_ = 0;
