@@ -97,82 +97,88 @@ WindowStore::WindowStore(Index num_edges) : slots_(static_cast<std::size_t>(num_
   add_pages(kPageWindows);
 }
 
-void WindowStore::add_pages(std::uint32_t end) {
-  auto pages_end = [&] { return static_cast<std::uint64_t>(page_of_.size()) << kPageShift; };
-  while (pages_end() < end) {
-    // A block never straddles pages unless it is larger than one: then it
-    // starts on a page boundary and its pages are one allocation.
-    const std::uint64_t missing = end - pages_end();
-    const std::uint64_t pages = missing > kPageWindows ? (missing + kPageWindows - 1) >> kPageShift : 1;
-    allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
-    for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
+std::uint32_t WindowStore::class_for(std::uint32_t count) {
+  if (count <= 2) return count;
+  // 2^(b-1) < count <= 2^b: the class of 1.5 * 2^(b-1) or of 2^b.
+  const auto b = static_cast<std::uint32_t>(std::bit_width(count - 1));
+  const std::uint32_t half = std::uint32_t{1} << (b - 1);
+  return count <= half + half / 2 ? 2 * b - 1 : 2 * b;
+}
+
+void WindowStore::add_pages(std::uint32_t size) {
+  const std::uint64_t pages = (std::uint64_t{size} + kPageWindows - 1) >> kPageShift;
+  if ((static_cast<std::uint64_t>(page_of_.size()) + pages) << kPageShift > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("geodesic propagation needs more than 2^32 windows at once");
   }
+  allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
+  for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
 }
 
 void WindowStore::free_range(std::uint32_t from, std::uint32_t to) {
   while (from < to) {
-    // The largest block aligned at `from` that fits, and within one page.
-    std::uint32_t size = std::bit_floor(to - from);
-    if (from != 0) size = std::min(size, std::uint32_t{1} << std::countr_zero(from));
-    size = std::min(size, kPageWindows);
-    free_block(from, size);
-    from += size;
+    // The largest class that fits.
+    std::uint32_t block_class = class_for(to - from);
+    if (block_size(block_class) > to - from) --block_class;
+    free_block(from, block_class);
+    from += block_size(block_class);
   }
 }
 
-std::uint32_t WindowStore::allocate_block(std::uint32_t capacity) {
-  std::vector<std::uint32_t>& free = free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))];
+std::uint32_t WindowStore::allocate_block(std::uint32_t block_class) {
+  std::vector<std::uint32_t>& free = free_blocks_[block_class];
   if (!free.empty()) {
     const std::uint32_t begin = free.back();
     free.pop_back();
     return begin;
   }
-  const std::uint64_t begin = (std::uint64_t{next_free_} + capacity - 1) & ~std::uint64_t{capacity - 1};
-  const std::uint64_t end = begin + capacity;
-  if (end > std::numeric_limits<std::uint32_t>::max()) {
-    throw Error("geodesic propagation needs more than 2^32 windows at once");
+  // Carved from the last allocation if it fits there (a block never
+  // straddles two allocations), else from new pages.
+  const std::uint32_t size = block_size(block_class);
+  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+  if (size > pages_end - next_free_) {
+    free_range(next_free_, pages_end);
+    add_pages(size);
+    next_free_ = pages_end;
   }
-  // Pages up to the block first (an alignment gap may span whole pages),
-  // then the block's own.
-  add_pages(static_cast<std::uint32_t>(begin));
-  free_range(next_free_, static_cast<std::uint32_t>(begin));
-  add_pages(static_cast<std::uint32_t>(end));
-  next_free_ = static_cast<std::uint32_t>(end);
-  return static_cast<std::uint32_t>(begin);
+  const std::uint32_t begin = next_free_;
+  next_free_ += size;
+  return begin;
 }
 
-void WindowStore::free_block(std::uint32_t begin, std::uint32_t capacity) {
-  if (capacity > 0) free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))].push_back(begin);
+void WindowStore::free_block(std::uint32_t begin, std::uint32_t block_class) {
+  if (block_class != kNoBlock) free_blocks_[block_class].push_back(begin);
 }
 
 void WindowStore::clear_edge(Index edge) {
   Slot& slot = slots_[edge];
   live_ -= slot.count;
-  free_block(slot.begin, slot.capacity);
+  free_block(slot.begin, slot.block_class);
   slot = Slot{};
 }
 
 Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added) {
   Slot& slot = slots_[edge];
-  const std::uint32_t count = slot.count - removed + added;
-  const std::uint32_t tail = slot.count - at - removed;
-  if (count <= slot.capacity) {
+  const std::uint32_t old_count = slot.count;
+  const std::uint32_t count = old_count - removed + added;
+  const std::uint32_t tail = old_count - at - removed;
+  if (count <= block_size(slot.block_class)) {
     Window* w = window_at(slot.begin);
     if (added != removed && tail > 0) std::memmove(w + at + added, w + at + removed, tail * sizeof(Window));
   } else {
-    const std::uint32_t capacity = std::max<std::uint32_t>(2, std::bit_ceil(count));
-    const std::uint32_t begin = allocate_block(capacity);
+    if (count > kMaxCount) throw Error("geodesic propagation needs more than 2^24 windows on one edge");
+    const std::uint32_t block_class = class_for(count);
+    const std::uint32_t begin = allocate_block(block_class);
     const Window* from = window_at(slot.begin);
     Window* to = window_at(begin);
     std::copy(from, from + at, to);
     std::copy(from + at + removed, from + at + removed + tail, to + at + added);
-    free_block(slot.begin, slot.capacity);
+    free_block(slot.begin, slot.block_class);
     slot.begin = begin;
-    slot.capacity = capacity;
+    slot.block_class = block_class & 0xff;
   }
-  live_ += static_cast<std::int64_t>(count) - slot.count;
+  live_ += static_cast<std::int64_t>(count) - old_count;
   peak_ = std::max(peak_, live_);
-  slot.count = count;
+  slot.count = count & kMaxCount;
   return window_at(slot.begin);
 }
 

@@ -4,15 +4,16 @@
 // smallest distance any inserted window offered there (MMP trimming,
 // Surazhsky et al. 2005 §3.3).
 //
-// The arrays are blocks of power-of-two capacities, so that the windows of an
-// edge share one or two cache lines: propagation reads them together
+// The arrays are blocks of a few capacities (1, 2, 3, 4, 6, 8, 12, ...: two
+// per octave, so that a block is on average ~85% full), so that the windows
+// of an edge share one or two cache lines: propagation reads them together
 // (expanding a face, trimming, redundancy checks). Blocks are carved from
-// fixed-size pages, each block aligned to its capacity, so that the store
-// grows a page at a time and never copies or over-allocates as one growing
-// array would (at its peak that held the old and the new array, three times
-// the windows' bytes). Freed blocks, and the gaps alignment leaves, are
-// reused by size class, newest first, so inserting and freeing do not
-// allocate once the pages are there.
+// fixed-size pages, so that the store grows a page at a time and never
+// copies or over-allocates as one growing array would (at its peak that held
+// the old and the new array, three times the windows' bytes). Freed blocks,
+// and page ends too short for the next block, are reused by capacity,
+// newest first, so inserting and freeing do not allocate once the pages are
+// there.
 
 #include "window.hpp"
 
@@ -82,11 +83,22 @@ class WindowStore {
     return page_of_[address >> kPageShift] + (address & (kPageWindows - 1));
   }
 
-  /// An edge's block and site summary, together: inserting reads both.
+  /// Block capacities by class: 0 is no block, then 1, 2, 3, 4, 6, 8, 12, ...
+  static constexpr std::uint32_t kNoBlock = 0;
+  static constexpr int kClasses = 64;
+  static std::uint32_t block_size(std::uint32_t block_class) {
+    if (block_class < 2) return block_class;
+    return ((block_class & 1) ? 3u : 2u) << ((block_class - 2) / 2);
+  }
+  /// The smallest class that holds `count` > 0 windows.
+  static std::uint32_t class_for(std::uint32_t count);
+
+  /// An edge's block and site summary, together (12 bytes): inserting reads both.
+  static constexpr std::uint32_t kMaxCount = (std::uint32_t{1} << 24) - 1;
   struct Slot {
     std::uint32_t begin = 0;
-    std::uint32_t count = 0;
-    std::uint32_t capacity = 0;
+    std::uint32_t count : 24 = 0;
+    std::uint32_t block_class : 8 = kNoBlock;
     Index site = kNoSite;
   };
   struct Segment {
@@ -97,22 +109,22 @@ class WindowStore {
   /// Makes on_edge(edge)[at .. at + removed) room for `added` windows
   /// (contents unspecified), moving the tail; returns the edge's first window.
   Window* splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added);
-  /// A block of `capacity` (a power of two) windows, aligned to it.
-  std::uint32_t allocate_block(std::uint32_t capacity);
-  void free_block(std::uint32_t begin, std::uint32_t capacity);
-  /// Hands [from, to) to the free lists as aligned power-of-two blocks.
+  /// A block of the class's capacity.
+  std::uint32_t allocate_block(std::uint32_t block_class);
+  void free_block(std::uint32_t begin, std::uint32_t block_class);
+  /// Hands the unused [from, to) of one allocation to the free lists.
   void free_range(std::uint32_t from, std::uint32_t to);
-  /// Adds pages until addresses below `end` exist; a block larger than a
-  /// page gets pages of its own, contiguous.
-  void add_pages(std::uint32_t end);
+  /// Adds pages for a block of `size` windows from the next page boundary on:
+  /// one page, or, for a block larger than a page, contiguous pages of its own.
+  void add_pages(std::uint32_t size);
   void split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi);
   void push_segment(double lo, double hi, int owner);
 
   std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
   std::vector<Window*> page_of_;                        ///< by page number
-  std::uint32_t next_free_ = 0;                         ///< addresses from here on are unused
+  std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
   std::vector<Slot> slots_;
-  std::array<std::vector<std::uint32_t>, 32> free_blocks_;  ///< by log2 of the capacity
+  std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;
   // Scratch space reused by insert().
