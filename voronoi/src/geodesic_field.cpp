@@ -132,7 +132,7 @@ void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& ord
     field.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
     field.edge_length[e] = pm.edge_length(static_cast<Index>(e));
   }
-  pm.edge_local = {};
+  pm.edge_local = std::vector<std::array<std::uint8_t, 2>>();
   field.edge_faces = std::move(pm.edge_faces);
   for (auto& faces : field.edge_faces) {
     for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
@@ -173,15 +173,18 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   for (SurfacePoint& site : local_sites) {
     site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
   }
-  order.new_vertex = {};  // results map back through old_vertex and old_face
-  order.new_face = {};
+  // Results map back through old_vertex and old_face. (Assigning {} would
+  // keep a vector's memory: it is assignment from an empty initializer list.)
+  order.new_vertex = std::vector<Index>();
+  order.new_face = std::vector<Index>();
   const double setup_seconds = seconds_since(start);
 
-  const detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
+  detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
+  windows.compact();
   field.stats.setup_seconds = setup_seconds;
-  pm.vertex_face_begin = {};
-  pm.vertex_faces = {};
-  pm.is_pseudo_source = {};
+  pm.vertex_face_begin = std::vector<Index>();
+  pm.vertex_faces = std::vector<Index>();
+  pm.is_pseudo_source = std::vector<std::uint8_t>();
   const Index num_edges = pm.num_edges();
   move_topology(pm, order, field);
   order = {};

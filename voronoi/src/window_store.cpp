@@ -111,7 +111,9 @@ void WindowStore::add_pages(std::uint32_t size) {
     throw Error("geodesic propagation needs more than 2^32 windows at once");
   }
   allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
+  allocation_first_page_.push_back(static_cast<std::uint32_t>(page_of_.size()));
   for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
+  held_pages_ += static_cast<std::int64_t>(pages);
 }
 
 void WindowStore::free_range(std::uint32_t from, std::uint32_t to) {
@@ -154,6 +156,48 @@ void WindowStore::clear_edge(Index edge) {
   live_ -= slot.count;
   free_block(slot.begin, slot.block_class);
   slot = Slot{};
+}
+
+void WindowStore::compact() {
+  // Blocks in the order they lie in memory, each moved down to the first
+  // free address in a page it fits in whole (so never onto windows not yet
+  // moved). A block larger than a page stays where it is, in its own pages.
+  std::vector<Index> edges;
+  for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
+    if (slots_[e].count > 0) edges.push_back(e);
+  }
+  std::sort(edges.begin(), edges.end(), [&](Index a, Index b) { return slots_[a].begin < slots_[b].begin; });
+  std::vector<std::uint8_t> page_used(page_of_.size(), 0);
+  std::uint32_t cursor = 0;
+  for (const Index e : edges) {
+    Slot& slot = slots_[e];
+    const std::uint32_t count = slot.count;
+    if (count > kPageWindows) {
+      cursor = slot.begin;
+    } else if ((cursor & (kPageWindows - 1)) + count > kPageWindows) {
+      cursor = (cursor | (kPageWindows - 1)) + 1;
+    }
+    if (cursor != slot.begin) std::memmove(window_at(cursor), window_at(slot.begin), count * sizeof(Window));
+    slot.begin = cursor;
+    slot.block_class = kNoBlock;  // exactly full: growing moves it, freeing keeps nothing
+    for (std::uint32_t page = cursor >> kPageShift; page <= (cursor + count - 1) >> kPageShift; ++page) page_used[page] = 1;
+    cursor += count;
+  }
+  // Allocations none of whose pages hold windows any more go back.
+  for (std::size_t a = 0; a < allocations_.size(); ++a) {
+    if (!allocations_[a]) continue;
+    const std::uint32_t first = allocation_first_page_[a];
+    const std::uint32_t end = a + 1 < allocations_.size() ? allocation_first_page_[a + 1]
+                                                          : static_cast<std::uint32_t>(page_of_.size());
+    if (std::any_of(page_used.begin() + first, page_used.begin() + end, [](std::uint8_t used) { return used != 0; })) {
+      continue;
+    }
+    allocations_[a].reset();
+    for (std::uint32_t page = first; page < end; ++page) page_of_[page] = nullptr;
+    held_pages_ -= end - first;
+  }
+  for (std::vector<std::uint32_t>& free : free_blocks_) free = std::vector<std::uint32_t>();
+  next_free_ = static_cast<std::uint32_t>(page_of_.size() << kPageShift);  // new blocks on new pages
 }
 
 Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added) {

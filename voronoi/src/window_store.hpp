@@ -67,11 +67,17 @@ class WindowStore {
   /// Frees every window of the edge.
   void clear_edge(Index edge);
 
+  /// Packs the windows together in memory and gives back the pages left
+  /// empty: for keeping the windows once propagation is over, when the free
+  /// blocks and unused capacity would otherwise double what they take. The
+  /// store stays usable; an edge that grows afterwards moves to a new block.
+  void compact();
+
   std::int64_t live() const { return live_; }
   std::int64_t peak() const { return peak_; }
   /// Bytes of window storage held: every page, including blocks that are
   /// free for reuse and the unused capacity of the edges' blocks.
-  std::int64_t bytes() const { return static_cast<std::int64_t>(page_of_.size()) * kPageWindows * sizeof(Window); }
+  std::int64_t bytes() const { return held_pages_ * kPageWindows * static_cast<std::int64_t>(sizeof(Window)); }
 
  private:
   /// Windows are addressed by a 32-bit number: page (high bits) and
@@ -121,7 +127,9 @@ class WindowStore {
   void push_segment(double lo, double hi, int owner);
 
   std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
-  std::vector<Window*> page_of_;                        ///< by page number
+  std::vector<std::uint32_t> allocation_first_page_;    ///< of each allocation
+  std::vector<Window*> page_of_;                        ///< by page number; null once given back
+  std::int64_t held_pages_ = 0;
   std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
   std::vector<Slot> slots_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
