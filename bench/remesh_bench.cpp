@@ -1,7 +1,8 @@
 // remesh_bench: the whole remesh, stage by stage, with the peak memory of
 // each run (one forked child per run, so runs do not share memory).
 //
-//   build/bench/remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--time-limit S] MESH...
+//   build/bench/remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--subdivided-cache D]
+//                            [--time-limit S] MESH...
 //
 // Stages: load (read the file), sample (random sites by area, on boundaries
 // too), geodesics (window-VTP + RWR), diagram (Voronoi extraction), dual
@@ -76,12 +77,15 @@ Options parse_options(int argc, char** argv) {
         if (level < 1 || level > 2) throw UsageError("--subdivided: levels are 1 and 2");
         options.subdivided_levels.push_back(static_cast<int>(level));
       }
+    } else if (arg == "--subdivided-cache") {
+      options.cache = value();
     } else if (arg == "--lloyd") {
       options.lloyd = static_cast<int>(parse_list(value()).at(0));
     } else if (arg == "--time-limit") {
       options.time_limit_seconds = static_cast<unsigned>(parse_list(value()).at(0));
     } else if (arg == "--help" || arg == "-h") {
-      std::cout << "usage: remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--time-limit S] MESH...\n";
+      std::cout << "usage: remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--subdivided-cache D]"
+                   " [--time-limit S] MESH...\n";
       std::exit(0);
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option " + arg);

@@ -35,6 +35,7 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
       if (f >= 0) site = SurfacePoint::in_face(f, c == 0, c == 1, c == 2);
     }
   }
+  if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
   const TriangleMesh& input = changed ? cut.mesh : mesh;
   LloydResult relaxed = lloyd_relax(input, std::move(sites), options.lloyd);
   result.lloyd_seconds = relaxed.move_seconds;

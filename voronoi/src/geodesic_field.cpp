@@ -90,13 +90,80 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
   return result;
 }
 
+/// Runs window-VTP from the sites (in the propagation's numbering) and fills
+/// the field's per-vertex and per-face results in the caller's numbering.
+/// Returns the windows; the rest of the propagation's state is freed.
+detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::LocalityOrder& order,
+                              const std::vector<SurfacePoint>& local_sites, const GeodesicOptions& options,
+                              GeodesicField& field) {
+  const auto start = Clock::now();
+  detail::WindowVtp vtp(pm, options);
+  vtp.add_sites(local_sites);
+  vtp.run();
+  field.stats = vtp.stats();
+  field.stats.propagation_seconds = seconds_since(start);
+
+  const std::size_t num_vertices = order.old_vertex.size();
+  field.distance.resize(num_vertices);
+  field.nearest_site.resize(num_vertices);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    field.distance[order.old_vertex[v]] = vtp.distance()[v];
+    field.nearest_site[order.old_vertex[v]] = vtp.label()[v];
+  }
+  const std::vector<bool> valid = vtp.valid_faces();
+  field.valid_face.resize(order.old_face.size());
+  for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
+  field.face_point_sources = vtp.point_sources();
+  for (FacePointSource& source : field.face_point_sources) source.face = order.old_face[source.face];
+  std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
+                   [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  return vtp.take_windows();
+}
+
+/// The propagation's topology into the field, in the caller's numbering of
+/// vertices and faces (edges keep the propagation's numbering), freeing the
+/// propagation mesh on the way.
+void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& order, GeodesicField& field) {
+  const auto num_edges = static_cast<std::size_t>(pm.num_edges());
+  field.edge_vertices.resize(num_edges);
+  field.edge_length.resize(num_edges);
+  for (std::size_t e = 0; e < num_edges; ++e) {
+    const std::array<Index, 2> ends = pm.edge_vertices(static_cast<Index>(e));
+    field.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
+    field.edge_length[e] = pm.edge_length(static_cast<Index>(e));
+  }
+  pm.edge_local = std::vector<std::array<std::uint8_t, 2>>();
+  field.edge_faces = std::move(pm.edge_faces);
+  for (auto& faces : field.edge_faces) {
+    for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
+  }
+  field.face_edges.resize(pm.face_records.size());
+  for (std::size_t f = 0; f < pm.face_records.size(); ++f) field.face_edges[order.old_face[f]] = pm.face_records[f].edge;
+  pm = {};
+}
+
+/// The retained windows into the field, grouped by edge.
+void copy_windows(const detail::WindowStore& store, Index num_edges, GeodesicField& field) {
+  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
+  field.windows.reserve(static_cast<std::size_t>(store.live()));
+  for (Index e = 0; e < num_edges; ++e) {
+    field.window_begin[e] = static_cast<Index>(field.windows.size());
+    for (const detail::Window& w : store.on_edge(e)) {
+      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, w.sigma, w.site});
+    }
+  }
+  field.window_begin.back() = static_cast<Index>(field.windows.size());
+}
+
 }  // namespace
 
 GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                      const GeodesicOptions& options) {
   const auto start = Clock::now();
   // Propagation runs on a copy renumbered for memory locality; everything it
-  // returns is mapped back to the caller's numbering.
+  // returns is mapped back to the caller's numbering. Each structure is freed
+  // as soon as it has served: on large meshes the peak memory is the sum of
+  // what is alive at once.
   detail::LocalityOrder order = detail::locality_order(mesh);
   detail::PropagationMesh pm = detail::build_propagation_mesh(order.mesh);
   order.mesh = TriangleMesh{};  // only the numbering is needed from here on
@@ -106,72 +173,22 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   for (SurfacePoint& site : local_sites) {
     site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
   }
+  // Results map back through old_vertex and old_face. (Assigning {} would
+  // keep a vector's memory: it is assignment from an empty initializer list.)
+  order.new_vertex = std::vector<Index>();
+  order.new_face = std::vector<Index>();
   const double setup_seconds = seconds_since(start);
 
-  const auto propagation_start = Clock::now();
-  detail::WindowVtp vtp(pm, options);
-  vtp.add_sites(local_sites);
-  vtp.run();
-  field.stats = vtp.stats();
+  detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
+  windows.compact();
   field.stats.setup_seconds = setup_seconds;
-  field.stats.propagation_seconds = seconds_since(propagation_start);
-
-  const std::size_t num_vertices = static_cast<std::size_t>(mesh.num_vertices());
-  const std::size_t num_faces = static_cast<std::size_t>(mesh.num_faces());
-  field.distance.resize(num_vertices);
-  field.nearest_site.resize(num_vertices);
-  for (std::size_t v = 0; v < num_vertices; ++v) {
-    field.distance[v] = vtp.distance()[order.new_vertex[v]];
-    field.nearest_site[v] = vtp.label()[order.new_vertex[v]];
-  }
-  const std::vector<bool> valid = vtp.valid_faces();
-  field.valid_face.resize(num_faces);
-  for (std::size_t f = 0; f < num_faces; ++f) field.valid_face[f] = valid[order.new_face[f]];
-  field.face_point_sources = vtp.point_sources();
-  for (FacePointSource& source : field.face_point_sources) source.face = order.old_face[source.face];
-  std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
-                   [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
-
-  const detail::WindowStore& store = vtp.windows();
-  field.window_begin.assign(static_cast<std::size_t>(pm.num_edges()) + 1, 0);
-  field.windows.reserve(static_cast<std::size_t>(store.live()));
-  for (Index e = 0; e < pm.num_edges(); ++e) {
-    field.window_begin[e] = static_cast<Index>(field.windows.size());
-    for (const detail::Window& w : store.on_edge(e)) {
-      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, w.sigma, w.site});
-    }
-  }
-  field.window_begin.back() = static_cast<Index>(field.windows.size());
-  // The topology moves into the result rather than being copied (it is the
-  // largest thing held, and the propagation no longer needs it), renumbered
-  // back; edges keep the propagation's numbering.
-  field.edge_vertices = std::move(pm.edge_vertices);
-  for (auto& ends : field.edge_vertices) ends = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
-  field.edge_faces = std::move(pm.edge_faces);
-  for (auto& faces : field.edge_faces) {
-    for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
-  }
-  field.edge_length = std::move(pm.edge_length);
-  // Faces back to the caller's order in place, cycle by cycle.
-  field.face_edges = std::move(pm.face_edges);
-  std::vector<bool> placed(num_faces, false);
-  for (std::size_t cycle = 0; cycle < num_faces; ++cycle) {
-    if (placed[cycle]) continue;
-    // Old face p takes the row of new face new_face[p], which is still
-    // unwritten until the cycle closes (the first row is kept aside).
-    const std::array<Index, 3> first = field.face_edges[cycle];
-    std::size_t p = cycle;
-    for (;;) {
-      placed[p] = true;
-      const auto from = static_cast<std::size_t>(order.new_face[p]);
-      if (from == cycle) {
-        field.face_edges[p] = first;
-        break;
-      }
-      field.face_edges[p] = field.face_edges[from];
-      p = from;
-    }
-  }
+  pm.vertex_face_begin = std::vector<Index>();
+  pm.vertex_faces = std::vector<Index>();
+  pm.is_pseudo_source = std::vector<std::uint8_t>();
+  const Index num_edges = pm.num_edges();
+  move_topology(pm, order, field);
+  order = {};
+  copy_windows(windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;
 }

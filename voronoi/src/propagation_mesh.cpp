@@ -35,7 +35,7 @@ Index fan_size(const PropagationMesh& pm, Index v, Index start) {
     // The two local edges at corner c are c (c -> c+1) and c+2 (c+2 -> c).
     int exit_edge_local = direction == 0 ? corner : (corner + 2) % 3;
     for (;;) {
-      const Index e = pm.face_edges[face][exit_edge_local];
+      const Index e = pm.face_edges(face)[exit_edge_local];
       const int side = pm.side_of(e, face);
       const Index next = pm.edge_faces[e][1 - side];
       if (next < 0) break;
@@ -58,7 +58,6 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   PropagationMesh pm;
   const Index num_vertices = mesh.num_vertices();
   const Index num_faces = mesh.num_faces();
-  pm.face_edges.assign(num_faces, {-1, -1, -1});
 
   // Half-edges of the included faces, sorted by their undirected vertex pair.
   struct HalfEdge {
@@ -81,32 +80,50 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.key != y.key ? x.key < y.key : (x.face != y.face ? x.face < y.face : x.local < y.local);
   });
+  // Runs of equal keys: two half-edges make one edge; a boundary or
+  // non-manifold edge gives each of its faces its own copy.
+  auto run_end = [&](std::size_t i) {
+    std::size_t j = i + 1;
+    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) ++j;
+    return j;
+  };
+  std::size_t num_edges = 0;
+  for (std::size_t i = 0; i < half_edges.size();) {
+    const std::size_t j = run_end(i);
+    num_edges += j - i == 2 ? 1 : j - i;
+    i = j;
+  }
+  pm.edge_faces.reserve(num_edges);
+  pm.edge_local.reserve(num_edges);
 
+  pm.face_records.assign(num_faces, FaceRecord{});
   auto add_edge = [&](const HalfEdge& first, const HalfEdge* second) {
-    const Index e = static_cast<Index>(pm.edge_length.size());
+    const Index e = static_cast<Index>(pm.edge_faces.size());
     const Index v0 = mesh.faces(first.face, first.local);
     const Index v1 = mesh.faces(first.face, (first.local + 1) % 3);
-    pm.edge_vertices.push_back({v0, v1});
-    pm.edge_length.push_back((mesh.vertices.row(v1) - mesh.vertices.row(v0)).norm());
-    pm.face_edges[first.face][first.local] = e;
+    const double length = (mesh.vertices.row(v1) - mesh.vertices.row(v0)).norm();
+    auto attach = [&](const HalfEdge& half, std::uint8_t side_flags) {
+      FaceRecord& r = pm.face_records[half.face];
+      r.edge[half.local] = e;
+      r.length[half.local] = length;
+      r.side_flags[half.local] = side_flags;
+    };
+    attach(first, 0);
     if (second != nullptr) {
+      const bool reversed = mesh.faces(second->face, second->local) == v1;
+      attach(*second, FaceRecord::kSide1 | (reversed ? FaceRecord::kReversed : 0));
       pm.edge_faces.push_back({first.face, second->face});
       pm.edge_local.push_back({static_cast<std::uint8_t>(first.local), static_cast<std::uint8_t>(second->local)});
-      pm.edge_reversed_in_face1.push_back(mesh.faces(second->face, second->local) == v1);
-      pm.face_edges[second->face][second->local] = e;
     } else {
       pm.edge_faces.push_back({first.face, -1});
       pm.edge_local.push_back({static_cast<std::uint8_t>(first.local), 0});
-      pm.edge_reversed_in_face1.push_back(0);
     }
   };
   for (std::size_t i = 0; i < half_edges.size();) {
-    std::size_t j = i + 1;
-    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) ++j;
+    const std::size_t j = run_end(i);
     if (j - i == 2) {
       add_edge(half_edges[i], &half_edges[i + 1]);
     } else {
-      // A boundary edge, or a non-manifold one: each face keeps its own copy.
       for (std::size_t h = i; h < j; ++h) add_edge(half_edges[h], nullptr);
     }
     i = j;
@@ -114,19 +131,10 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   half_edges.clear();
   half_edges.shrink_to_fit();
 
-  pm.face_records.assign(num_faces, FaceRecord{});
   for (Index f = 0; f < num_faces; ++f) {
     if (!pm.included(f)) continue;
     FaceRecord& r = pm.face_records[f];
-    for (int k = 0; k < 3; ++k) {
-      const Index e = pm.face_edges[f][k];
-      r.edge[k] = e;
-      r.vertex[k] = mesh.faces(f, k);
-      r.length[k] = pm.edge_length[e];
-      const bool side1 = pm.edge_faces[e][0] != f;
-      r.side_flags[k] = static_cast<std::uint8_t>(
-          (side1 ? FaceRecord::kSide1 : 0) | (side1 && pm.edge_reversed_in_face1[e] ? FaceRecord::kReversed : 0));
-    }
+    for (int k = 0; k < 3; ++k) r.vertex[k] = mesh.faces(f, k);
     r.twice_area = twice_area_from_lengths(r.length[0], r.length[1], r.length[2]);
   }
 
@@ -153,11 +161,10 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     if (!pm.included(f)) continue;
     const auto angles = corner_angles(pm, f);
     for (int k = 0; k < 3; ++k) {
-      const Index e = pm.face_edges[f][k];
       angle_sum[mesh.faces(f, k)] += angles[k];
-      if (pm.edge_faces[e][1] < 0) {
-        on_boundary[pm.edge_vertices[e][0]] = 1;
-        on_boundary[pm.edge_vertices[e][1]] = 1;
+      if (pm.edge_faces[pm.face_edges(f)[k]][1] < 0) {
+        on_boundary[mesh.faces(f, k)] = 1;
+        on_boundary[mesh.faces(f, (k + 1) % 3)] = 1;
       }
     }
   }

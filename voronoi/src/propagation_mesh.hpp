@@ -58,23 +58,17 @@ struct alignas(64) FaceRecord {
 static_assert(sizeof(FaceRecord) == 64);
 
 /// Built from a mesh, it keeps no reference to it: the mesh may go once built.
+/// Each fact is stored once: an edge's length and end vertices are read from
+/// the record of its face [0].
 struct PropagationMesh {
-  /// Per face, its three edges (edge k joins corners k and k + 1); all -1 for
-  /// faces with a repeated vertex index, which take no part.
-  std::vector<std::array<Index, 3>> face_edges;
-  /// Per edge: end vertices (v0 -> v1 is the direction of edge_faces[e][0]),
-  /// faces on the y > 0 side ([0]) and the y < 0 side ([1], or -1), and the
-  /// local index of the edge within each face.
-  std::vector<std::array<Index, 2>> edge_vertices;
+  /// Per face, the data propagation reads (see FaceRecord); faces with a
+  /// repeated vertex index take no part and keep default records (edges -1).
+  std::vector<FaceRecord> face_records;
+  /// Per edge: the faces on its y > 0 side ([0]) and its y < 0 side ([1], or
+  /// -1), and the edge's local index within each. The edge runs from v0 to
+  /// v1 in the direction of face [0].
   std::vector<std::array<Index, 2>> edge_faces;
   std::vector<std::array<std::uint8_t, 2>> edge_local;
-  /// True where face [1] runs along the edge from v1 to v0 (consistent
-  /// orientation); false where it runs v0 -> v1 like face [0].
-  std::vector<std::uint8_t> edge_reversed_in_face1;
-  std::vector<double> edge_length;
-  /// Per face, the data propagation reads (see FaceRecord); default records
-  /// for faces that take no part.
-  std::vector<FaceRecord> face_records;
 
   /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
   std::vector<Index> vertex_face_begin;
@@ -87,11 +81,27 @@ struct PropagationMesh {
   Index num_included_faces = 0;
 
   Index num_vertices() const { return static_cast<Index>(vertex_face_begin.size()) - 1; }
-  Index num_faces() const { return static_cast<Index>(face_edges.size()); }
-  Index num_edges() const { return static_cast<Index>(edge_length.size()); }
-  bool included(Index face) const { return face_edges[face][0] >= 0; }
+  Index num_faces() const { return static_cast<Index>(face_records.size()); }
+  Index num_edges() const { return static_cast<Index>(edge_faces.size()); }
+  bool included(Index face) const { return face_records[face].edge[0] >= 0; }
 
+  /// The face's three edges (edge k joins corners k and k + 1); all -1 for a
+  /// face that takes no part.
+  const std::array<Index, 3>& face_edges(Index face) const { return face_records[face].edge; }
   Index vertex(Index face, int corner) const { return face_records[face].vertex[corner]; }
+  double edge_length(Index edge) const { return face_records[edge_faces[edge][0]].length[edge_local[edge][0]]; }
+  /// End vertices v0, v1 of the edge's frame.
+  std::array<Index, 2> edge_vertices(Index edge) const {
+    const FaceRecord& face = face_records[edge_faces[edge][0]];
+    const int k = edge_local[edge][0];
+    return {face.vertex[k], face.vertex[(k + 1) % 3]};
+  }
+  /// True where face [1] runs along the edge from v1 to v0 (consistent
+  /// orientation); false where it runs v0 -> v1 like face [0].
+  bool edge_reversed_in_face1(Index edge) const {
+    const Index face = edge_faces[edge][1];
+    return face >= 0 && face_records[face].flipped(edge_local[edge][1]);
+  }
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
   EdgeLayout layout(Index face, int k) const { return face_records[face].layout(k); }
@@ -131,8 +141,8 @@ inline Eigen::Vector2d to_local_edge_frame(const FaceInPlane& plane, int j, cons
 /// EdgeLayout), expressed in the canonical frame of that edge.
 inline Eigen::Vector2d face_frame_to_edge_frame(const PropagationMesh& pm, Index edge, int side,
                                                 const Eigen::Vector2d& p) {
-  const bool flip_x = side == 1 && pm.edge_reversed_in_face1[edge];
-  const double x = flip_x ? pm.edge_length[edge] - p.x() : p.x();
+  const bool flip_x = side == 1 && pm.edge_reversed_in_face1(edge);
+  const double x = flip_x ? pm.edge_length(edge) - p.x() : p.x();
   const double y = side == 0 ? p.y() : -p.y();
   return {x, y};
 }

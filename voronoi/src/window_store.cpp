@@ -92,54 +92,138 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
 
 }  // namespace
 
-std::uint32_t WindowStore::allocate_block(std::uint32_t capacity) {
-  std::vector<std::uint32_t>& free = free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))];
+WindowStore::WindowStore(Index num_edges) : slots_(static_cast<std::size_t>(num_edges)) {
+  // Address 0, where empty edges point, always exists.
+  add_pages(kPageWindows);
+}
+
+std::uint32_t WindowStore::class_for(std::uint32_t count) {
+  if (count <= 2) return count;
+  // 2^(b-1) < count <= 2^b: the class of 1.5 * 2^(b-1) or of 2^b.
+  const auto b = static_cast<std::uint32_t>(std::bit_width(count - 1));
+  const std::uint32_t half = std::uint32_t{1} << (b - 1);
+  return count <= half + half / 2 ? 2 * b - 1 : 2 * b;
+}
+
+void WindowStore::add_pages(std::uint32_t size) {
+  const std::uint64_t pages = (std::uint64_t{size} + kPageWindows - 1) >> kPageShift;
+  if ((static_cast<std::uint64_t>(page_of_.size()) + pages) << kPageShift > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("geodesic propagation needs more than 2^32 windows at once");
+  }
+  allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
+  allocation_first_page_.push_back(static_cast<std::uint32_t>(page_of_.size()));
+  for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
+  held_pages_ += static_cast<std::int64_t>(pages);
+}
+
+void WindowStore::free_range(std::uint32_t from, std::uint32_t to) {
+  while (from < to) {
+    // The largest class that fits.
+    std::uint32_t block_class = class_for(to - from);
+    if (block_size(block_class) > to - from) --block_class;
+    free_block(from, block_class);
+    from += block_size(block_class);
+  }
+}
+
+std::uint32_t WindowStore::allocate_block(std::uint32_t block_class) {
+  std::vector<std::uint32_t>& free = free_blocks_[block_class];
   if (!free.empty()) {
     const std::uint32_t begin = free.back();
     free.pop_back();
     return begin;
   }
-  const std::size_t begin = arena_.size();
-  if (begin + capacity > std::numeric_limits<std::uint32_t>::max()) {
-    throw Error("geodesic propagation needs more than 2^32 windows at once");
+  // Carved from the last allocation if it fits there (a block never
+  // straddles two allocations), else from new pages.
+  const std::uint32_t size = block_size(block_class);
+  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+  if (size > pages_end - next_free_) {
+    free_range(next_free_, pages_end);
+    add_pages(size);
+    next_free_ = pages_end;
   }
-  arena_.resize(begin + capacity);
-  return static_cast<std::uint32_t>(begin);
+  const std::uint32_t begin = next_free_;
+  next_free_ += size;
+  return begin;
 }
 
-void WindowStore::free_block(std::uint32_t begin, std::uint32_t capacity) {
-  if (capacity > 0) free_blocks_[static_cast<std::size_t>(std::countr_zero(capacity))].push_back(begin);
+void WindowStore::free_block(std::uint32_t begin, std::uint32_t block_class) {
+  if (block_class != kNoBlock) free_blocks_[block_class].push_back(begin);
 }
 
 void WindowStore::clear_edge(Index edge) {
   Slot& slot = slots_[edge];
   live_ -= slot.count;
-  free_block(slot.begin, slot.capacity);
+  free_block(slot.begin, slot.block_class);
   slot = Slot{};
+}
+
+void WindowStore::compact() {
+  // Blocks in the order they lie in memory, each moved down to the first
+  // free address in a page it fits in whole (so never onto windows not yet
+  // moved). A block larger than a page stays where it is, in its own pages.
+  std::vector<Index> edges;
+  for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
+    if (slots_[e].count > 0) edges.push_back(e);
+  }
+  std::sort(edges.begin(), edges.end(), [&](Index a, Index b) { return slots_[a].begin < slots_[b].begin; });
+  std::vector<std::uint8_t> page_used(page_of_.size(), 0);
+  std::uint32_t cursor = 0;
+  for (const Index e : edges) {
+    Slot& slot = slots_[e];
+    const std::uint32_t count = slot.count;
+    if (count > kPageWindows) {
+      cursor = slot.begin;
+    } else if ((cursor & (kPageWindows - 1)) + count > kPageWindows) {
+      cursor = (cursor | (kPageWindows - 1)) + 1;
+    }
+    if (cursor != slot.begin) std::memmove(window_at(cursor), window_at(slot.begin), count * sizeof(Window));
+    slot.begin = cursor;
+    slot.block_class = kNoBlock;  // exactly full: growing moves it, freeing keeps nothing
+    for (std::uint32_t page = cursor >> kPageShift; page <= (cursor + count - 1) >> kPageShift; ++page) page_used[page] = 1;
+    cursor += count;
+  }
+  // Allocations none of whose pages hold windows any more go back.
+  for (std::size_t a = 0; a < allocations_.size(); ++a) {
+    if (!allocations_[a]) continue;
+    const std::uint32_t first = allocation_first_page_[a];
+    const std::uint32_t end = a + 1 < allocations_.size() ? allocation_first_page_[a + 1]
+                                                          : static_cast<std::uint32_t>(page_of_.size());
+    if (std::any_of(page_used.begin() + first, page_used.begin() + end, [](std::uint8_t used) { return used != 0; })) {
+      continue;
+    }
+    allocations_[a].reset();
+    for (std::uint32_t page = first; page < end; ++page) page_of_[page] = nullptr;
+    held_pages_ -= end - first;
+  }
+  for (std::vector<std::uint32_t>& free : free_blocks_) free = std::vector<std::uint32_t>();
+  next_free_ = static_cast<std::uint32_t>(page_of_.size() << kPageShift);  // new blocks on new pages
 }
 
 Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added) {
   Slot& slot = slots_[edge];
-  const std::uint32_t count = slot.count - removed + added;
-  const std::uint32_t tail = slot.count - at - removed;
-  if (count <= slot.capacity) {
-    Window* w = arena_.data() + slot.begin;
+  const std::uint32_t old_count = slot.count;
+  const std::uint32_t count = old_count - removed + added;
+  const std::uint32_t tail = old_count - at - removed;
+  if (count <= block_size(slot.block_class)) {
+    Window* w = window_at(slot.begin);
     if (added != removed && tail > 0) std::memmove(w + at + added, w + at + removed, tail * sizeof(Window));
   } else {
-    const std::uint32_t capacity = std::max<std::uint32_t>(2, std::bit_ceil(count));
-    const std::uint32_t begin = allocate_block(capacity);  // may move the arena
-    Window* from = arena_.data() + slot.begin;
-    Window* to = arena_.data() + begin;
+    if (count > kMaxCount) throw Error("geodesic propagation needs more than 2^24 windows on one edge");
+    const std::uint32_t block_class = class_for(count);
+    const std::uint32_t begin = allocate_block(block_class);
+    const Window* from = window_at(slot.begin);
+    Window* to = window_at(begin);
     std::copy(from, from + at, to);
     std::copy(from + at + removed, from + at + removed + tail, to + at + added);
-    free_block(slot.begin, slot.capacity);
+    free_block(slot.begin, slot.block_class);
     slot.begin = begin;
-    slot.capacity = capacity;
+    slot.block_class = block_class & 0xff;
   }
-  live_ += static_cast<std::int64_t>(count) - slot.count;
+  live_ += static_cast<std::int64_t>(count) - old_count;
   peak_ = std::max(peak_, live_);
-  slot.count = count;
-  return arena_.data() + slot.begin;
+  slot.count = count & kMaxCount;
+  return window_at(slot.begin);
 }
 
 void WindowStore::push_segment(double lo, double hi, int owner) {

@@ -4,17 +4,23 @@
 // smallest distance any inserted window offered there (MMP trimming,
 // Surazhsky et al. 2005 §3.3).
 //
-// The arrays are blocks of one arena, of power-of-two capacities, so that the
-// windows of an edge share one or two cache lines: propagation reads them
-// together (expanding a face, trimming, redundancy checks). Freed blocks are
-// reused by size class, newest first, so inserting and freeing do not
-// allocate once the arena has grown.
+// The arrays are blocks of a few capacities (1, 2, 3, 4, 6, 8, 12, ...: two
+// per octave, so that a block is on average ~85% full), so that the windows
+// of an edge share one or two cache lines: propagation reads them together
+// (expanding a face, trimming, redundancy checks). Blocks are carved from
+// fixed-size pages, so that the store grows a page at a time and never
+// copies or over-allocates as one growing array would (at its peak that held
+// the old and the new array, three times the windows' bytes). Freed blocks,
+// and page ends too short for the next block, are reused by capacity,
+// newest first, so inserting and freeing do not allocate once the pages are
+// there.
 
 #include "window.hpp"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -22,21 +28,20 @@ namespace geodual::voronoi::detail {
 
 class WindowStore {
  public:
-  explicit WindowStore(Index num_edges)
-      : slots_(static_cast<std::size_t>(num_edges)) {}
+  explicit WindowStore(Index num_edges);
 
   static constexpr Index kNoSite = -1;
   static constexpr Index kMixedSites = -2;
 
-  /// The windows of an edge, sorted along it. Valid until the next insert or
-  /// clear on any edge (the arena may move).
+  /// The windows of an edge, sorted along it. Valid until the next insert on
+  /// or clear of the same edge.
   std::span<const Window> on_edge(Index edge) const {
     const Slot& s = slots_[edge];
-    return {arena_.data() + s.begin, s.count};
+    return {window_at(s.begin), s.count};
   }
   std::span<Window> on_edge(Index edge) {
     const Slot& s = slots_[edge];
-    return {arena_.data() + s.begin, s.count};
+    return {window_at(s.begin), s.count};
   }
 
   /// A surviving piece of an inserted window: its position in on_edge() and
@@ -62,18 +67,44 @@ class WindowStore {
   /// Frees every window of the edge.
   void clear_edge(Index edge);
 
+  /// Packs the windows together in memory and gives back the pages left
+  /// empty: for keeping the windows once propagation is over, when the free
+  /// blocks and unused capacity would otherwise double what they take. The
+  /// store stays usable; an edge that grows afterwards moves to a new block.
+  void compact();
+
   std::int64_t live() const { return live_; }
   std::int64_t peak() const { return peak_; }
-  /// Bytes of window storage in use: the arena's extent, including blocks
-  /// that are free for reuse and the unused capacity of the edges' blocks.
-  std::int64_t bytes() const { return static_cast<std::int64_t>(arena_.size() * sizeof(Window)); }
+  /// Bytes of window storage held: every page, including blocks that are
+  /// free for reuse and the unused capacity of the edges' blocks.
+  std::int64_t bytes() const { return held_pages_ * kPageWindows * static_cast<std::int64_t>(sizeof(Window)); }
 
  private:
-  /// An edge's block and site summary, together: inserting reads both.
+  /// Windows are addressed by a 32-bit number: page (high bits) and
+  /// position in the page (low bits).
+  static constexpr int kPageShift = 12;
+  static constexpr std::uint32_t kPageWindows = std::uint32_t{1} << kPageShift;
+
+  Window* window_at(std::uint32_t address) const {
+    return page_of_[address >> kPageShift] + (address & (kPageWindows - 1));
+  }
+
+  /// Block capacities by class: 0 is no block, then 1, 2, 3, 4, 6, 8, 12, ...
+  static constexpr std::uint32_t kNoBlock = 0;
+  static constexpr int kClasses = 64;
+  static std::uint32_t block_size(std::uint32_t block_class) {
+    if (block_class < 2) return block_class;
+    return ((block_class & 1) ? 3u : 2u) << ((block_class - 2) / 2);
+  }
+  /// The smallest class that holds `count` > 0 windows.
+  static std::uint32_t class_for(std::uint32_t count);
+
+  /// An edge's block and site summary, together (12 bytes): inserting reads both.
+  static constexpr std::uint32_t kMaxCount = (std::uint32_t{1} << 24) - 1;
   struct Slot {
     std::uint32_t begin = 0;
-    std::uint32_t count = 0;
-    std::uint32_t capacity = 0;
+    std::uint32_t count : 24 = 0;
+    std::uint32_t block_class : 8 = kNoBlock;
     Index site = kNoSite;
   };
   struct Segment {
@@ -84,14 +115,24 @@ class WindowStore {
   /// Makes on_edge(edge)[at .. at + removed) room for `added` windows
   /// (contents unspecified), moving the tail; returns the edge's first window.
   Window* splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added);
-  std::uint32_t allocate_block(std::uint32_t capacity);
-  void free_block(std::uint32_t begin, std::uint32_t capacity);
+  /// A block of the class's capacity.
+  std::uint32_t allocate_block(std::uint32_t block_class);
+  void free_block(std::uint32_t begin, std::uint32_t block_class);
+  /// Hands the unused [from, to) of one allocation to the free lists.
+  void free_range(std::uint32_t from, std::uint32_t to);
+  /// Adds pages for a block of `size` windows from the next page boundary on:
+  /// one page, or, for a block larger than a page, contiguous pages of its own.
+  void add_pages(std::uint32_t size);
   void split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi);
   void push_segment(double lo, double hi, int owner);
 
-  std::vector<Window> arena_;
+  std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
+  std::vector<std::uint32_t> allocation_first_page_;    ///< of each allocation
+  std::vector<Window*> page_of_;                        ///< by page number; null once given back
+  std::int64_t held_pages_ = 0;
+  std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
   std::vector<Slot> slots_;
-  std::array<std::vector<std::uint32_t>, 32> free_blocks_;  ///< by log2 of the capacity
+  std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;
   // Scratch space reused by insert().

@@ -76,19 +76,19 @@ void WindowVtp::add_face_site(Index face, const Eigen::Vector3d& barycentric, In
 }
 
 void WindowVtp::emit_across_edge(Index face, int k, double x_face, double sigma, Index site, int depth) {
-  const Index e = pm_.face_edges[face][k];
+  const Index e = pm_.face_edges(face)[k];
   const int side = pm_.side_of(e, face);
   const Index other = pm_.edge_faces[e][1 - side];
   if (other < 0) return;
   const double x_edge = face_frame_to_edge_frame(pm_, e, side, {x_face, 0.0}).x();
   const int other_k = pm_.edge_local[e][1 - side];
-  const bool flip = (1 - side) == 1 && pm_.edge_reversed_in_face1[e];
-  const Eigen::Vector2d p_other(flip ? pm_.edge_length[e] - x_edge : x_edge, 0.0);
+  const bool flip = (1 - side) == 1 && pm_.edge_reversed_in_face1(e);
+  const Eigen::Vector2d p_other(flip ? pm_.edge_length(e) - x_edge : x_edge, 0.0);
   const FaceInPlane other_plane = lay_out_face(pm_, other, other_k);
   const int apex = (other_k + 2) % 3;
   relax(pm_.vertex(other, apex), sigma + (p_other - other_plane.corner[apex]).norm(), site);
   // Remember the point for queries inside `other`, where no window shows it.
-  const double t = pm_.edge_length[e] > 0 ? p_other.x() / pm_.edge_length[e] : 0.0;
+  const double t = pm_.edge_length(e) > 0 ? p_other.x() / pm_.edge_length(e) : 0.0;
   Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
   barycentric[other_k] = 1 - t;
   barycentric[(other_k + 1) % 3] = t;
@@ -102,18 +102,18 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
   constexpr int kMaxZeroAreaCrossings = 16;
   for (int j = 0; j < 3; ++j) {
     if (j == skip_local_edge) continue;
-    const Index e = pm_.face_edges[face][j];
+    const Index e = pm_.face_edges(face)[j];
     const Eigen::Vector2d local = to_local_edge_frame(plane, j, source);
     if (!(local.y() > 0)) {
       // On the edge's line (a zero-area face): where the point lies inside
       // the edge, it is a point of the edge and reaches the face beyond.
-      if (local.x() > 0 && local.x() < pm_.edge_length[e] && depth < kMaxZeroAreaCrossings) {
+      if (local.x() > 0 && local.x() < pm_.edge_length(e) && depth < kMaxZeroAreaCrossings) {
         emit_across_edge(face, j, local.x(), sigma, site, depth);
       }
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
-    submit(e, {0.0, pm_.edge_length[e], s.x(), s.y(), sigma, site, 0});
+    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), sigma, site, 0});
   }
 }
 
@@ -144,7 +144,8 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
 // ------------------------------------------------------------ propagation --
 
 void WindowVtp::submit(Index e, const Window& w) {
-  submit(e, pm_.edge_length[e], pm_.edge_vertices[e][0], pm_.edge_vertices[e][1], w);
+  const std::array<Index, 2> ends = pm_.edge_vertices(e);
+  submit(e, pm_.edge_length(e), ends[0], ends[1], w);
 }
 
 void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w) {
@@ -260,8 +261,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
 void WindowVtp::drain_fifo() {
   // Edges with windows waiting to be propagated; each pass takes all of an
   // edge's waiting windows. Propagation only adds windows to other edges
-  // (the entered face's two others), so the edge's array keeps its order,
-  // though the arena may move: windows are addressed by position.
+  // (the entered face's two others), so the edge's array stays as it is.
   while (fifo_head_ < fifo_.size()) {
     const Index e = fifo_[fifo_head_++];
     in_fifo_[e] = 0;
@@ -270,7 +270,7 @@ void WindowVtp::drain_fifo() {
       Window& w = store_.on_edge(e)[i];
       if (!w.queued) continue;
       w.queued = 0;
-      propagate(e, Window(w));  // a copy: propagation may move the arena
+      propagate(e, Window(w));
     }
   }
   fifo_.clear();
@@ -362,7 +362,7 @@ bool WindowVtp::face_is_redundant(Index face) const {
     if (label_[pm_.vertex(face, c)] != site) return false;
   }
   for (int k = 0; k < 3; ++k) {
-    const Index e = pm_.face_edges[face][k];
+    const Index e = pm_.face_edges(face)[k];
     const Index summary = store_.edge_site(e);
     if (summary == site || summary == WindowStore::kNoSite) continue;
     if (summary != WindowStore::kMixedSites) return false;
@@ -387,7 +387,7 @@ void WindowVtp::remove_redundant_windows(double lower_bound) {
     if (!face_is_redundant(f)) continue;
     face_flags_[f] |= kRedundant;
     for (int k = 0; k < 3; ++k) {
-      const Index e = pm_.face_edges[f][k];
+      const Index e = pm_.face_edges(f)[k];
       const Index other = pm_.edge_faces[e][1 - pm_.side_of(e, f)];
       if (other < 0 || ((face_flags_[other] & kInactive) && (face_flags_[other] & kRedundant))) {
         store_.clear_edge(e);

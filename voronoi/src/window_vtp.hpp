@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <queue>
+#include <utility>
 #include <vector>
 
 namespace geodual::voronoi::detail {
@@ -37,6 +38,8 @@ class WindowVtp {
   const std::vector<double>& distance() const { return distance_; }
   const std::vector<Index>& label() const { return label_; }
   const WindowStore& windows() const { return store_; }
+  /// Moves the windows out, for the caller to keep when the rest goes.
+  WindowStore take_windows() { return std::move(store_); }
   /// Per face: windows of different sites meet on its edges or vertices.
   std::vector<bool> valid_faces() const;
   const GeodesicStats& stats() const { return stats_; }
