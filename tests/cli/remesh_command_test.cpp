@@ -68,6 +68,30 @@ TEST(RemeshCommand, SameInputSameBytesForEverySampling) {
   }
 }
 
+TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
+  ScratchFolder folder;
+  auto remesh = [&](std::vector<std::string> extra) {
+    std::vector<std::string> arguments = {"remesh", open_scan, "--sites", "800", "--lloyd", "4", "--lloyd-tol", "0",
+                                          "--samples", "-1", "-o", (folder.path() / "out.ply").string(), "--json",
+                                          "--report", (folder.path() / "report.json").string()};
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    const CliRun run = run_cli(arguments);
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    nlohmann::json report = nlohmann::json::parse(slurp(folder.path() / "report.json"));
+    return std::pair(nlohmann::json::parse(run.out), report);
+  };
+  const auto [newton, newton_report] = remesh({});
+  const auto [plain, plain_report] = remesh({"--plain-lloyd"});
+  EXPECT_EQ(newton["sampling"], "poisson");  // remesh starts from blue noise
+  EXPECT_EQ(newton_report["options"]["lloyd_newton"], true);
+  EXPECT_EQ(plain_report["options"]["lloyd_newton"], false);
+  EXPECT_EQ(newton["lloyd_iterations"], 4);
+  EXPECT_EQ(plain["lloyd_iterations"], 4);
+  EXPECT_GE(newton["lloyd_diagrams"].get<int>(), 5);  // the first diagram, then one per iteration at least
+  EXPECT_EQ(newton["energy_history"][0], plain["energy_history"][0]);  // the same sites to start from
+  EXPECT_LT(newton["energy_history"][4].get<double>(), plain["energy_history"][4].get<double>());
+}
+
 TEST(RemeshCommand, BadRequestsFailCleanly) {
   ScratchFolder folder;
   const auto out = folder.path() / "out.glb";
