@@ -3,7 +3,7 @@
 //   remesh_file INPUT OUTPUT [SITES]     e.g. remesh_file scan.ply remeshed.glb 2000
 //
 // INPUT: .ply .obj .off .stl .gltf .glb; OUTPUT: .ply .obj .glb .gltf.
-// Default options (4000 sites drawn at random by area, 10 Lloyd iterations,
+// Default options (4000 blue-noise sites, 10 Newton-accelerated Lloyd iterations,
 // quality and Hausdorff distance measured against the input), but the
 // distance measured on fewer points.
 
