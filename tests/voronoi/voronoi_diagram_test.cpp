@@ -8,11 +8,14 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
+#include <tuple>
 
 namespace geodual {
 namespace {
@@ -281,6 +284,66 @@ TEST(VoronoiDiagram, DenseSitesOnASmallMeshStayConsistent) {
   const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
   expect_consistent(mesh, diagram);
   for (std::size_t s = 0; s < sites.size(); ++s) EXPECT_GT(diagram.cell_area[s], 0) << s;
+}
+
+/// Same bits: a memcmp of the objects' representations, so -0 against +0 or
+/// two NaNs count as different.
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+bool same_points(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 3) != 0) return false;
+  }
+  return true;
+}
+
+TEST(VoronoiDiagram, ExtractionIsTheSameForAnyThreadCount) {
+  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path("fertility.ply"));
+  const std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 2000, 77);
+  auto diagram_with = [&](std::size_t threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return voronoi::compute_voronoi(mesh, sites);
+  };
+  const VoronoiDiagram one = diagram_with(1);
+  const VoronoiDiagram two = diagram_with(2);
+  ASSERT_GT(one.vertices.size(), 1000u);
+  ASSERT_EQ(one.vertices.size(), two.vertices.size());
+  for (std::size_t v = 0; v < one.vertices.size(); ++v) {
+    const voronoi::VoronoiVertex &a = one.vertices[v], &b = two.vertices[v];
+    ASSERT_TRUE(std::memcmp(a.position.data(), b.position.data(), sizeof(double) * 3) == 0) << v;
+    ASSERT_TRUE(std::memcmp(&a.distance, &b.distance, sizeof(double)) == 0) << v;
+    ASSERT_EQ(a.location.element, b.location.element) << v;
+    ASSERT_EQ(a.site_begin, b.site_begin) << v;
+    ASSERT_EQ(a.degree, b.degree) << v;
+  }
+  EXPECT_TRUE(same_bits(one.vertex_sites, two.vertex_sites));
+  ASSERT_EQ(one.arcs.size(), two.arcs.size());
+  for (std::size_t i = 0; i < one.arcs.size(); ++i) {
+    const VoronoiArc &a = one.arcs[i], &b = two.arcs[i];
+    ASSERT_EQ(std::tie(a.start_vertex, a.end_vertex, a.left_site, a.right_site, a.point_begin, a.point_end, a.closed),
+              std::tie(b.start_vertex, b.end_vertex, b.left_site, b.right_site, b.point_begin, b.point_end, b.closed))
+        << i;
+    ASSERT_TRUE(std::memcmp(&a.length, &b.length, sizeof(double)) == 0) << i;
+  }
+  EXPECT_TRUE(same_points(one.points, two.points));
+  ASSERT_EQ(one.point_locations.size(), two.point_locations.size());
+  for (std::size_t i = 0; i < one.point_locations.size(); ++i) {
+    ASSERT_EQ(one.point_locations[i].element, two.point_locations[i].element) << i;
+    ASSERT_TRUE(std::memcmp(one.point_locations[i].barycentric.data(), two.point_locations[i].barycentric.data(),
+                            sizeof(double) * 3) == 0)
+        << i;
+  }
+  EXPECT_TRUE(same_bits(one.cell_area, two.cell_area));
+  EXPECT_TRUE(same_bits(one.cell_energy, two.cell_energy));
+  EXPECT_TRUE(same_points(one.cell_log_moment, two.cell_log_moment));
+  ASSERT_EQ(one.adjacency.size(), two.adjacency.size());
+  EXPECT_EQ(one.stats.boundary_faces, two.stats.boundary_faces);
+  EXPECT_EQ(one.stats.refined_faces, two.stats.refined_faces);
+  EXPECT_EQ(one.stats.unresolved_regions, two.stats.unresolved_regions);
 }
 
 }  // namespace

@@ -19,35 +19,34 @@ Eigen::Vector3d face_normal(const TriangleMesh& mesh, Index face) {
 
 }  // namespace
 
-CellMoments::CellMoments(const TriangleMesh& mesh, const GeodesicField& field, std::vector<double>& energy,
-                         std::vector<Eigen::Vector3d>& log_moment)
-    : mesh_(mesh), field_(field), energy_(energy), log_moment_(log_moment) {
-  energy_.assign(field.sites.size(), 0.0);
-  log_moment_.assign(field.sites.size(), Eigen::Vector3d::Zero());
-  site_normal_.assign(field.sites.size(), Eigen::Vector3d::UnitZ());
-  // A face site's normal is its face's; a vertex site's, the area-weighted
-  // normal of the faces around it.
+std::vector<Eigen::Vector3d> site_normals(const TriangleMesh& mesh, const GeodesicField& field) {
+  std::vector<Eigen::Vector3d> normal(field.sites.size(), Eigen::Vector3d::UnitZ());
   std::vector<Index> vertex_site(static_cast<std::size_t>(mesh.vertices.rows()), -1);
   for (std::size_t s = 0; s < field.sites.size(); ++s) {
     const SurfacePoint& site = field.sites[s];
     if (site.kind == SurfacePoint::Kind::face) {
-      site_normal_[s] = face_normal(mesh, site.element).normalized();
+      normal[s] = face_normal(mesh, site.element).normalized();
     } else {
       vertex_site[site.element] = static_cast<Index>(s);
-      site_normal_[s].setZero();
+      normal[s].setZero();
     }
   }
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
     if (field.face_edges[f][0] < 0) continue;
     for (int c = 0; c < 3; ++c) {
       const Index s = vertex_site[mesh.faces(f, c)];
-      if (s >= 0) site_normal_[s] += face_normal(mesh, f);
+      if (s >= 0) normal[s] += face_normal(mesh, f);
     }
   }
-  for (Eigen::Vector3d& n : site_normal_) {
+  for (Eigen::Vector3d& n : normal) {
     n = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
   }
+  return normal;
 }
+
+CellMoments::CellMoments(const TriangleMesh& mesh, const GeodesicField& field,
+                         std::span<const Eigen::Vector3d> site_normals)
+    : mesh_(mesh), field_(field), site_normal_(site_normals) {}
 
 void CellMoments::set_face(Index face, const FaceLayout& layout) {
   face_ = face;
@@ -62,9 +61,9 @@ void CellMoments::set_face(Index face, const FaceLayout& layout) {
 }
 
 template <class Distance>
-void CellMoments::integrate(Index site, std::span<const Eigen::Vector2d> polygon, double sign,
-                            const Distance& distance) {
-  if (polygon.size() < 3) return;
+CellIntegrals CellMoments::integrate(Index site, std::span<const Eigen::Vector2d> polygon,
+                                     const Distance& distance) const {
+  if (polygon.size() < 3) return {};
   const Eigen::Quaterniond to_site = Eigen::Quaterniond::FromTwoVectors(normal_, site_normal_[site]);
   double energy = 0;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
@@ -86,20 +85,19 @@ void CellMoments::integrate(Index site, std::span<const Eigen::Vector2d> polygon
   const Eigen::Vector3d in_space = moment.x() * axis_x_ + moment.y() * axis_y_;
   Eigen::Vector3d at_site = to_site * in_space;
   at_site -= site_normal_[site] * site_normal_[site].dot(at_site);  // round-off out of the plane
-  energy_[site] += sign * energy;
-  log_moment_[site] += sign * at_site;
+  return {energy, at_site};
 }
 
-void CellMoments::add_polygon(Index site, std::span<const Eigen::Vector2d> polygon, const ConeEnvelope& envelope,
-                              double sign) {
+CellIntegrals CellMoments::polygon(Index site, std::span<const Eigen::Vector2d> polygon,
+                                   const ConeEnvelope& envelope) const {
   const int slot = envelope.slot_of(site);
-  if (slot < 0) return;
-  integrate(site, polygon, sign, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
+  if (slot < 0) return {};
+  return integrate(site, polygon, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
     return envelope.distance(slot, x, &direction);
   });
 }
 
-void CellMoments::add_face_from_corners(Index site) {
+CellIntegrals CellMoments::face_from_corners(Index site) const {
   std::array<double, 3> d{};
   for (int c = 0; c < 3; ++c) d[c] = field_.distance[mesh_.faces(face_, c)];
   const auto& c = layout_.corner;
@@ -117,24 +115,23 @@ void CellMoments::add_face_from_corners(Index site) {
   for (int k = 0; k < 3 && fits; ++k) fits = std::abs((c[k] - apex).norm() - d[k]) <= 1e-9 * scale;
   const std::array<Eigen::Vector2d, 3> triangle = {c[0], c[1], c[2]};
   if (fits) {
-    integrate(site, triangle, 1.0, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
+    return integrate(site, triangle, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
       const Eigen::Vector2d r = x - apex;
       const double length = r.norm();
       direction = length > 0 ? Eigen::Vector2d(r / length) : Eigen::Vector2d::Zero();
       return length;
     });
-    return;
   }
   // Behind a pseudo-source: distances interpolated linearly, direction along
   // their gradient.
   const double twice_area = (c[1] - c[0]).x() * (c[2] - c[0]).y() - (c[1] - c[0]).y() * (c[2] - c[0]).x();
-  if (!(twice_area > 0)) return;
+  if (!(twice_area > 0)) return {};
   const Eigen::Vector2d gradient =
       (d[0] * Eigen::Vector2d(c[1].y() - c[2].y(), c[2].x() - c[1].x()) +
        d[1] * Eigen::Vector2d(c[2].y() - c[0].y(), c[0].x() - c[2].x()) +
        d[2] * Eigen::Vector2d(c[0].y() - c[1].y(), c[1].x() - c[0].x())) / twice_area;
   const Eigen::Vector2d unit = gradient.norm() > 0 ? Eigen::Vector2d(gradient.normalized()) : Eigen::Vector2d::Zero();
-  integrate(site, triangle, 1.0, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
+  return integrate(site, triangle, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
     direction = unit;
     const Eigen::Vector3d b = layout_.barycentric(x);
     return b[0] * d[0] + b[1] * d[1] + b[2] * d[2];

@@ -31,29 +31,38 @@
 
 namespace geodual::voronoi::detail {
 
+/// The unit normal of each site's tangent plane: a face site's face normal,
+/// a vertex site's area-weighted normal of the faces around it.
+std::vector<Eigen::Vector3d> site_normals(const TriangleMesh& mesh, const GeodesicField& field);
+
+/// The integrals over one piece of one cell.
+struct CellIntegrals {
+  double energy = 0;
+  Eigen::Vector3d log_moment = Eigen::Vector3d::Zero();
+};
+
+/// Integrates cell pieces face by face. Holds the current face; one per thread.
 class CellMoments {
  public:
-  CellMoments(const TriangleMesh& mesh, const GeodesicField& field, std::vector<double>& energy,
-              std::vector<Eigen::Vector3d>& log_moment);
+  /// `site_normals` (from site_normals()) must outlive this.
+  CellMoments(const TriangleMesh& mesh, const GeodesicField& field, std::span<const Eigen::Vector3d> site_normals);
 
-  /// The face whose pieces are added next, laid out as `layout`.
+  /// The face whose pieces are integrated next, laid out as `layout`.
   void set_face(Index face, const FaceLayout& layout);
-  /// Adds sign x the integrals over `polygon` (counter-clockwise, in the face
-  /// layout) for `site`, with distances from `envelope`.
-  void add_polygon(Index site, std::span<const Eigen::Vector2d> polygon, const ConeEnvelope& envelope, double sign);
-  /// Adds the whole current face to `site`, for a face inside one cell whose
-  /// windows are gone: the cone through its corners' exact distances.
-  void add_face_from_corners(Index site);
+  /// The integrals over `polygon` (counter-clockwise, in the face layout) for
+  /// `site`, with distances from `envelope`; zero where no cone of it reaches.
+  CellIntegrals polygon(Index site, std::span<const Eigen::Vector2d> polygon, const ConeEnvelope& envelope) const;
+  /// The integrals over the whole current face for `site`, for a face inside
+  /// one cell whose windows are gone: the cone through its corners' exact distances.
+  CellIntegrals face_from_corners(Index site) const;
 
  private:
   template <class Distance>
-  void integrate(Index site, std::span<const Eigen::Vector2d> polygon, double sign, const Distance& distance);
+  CellIntegrals integrate(Index site, std::span<const Eigen::Vector2d> polygon, const Distance& distance) const;
 
   const TriangleMesh& mesh_;
   const GeodesicField& field_;
-  std::vector<double>& energy_;
-  std::vector<Eigen::Vector3d>& log_moment_;
-  std::vector<Eigen::Vector3d> site_normal_;
+  std::span<const Eigen::Vector3d> site_normal_;
   // The current face: layout, 3D frame of the layout's axes, unit normal.
   Index face_ = -1;
   FaceLayout layout_;

@@ -54,14 +54,23 @@ EdgeInFace edge_in_face(const GeodesicField& field, const TriangleMesh& mesh, co
 
 }  // namespace
 
+void TracedChunk::clear() {
+  graph.nodes.clear();
+  graph.vertex_sites.clear();
+  graph.pieces.clear();
+  graph.points.clear();
+  graph.point_locations.clear();
+  faces.clear();
+  contributions.clear();
+  stats = VoronoiStats{};
+}
+
 FaceBoundaryTracer::FaceBoundaryTracer(const TriangleMesh& mesh, const GeodesicField& field,
-                                       const VoronoiOptions& options, BoundaryGraph& graph, VoronoiStats& stats,
-                                       CellMoments* moments)
-    : mesh_(mesh), field_(field), options_(options), graph_(graph), stats_(stats), moments_(moments) {
+                                       const VoronoiOptions& options, const EdgeCrossingStore& crossings,
+                                       std::span<const Eigen::Vector3d> site_normals)
+    : mesh_(mesh), field_(field), options_(options), store_(crossings), moments_(mesh, field, site_normals) {
   tolerance_ = options.boundary_tolerance * bounding_box_diagonal(mesh);
   vertex_tolerance_ = 1e-11 * bounding_box_diagonal(mesh);
-  edge_first_.assign(field.edge_length.size(), -1);
-  edge_count_.assign(field.edge_length.size(), 0);
 }
 
 bool FaceBoundaryTracer::may_hold_boundary(Index face) const {
@@ -77,11 +86,8 @@ bool FaceBoundaryTracer::may_hold_boundary(Index face) const {
   return it != field_.face_point_sources.end() && it->face == face;
 }
 
-std::span<const EdgeCrossing> FaceBoundaryTracer::edge_crossings(Index edge) {
-  if (edge_first_[edge] >= 0) {
-    return {edge_crossings_.data() + edge_first_[edge], static_cast<std::size_t>(edge_count_[edge])};
-  }
-  const Index first = static_cast<Index>(edge_crossings_.size());
+void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings,
+                                             std::vector<BoundaryNode>& nodes) {
   const double length = field_.edge_length[edge];
   const Index v0 = field_.edge_vertices[edge][0], v1 = field_.edge_vertices[edge][1];
   const Index site0 = field_.nearest_site[v0], site1 = field_.nearest_site[v1];
@@ -135,14 +141,10 @@ std::span<const EdgeCrossing> FaceBoundaryTracer::edge_crossings(Index edge) {
       node.location = SurfacePoint::in_face(face, barycentric[0], barycentric[1], barycentric[2]);
       node.position = (1 - t) * mesh_.vertices.row(v0).transpose() + t * mesh_.vertices.row(v1).transpose();
       node.distance = edge_envelope_.distance(edge_envelope_.slot_of(change.to), Eigen::Vector2d(crossing.x, 0));
-      crossing.node = static_cast<Index>(graph_.nodes.size());
-      graph_.nodes.push_back(node);
-      edge_crossings_.push_back(crossing);
+      nodes.push_back(node);
+      crossings.push_back(crossing);
     }
   }
-  edge_first_[edge] = first;
-  edge_count_[edge] = static_cast<Index>(edge_crossings_.size()) - first;
-  return {edge_crossings_.data() + first, static_cast<std::size_t>(edge_count_[edge])};
 }
 
 Eigen::Vector2d FaceBoundaryTracer::bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
@@ -213,11 +215,17 @@ Index FaceBoundaryTracer::add_node(const Eigen::Vector2d& p, BoundaryNode::Kind 
   const Eigen::Vector3d b = layout_.barycentric(p);
   node.location = SurfacePoint::in_face(face_, b[0], b[1], b[2]);
   node.position = to_space(p);
-  graph_.nodes.push_back(node);
-  return static_cast<Index>(graph_.nodes.size()) - 1;
+  graph_->nodes.push_back(node);
+  return static_cast<Index>(graph_->nodes.size()) - 1;
 }
 
-void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) {
+void FaceBoundaryTracer::add_inner_face(Index face, Index site, TracedChunk& out) {
+  const FaceLayout layout = FaceLayout::of(field_, face);
+  moments_.set_face(face, layout);
+  out.contributions.push_back({site, layout.area, moments_.face_from_corners(site)});
+}
+
+void FaceBoundaryTracer::trace_face(Index face, TracedChunk& out) {
   face_ = face;
   layout_ = FaceLayout::of(field_, face);
   SubTriangle root;
@@ -226,8 +234,10 @@ void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) 
     root.site[c] = field_.nearest_site[mesh_.faces(face, c)];
     if (root.site[c] < 0) return;  // not reached by any site
   }
+  out_ = &out;
+  graph_ = &out.graph;
   build_face_envelope(field_, mesh_, face, layout_, envelope_);
-  if (moments_) moments_->set_face(face, layout_);
+  moments_.set_face(face, layout_);
   face_sites_.clear();
   face_site_ids_.clear();
   const auto first = std::lower_bound(
@@ -244,7 +254,7 @@ void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) 
   crossings_.clear();
   for (int k = 0; k < 3; ++k) {
     const Index e = field_.face_edges[face][k];
-    const std::span<const EdgeCrossing> along = edge_crossings(e);
+    const std::span<const EdgeCrossing> along = store_.of(e);
     const EdgeInFace frame = edge_in_face(field_, mesh_, layout_, face, k);
     Side side;
     side.start = root.corner[k];
@@ -253,8 +263,9 @@ void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) 
     side.end_site = root.site[(k + 1) % 3];
     side.crossing_begin = static_cast<Index>(crossings_.size());
     auto add = [&](const EdgeCrossing& c, bool forward) {
+      const auto reference = edge_crossing_reference(static_cast<Index>(&c - store_.crossings.data()));
       crossings_.push_back({frame.origin + c.x * frame.direction, forward ? c.from : c.to, forward ? c.to : c.from,
-                            c.node});
+                            reference});
     };
     if (frame.forward) {
       for (const EdgeCrossing& c : along) add(c, true);
@@ -266,9 +277,10 @@ void FaceBoundaryTracer::trace_face(Index face, std::vector<double>& cell_area) 
     root.side[k] = {static_cast<Index>(k), false};
   }
   face_refined_ = false;
-  ++stats_.boundary_faces;
-  trace(root, 0, cell_area);
-  if (face_refined_) ++stats_.refined_faces;
+  ++out_->stats.boundary_faces;
+  trace(root, 0);
+  if (face_refined_) ++out_->stats.refined_faces;
+  out.faces.push_back({face, static_cast<Index>(out.graph.nodes.size())});
 }
 
 void FaceBoundaryTracer::collect_cycle(const SubTriangle& triangle) {
@@ -304,7 +316,7 @@ bool FaceBoundaryTracer::holds_island(const SubTriangle& triangle) const {
   return false;
 }
 
-void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vector<double>& cell_area) {
+void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth) {
   collect_cycle(triangle);
   const std::size_t n = cycle_.size();
   const bool at_limit = depth >= options_.max_refinement;
@@ -313,15 +325,15 @@ void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vect
   for (std::size_t i = 0; i < n; ++i) {
     consistent = consistent && cycle_[i].crossing.to == cycle_[(i + 1) % n].crossing.from;
   }
-  if (consistent && !holds_island(triangle) && resolve(triangle, at_limit, cell_area)) return;
+  if (consistent && !holds_island(triangle) && resolve(triangle, at_limit)) return;
   if (!at_limit) {
-    subdivide(triangle, depth, cell_area);
+    subdivide(triangle, depth);
     return;
   }
 
   // Finer than the refinement limit allows: join the crossings in pairs with
   // straight pieces and give the area to the site at the centre.
-  ++stats_.unresolved_regions;
+  ++out_->stats.unresolved_regions;
   for (std::size_t i = 0; i + 1 < n; i += 2) {
     const Crossing& a = cycle_[i].crossing;
     const Crossing& b = cycle_[i + 1].crossing;
@@ -330,17 +342,18 @@ void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth, std::vect
     piece.to = b.node;
     piece.left = a.from;
     piece.right = a.to;
-    piece.point_begin = piece.point_end = static_cast<Index>(graph_.points.size());
+    piece.point_begin = piece.point_end = static_cast<Index>(graph_->points.size());
     piece.length = (b.point - a.point).norm();
-    graph_.pieces.push_back(piece);
+    graph_->pieces.push_back(piece);
   }
   const Eigen::Vector2d centre = (triangle.corner[0] + triangle.corner[1] + triangle.corner[2]) / 3;
   const Index site = envelope_.nearest_site(centre);
-  cell_area[site >= 0 ? site : triangle.site[0]] += std::max(triangle_area(triangle.corner), 0.0);
-  if (moments_) moments_->add_polygon(site >= 0 ? site : triangle.site[0], triangle.corner, envelope_, 1.0);
+  const Index owner = site >= 0 ? site : triangle.site[0];
+  out_->contributions.push_back(
+      {owner, std::max(triangle_area(triangle.corner), 0.0), moments_.polygon(owner, triangle.corner, envelope_)});
 }
 
-bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std::vector<double>& cell_area) {
+bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
   // 1. Caps: a crossing into site X followed by one back out of it, where X
   //    owns no other stretch of the boundary, are joined by one bisector arc
   //    that cuts X's part off (peeled repeatedly, so nested caps work too).
@@ -425,11 +438,11 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std
   }
   if (m > 0) {
     const Index node = add_node(vertex, BoundaryNode::Kind::voronoi_vertex);
-    graph_.nodes[node].site_begin = static_cast<Index>(graph_.vertex_sites.size());
-    graph_.nodes[node].degree = static_cast<int>(m);
-    graph_.nodes[node].distance = envelope_.distance(envelope_.slot_of(star_sites_[0]), vertex);
-    graph_.vertex_sites.insert(graph_.vertex_sites.end(), star_sites_.begin(), star_sites_.end());
-    stats_.max_vertex_residual = std::max(stats_.max_vertex_residual, spread);
+    graph_->nodes[node].site_begin = static_cast<Index>(graph_->vertex_sites.size());
+    graph_->nodes[node].degree = static_cast<int>(m);
+    graph_->nodes[node].distance = envelope_.distance(envelope_.slot_of(star_sites_[0]), vertex);
+    graph_->vertex_sites.insert(graph_->vertex_sites.end(), star_sites_.begin(), star_sites_.end());
+    out_->stats.max_vertex_residual = std::max(out_->stats.max_vertex_residual, spread);
     for (std::size_t r = 0; r < m; ++r) {
       const Crossing& c = cycle_[remaining_[r]].crossing;
       commit_piece(c.node, node, c.from, c.to, c.point, vertex, piece_span(caps_.size() + r));
@@ -442,7 +455,7 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std
   //    (a cap's arc, or a star piece to the vertex and the previous star
   //    piece back out) to the crossing where the boundary is the part's again.
   if (n == 0) {
-    add_part(triangle.site[0], triangle.corner, cell_area);
+    add_part(triangle.site[0], triangle.corner);
     return true;
   }
   // Where the inside path from crossing k leads: its far crossing, and how.
@@ -489,15 +502,13 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit, std
       k = static_cast<std::size_t>(to);
       if (k == start) break;
     }
-    add_part(site, polygon_, cell_area);
+    add_part(site, polygon_);
   }
   return true;
 }
 
-void FaceBoundaryTracer::add_part(Index site, std::span<const Eigen::Vector2d> polygon,
-                                  std::vector<double>& cell_area) {
-  cell_area[site] += std::max(0.0, signed_area(polygon));
-  if (moments_) moments_->add_polygon(site, polygon, envelope_, 1.0);
+void FaceBoundaryTracer::add_part(Index site, std::span<const Eigen::Vector2d> polygon) {
+  out_->contributions.push_back({site, std::max(0.0, signed_area(polygon)), moments_.polygon(site, polygon, envelope_)});
 }
 
 bool FaceBoundaryTracer::inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const {
@@ -519,18 +530,18 @@ void FaceBoundaryTracer::commit_piece(Index from, Index to, Index left, Index ri
   piece.to = to;
   piece.left = left;
   piece.right = right;
-  piece.point_begin = static_cast<Index>(graph_.points.size());
+  piece.point_begin = static_cast<Index>(graph_->points.size());
   Eigen::Vector2d previous = p;
   for (const Eigen::Vector2d& x : line) {
     const Eigen::Vector3d b = layout_.barycentric(x);
-    graph_.points.push_back(to_space(x));
-    graph_.point_locations.push_back(SurfacePoint::in_face(face_, b[0], b[1], b[2]));
+    graph_->points.push_back(to_space(x));
+    graph_->point_locations.push_back(SurfacePoint::in_face(face_, b[0], b[1], b[2]));
     piece.length += (x - previous).norm();
     previous = x;
   }
   piece.length += (q - previous).norm();
-  piece.point_end = static_cast<Index>(graph_.points.size());
-  graph_.pieces.push_back(piece);
+  piece.point_end = static_cast<Index>(graph_->points.size());
+  graph_->pieces.push_back(piece);
 }
 
 double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left,
@@ -687,7 +698,7 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
   return static_cast<Index>(sides_.size()) - 1;
 }
 
-void FaceBoundaryTracer::subdivide(const SubTriangle& triangle, int depth, std::vector<double>& cell_area) {
+void FaceBoundaryTracer::subdivide(const SubTriangle& triangle, int depth) {
   face_refined_ = true;
   const auto& c = triangle.corner;
   // Midpoints of sides 0 (c0-c1), 1 (c1-c2) and 2 (c2-c0).
@@ -712,7 +723,7 @@ void FaceBoundaryTracer::subdivide(const SubTriangle& triangle, int depth, std::
   children[3] = {{m[0], m[1], m[2]},
                  {m_site[0], m_site[1], m_site[2]},
                  {SideUse{inner1, true}, SideUse{inner2, true}, SideUse{inner0, true}}};
-  for (const SubTriangle& child : children) trace(child, depth + 1, cell_area);
+  for (const SubTriangle& child : children) trace(child, depth + 1);
 }
 
 }  // namespace geodual::voronoi::detail

@@ -3,6 +3,11 @@
 // each mesh edge, and, inside each face crossed by a boundary, the bisector
 // pieces and Voronoi vertices that join those crossings. The pieces of all
 // faces form one graph that voronoi_diagram.cpp chains into arcs.
+//
+// Built for deterministic parallel extraction: the crossings of a mesh edge
+// are a pure function of the edge, and a face is traced into a graph of its
+// own chunk (node references to edge crossings kept symbolic), so chunks can
+// be traced on any thread and merged in face order.
 
 #include "cell_moments.hpp"
 #include "face_distance.hpp"
@@ -35,6 +40,12 @@ struct BoundaryNode {
   int degree = 0;
 };
 
+/// In a chunk's graph, a piece's `from` or `to` that names a mesh-edge
+/// crossing (an index into EdgeCrossingStore::crossings), not a node of the
+/// chunk: such references are negative.
+constexpr Index edge_crossing_reference(Index crossing) { return -2 - crossing; }
+constexpr Index crossing_of_reference(Index reference) { return -2 - reference; }
+
 /// A piece of bisector inside one face, from node `from` to node `to`, with
 /// `left`'s cell on its left. Its polyline between the two nodes is
 /// points[point_begin .. point_end).
@@ -58,24 +69,65 @@ struct BoundaryGraph {
 struct EdgeCrossing {
   double x = 0;
   Index from = -1, to = -1;
-  Index node = -1;
+};
+
+/// The crossings of the mesh edges computed so far, each edge's contiguous,
+/// with the node (location, position, distance) each crossing becomes.
+struct EdgeCrossingStore {
+  std::vector<Index> first;  ///< per edge: its first crossing, -1 until computed
+  std::vector<Index> count;
+  std::vector<EdgeCrossing> crossings;
+  std::vector<BoundaryNode> nodes;  ///< per crossing
+
+  explicit EdgeCrossingStore(std::size_t num_edges) : first(num_edges, -1), count(num_edges, 0) {}
+  bool computed(Index edge) const { return first[edge] >= 0; }
+  std::span<const EdgeCrossing> of(Index edge) const {
+    return {crossings.data() + first[edge], static_cast<std::size_t>(count[edge])};
+  }
+};
+
+/// One cell piece's area and integrals, added to its site's sums.
+struct CellContribution {
+  Index site = -1;
+  double area = 0;
+  CellIntegrals integrals;
+};
+
+/// What tracing a run of faces adds: a graph whose nodes are the faces' own
+/// (references to edge crossings are edge_crossing_reference()), the cell
+/// contributions in face order, and statistics.
+struct TracedChunk {
+  /// A face whose crossings the tracer used, and the end of its nodes.
+  struct Face {
+    Index face = -1;
+    Index node_end = 0;
+  };
+  BoundaryGraph graph;
+  std::vector<Face> faces;
+  std::vector<CellContribution> contributions;
+  VoronoiStats stats;
+
+  void clear();
 };
 
 /// Traces the cell boundaries face by face. Not thread-safe; one per thread.
 class FaceBoundaryTracer {
  public:
-  /// `moments`, if not null, receives the integrals of every cell piece.
+  /// `crossings` must hold every edge of the faces traced; `site_normals`
+  /// (from site_normals()) serve the cell integrals.
   FaceBoundaryTracer(const TriangleMesh& mesh, const GeodesicField& field, const VoronoiOptions& options,
-                     BoundaryGraph& graph, VoronoiStats& stats, CellMoments* moments = nullptr);
+                     const EdgeCrossingStore& crossings, std::span<const Eigen::Vector3d> site_normals);
 
   /// True if `face` may hold a boundary: the engine marked it valid, its
   /// corners have different nearest sites, or a site lies in it.
   bool may_hold_boundary(Index face) const;
-  /// The crossings of a mesh edge, computed the first time they are asked for.
-  std::span<const EdgeCrossing> edge_crossings(Index edge);
-  /// Adds the face's boundary pieces and Voronoi vertices to the graph and its
-  /// area, split among the cells, to `cell_area`.
-  void trace_face(Index face, std::vector<double>& cell_area);
+  /// Appends the crossings of a mesh edge, ordered along it, and their nodes.
+  void find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings, std::vector<BoundaryNode>& nodes);
+  /// Adds the face's boundary pieces and Voronoi vertices to `out`'s graph
+  /// and its area and integrals, split among the cells, to its contributions.
+  void trace_face(Index face, TracedChunk& out);
+  /// Adds a face inside the cell of `site` to `out`'s contributions.
+  void add_inner_face(Index face, Index site, TracedChunk& out);
 
  private:
   struct Crossing {
@@ -109,8 +161,8 @@ class FaceBoundaryTracer {
     int after_corner = 0;
   };
 
-  void trace(const SubTriangle& triangle, int depth, std::vector<double>& cell_area);
-  void subdivide(const SubTriangle& triangle, int depth, std::vector<double>& cell_area);
+  void trace(const SubTriangle& triangle, int depth);
+  void subdivide(const SubTriangle& triangle, int depth);
   void collect_cycle(const SubTriangle& triangle);
   bool holds_island(const SubTriangle& triangle) const;
   /// The part of a side from its corner `which` (0: start, 1: end as used) to its midpoint.
@@ -135,10 +187,10 @@ class FaceBoundaryTracer {
   /// Resolves a sub-triangle whose boundary it can explain: caps (a site
   /// entered and left again, cut off by one arc) and at most one Voronoi
   /// vertex. False, with nothing added, if it needs refining.
-  bool resolve(const SubTriangle& triangle, bool at_limit, std::vector<double>& cell_area);
+  bool resolve(const SubTriangle& triangle, bool at_limit);
   bool inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const;
   /// Gives a site's part of a sub-triangle (a polygon) to its cell.
-  void add_part(Index site, std::span<const Eigen::Vector2d> polygon, std::vector<double>& cell_area);
+  void add_part(Index site, std::span<const Eigen::Vector2d> polygon);
   /// Adds the piece from node `from` at p to node `to` at q with the 2D
   /// polyline `line` between them.
   void commit_piece(Index from, Index to, Index left, Index right, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
@@ -151,17 +203,15 @@ class FaceBoundaryTracer {
   const TriangleMesh& mesh_;
   const GeodesicField& field_;
   const VoronoiOptions& options_;
-  BoundaryGraph& graph_;
-  VoronoiStats& stats_;
-  CellMoments* moments_ = nullptr;
+  const EdgeCrossingStore& store_;
+  CellMoments moments_;
   double tolerance_ = 0;         ///< polyline deviation allowed
   double vertex_tolerance_ = 0;  ///< spread of site distances accepted at a Voronoi vertex
 
-  // Per mesh edge: its crossings are edge_crossings_[edge_first_[e] ..
-  // + edge_count_[e]) once computed (edge_first_[e] = -1 before).
-  std::vector<Index> edge_first_;
-  std::vector<Index> edge_count_;
-  std::vector<EdgeCrossing> edge_crossings_;
+  // Where the face being traced goes.
+  BoundaryGraph* graph_ = nullptr;
+  TracedChunk* out_ = nullptr;
+
   ConeEnvelope edge_envelope_;
   ConeEnvelope face_scratch_;
   std::vector<double> samples_;

@@ -2,8 +2,15 @@
 
 #include "face_boundary.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <utility>
 
 namespace geodual::voronoi {
@@ -12,6 +19,138 @@ namespace {
 using detail::BoundaryGraph;
 using detail::BoundaryNode;
 using detail::BoundaryPiece;
+using detail::EdgeCrossingStore;
+using detail::FaceBoundaryTracer;
+using detail::TracedChunk;
+
+// Work is split into fixed chunks, independent of the number of threads, and
+// merged in chunk order: the diagram is the same bits for any thread count,
+// and the same as tracing the faces one by one in order.
+constexpr Index faces_per_chunk = 256;
+constexpr Index edges_per_chunk = 2048;
+
+using Tracers = tbb::enumerable_thread_specific<FaceBoundaryTracer>;
+
+Index chunk_count(Index items, Index per_chunk) { return (items + per_chunk - 1) / per_chunk; }
+
+/// Computes in parallel the crossings of every edge marked in `needed` that
+/// `store` lacks, and appends them to it.
+void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tracers, EdgeCrossingStore& store) {
+  struct Found {
+    std::vector<Index> edges, counts;
+    std::vector<detail::EdgeCrossing> crossings;
+    std::vector<BoundaryNode> nodes;
+  };
+  const Index num_edges = static_cast<Index>(needed.size());
+  std::vector<Found> found(static_cast<std::size_t>(chunk_count(num_edges, edges_per_chunk)));
+  tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t chunk) {
+    FaceBoundaryTracer& tracer = tracers.local();
+    Found& out = found[chunk];
+    const Index begin = static_cast<Index>(chunk) * edges_per_chunk;
+    const Index end = std::min(num_edges, begin + edges_per_chunk);
+    for (Index e = begin; e < end; ++e) {
+      if (!needed[e] || store.computed(e)) continue;
+      const std::size_t before = out.crossings.size();
+      tracer.find_edge_crossings(e, out.crossings, out.nodes);
+      out.edges.push_back(e);
+      out.counts.push_back(static_cast<Index>(out.crossings.size() - before));
+    }
+  });
+  for (const Found& chunk : found) {
+    Index next = static_cast<Index>(store.crossings.size());
+    for (std::size_t i = 0; i < chunk.edges.size(); ++i) {
+      store.first[chunk.edges[i]] = next;
+      store.count[chunk.edges[i]] = chunk.counts[i];
+      next += chunk.counts[i];
+    }
+    store.crossings.insert(store.crossings.end(), chunk.crossings.begin(), chunk.crossings.end());
+    store.nodes.insert(store.nodes.end(), chunk.nodes.begin(), chunk.nodes.end());
+  }
+}
+
+/// The merged graph under construction, and where each edge crossing's node is in it.
+class GraphMerger {
+ public:
+  GraphMerger(EdgeCrossingStore& store, BoundaryGraph& graph) : store_(store), graph_(graph) {}
+
+  /// The crossings of `edge`, computed now (by `tracer`) if not yet; gives them
+  /// nodes the first time an edge is asked for, as tracing one face after
+  /// another in order would.
+  std::span<const detail::EdgeCrossing> crossings(Index edge, FaceBoundaryTracer& tracer) {
+    if (!store_.computed(edge)) {
+      store_.first[edge] = static_cast<Index>(store_.crossings.size());
+      tracer.find_edge_crossings(edge, store_.crossings, store_.nodes);
+      store_.count[edge] = static_cast<Index>(store_.crossings.size()) - store_.first[edge];
+    }
+    give_nodes(edge);
+    return store_.of(edge);
+  }
+
+  void give_nodes(Index edge) {
+    const Index first = store_.first[edge], count = store_.count[edge];
+    if (count == 0) return;
+    node_of_crossing_.resize(store_.crossings.size(), -1);
+    if (node_of_crossing_[first] >= 0) return;
+    for (Index i = first; i < first + count; ++i) {
+      node_of_crossing_[i] = static_cast<Index>(graph_.nodes.size());
+      graph_.nodes.push_back(store_.nodes[i]);
+    }
+  }
+
+  /// Appends a chunk's graph: its nodes face by face after the nodes of the
+  /// face's edge crossings met first there, then its pieces and points.
+  void append(const TracedChunk& chunk, const GeodesicField& field) {
+    const BoundaryGraph& part = chunk.graph;
+    const Index vertex_site_offset = static_cast<Index>(graph_.vertex_sites.size());
+    const Index point_offset = static_cast<Index>(graph_.points.size());
+    node_of_local_.resize(part.nodes.size());
+    Index local = 0;
+    for (const TracedChunk::Face& face : chunk.faces) {
+      for (const Index e : field.face_edges[face.face]) give_nodes(e);
+      for (; local < face.node_end; ++local) {
+        node_of_local_[local] = static_cast<Index>(graph_.nodes.size());
+        BoundaryNode node = part.nodes[local];
+        if (node.kind == BoundaryNode::Kind::voronoi_vertex) node.site_begin += vertex_site_offset;
+        graph_.nodes.push_back(node);
+      }
+    }
+    graph_.vertex_sites.insert(graph_.vertex_sites.end(), part.vertex_sites.begin(), part.vertex_sites.end());
+    graph_.points.insert(graph_.points.end(), part.points.begin(), part.points.end());
+    graph_.point_locations.insert(graph_.point_locations.end(), part.point_locations.begin(),
+                                  part.point_locations.end());
+    auto node_of = [&](Index reference) {
+      return reference >= 0 ? node_of_local_[reference] : node_of_crossing_[detail::crossing_of_reference(reference)];
+    };
+    for (BoundaryPiece piece : part.pieces) {
+      piece.from = node_of(piece.from);
+      piece.to = node_of(piece.to);
+      piece.point_begin += point_offset;
+      piece.point_end += point_offset;
+      graph_.pieces.push_back(piece);
+    }
+  }
+
+ private:
+  EdgeCrossingStore& store_;
+  BoundaryGraph& graph_;
+  std::vector<Index> node_of_crossing_;  ///< per store crossing, -1 until given a node
+  std::vector<Index> node_of_local_;     ///< scratch: per node of the chunk being appended
+};
+
+/// Adds a chunk's cell contributions, in order, and its statistics.
+void add_contributions(const TracedChunk& chunk, VoronoiDiagram& diagram) {
+  for (const detail::CellContribution& c : chunk.contributions) {
+    diagram.cell_area[c.site] += c.area;
+    diagram.cell_energy[c.site] += c.integrals.energy;
+    diagram.cell_log_moment[c.site] += c.integrals.log_moment;
+  }
+  VoronoiStats& stats = diagram.stats;
+  stats.boundary_faces += chunk.stats.boundary_faces;
+  stats.refined_faces += chunk.stats.refined_faces;
+  stats.unresolved_regions += chunk.stats.unresolved_regions;
+  stats.max_vertex_residual = std::max(stats.max_vertex_residual, chunk.stats.max_vertex_residual);
+  stats.max_area_mismatch = std::max(stats.max_area_mismatch, chunk.stats.max_area_mismatch);
+}
 
 /// Chains the per-face pieces into arcs: through every node where exactly two
 /// pieces meet, stopping at Voronoi vertices and at the mesh boundary.
@@ -143,38 +282,105 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   diagram.stats.geodesic_seconds = f.stats.total_seconds;
   diagram.cell_area.assign(f.sites.size(), 0.0);
 
+  diagram.cell_energy.assign(f.sites.size(), 0.0);
+  diagram.cell_log_moment.assign(f.sites.size(), Eigen::Vector3d::Zero());
+
+  const std::vector<Eigen::Vector3d> site_normals = detail::site_normals(mesh, f);
+  EdgeCrossingStore store(f.edge_length.size());
+  Tracers tracers([&] { return FaceBoundaryTracer(mesh, f, options, store, site_normals); });
   BoundaryGraph graph;
-  detail::CellMoments moments(mesh, f, diagram.cell_energy, diagram.cell_log_moment);
-  detail::FaceBoundaryTracer tracer(mesh, f, options, graph, diagram.stats, &moments);
+  GraphMerger merger(store, graph);
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
-  // Faces that may hold a boundary, then those next to an edge a boundary crosses.
+  const std::size_t num_edges = f.edge_length.size();
+
+  // Faces that may hold a boundary (1), and the crossings of their edges.
   std::vector<std::uint8_t> traced(num_faces, 0);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, num_faces), [&](const tbb::blocked_range<Index>& range) {
+    const FaceBoundaryTracer& tracer = tracers.local();
+    for (Index face = range.begin(); face < range.end(); ++face) traced[face] = tracer.may_hold_boundary(face);
+  });
+  std::vector<std::uint8_t> needed(num_edges, 0);
   for (Index face = 0; face < num_faces; ++face) {
-    if (!tracer.may_hold_boundary(face)) continue;
-    traced[face] = 1;
-    for (const Index e : f.face_edges[face]) tracer.edge_crossings(e);
+    if (!traced[face]) continue;
+    for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
+  compute_edge_crossings(needed, tracers, store);
+  for (Index face = 0; face < num_faces; ++face) {
+    if (!traced[face]) continue;
+    for (const Index e : f.face_edges[face]) merger.give_nodes(e);
+  }
+  // Then faces (2) next to an edge a boundary crosses whose other face is
+  // traced; in face order, as a face marked here counts for later ones.
+  FaceBoundaryTracer& serial_tracer = tracers.local();
   for (Index face = 0; face < num_faces; ++face) {
     if (traced[face] || f.face_edges[face][0] < 0) continue;
     for (const Index e : f.face_edges[face]) {
       for (const Index neighbour : f.edge_faces[e]) {
-        if (neighbour >= 0 && neighbour != face && traced[neighbour] && !tracer.edge_crossings(e).empty()) {
+        if (neighbour >= 0 && neighbour != face && traced[neighbour] && !merger.crossings(e, serial_tracer).empty()) {
           traced[face] = 2;
         }
       }
     }
   }
   for (Index face = 0; face < num_faces; ++face) {
-    if (f.face_edges[face][0] < 0) continue;
-    if (traced[face]) {
-      tracer.trace_face(face, diagram.cell_area);
-    } else if (const Index site = f.nearest_site[mesh.faces(face, 0)]; site >= 0) {
-      const detail::FaceLayout layout = detail::FaceLayout::of(f, face);
-      diagram.cell_area[site] += layout.area;
-      moments.set_face(face, layout);
-      moments.add_face_from_corners(site);
-    }
+    if (traced[face] != 2) continue;
+    for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
+  compute_edge_crossings(needed, tracers, store);
+  std::vector<std::uint8_t>().swap(needed);
+
+  // Trace the faces chunk by chunk in parallel; merge the chunks in order.
+  struct Work {
+    Index chunk = 0;
+    TracedChunk traced;
+  };
+  // Never more chunks in flight than tokens, so a Work is always idle when the
+  // first stage asks.
+  const std::size_t live_chunks = 4 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+  std::vector<Work> works(live_chunks);
+  std::vector<Work*> idle;
+  for (Work& work : works) idle.push_back(&work);
+  std::mutex idle_mutex;
+  Index next_chunk = 0;
+  const Index num_chunks = chunk_count(num_faces, faces_per_chunk);
+  tbb::parallel_pipeline(
+      live_chunks,
+      tbb::make_filter<void, Work*>(tbb::filter_mode::serial_in_order,
+                                    [&](tbb::flow_control& control) -> Work* {
+                                      if (next_chunk == num_chunks) {
+                                        control.stop();
+                                        return nullptr;
+                                      }
+                                      const std::lock_guard lock(idle_mutex);
+                                      Work* work = idle.back();
+                                      idle.pop_back();
+                                      work->chunk = next_chunk++;
+                                      return work;
+                                    }) &
+          tbb::make_filter<Work*, Work*>(tbb::filter_mode::parallel,
+                                         [&](Work* work) {
+                                           FaceBoundaryTracer& tracer = tracers.local();
+                                           TracedChunk& out = work->traced;
+                                           out.clear();
+                                           const Index begin = work->chunk * faces_per_chunk;
+                                           const Index end = std::min(num_faces, begin + faces_per_chunk);
+                                           for (Index face = begin; face < end; ++face) {
+                                             if (f.face_edges[face][0] < 0) continue;
+                                             if (traced[face]) {
+                                               tracer.trace_face(face, out);
+                                             } else if (const Index site = f.nearest_site[mesh.faces(face, 0)];
+                                                        site >= 0) {
+                                               tracer.add_inner_face(face, site, out);
+                                             }
+                                           }
+                                           return work;
+                                         }) &
+          tbb::make_filter<Work*, void>(tbb::filter_mode::serial_in_order, [&](Work* work) {
+            merger.append(work->traced, f);
+            add_contributions(work->traced, diagram);
+            const std::lock_guard lock(idle_mutex);
+            idle.push_back(work);
+          }));
 
   chain_arcs(graph, diagram);
   collect_adjacency(diagram);
