@@ -149,7 +149,8 @@ void copy_windows(const detail::WindowStore& store, Index num_edges, GeodesicFie
   for (Index e = 0; e < num_edges; ++e) {
     field.window_begin[e] = static_cast<Index>(field.windows.size());
     for (const detail::Window& w : store.on_edge(e)) {
-      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, w.sigma, w.site});
+      const detail::WindowSource& source = store.source_of(w);
+      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site});
     }
   }
   field.window_begin.back() = static_cast<Index>(field.windows.size());

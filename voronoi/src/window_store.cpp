@@ -16,19 +16,27 @@ namespace {
 /// replace it; re-derived copies of one window then never displace each other.
 constexpr double kTieMargin = 1e-13;
 
+/// A window with its source's sigma, for the comparisons below.
+struct Cone {
+  const Window& w;
+  double sigma;
+  double distance_at(double x) const { return w.distance_at(x, sigma); }
+};
+
 /// f(x) = d1(x) - d2(x).
-double difference(const Window& w1, const Window& w2, double x) { return w1.distance_at(x) - w2.distance_at(x); }
+double difference(const Cone& c1, const Cone& c2, double x) { return c1.distance_at(x) - c2.distance_at(x); }
 
 /// Abscissas in (lo, hi) where the two windows' distances are equal: the
 /// roots of sigma1 + |x - s1| = sigma2 + |x - s2|, found by squaring twice
 /// (a quadratic, whose spurious roots are harmless: every sub-interval is then
 /// decided by evaluating both windows), polished with Newton steps, and backed
 /// by bisection wherever the difference changes sign but no root was found.
-int crossings(const Window& w1, const Window& w2, double lo, double hi, std::array<double, 2>& roots) {
+int crossings(const Cone& c1, const Cone& c2, double lo, double hi, std::array<double, 2>& roots) {
+  const Window &w1 = c1.w, &w2 = c2.w;
   const double shift = 0.5 * (lo + hi);  // work near the interval for precision
   const double a1 = w1.source_x - shift, a2 = w2.source_x - shift;
   const double h1 = w1.source_y * w1.source_y, h2 = w2.source_y * w2.source_y;
-  const double delta = w2.sigma - w1.sigma;
+  const double delta = c2.sigma - c1.sigma;
   const double alpha = 2 * (a2 - a1);
   const double beta = a1 * a1 - a2 * a2 + h1 - h2 - delta * delta;
   const double d2 = 4 * delta * delta;
@@ -62,7 +70,7 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
     for (int step = 0; step < 2; ++step) {
       const double r1 = std::sqrt((x - w1.source_x) * (x - w1.source_x) + h1);
       const double r2 = std::sqrt((x - w2.source_x) * (x - w2.source_x) + h2);
-      const double f = (w1.sigma + r1) - (w2.sigma + r2);
+      const double f = (c1.sigma + r1) - (c2.sigma + r2);
       const double df = (r1 > 0 ? (x - w1.source_x) / r1 : 0) - (r2 > 0 ? (x - w2.source_x) / r2 : 0);
       if (df == 0) break;
       x -= f / df;
@@ -70,12 +78,12 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
     if (x > lo && x < hi && (count == 0 || x != roots[0])) roots[count++] = x;
   }
   if (count == 0) {
-    double f_lo = difference(w1, w2, lo), f_hi = difference(w1, w2, hi);
+    double f_lo = difference(c1, c2, lo), f_hi = difference(c1, c2, hi);
     if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) {
       double a = lo, b = hi;
       for (int i = 0; i < 60 && b - a > 0; ++i) {
         const double m = 0.5 * (a + b);
-        const double f_m = difference(w1, w2, m);
+        const double f_m = difference(c1, c2, m);
         if ((f_m < 0) == (f_lo < 0)) {
           a = m;
           f_lo = f_m;
@@ -95,6 +103,14 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
 WindowStore::WindowStore(Index num_edges) : slots_(static_cast<std::size_t>(num_edges)) {
   // Address 0, where empty edges point, always exists.
   add_pages(kPageWindows);
+}
+
+std::uint32_t WindowStore::add_source(double sigma, Index site) {
+  if (sources_.size() >= std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("geodesic propagation needs more than 2^32 window sources");
+  }
+  sources_.push_back({sigma, site});
+  return static_cast<std::uint32_t>(sources_.size() - 1);
 }
 
 std::uint32_t WindowStore::class_for(std::uint32_t count) {
@@ -235,7 +251,8 @@ void WindowStore::push_segment(double lo, double hi, int owner) {
   segments_.push_back({lo, hi, owner});
 }
 
-void WindowStore::split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi) {
+void WindowStore::split_overlap(const Window& candidate, double candidate_sigma, const Window& existing,
+                                double existing_sigma, int k, double lo, double hi) {
   // Both distances and their slopes at the ends of the overlap. Each slope
   // (x - source_x) / r grows along the edge, so the difference's slope lies
   // in [slope_lo, slope_hi]; with its end values that bounds the difference
@@ -246,9 +263,9 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
   const double h_c = candidate.source_y * candidate.source_y, h_e = existing.source_y * existing.source_y;
   const double r_c_lo = std::sqrt(dx_c_lo * dx_c_lo + h_c), r_c_hi = std::sqrt(dx_c_hi * dx_c_hi + h_c);
   const double r_e_lo = std::sqrt(dx_e_lo * dx_e_lo + h_e), r_e_hi = std::sqrt(dx_e_hi * dx_e_hi + h_e);
-  const double d_e_lo = existing.sigma + r_e_lo, d_e_hi = existing.sigma + r_e_hi;
-  const double f_lo = (candidate.sigma + r_c_lo) - d_e_lo;
-  const double f_hi = (candidate.sigma + r_c_hi) - d_e_hi;
+  const double d_e_lo = existing_sigma + r_e_lo, d_e_hi = existing_sigma + r_e_hi;
+  const double f_lo = (candidate_sigma + r_c_lo) - d_e_lo;
+  const double f_hi = (candidate_sigma + r_c_hi) - d_e_hi;
   const double slope_lo = dx_c_lo / r_c_lo - dx_e_hi / r_e_hi;
   const double slope_hi = dx_c_hi / r_c_hi - dx_e_lo / r_e_lo;
   if (f_lo > 0 && f_hi > 0) {
@@ -284,7 +301,8 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
     }
   }
   std::array<double, 2> roots{};
-  const int count = crossings(candidate, existing, lo, hi, roots);
+  const Cone c{candidate, candidate_sigma}, e{existing, existing_sigma};
+  const int count = crossings(c, e, lo, hi, roots);
   std::array<double, 4> cuts{lo, 0, 0, 0};
   int cut_count = 1;
   for (int i = 0; i < count; ++i) cuts[cut_count++] = roots[i];
@@ -293,17 +311,18 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
     const double a = cuts[i], b = cuts[i + 1];
     if (b <= a) continue;
     const double mid = 0.5 * (a + b);
-    const double dc = candidate.distance_at(mid), de = existing.distance_at(mid);
+    const double dc = c.distance_at(mid), de = e.distance_at(mid);
     push_segment(a, b, dc < de - kTieMargin * de ? -1 : k);
   }
 }
 
 void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created) {
   min_length_ = 1e-12 * edge_length;
+  const WindowSource candidate_source = sources_[candidate.source];
   Index& site_summary = slots_[edge].site;
   if (site_summary == kNoSite) {
-    site_summary = candidate.site;
-  } else if (site_summary != candidate.site) {
+    site_summary = candidate_source.site;
+  } else if (site_summary != candidate_source.site) {
     site_summary = kMixedSites;
   }
   const std::span<const Window> windows = on_edge(edge);
@@ -336,7 +355,7 @@ void WindowStore::insert(Index edge, const Window& candidate, double edge_length
     }
     const double lo = std::max(existing.b0, x);
     const double hi = std::min(existing.b1, candidate.b1);
-    if (hi > lo) split_overlap(candidate, existing, k, lo, hi);
+    if (hi > lo) split_overlap(candidate, candidate_source.sigma, existing, sources_[existing.source].sigma, k, lo, hi);
     if (existing.b1 > candidate.b1) push_segment(candidate.b1, existing.b1, k);
     x = std::max(x, hi);
   }

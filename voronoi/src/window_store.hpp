@@ -44,6 +44,12 @@ class WindowStore {
     return {window_at(s.begin), s.count};
   }
 
+  /// Registers the source of windows about to be inserted; they carry the
+  /// returned id in Window::source.
+  std::uint32_t add_source(double sigma, Index site);
+  const WindowSource& source(std::uint32_t id) const { return sources_[id]; }
+  const WindowSource& source_of(const Window& w) const { return sources_[w.source]; }
+
   /// A surviving piece of an inserted window: its position in on_edge() and
   /// its interval (the rest is the candidate's), so that callers need not
   /// read back what was just written.
@@ -77,7 +83,11 @@ class WindowStore {
   std::int64_t peak() const { return peak_; }
   /// Bytes of window storage held: every page, including blocks that are
   /// free for reuse and the unused capacity of the edges' blocks.
-  std::int64_t bytes() const { return held_pages_ * kPageWindows * static_cast<std::int64_t>(sizeof(Window)); }
+  /// The table of sources counts too.
+  std::int64_t bytes() const {
+    return held_pages_ * kPageWindows * static_cast<std::int64_t>(sizeof(Window)) +
+           static_cast<std::int64_t>(sources_.capacity() * sizeof(WindowSource));
+  }
 
  private:
   /// Windows are addressed by a 32-bit number: page (high bits) and
@@ -123,7 +133,8 @@ class WindowStore {
   /// Adds pages for a block of `size` windows from the next page boundary on:
   /// one page, or, for a block larger than a page, contiguous pages of its own.
   void add_pages(std::uint32_t size);
-  void split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi);
+  void split_overlap(const Window& candidate, double candidate_sigma, const Window& existing, double existing_sigma,
+                     int k, double lo, double hi);
   void push_segment(double lo, double hi, int owner);
 
   std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
@@ -132,6 +143,7 @@ class WindowStore {
   std::int64_t held_pages_ = 0;
   std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
   std::vector<Slot> slots_;
+  std::vector<WindowSource> sources_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;

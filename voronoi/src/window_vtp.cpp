@@ -100,6 +100,7 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
                                         int skip_local_edge, double sigma, Index site, int depth) {
   // Chains of zero-area faces are crossed, but never without end.
   constexpr int kMaxZeroAreaCrossings = 16;
+  const std::uint32_t source_id = store_.add_source(sigma, site);
   for (int j = 0; j < 3; ++j) {
     if (j == skip_local_edge) continue;
     const Index e = pm_.face_edges(face)[j];
@@ -113,11 +114,12 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
-    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), sigma, site, 0});
+    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), source_id, 0});
   }
 }
 
 void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
+  const std::uint32_t source_id = store_.add_source(sigma, site);
   for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
     const Index f = pm_.vertex_faces[i];
     const FaceRecord& face = pm_.face_records[f];
@@ -137,7 +139,7 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
     // The apex in the frame of the opposite edge (see face_frame_to_edge_frame).
     const double x = face.flipped(k) ? l.length - l.apex.x() : l.apex.x();
     const double y = face.side(k) == 0 ? l.apex.y() : -l.apex.y();
-    submit(face.edge[k], l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, sigma, site, 0});
+    submit(face.edge[k], l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, source_id, 0});
   }
 }
 
@@ -150,17 +152,18 @@ void WindowVtp::submit(Index e, const Window& w) {
 
 void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w) {
   if (!(w.b1 > w.b0)) return;
+  const WindowSource source = store_.source_of(w);
   if (w.source_y == 0 || !(length > 0)) {
     // Paths along the edge's line: they matter only at its end points.
-    if (w.b0 <= kEndpointTolerance * length) relax(v0, w.distance_at(0), w.site);
-    if (w.b1 >= length * (1 - kEndpointTolerance)) relax(v1, w.distance_at(length), w.site);
+    if (w.b0 <= kEndpointTolerance * length) relax(v0, w.distance_at(0, source.sigma), source.site);
+    if (w.b1 >= length * (1 - kEndpointTolerance)) relax(v1, w.distance_at(length, source.sigma), source.site);
     return;
   }
   // Xin & Wang's filter: if the path through an end vertex along the edge is
   // no longer at the window's far end, it is no longer anywhere on the window
   // (the difference is monotone along the edge), and neither beyond it.
-  if (distance_[v0] + w.b1 < w.distance_at(w.b1)) return;
-  if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0)) return;
+  if (distance_[v0] + w.b1 < w.distance_at(w.b1, source.sigma)) return;
+  if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0, source.sigma)) return;
 
   created_.clear();
   store_.insert(e, w, length, created_);
@@ -175,13 +178,13 @@ void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window&
     Window piece = w;
     piece.b0 = created.b0;
     piece.b1 = created.b1;
-    if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0), piece.site);
-    if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length), piece.site);
-    schedule(e, v0, v1, piece, created.position);
+    if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0, source.sigma), source.site);
+    if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length, source.sigma), source.site);
+    schedule(e, v0, v1, piece, source.sigma, created.position);
   }
 }
 
-void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, Index position) {
+void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, double sigma, Index position) {
   const Index face = pm_.edge_faces[e][w.entering_side()];
   if (face < 0) return;
   if (face_flags_[face] & kTraversed) {
@@ -190,7 +193,7 @@ void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, Index pos
     return;
   }
   // A wavefront window: its edge's end points wait in the vertex queue.
-  const double key = w.min_distance();
+  const double key = w.min_distance(sigma);
   push_expand(v0, key);
   push_expand(v1, key);
 }
@@ -209,6 +212,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const FaceRecord& face = pm_.face_records[g];
   const EdgeLayout l = face.layout(k);
   const double length = l.length;
+  const WindowSource source = store_.source_of(w);
 
   // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex
   // above the axis, the source below it.
@@ -224,7 +228,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const double x_c = s.x() + (c.x() - s.x()) * t;
   const double tolerance = kEndpointTolerance * length;
   if (x_c >= b0 - tolerance && x_c <= b1 + tolerance) {
-    relax(face.vertex[(k + 2) % 3], w.sigma + (c - s).norm(), w.site);
+    relax(face.vertex[(k + 2) % 3], source.sigma + (c - s).norm(), source.site);
   }
 
   // Child windows: the part of the cone left of C lands on edge C -> A
@@ -252,7 +256,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
     const double src_x = flip_j ? len - source_local.x() : source_local.x();
     const double src_y = face.side(j) == 0 ? source_local.y() : -source_local.y();
     submit(face.edge[j], len, face.edge_start(j), face.edge_end(j),
-           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.sigma, w.site, 0});
+           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.source, 0});
   };
   if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
   if (x_c < b1) emit_child((k + 1) % 3, b, c, std::max(b0, x_c), b1);
@@ -367,7 +371,7 @@ bool WindowVtp::face_is_redundant(Index face) const {
     if (summary == site || summary == WindowStore::kNoSite) continue;
     if (summary != WindowStore::kMixedSites) return false;
     for (const Window& w : store_.on_edge(e)) {
-      if (w.site != site) return false;
+      if (store_.source_of(w).site != site) return false;
     }
   }
   return true;

@@ -74,7 +74,7 @@ class WindowVtp {
   /// A window on e goes into the FIFO if the face it enters is traversed;
   /// otherwise it is on the wavefront and its edge's end points wait in the
   /// vertex queue.
-  void schedule(Index e, Index v0, Index v1, const Window& window, Index position);
+  void schedule(Index e, Index v0, Index v1, const Window& window, double sigma, Index position);
   void enqueue_edge(Index e);
   void propagate(Index e, const Window& window);
   void drain_fifo();
