@@ -147,24 +147,93 @@ std::uint32_t WindowStore::allocate_block(std::uint32_t block_class) {
   if (!free.empty()) {
     const std::uint32_t begin = free.back();
     free.pop_back();
+    free_windows_ -= block_size(block_class);
     return begin;
   }
-  // Carved from the last allocation if it fits there (a block never
-  // straddles two allocations), else from new pages.
   const std::uint32_t size = block_size(block_class);
-  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
-  if (size > pages_end - next_free_) {
-    free_range(next_free_, pages_end);
-    add_pages(size);
-    next_free_ = pages_end;
+  if (!carve(size)) {
+    // The pages are full. Where the free blocks hold a good part of them, in
+    // the wrong sizes, packing the blocks together makes room instead.
+    if (free_windows_ >= held_pages_ * (kPageWindows / kRepackFraction)) {
+      repack();
+      ++repacks_;
+    }
+    if (!carve(size)) {
+      free_rest_of_pages();
+      const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+      add_pages(size);
+      next_free_ = pages_end;
+      carve(size);
+    }
   }
   const std::uint32_t begin = next_free_;
   next_free_ += size;
   return begin;
 }
 
+bool WindowStore::carve(std::uint32_t size) {
+  // A block never straddles two pages (two allocations, maybe), except a
+  // block larger than a page, which always gets new pages of its own.
+  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+  if (size > kPageWindows) return false;
+  while (next_free_ < pages_end) {
+    const std::uint32_t page_end = (next_free_ | (kPageWindows - 1)) + 1;
+    const bool held = page_of_[next_free_ >> kPageShift] != nullptr;
+    if (held && size <= page_end - next_free_) return true;
+    if (held) free_range(next_free_, page_end);
+    next_free_ = page_end;
+  }
+  return false;
+}
+
+void WindowStore::free_rest_of_pages() {
+  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+  while (next_free_ < pages_end) {
+    const std::uint32_t page_end = (next_free_ | (kPageWindows - 1)) + 1;
+    if (page_of_[next_free_ >> kPageShift] != nullptr) free_range(next_free_, page_end);
+    next_free_ = page_end;
+  }
+}
+
 void WindowStore::free_block(std::uint32_t begin, std::uint32_t block_class) {
-  if (block_class != kNoBlock) free_blocks_[block_class].push_back(begin);
+  if (block_class == kNoBlock) return;
+  free_blocks_[block_class].push_back(begin);
+  free_windows_ += block_size(block_class);
+}
+
+std::uint32_t WindowStore::capacity(const Slot& slot) {
+  return slot.block_class != kNoBlock ? block_size(slot.block_class) : slot.count;
+}
+
+void WindowStore::repack() {
+  // Every block, in the order they lie in memory, slides down to the first
+  // address after the previous one where it fits in one page (so never onto
+  // windows not yet moved), keeping its capacity; a block larger than a page
+  // stays in its pages. The free blocks are gone; what follows the last
+  // block is carved anew.
+  std::vector<std::pair<std::uint32_t, Index>> blocks;
+  for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
+    if (capacity(slots_[e]) > 0) blocks.emplace_back(slots_[e].begin, e);
+  }
+  std::sort(blocks.begin(), blocks.end());
+  std::uint32_t cursor = 0;
+  for (const auto& [begin, e] : blocks) {
+    Slot& slot = slots_[e];
+    const std::uint32_t size = capacity(slot);
+    if (size > kPageWindows) {
+      cursor = begin;
+    } else {
+      while ((cursor & (kPageWindows - 1)) + size > kPageWindows || page_of_[cursor >> kPageShift] == nullptr) {
+        cursor = (cursor | (kPageWindows - 1)) + 1;
+      }
+    }
+    if (cursor != begin && slot.count > 0) std::memmove(window_at(cursor), window_at(begin), slot.count * sizeof(Window));
+    slot.begin = cursor;
+    cursor += size;
+  }
+  for (std::vector<std::uint32_t>& free : free_blocks_) free.clear();
+  free_windows_ = 0;
+  next_free_ = cursor;
 }
 
 void WindowStore::clear_edge(Index edge) {
@@ -213,6 +282,7 @@ void WindowStore::compact() {
     held_pages_ -= end - first;
   }
   for (std::vector<std::uint32_t>& free : free_blocks_) free = std::vector<std::uint32_t>();
+  free_windows_ = 0;
   next_free_ = static_cast<std::uint32_t>(page_of_.size() << kPageShift);  // new blocks on new pages
 }
 

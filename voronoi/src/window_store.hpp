@@ -13,7 +13,9 @@
 // the old and the new array, three times the windows' bytes). Freed blocks,
 // and page ends too short for the next block, are reused by capacity,
 // newest first, so inserting and freeing do not allocate once the pages are
-// there.
+// there. Edges grow from one class to the next and RWR frees whole edges,
+// so the free blocks pile up in the small classes; once they hold 1/8 of
+// the pages and a new page is due, the blocks are packed together instead.
 
 #include "window.hpp"
 
@@ -47,6 +49,7 @@ class WindowStore {
   /// Registers the source of windows about to be inserted; they carry the
   /// returned id in Window::source.
   std::uint32_t add_source(double sigma, Index site);
+  void reserve_sources(std::size_t count) { sources_.reserve(count); }
   const WindowSource& source(std::uint32_t id) const { return sources_[id]; }
   const WindowSource& source_of(const Window& w) const { return sources_[w.source]; }
 
@@ -80,6 +83,8 @@ class WindowStore {
   void compact();
 
   std::int64_t live() const { return live_; }
+  /// Times the blocks were packed together to make room (see allocate_block).
+  std::int64_t repacks() const { return repacks_; }
   std::int64_t peak() const { return peak_; }
   /// Bytes of window storage held: every page, including blocks that are
   /// free for reuse and the unused capacity of the edges' blocks.
@@ -127,6 +132,14 @@ class WindowStore {
   Window* splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added);
   /// A block of the class's capacity.
   std::uint32_t allocate_block(std::uint32_t block_class);
+  /// Moves next_free_ to where a block of `size` can be carved from the pages
+  /// held, handing the page ends it skips to the free lists; false if none.
+  bool carve(std::uint32_t size);
+  /// Hands what is left after next_free_ to the free lists.
+  void free_rest_of_pages();
+  /// Slides the blocks together, dropping the free ones (see allocate_block).
+  void repack();
+  static std::uint32_t capacity(const Slot& slot);
   void free_block(std::uint32_t begin, std::uint32_t block_class);
   /// Hands the unused [from, to) of one allocation to the free lists.
   void free_range(std::uint32_t from, std::uint32_t to);
@@ -142,6 +155,10 @@ class WindowStore {
   std::vector<Window*> page_of_;                        ///< by page number; null once given back
   std::int64_t held_pages_ = 0;
   std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
+  std::int64_t free_windows_ = 0;                       ///< capacity of the free blocks
+  /// Repack rather than add a page once the free blocks hold 1/kRepackFraction of the pages.
+  static constexpr std::int64_t kRepackFraction = 8;
+  std::int64_t repacks_ = 0;
   std::vector<Slot> slots_;
   std::vector<WindowSource> sources_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
