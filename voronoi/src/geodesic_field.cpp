@@ -126,12 +126,11 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
 void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& order, GeodesicField& field) {
   const auto num_edges = static_cast<std::size_t>(pm.num_edges());
   field.edge_vertices.resize(num_edges);
-  field.edge_length.resize(num_edges);
   for (std::size_t e = 0; e < num_edges; ++e) {
     const std::array<Index, 2> ends = pm.edge_vertices(static_cast<Index>(e));
     field.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
-    field.edge_length[e] = pm.edge_length(static_cast<Index>(e));
   }
+  field.edge_length = std::move(pm.edge_lengths);
   pm.edge_local = std::vector<std::array<std::uint8_t, 2>>();
   field.edge_faces = std::move(pm.edge_faces);
   for (auto& faces : field.edge_faces) {

@@ -95,6 +95,7 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   }
   pm.edge_faces.reserve(num_edges);
   pm.edge_local.reserve(num_edges);
+  pm.edge_lengths.reserve(num_edges);
 
   pm.face_records.assign(num_faces, FaceRecord{});
   auto add_edge = [&](const HalfEdge& first, const HalfEdge* second) {
@@ -105,9 +106,9 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     auto attach = [&](const HalfEdge& half, std::uint8_t side_flags) {
       FaceRecord& r = pm.face_records[half.face];
       r.edge[half.local] = e;
-      r.length[half.local] = length;
       r.side_flags[half.local] = side_flags;
     };
+    pm.edge_lengths.push_back(length);
     attach(first, 0);
     if (second != nullptr) {
       const bool reversed = mesh.faces(second->face, second->local) == v1;
@@ -135,7 +136,8 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     if (!pm.included(f)) continue;
     FaceRecord& r = pm.face_records[f];
     for (int k = 0; k < 3; ++k) r.vertex[k] = mesh.faces(f, k);
-    r.twice_area = twice_area_from_lengths(r.length[0], r.length[1], r.length[2]);
+    const std::array<double, 3> lengths = pm.face_lengths(r);
+    r.twice_area = twice_area_from_lengths(lengths[0], lengths[1], lengths[2]);
   }
 
   // Vertex -> faces, by counting sort (faces in increasing order).

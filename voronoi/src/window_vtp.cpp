@@ -24,9 +24,7 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       options_(options),
       distance_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
       label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
-      best_key_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
-      emitted_at_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
-      popped_(static_cast<std::size_t>(mesh.num_vertices()), 0),
+      vertex_flags_(static_cast<std::size_t>(mesh.num_vertices()), 0),
       face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
       store_(mesh.num_edges()),
       events_(mesh.num_vertices()),
@@ -38,6 +36,10 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
 // ---------------------------------------------------------------- seeding --
 
 void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites) {
+  // Each pseudo-source emits once (again only if its distance falls after),
+  // a face site up to twice: room for that, rather than a doubling array's.
+  const auto pseudo_sources = std::count(pm_.is_pseudo_source.begin(), pm_.is_pseudo_source.end(), std::uint8_t{1});
+  store_.reserve_sources(static_cast<std::size_t>(pseudo_sources) + 2 * sites.size());
   for (Index i = 0; i < static_cast<Index>(sites.size()); ++i) {
     const SurfacePoint& site = sites[i];
     if (site.kind == SurfacePoint::Kind::vertex) {
@@ -50,7 +52,7 @@ void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites) {
 
 void WindowVtp::add_vertex_site(Index vertex, Index site) {
   relax(vertex, 0.0, site);
-  emitted_at_[vertex] = 0.0;
+  vertex_flags_[vertex] |= kEmitted;
   emit_from_vertex(vertex, 0.0, site);
 }
 
@@ -126,7 +128,7 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
     int corner = 0;
     while (face.vertex[corner] != v) ++corner;
     const int k = (corner + 1) % 3;  // the edge opposite v
-    const EdgeLayout l = face.layout(k);
+    const EdgeLayout l = layout_on_edge(pm_.face_lengths(face), face.twice_area, k);
     if (!(l.apex.y() > 0) || !(l.length > 0)) {
       // A zero-area face: v lies on the line of its opposite edge. Its end
       // points are reached along the line; where v lies inside the edge, v is
@@ -210,7 +212,8 @@ void WindowVtp::propagate(Index e, const Window& w) {
   if (g < 0) return;
   const int k = pm_.edge_local[e][side];
   const FaceRecord& face = pm_.face_records[g];
-  const EdgeLayout l = face.layout(k);
+  const std::array<double, 3> lengths = pm_.face_lengths(face);
+  const EdgeLayout l = layout_on_edge(lengths, face.twice_area, k);
   const double length = l.length;
   const WindowSource source = store_.source_of(w);
 
@@ -234,7 +237,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
   // Child windows: the part of the cone left of C lands on edge C -> A
   // (local edge k + 2), the part right of C on edge B -> C (local edge k + 1).
   auto emit_child = [&](int j, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double x_lo, double x_hi) {
-    const double len = face.length[j];
+    const double len = lengths[j];
     const Eigen::Vector2d pq = q - p;
     const double pq_norm = pq.norm();
     if (!(len > 0) || !(pq_norm > 0)) return;
@@ -282,7 +285,7 @@ void WindowVtp::drain_fifo() {
 }
 
 void WindowVtp::expand(Index v) {
-  popped_[v] = 1;
+  vertex_flags_[v] |= kPopped;
   ++stats_.vertices_popped;
   new_faces_.clear();
   for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
@@ -320,6 +323,7 @@ void WindowVtp::relax(Index v, double d, Index site) {
   const bool first_time = distance_[v] == kInfinity;
   distance_[v] = d;
   label_[v] = site;
+  vertex_flags_[v] &= static_cast<std::uint8_t>(~kEmitted);
   if (pm_.is_pseudo_source[v]) events_.push_or_decrease({d, v, EventKind::emit});
   if (first_time && options_.remove_redundant_windows) {
     for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
@@ -330,8 +334,8 @@ void WindowVtp::relax(Index v, double d, Index site) {
 }
 
 void WindowVtp::push_expand(Index v, double key) {
-  if (popped_[v] || !(key < best_key_[v])) return;
-  best_key_[v] = key;
+  // The queue keeps the smallest key pushed while the vertex waits.
+  if ((vertex_flags_[v] & kPopped) || !(key < kInfinity)) return;
   events_.push_or_decrease({key, v, EventKind::expand});
 }
 
@@ -340,7 +344,7 @@ bool WindowVtp::pop_event(Event& event) {
     event = events_.top();
     events_.pop();
     // A vertex site emits at once, not from the queue.
-    if (event.kind == EventKind::expand || emitted_at_[event.vertex] > distance_[event.vertex]) return true;
+    if (event.kind == EventKind::expand || !(vertex_flags_[event.vertex] & kEmitted)) return true;
   }
   return false;
 }
@@ -355,7 +359,7 @@ void WindowVtp::push_face_key(Index face) {
   for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
   if (d_min == kInfinity) return;  // pushed when a corner is first reached
   face_flags_[face] |= kKeyPushed;
-  const std::array<double, 3>& lengths = pm_.face_records[face].length;
+  const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
   face_events_.push({d_min + std::max({lengths[0], lengths[1], lengths[2]}), face});
 }
 
@@ -415,7 +419,7 @@ void WindowVtp::run() {
   Event event{};
   while (pop_event(event)) {
     if (event.kind == EventKind::emit) {
-      emitted_at_[event.vertex] = event.key;
+      vertex_flags_[event.vertex] |= kEmitted;
       ++stats_.pseudo_sources;
       emit_from_vertex(event.vertex, event.key, label_[event.vertex]);
       drain_fifo();

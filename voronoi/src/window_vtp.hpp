@@ -48,6 +48,7 @@ class WindowVtp {
   const std::vector<FacePointSource>& point_sources() const { return point_sources_; }
 
  private:
+  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2 };
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
   struct FaceEvent {
     double key;
@@ -94,9 +95,9 @@ class WindowVtp {
 
   std::vector<double> distance_;
   std::vector<Index> label_;
-  std::vector<double> best_key_;
-  std::vector<double> emitted_at_;
-  std::vector<std::uint8_t> popped_;
+  /// Per vertex: expanded; emitted windows as a pseudo-source (or vertex
+  /// site) at its current distance.
+  std::vector<std::uint8_t> vertex_flags_;
   std::vector<std::uint8_t> face_flags_;
   Index faces_traversed_ = 0;
 
