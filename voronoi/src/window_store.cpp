@@ -8,6 +8,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <new>
+
+#if defined(__unix__)
+#include <sys/mman.h>
+#endif
 
 namespace geodual::voronoi::detail {
 namespace {
@@ -121,12 +126,32 @@ std::uint32_t WindowStore::class_for(std::uint32_t count) {
   return count <= half + half / 2 ? 2 * b - 1 : 2 * b;
 }
 
+WindowStore::PageMemory WindowStore::map_pages(std::size_t windows) {
+  const std::size_t bytes = windows * sizeof(Window);
+#if defined(__unix__)
+  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED) throw std::bad_alloc();
+  // Windows are implicit-lifetime aggregates; every one is written before it is read.
+  return PageMemory(static_cast<Window*>(memory), PageRelease{bytes});
+#else
+  return PageMemory(new Window[windows], PageRelease{bytes});
+#endif
+}
+
+void WindowStore::PageRelease::operator()(Window* pages) const {
+#if defined(__unix__)
+  munmap(pages, bytes);
+#else
+  delete[] pages;
+#endif
+}
+
 void WindowStore::add_pages(std::uint32_t size) {
   const std::uint64_t pages = (std::uint64_t{size} + kPageWindows - 1) >> kPageShift;
   if ((static_cast<std::uint64_t>(page_of_.size()) + pages) << kPageShift > std::numeric_limits<std::uint32_t>::max()) {
     throw Error("geodesic propagation needs more than 2^32 windows at once");
   }
-  allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
+  allocations_.push_back(map_pages(pages << kPageShift));
   allocation_first_page_.push_back(static_cast<std::uint32_t>(page_of_.size()));
   for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
   held_pages_ += static_cast<std::int64_t>(pages);

@@ -150,7 +150,18 @@ class WindowStore {
                      int k, double lo, double hi);
   void push_segment(double lo, double hi, int owner);
 
-  std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
+  /// Pages are mapped from the operating system directly, not taken from
+  /// malloc's heap: they are most of the memory and come and go all through
+  /// propagation, and in the heap, between the arrays growing beside them,
+  /// they left it fragmented (tens of MB of resident memory more than live).
+  struct PageRelease {
+    std::size_t bytes = 0;
+    void operator()(Window* pages) const;
+  };
+  using PageMemory = std::unique_ptr<Window[], PageRelease>;
+  static PageMemory map_pages(std::size_t windows);
+
+  std::vector<PageMemory> allocations_;                 ///< a page, or the pages of one large block
   std::vector<std::uint32_t> allocation_first_page_;    ///< of each allocation
   std::vector<Window*> page_of_;                        ///< by page number; null once given back
   std::int64_t held_pages_ = 0;
