@@ -137,7 +137,7 @@ void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& ord
     for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
   }
   field.face_edges.resize(pm.face_records.size());
-  for (std::size_t f = 0; f < pm.face_records.size(); ++f) field.face_edges[order.old_face[f]] = pm.face_records[f].edge;
+  for (std::size_t f = 0; f < pm.face_records.size(); ++f) field.face_edges[order.old_face[f]] = pm.face_edges(static_cast<Index>(f));
   pm = {};
 }
 

@@ -1,5 +1,7 @@
 #include "propagation_mesh.hpp"
 
+#include "geodual/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -97,16 +99,17 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   pm.edge_local.reserve(num_edges);
   pm.edge_lengths.reserve(num_edges);
 
+  if (num_edges > FaceRecord::kEdgeMask) {
+    throw Error("meshes of more than 2^30 edges are not supported");
+  }
   pm.face_records.assign(num_faces, FaceRecord{});
   auto add_edge = [&](const HalfEdge& first, const HalfEdge* second) {
     const Index e = static_cast<Index>(pm.edge_faces.size());
     const Index v0 = mesh.faces(first.face, first.local);
     const Index v1 = mesh.faces(first.face, (first.local + 1) % 3);
     const double length = (mesh.vertices.row(v1) - mesh.vertices.row(v0)).norm();
-    auto attach = [&](const HalfEdge& half, std::uint8_t side_flags) {
-      FaceRecord& r = pm.face_records[half.face];
-      r.edge[half.local] = e;
-      r.side_flags[half.local] = side_flags;
+    auto attach = [&](const HalfEdge& half, std::uint32_t flags) {
+      pm.face_records[half.face].edge_bits[half.local] = static_cast<std::uint32_t>(e) | flags;
     };
     pm.edge_lengths.push_back(length);
     attach(first, 0);

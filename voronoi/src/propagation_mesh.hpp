@@ -41,21 +41,27 @@ inline EdgeLayout layout_on_edge(const std::array<double, 3>& length, double twi
 /// of it the face is on and whether the face runs along it against the
 /// edge's direction.
 struct FaceRecord {
-  static constexpr std::uint8_t kSide1 = 1;    ///< the face is edge_faces[e][1]
-  static constexpr std::uint8_t kReversed = 2; ///< and runs from v1 to v0
+  static constexpr std::uint32_t kSide1 = std::uint32_t{1} << 30;    ///< the face is edge_faces[e][1]
+  static constexpr std::uint32_t kReversed = std::uint32_t{1} << 31; ///< and runs from v1 to v0
+  static constexpr std::uint32_t kEdgeMask = kSide1 - 1;
+  static constexpr std::uint32_t kNoEdge = ~std::uint32_t{0};
   double twice_area = 0;
-  std::array<Index, 3> edge{-1, -1, -1};
   std::array<Index, 3> vertex{-1, -1, -1};
-  std::array<std::uint8_t, 3> side_flags{};
+  /// Per local edge: the edge's index, with the kSide1 and kReversed flags
+  /// in its two top bits (so the record is 32 bytes); kNoEdge for a face
+  /// that takes no part.
+  std::array<std::uint32_t, 3> edge_bits{kNoEdge, kNoEdge, kNoEdge};
 
-  int side(int k) const { return side_flags[k] & kSide1; }
+  bool included() const { return edge_bits[0] != kNoEdge; }
+  Index edge(int k) const { return static_cast<Index>(edge_bits[k] & kEdgeMask); }
+  int side(int k) const { return (edge_bits[k] & kSide1) != 0 ? 1 : 0; }
   /// The face's coordinate along edge k runs against the edge's frame.
-  bool flipped(int k) const { return (side_flags[k] & kReversed) != 0; }
+  bool flipped(int k) const { return (edge_bits[k] & kReversed) != 0; }
   /// The edge's end vertices in the order of the edge's frame (v0, v1).
   Index edge_start(int k) const { return flipped(k) ? vertex[(k + 1) % 3] : vertex[k]; }
   Index edge_end(int k) const { return flipped(k) ? vertex[k] : vertex[(k + 1) % 3]; }
 };
-static_assert(sizeof(FaceRecord) == 40);
+static_assert(sizeof(FaceRecord) == 32);
 
 /// Built from a mesh, it keeps no reference to it: the mesh may go once built.
 /// Each fact is stored once: an edge's end vertices are read from the record
@@ -85,16 +91,20 @@ struct PropagationMesh {
   Index num_vertices() const { return static_cast<Index>(vertex_face_begin.size()) - 1; }
   Index num_faces() const { return static_cast<Index>(face_records.size()); }
   Index num_edges() const { return static_cast<Index>(edge_faces.size()); }
-  bool included(Index face) const { return face_records[face].edge[0] >= 0; }
+  bool included(Index face) const { return face_records[face].included(); }
 
   /// The face's three edges (edge k joins corners k and k + 1); all -1 for a
   /// face that takes no part.
-  const std::array<Index, 3>& face_edges(Index face) const { return face_records[face].edge; }
+  std::array<Index, 3> face_edges(Index face) const {
+    const FaceRecord& r = face_records[face];
+    if (!r.included()) return {-1, -1, -1};
+    return {r.edge(0), r.edge(1), r.edge(2)};
+  }
   Index vertex(Index face, int corner) const { return face_records[face].vertex[corner]; }
   double edge_length(Index edge) const { return edge_lengths[edge]; }
   /// The lengths of the face's edges, by local edge.
   std::array<double, 3> face_lengths(const FaceRecord& face) const {
-    return {edge_lengths[face.edge[0]], edge_lengths[face.edge[1]], edge_lengths[face.edge[2]]};
+    return {edge_lengths[face.edge(0)], edge_lengths[face.edge(1)], edge_lengths[face.edge(2)]};
   }
   /// End vertices v0, v1 of the edge's frame.
   std::array<Index, 2> edge_vertices(Index edge) const {

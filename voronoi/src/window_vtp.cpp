@@ -141,7 +141,7 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
     // The apex in the frame of the opposite edge (see face_frame_to_edge_frame).
     const double x = face.flipped(k) ? l.length - l.apex.x() : l.apex.x();
     const double y = face.side(k) == 0 ? l.apex.y() : -l.apex.y();
-    submit(face.edge[k], l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, source_id, 0});
+    submit(face.edge(k), l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, source_id, 0});
   }
 }
 
@@ -258,7 +258,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
     const bool flip_j = face.flipped(j);
     const double src_x = flip_j ? len - source_local.x() : source_local.x();
     const double src_y = face.side(j) == 0 ? source_local.y() : -source_local.y();
-    submit(face.edge[j], len, face.edge_start(j), face.edge_end(j),
+    submit(face.edge(j), len, face.edge_start(j), face.edge_end(j),
            {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.source, 0});
   };
   if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
@@ -299,7 +299,7 @@ void WindowVtp::expand(Index v) {
   for (const Index f : new_faces_) {
     const FaceRecord& face = pm_.face_records[f];
     for (int k = 0; k < 3; ++k) {
-      const Index e = face.edge[k];
+      const Index e = face.edge(k);
       const int side = face.side(k);
       bool any = false;
       for (Window& w : store_.on_edge(e)) {
