@@ -431,6 +431,14 @@ void WindowVtp::run() {
   }
   if (options_.remove_redundant_windows) remove_redundant_windows(kInfinity);
   if (options_.progress && !options_.progress(1.0)) throw Cancelled("geodesic computation cancelled");
+  // The queues are empty now: their memory goes back before the caller
+  // builds its results next to what is kept (distances, labels, windows).
+  events_ = EventQueue(0);
+  face_events_ = decltype(face_events_)();
+  fifo_ = std::vector<Index>();
+  in_fifo_ = std::vector<std::uint8_t>();
+  created_ = std::vector<WindowStore::Piece>();
+  new_faces_ = std::vector<Index>();
   stats_.windows_stored = store_.live();
   stats_.peak_windows = store_.peak();
   stats_.peak_window_bytes = peak_window_bytes_;
