@@ -411,9 +411,9 @@ void WindowStore::split_overlap(const Window& candidate, double candidate_sigma,
   }
 }
 
-void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created) {
+void WindowStore::insert(Index edge, const Window& candidate, const WindowSource& candidate_source, double edge_length,
+                         std::vector<Piece>& created) {
   min_length_ = 1e-12 * edge_length;
-  const WindowSource candidate_source = sources_[candidate.source];
   Index& site_summary = slots_[edge].site;
   if (site_summary == kNoSite) {
     site_summary = candidate_source.site;

@@ -52,6 +52,11 @@ class WindowStore {
   void reserve_sources(std::size_t count) { sources_.reserve(count); }
   const WindowSource& source(std::uint32_t id) const { return sources_[id]; }
   const WindowSource& source_of(const Window& w) const { return sources_[w.source]; }
+  void prefetch_source([[maybe_unused]] const Window& w) const {
+#if defined(__GNUC__)
+    __builtin_prefetch(sources_.data() + w.source);
+#endif
+  }
 
   /// A surviving piece of an inserted window: its position in on_edge() and
   /// its interval (the rest is the candidate's), so that callers need not
@@ -66,7 +71,9 @@ class WindowStore {
   /// margin) the existing windows win, so ties never churn. Appends to
   /// `created` the candidate's surviving pieces, in increasing order (their
   /// `queued` flag is cleared; pieces of existing windows keep theirs).
-  void insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created);
+  /// `source` is source_of(candidate), which the caller has at hand.
+  void insert(Index edge, const Window& candidate, const WindowSource& source, double edge_length,
+              std::vector<Piece>& created);
 
   /// The site of every window ever inserted on the edge since it was last
   /// cleared, kNoSite if none, kMixedSites if several (the windows held now

@@ -103,6 +103,7 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
   // Chains of zero-area faces are crossed, but never without end.
   constexpr int kMaxZeroAreaCrossings = 16;
   const std::uint32_t source_id = store_.add_source(sigma, site);
+  const WindowSource window_source{sigma, site};
   for (int j = 0; j < 3; ++j) {
     if (j == skip_local_edge) continue;
     const Index e = pm_.face_edges(face)[j];
@@ -116,12 +117,13 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
-    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), source_id, 0});
+    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), source_id, 0}, window_source);
   }
 }
 
 void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
   const std::uint32_t source_id = store_.add_source(sigma, site);
+  const WindowSource window_source{sigma, site};
   for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
     const Index f = pm_.vertex_faces[i];
     const FaceRecord& face = pm_.face_records[f];
@@ -141,20 +143,20 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
     // The apex in the frame of the opposite edge (see face_frame_to_edge_frame).
     const double x = face.flipped(k) ? l.length - l.apex.x() : l.apex.x();
     const double y = face.side(k) == 0 ? l.apex.y() : -l.apex.y();
-    submit(face.edge(k), l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, source_id, 0});
+    submit(face.edge(k), l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, source_id, 0},
+           window_source);
   }
 }
 
 // ------------------------------------------------------------ propagation --
 
-void WindowVtp::submit(Index e, const Window& w) {
+void WindowVtp::submit(Index e, const Window& w, const WindowSource& source) {
   const std::array<Index, 2> ends = pm_.edge_vertices(e);
-  submit(e, pm_.edge_length(e), ends[0], ends[1], w);
+  submit(e, pm_.edge_length(e), ends[0], ends[1], w, source);
 }
 
-void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w) {
+void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w, const WindowSource& source) {
   if (!(w.b1 > w.b0)) return;
-  const WindowSource source = store_.source_of(w);
   if (w.source_y == 0 || !(length > 0)) {
     // Paths along the edge's line: they matter only at its end points.
     if (w.b0 <= kEndpointTolerance * length) relax(v0, w.distance_at(0, source.sigma), source.site);
@@ -168,7 +170,7 @@ void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window&
   if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0, source.sigma)) return;
 
   created_.clear();
-  store_.insert(e, w, length, created_);
+  store_.insert(e, w, source, length, created_);
   stats_.windows_created += static_cast<std::int64_t>(created_.size());
   if (store_.bytes() > window_bytes_limit_) {
     throw Error("geodesic propagation needs more than the window memory limit of " +
@@ -207,6 +209,7 @@ void WindowVtp::enqueue_edge(Index e) {
 }
 
 void WindowVtp::propagate(Index e, const Window& w) {
+  store_.prefetch_source(w);  // a cache miss, overlapped with the face's
   const int side = w.entering_side();
   const Index g = pm_.edge_faces[e][side];
   if (g < 0) return;
@@ -215,7 +218,6 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const std::array<double, 3> lengths = pm_.face_lengths(face);
   const EdgeLayout l = layout_on_edge(lengths, face.twice_area, k);
   const double length = l.length;
-  const WindowSource source = store_.source_of(w);
 
   // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex
   // above the axis, the source below it.
@@ -224,6 +226,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const double b0 = flip ? length - w.b1 : w.b0;
   const double b1 = flip ? length - w.b0 : w.b1;
   if (!(s.y() < 0)) return;
+  const WindowSource source = store_.source_of(w);
   const Eigen::Vector2d a(0, 0), b(length, 0), c = l.apex;
 
   // Where the ray from the source through C crosses the edge.
@@ -259,7 +262,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
     const double src_x = flip_j ? len - source_local.x() : source_local.x();
     const double src_y = face.side(j) == 0 ? source_local.y() : -source_local.y();
     submit(face.edge(j), len, face.edge_start(j), face.edge_end(j),
-           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.source, 0});
+           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.source, 0}, source);
   };
   if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
   if (x_c < b1) emit_child((k + 1) % 3, b, c, std::max(b0, x_c), b1);

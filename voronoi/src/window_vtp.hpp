@@ -70,8 +70,10 @@ class WindowVtp {
 
   /// Inserts a window on edge e (of the given length, from v0 to v1); its
   /// surviving pieces relax the edge's end points and are scheduled.
-  void submit(Index e, double length, Index v0, Index v1, const Window& window);
-  void submit(Index e, const Window& window);
+  /// `source` is the window's (the store's table has it too; passing it on
+  /// saves looking it up in the hot path).
+  void submit(Index e, double length, Index v0, Index v1, const Window& window, const WindowSource& source);
+  void submit(Index e, const Window& window, const WindowSource& source);
   /// A window on e goes into the FIFO if the face it enters is traversed;
   /// otherwise it is on the wavefront and its edge's end points wait in the
   /// vertex queue.
