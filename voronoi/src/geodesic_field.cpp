@@ -126,19 +126,18 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
 void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& order, GeodesicField& field) {
   const auto num_edges = static_cast<std::size_t>(pm.num_edges());
   field.edge_vertices.resize(num_edges);
-  field.edge_length.resize(num_edges);
   for (std::size_t e = 0; e < num_edges; ++e) {
     const std::array<Index, 2> ends = pm.edge_vertices(static_cast<Index>(e));
     field.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
-    field.edge_length[e] = pm.edge_length(static_cast<Index>(e));
   }
+  field.edge_length = std::move(pm.edge_lengths);
   pm.edge_local = std::vector<std::array<std::uint8_t, 2>>();
   field.edge_faces = std::move(pm.edge_faces);
   for (auto& faces : field.edge_faces) {
     for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
   }
   field.face_edges.resize(pm.face_records.size());
-  for (std::size_t f = 0; f < pm.face_records.size(); ++f) field.face_edges[order.old_face[f]] = pm.face_records[f].edge;
+  for (std::size_t f = 0; f < pm.face_records.size(); ++f) field.face_edges[order.old_face[f]] = pm.face_edges(static_cast<Index>(f));
   pm = {};
 }
 
@@ -149,7 +148,8 @@ void copy_windows(const detail::WindowStore& store, Index num_edges, GeodesicFie
   for (Index e = 0; e < num_edges; ++e) {
     field.window_begin[e] = static_cast<Index>(field.windows.size());
     for (const detail::Window& w : store.on_edge(e)) {
-      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, w.sigma, w.site});
+      const detail::WindowSource& source = store.source_of(w);
+      field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site});
     }
   }
   field.window_begin.back() = static_cast<Index>(field.windows.size());

@@ -1,5 +1,7 @@
 #include "propagation_mesh.hpp"
 
+#include "geodual/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -95,19 +97,21 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   }
   pm.edge_faces.reserve(num_edges);
   pm.edge_local.reserve(num_edges);
+  pm.edge_lengths.reserve(num_edges);
 
+  if (num_edges > FaceRecord::kEdgeMask) {
+    throw Error("meshes of more than 2^30 edges are not supported");
+  }
   pm.face_records.assign(num_faces, FaceRecord{});
   auto add_edge = [&](const HalfEdge& first, const HalfEdge* second) {
     const Index e = static_cast<Index>(pm.edge_faces.size());
     const Index v0 = mesh.faces(first.face, first.local);
     const Index v1 = mesh.faces(first.face, (first.local + 1) % 3);
     const double length = (mesh.vertices.row(v1) - mesh.vertices.row(v0)).norm();
-    auto attach = [&](const HalfEdge& half, std::uint8_t side_flags) {
-      FaceRecord& r = pm.face_records[half.face];
-      r.edge[half.local] = e;
-      r.length[half.local] = length;
-      r.side_flags[half.local] = side_flags;
+    auto attach = [&](const HalfEdge& half, std::uint32_t flags) {
+      pm.face_records[half.face].edge_bits[half.local] = static_cast<std::uint32_t>(e) | flags;
     };
+    pm.edge_lengths.push_back(length);
     attach(first, 0);
     if (second != nullptr) {
       const bool reversed = mesh.faces(second->face, second->local) == v1;
@@ -135,7 +139,8 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     if (!pm.included(f)) continue;
     FaceRecord& r = pm.face_records[f];
     for (int k = 0; k < 3; ++k) r.vertex[k] = mesh.faces(f, k);
-    r.twice_area = twice_area_from_lengths(r.length[0], r.length[1], r.length[2]);
+    const std::array<double, 3> lengths = pm.face_lengths(r);
+    r.twice_area = twice_area_from_lengths(lengths[0], lengths[1], lengths[2]);
   }
 
   // Vertex -> faces, by counting sort (faces in increasing order).

@@ -22,44 +22,50 @@ struct EdgeLayout {
   Eigen::Vector2d apex = Eigen::Vector2d::Zero();
 };
 
-/// What propagating a window through a face needs, in one cache line: the
-/// face's edges, corners and edge lengths, twice its area (the layouts follow
-/// from these without a square root), and per edge which side of it the face
-/// is on and whether the face runs along it against the edge's direction.
-struct alignas(64) FaceRecord {
-  static constexpr std::uint8_t kSide1 = 1;    ///< the face is edge_faces[e][1]
-  static constexpr std::uint8_t kReversed = 2; ///< and runs from v1 to v0
-  std::array<double, 3> length{};
-  double twice_area = 0;
-  std::array<Index, 3> edge{-1, -1, -1};
-  std::array<Index, 3> vertex{-1, -1, -1};
-  std::array<std::uint8_t, 3> side_flags{};
+/// A face laid out for its edge k (see EdgeLayout), from its edge lengths and
+/// twice its area. Law of cosines for the apex's x; its height from the
+/// cancellation-free area, which keeps needles and slivers accurate.
+inline EdgeLayout layout_on_edge(const std::array<double, 3>& length, double twice_area, int k) {
+  EdgeLayout l;
+  const double a = length[k];
+  l.length = a;
+  if (!(a > 0)) return l;
+  const double next = length[(k + 1) % 3], prev = length[(k + 2) % 3];
+  l.apex = Eigen::Vector2d((a * a + prev * prev - next * next) / (2 * a), twice_area / a);
+  return l;
+}
 
-  int side(int k) const { return side_flags[k] & kSide1; }
+/// What propagating a window through a face needs besides its edge lengths
+/// (kept per edge): the face's edges and corners, twice its area (the
+/// layouts follow from these without a square root), and per edge which side
+/// of it the face is on and whether the face runs along it against the
+/// edge's direction.
+struct FaceRecord {
+  static constexpr std::uint32_t kSide1 = std::uint32_t{1} << 30;    ///< the face is edge_faces[e][1]
+  static constexpr std::uint32_t kReversed = std::uint32_t{1} << 31; ///< and runs from v1 to v0
+  static constexpr std::uint32_t kEdgeMask = kSide1 - 1;
+  static constexpr std::uint32_t kNoEdge = ~std::uint32_t{0};
+  double twice_area = 0;
+  std::array<Index, 3> vertex{-1, -1, -1};
+  /// Per local edge: the edge's index, with the kSide1 and kReversed flags
+  /// in its two top bits (so the record is 32 bytes); kNoEdge for a face
+  /// that takes no part.
+  std::array<std::uint32_t, 3> edge_bits{kNoEdge, kNoEdge, kNoEdge};
+
+  bool included() const { return edge_bits[0] != kNoEdge; }
+  Index edge(int k) const { return static_cast<Index>(edge_bits[k] & kEdgeMask); }
+  int side(int k) const { return (edge_bits[k] & kSide1) != 0 ? 1 : 0; }
   /// The face's coordinate along edge k runs against the edge's frame.
-  bool flipped(int k) const { return (side_flags[k] & kReversed) != 0; }
+  bool flipped(int k) const { return (edge_bits[k] & kReversed) != 0; }
   /// The edge's end vertices in the order of the edge's frame (v0, v1).
   Index edge_start(int k) const { return flipped(k) ? vertex[(k + 1) % 3] : vertex[k]; }
   Index edge_end(int k) const { return flipped(k) ? vertex[k] : vertex[(k + 1) % 3]; }
-
-  /// The face laid out for its edge k (see EdgeLayout). Law of cosines for
-  /// the apex's x; its height from the cancellation-free area, which keeps
-  /// needles and slivers accurate.
-  EdgeLayout layout(int k) const {
-    EdgeLayout l;
-    const double a = length[k];
-    l.length = a;
-    if (!(a > 0)) return l;
-    const double next = length[(k + 1) % 3], prev = length[(k + 2) % 3];
-    l.apex = Eigen::Vector2d((a * a + prev * prev - next * next) / (2 * a), twice_area / a);
-    return l;
-  }
 };
-static_assert(sizeof(FaceRecord) == 64);
+static_assert(sizeof(FaceRecord) == 32);
 
 /// Built from a mesh, it keeps no reference to it: the mesh may go once built.
-/// Each fact is stored once: an edge's length and end vertices are read from
-/// the record of its face [0].
+/// Each fact is stored once: an edge's end vertices are read from the record
+/// of its face [0].
 struct PropagationMesh {
   /// Per face, the data propagation reads (see FaceRecord); faces with a
   /// repeated vertex index take no part and keep default records (edges -1).
@@ -69,6 +75,8 @@ struct PropagationMesh {
   /// v1 in the direction of face [0].
   std::vector<std::array<Index, 2>> edge_faces;
   std::vector<std::array<std::uint8_t, 2>> edge_local;
+  /// Per edge: its length.
+  std::vector<double> edge_lengths;
 
   /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
   std::vector<Index> vertex_face_begin;
@@ -83,13 +91,21 @@ struct PropagationMesh {
   Index num_vertices() const { return static_cast<Index>(vertex_face_begin.size()) - 1; }
   Index num_faces() const { return static_cast<Index>(face_records.size()); }
   Index num_edges() const { return static_cast<Index>(edge_faces.size()); }
-  bool included(Index face) const { return face_records[face].edge[0] >= 0; }
+  bool included(Index face) const { return face_records[face].included(); }
 
   /// The face's three edges (edge k joins corners k and k + 1); all -1 for a
   /// face that takes no part.
-  const std::array<Index, 3>& face_edges(Index face) const { return face_records[face].edge; }
+  std::array<Index, 3> face_edges(Index face) const {
+    const FaceRecord& r = face_records[face];
+    if (!r.included()) return {-1, -1, -1};
+    return {r.edge(0), r.edge(1), r.edge(2)};
+  }
   Index vertex(Index face, int corner) const { return face_records[face].vertex[corner]; }
-  double edge_length(Index edge) const { return face_records[edge_faces[edge][0]].length[edge_local[edge][0]]; }
+  double edge_length(Index edge) const { return edge_lengths[edge]; }
+  /// The lengths of the face's edges, by local edge.
+  std::array<double, 3> face_lengths(const FaceRecord& face) const {
+    return {edge_lengths[face.edge(0)], edge_lengths[face.edge(1)], edge_lengths[face.edge(2)]};
+  }
   /// End vertices v0, v1 of the edge's frame.
   std::array<Index, 2> edge_vertices(Index edge) const {
     const FaceRecord& face = face_records[edge_faces[edge][0]];
@@ -104,7 +120,10 @@ struct PropagationMesh {
   }
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
-  EdgeLayout layout(Index face, int k) const { return face_records[face].layout(k); }
+  EdgeLayout layout(Index face, int k) const {
+    const FaceRecord& record = face_records[face];
+    return layout_on_edge(face_lengths(record), record.twice_area, k);
+  }
   /// Which side of edge e face `face` is on: 0 or 1.
   int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }
 };

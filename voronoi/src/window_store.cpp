@@ -8,6 +8,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <new>
+
+#if defined(__unix__)
+#include <sys/mman.h>
+#endif
 
 namespace geodual::voronoi::detail {
 namespace {
@@ -16,19 +21,27 @@ namespace {
 /// replace it; re-derived copies of one window then never displace each other.
 constexpr double kTieMargin = 1e-13;
 
+/// A window with its source's sigma, for the comparisons below.
+struct Cone {
+  const Window& w;
+  double sigma;
+  double distance_at(double x) const { return w.distance_at(x, sigma); }
+};
+
 /// f(x) = d1(x) - d2(x).
-double difference(const Window& w1, const Window& w2, double x) { return w1.distance_at(x) - w2.distance_at(x); }
+double difference(const Cone& c1, const Cone& c2, double x) { return c1.distance_at(x) - c2.distance_at(x); }
 
 /// Abscissas in (lo, hi) where the two windows' distances are equal: the
 /// roots of sigma1 + |x - s1| = sigma2 + |x - s2|, found by squaring twice
 /// (a quadratic, whose spurious roots are harmless: every sub-interval is then
 /// decided by evaluating both windows), polished with Newton steps, and backed
 /// by bisection wherever the difference changes sign but no root was found.
-int crossings(const Window& w1, const Window& w2, double lo, double hi, std::array<double, 2>& roots) {
+int crossings(const Cone& c1, const Cone& c2, double lo, double hi, std::array<double, 2>& roots) {
+  const Window &w1 = c1.w, &w2 = c2.w;
   const double shift = 0.5 * (lo + hi);  // work near the interval for precision
   const double a1 = w1.source_x - shift, a2 = w2.source_x - shift;
   const double h1 = w1.source_y * w1.source_y, h2 = w2.source_y * w2.source_y;
-  const double delta = w2.sigma - w1.sigma;
+  const double delta = c2.sigma - c1.sigma;
   const double alpha = 2 * (a2 - a1);
   const double beta = a1 * a1 - a2 * a2 + h1 - h2 - delta * delta;
   const double d2 = 4 * delta * delta;
@@ -62,7 +75,7 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
     for (int step = 0; step < 2; ++step) {
       const double r1 = std::sqrt((x - w1.source_x) * (x - w1.source_x) + h1);
       const double r2 = std::sqrt((x - w2.source_x) * (x - w2.source_x) + h2);
-      const double f = (w1.sigma + r1) - (w2.sigma + r2);
+      const double f = (c1.sigma + r1) - (c2.sigma + r2);
       const double df = (r1 > 0 ? (x - w1.source_x) / r1 : 0) - (r2 > 0 ? (x - w2.source_x) / r2 : 0);
       if (df == 0) break;
       x -= f / df;
@@ -70,12 +83,12 @@ int crossings(const Window& w1, const Window& w2, double lo, double hi, std::arr
     if (x > lo && x < hi && (count == 0 || x != roots[0])) roots[count++] = x;
   }
   if (count == 0) {
-    double f_lo = difference(w1, w2, lo), f_hi = difference(w1, w2, hi);
+    double f_lo = difference(c1, c2, lo), f_hi = difference(c1, c2, hi);
     if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) {
       double a = lo, b = hi;
       for (int i = 0; i < 60 && b - a > 0; ++i) {
         const double m = 0.5 * (a + b);
-        const double f_m = difference(w1, w2, m);
+        const double f_m = difference(c1, c2, m);
         if ((f_m < 0) == (f_lo < 0)) {
           a = m;
           f_lo = f_m;
@@ -97,6 +110,14 @@ WindowStore::WindowStore(Index num_edges) : slots_(static_cast<std::size_t>(num_
   add_pages(kPageWindows);
 }
 
+std::uint32_t WindowStore::add_source(double sigma, Index site) {
+  if (sources_.size() >= std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("geodesic propagation needs more than 2^32 window sources");
+  }
+  sources_.push_back({sigma, site});
+  return static_cast<std::uint32_t>(sources_.size() - 1);
+}
+
 std::uint32_t WindowStore::class_for(std::uint32_t count) {
   if (count <= 2) return count;
   // 2^(b-1) < count <= 2^b: the class of 1.5 * 2^(b-1) or of 2^b.
@@ -105,12 +126,32 @@ std::uint32_t WindowStore::class_for(std::uint32_t count) {
   return count <= half + half / 2 ? 2 * b - 1 : 2 * b;
 }
 
+WindowStore::PageMemory WindowStore::map_pages(std::size_t windows) {
+  const std::size_t bytes = windows * sizeof(Window);
+#if defined(__unix__)
+  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED) throw std::bad_alloc();
+  // Windows are implicit-lifetime aggregates; every one is written before it is read.
+  return PageMemory(static_cast<Window*>(memory), PageRelease{bytes});
+#else
+  return PageMemory(new Window[windows], PageRelease{bytes});
+#endif
+}
+
+void WindowStore::PageRelease::operator()(Window* pages) const {
+#if defined(__unix__)
+  munmap(pages, bytes);
+#else
+  delete[] pages;
+#endif
+}
+
 void WindowStore::add_pages(std::uint32_t size) {
   const std::uint64_t pages = (std::uint64_t{size} + kPageWindows - 1) >> kPageShift;
   if ((static_cast<std::uint64_t>(page_of_.size()) + pages) << kPageShift > std::numeric_limits<std::uint32_t>::max()) {
     throw Error("geodesic propagation needs more than 2^32 windows at once");
   }
-  allocations_.push_back(std::make_unique<Window[]>(pages << kPageShift));
+  allocations_.push_back(map_pages(pages << kPageShift));
   allocation_first_page_.push_back(static_cast<std::uint32_t>(page_of_.size()));
   for (std::uint64_t p = 0; p < pages; ++p) page_of_.push_back(allocations_.back().get() + (p << kPageShift));
   held_pages_ += static_cast<std::int64_t>(pages);
@@ -131,24 +172,93 @@ std::uint32_t WindowStore::allocate_block(std::uint32_t block_class) {
   if (!free.empty()) {
     const std::uint32_t begin = free.back();
     free.pop_back();
+    free_windows_ -= block_size(block_class);
     return begin;
   }
-  // Carved from the last allocation if it fits there (a block never
-  // straddles two allocations), else from new pages.
   const std::uint32_t size = block_size(block_class);
-  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
-  if (size > pages_end - next_free_) {
-    free_range(next_free_, pages_end);
-    add_pages(size);
-    next_free_ = pages_end;
+  if (!carve(size)) {
+    // The pages are full. Where the free blocks hold a good part of them, in
+    // the wrong sizes, packing the blocks together makes room instead.
+    if (free_windows_ >= held_pages_ * (kPageWindows / kRepackFraction)) {
+      repack();
+      ++repacks_;
+    }
+    if (!carve(size)) {
+      free_rest_of_pages();
+      const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+      add_pages(size);
+      next_free_ = pages_end;
+      carve(size);
+    }
   }
   const std::uint32_t begin = next_free_;
   next_free_ += size;
   return begin;
 }
 
+bool WindowStore::carve(std::uint32_t size) {
+  // A block never straddles two pages (two allocations, maybe), except a
+  // block larger than a page, which always gets new pages of its own.
+  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+  if (size > kPageWindows) return false;
+  while (next_free_ < pages_end) {
+    const std::uint32_t page_end = (next_free_ | (kPageWindows - 1)) + 1;
+    const bool held = page_of_[next_free_ >> kPageShift] != nullptr;
+    if (held && size <= page_end - next_free_) return true;
+    if (held) free_range(next_free_, page_end);
+    next_free_ = page_end;
+  }
+  return false;
+}
+
+void WindowStore::free_rest_of_pages() {
+  const auto pages_end = static_cast<std::uint32_t>(page_of_.size() << kPageShift);
+  while (next_free_ < pages_end) {
+    const std::uint32_t page_end = (next_free_ | (kPageWindows - 1)) + 1;
+    if (page_of_[next_free_ >> kPageShift] != nullptr) free_range(next_free_, page_end);
+    next_free_ = page_end;
+  }
+}
+
 void WindowStore::free_block(std::uint32_t begin, std::uint32_t block_class) {
-  if (block_class != kNoBlock) free_blocks_[block_class].push_back(begin);
+  if (block_class == kNoBlock) return;
+  free_blocks_[block_class].push_back(begin);
+  free_windows_ += block_size(block_class);
+}
+
+std::uint32_t WindowStore::capacity(const Slot& slot) {
+  return slot.block_class != kNoBlock ? block_size(slot.block_class) : slot.count;
+}
+
+void WindowStore::repack() {
+  // Every block, in the order they lie in memory, slides down to the first
+  // address after the previous one where it fits in one page (so never onto
+  // windows not yet moved), keeping its capacity; a block larger than a page
+  // stays in its pages. The free blocks are gone; what follows the last
+  // block is carved anew.
+  std::vector<std::pair<std::uint32_t, Index>> blocks;
+  for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
+    if (capacity(slots_[e]) > 0) blocks.emplace_back(slots_[e].begin, e);
+  }
+  std::sort(blocks.begin(), blocks.end());
+  std::uint32_t cursor = 0;
+  for (const auto& [begin, e] : blocks) {
+    Slot& slot = slots_[e];
+    const std::uint32_t size = capacity(slot);
+    if (size > kPageWindows) {
+      cursor = begin;
+    } else {
+      while ((cursor & (kPageWindows - 1)) + size > kPageWindows || page_of_[cursor >> kPageShift] == nullptr) {
+        cursor = (cursor | (kPageWindows - 1)) + 1;
+      }
+    }
+    if (cursor != begin && slot.count > 0) std::memmove(window_at(cursor), window_at(begin), slot.count * sizeof(Window));
+    slot.begin = cursor;
+    cursor += size;
+  }
+  for (std::vector<std::uint32_t>& free : free_blocks_) free.clear();
+  free_windows_ = 0;
+  next_free_ = cursor;
 }
 
 void WindowStore::clear_edge(Index edge) {
@@ -197,6 +307,7 @@ void WindowStore::compact() {
     held_pages_ -= end - first;
   }
   for (std::vector<std::uint32_t>& free : free_blocks_) free = std::vector<std::uint32_t>();
+  free_windows_ = 0;
   next_free_ = static_cast<std::uint32_t>(page_of_.size() << kPageShift);  // new blocks on new pages
 }
 
@@ -235,7 +346,8 @@ void WindowStore::push_segment(double lo, double hi, int owner) {
   segments_.push_back({lo, hi, owner});
 }
 
-void WindowStore::split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi) {
+void WindowStore::split_overlap(const Window& candidate, double candidate_sigma, const Window& existing,
+                                double existing_sigma, int k, double lo, double hi) {
   // Both distances and their slopes at the ends of the overlap. Each slope
   // (x - source_x) / r grows along the edge, so the difference's slope lies
   // in [slope_lo, slope_hi]; with its end values that bounds the difference
@@ -246,9 +358,9 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
   const double h_c = candidate.source_y * candidate.source_y, h_e = existing.source_y * existing.source_y;
   const double r_c_lo = std::sqrt(dx_c_lo * dx_c_lo + h_c), r_c_hi = std::sqrt(dx_c_hi * dx_c_hi + h_c);
   const double r_e_lo = std::sqrt(dx_e_lo * dx_e_lo + h_e), r_e_hi = std::sqrt(dx_e_hi * dx_e_hi + h_e);
-  const double d_e_lo = existing.sigma + r_e_lo, d_e_hi = existing.sigma + r_e_hi;
-  const double f_lo = (candidate.sigma + r_c_lo) - d_e_lo;
-  const double f_hi = (candidate.sigma + r_c_hi) - d_e_hi;
+  const double d_e_lo = existing_sigma + r_e_lo, d_e_hi = existing_sigma + r_e_hi;
+  const double f_lo = (candidate_sigma + r_c_lo) - d_e_lo;
+  const double f_hi = (candidate_sigma + r_c_hi) - d_e_hi;
   const double slope_lo = dx_c_lo / r_c_lo - dx_e_hi / r_e_hi;
   const double slope_hi = dx_c_hi / r_c_hi - dx_e_lo / r_e_lo;
   if (f_lo > 0 && f_hi > 0) {
@@ -284,7 +396,8 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
     }
   }
   std::array<double, 2> roots{};
-  const int count = crossings(candidate, existing, lo, hi, roots);
+  const Cone c{candidate, candidate_sigma}, e{existing, existing_sigma};
+  const int count = crossings(c, e, lo, hi, roots);
   std::array<double, 4> cuts{lo, 0, 0, 0};
   int cut_count = 1;
   for (int i = 0; i < count; ++i) cuts[cut_count++] = roots[i];
@@ -293,17 +406,18 @@ void WindowStore::split_overlap(const Window& candidate, const Window& existing,
     const double a = cuts[i], b = cuts[i + 1];
     if (b <= a) continue;
     const double mid = 0.5 * (a + b);
-    const double dc = candidate.distance_at(mid), de = existing.distance_at(mid);
+    const double dc = c.distance_at(mid), de = e.distance_at(mid);
     push_segment(a, b, dc < de - kTieMargin * de ? -1 : k);
   }
 }
 
-void WindowStore::insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created) {
+void WindowStore::insert(Index edge, const Window& candidate, const WindowSource& candidate_source, double edge_length,
+                         std::vector<Piece>& created) {
   min_length_ = 1e-12 * edge_length;
   Index& site_summary = slots_[edge].site;
   if (site_summary == kNoSite) {
-    site_summary = candidate.site;
-  } else if (site_summary != candidate.site) {
+    site_summary = candidate_source.site;
+  } else if (site_summary != candidate_source.site) {
     site_summary = kMixedSites;
   }
   const std::span<const Window> windows = on_edge(edge);
@@ -336,7 +450,7 @@ void WindowStore::insert(Index edge, const Window& candidate, double edge_length
     }
     const double lo = std::max(existing.b0, x);
     const double hi = std::min(existing.b1, candidate.b1);
-    if (hi > lo) split_overlap(candidate, existing, k, lo, hi);
+    if (hi > lo) split_overlap(candidate, candidate_source.sigma, existing, sources_[existing.source].sigma, k, lo, hi);
     if (existing.b1 > candidate.b1) push_segment(candidate.b1, existing.b1, k);
     x = std::max(x, hi);
   }

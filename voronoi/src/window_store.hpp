@@ -13,7 +13,9 @@
 // the old and the new array, three times the windows' bytes). Freed blocks,
 // and page ends too short for the next block, are reused by capacity,
 // newest first, so inserting and freeing do not allocate once the pages are
-// there.
+// there. Edges grow from one class to the next and RWR frees whole edges,
+// so the free blocks pile up in the small classes; once they hold 1/8 of
+// the pages and a new page is due, the blocks are packed together instead.
 
 #include "window.hpp"
 
@@ -44,6 +46,18 @@ class WindowStore {
     return {window_at(s.begin), s.count};
   }
 
+  /// Registers the source of windows about to be inserted; they carry the
+  /// returned id in Window::source.
+  std::uint32_t add_source(double sigma, Index site);
+  void reserve_sources(std::size_t count) { sources_.reserve(count); }
+  const WindowSource& source(std::uint32_t id) const { return sources_[id]; }
+  const WindowSource& source_of(const Window& w) const { return sources_[w.source]; }
+  void prefetch_source([[maybe_unused]] const Window& w) const {
+#if defined(__GNUC__)
+    __builtin_prefetch(sources_.data() + w.source);
+#endif
+  }
+
   /// A surviving piece of an inserted window: its position in on_edge() and
   /// its interval (the rest is the candidate's), so that callers need not
   /// read back what was just written.
@@ -57,7 +71,9 @@ class WindowStore {
   /// margin) the existing windows win, so ties never churn. Appends to
   /// `created` the candidate's surviving pieces, in increasing order (their
   /// `queued` flag is cleared; pieces of existing windows keep theirs).
-  void insert(Index edge, const Window& candidate, double edge_length, std::vector<Piece>& created);
+  /// `source` is source_of(candidate), which the caller has at hand.
+  void insert(Index edge, const Window& candidate, const WindowSource& source, double edge_length,
+              std::vector<Piece>& created);
 
   /// The site of every window ever inserted on the edge since it was last
   /// cleared, kNoSite if none, kMixedSites if several (the windows held now
@@ -74,10 +90,16 @@ class WindowStore {
   void compact();
 
   std::int64_t live() const { return live_; }
+  /// Times the blocks were packed together to make room (see allocate_block).
+  std::int64_t repacks() const { return repacks_; }
   std::int64_t peak() const { return peak_; }
   /// Bytes of window storage held: every page, including blocks that are
   /// free for reuse and the unused capacity of the edges' blocks.
-  std::int64_t bytes() const { return held_pages_ * kPageWindows * static_cast<std::int64_t>(sizeof(Window)); }
+  /// The table of sources counts too.
+  std::int64_t bytes() const {
+    return held_pages_ * kPageWindows * static_cast<std::int64_t>(sizeof(Window)) +
+           static_cast<std::int64_t>(sources_.capacity() * sizeof(WindowSource));
+  }
 
  private:
   /// Windows are addressed by a 32-bit number: page (high bits) and
@@ -117,21 +139,46 @@ class WindowStore {
   Window* splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added);
   /// A block of the class's capacity.
   std::uint32_t allocate_block(std::uint32_t block_class);
+  /// Moves next_free_ to where a block of `size` can be carved from the pages
+  /// held, handing the page ends it skips to the free lists; false if none.
+  bool carve(std::uint32_t size);
+  /// Hands what is left after next_free_ to the free lists.
+  void free_rest_of_pages();
+  /// Slides the blocks together, dropping the free ones (see allocate_block).
+  void repack();
+  static std::uint32_t capacity(const Slot& slot);
   void free_block(std::uint32_t begin, std::uint32_t block_class);
   /// Hands the unused [from, to) of one allocation to the free lists.
   void free_range(std::uint32_t from, std::uint32_t to);
   /// Adds pages for a block of `size` windows from the next page boundary on:
   /// one page, or, for a block larger than a page, contiguous pages of its own.
   void add_pages(std::uint32_t size);
-  void split_overlap(const Window& candidate, const Window& existing, int k, double lo, double hi);
+  void split_overlap(const Window& candidate, double candidate_sigma, const Window& existing, double existing_sigma,
+                     int k, double lo, double hi);
   void push_segment(double lo, double hi, int owner);
 
-  std::vector<std::unique_ptr<Window[]>> allocations_;  ///< a page, or the pages of one large block
+  /// Pages are mapped from the operating system directly, not taken from
+  /// malloc's heap: they are most of the memory and come and go all through
+  /// propagation, and in the heap, between the arrays growing beside them,
+  /// they left it fragmented (tens of MB of resident memory more than live).
+  struct PageRelease {
+    std::size_t bytes = 0;
+    void operator()(Window* pages) const;
+  };
+  using PageMemory = std::unique_ptr<Window[], PageRelease>;
+  static PageMemory map_pages(std::size_t windows);
+
+  std::vector<PageMemory> allocations_;                 ///< a page, or the pages of one large block
   std::vector<std::uint32_t> allocation_first_page_;    ///< of each allocation
   std::vector<Window*> page_of_;                        ///< by page number; null once given back
   std::int64_t held_pages_ = 0;
   std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
+  std::int64_t free_windows_ = 0;                       ///< capacity of the free blocks
+  /// Repack rather than add a page once the free blocks hold 1/kRepackFraction of the pages.
+  static constexpr std::int64_t kRepackFraction = 8;
+  std::int64_t repacks_ = 0;
   std::vector<Slot> slots_;
+  std::vector<WindowSource> sources_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
   std::int64_t live_ = 0;
   std::int64_t peak_ = 0;

@@ -24,9 +24,7 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       options_(options),
       distance_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
       label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
-      best_key_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
-      emitted_at_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
-      popped_(static_cast<std::size_t>(mesh.num_vertices()), 0),
+      vertex_flags_(static_cast<std::size_t>(mesh.num_vertices()), 0),
       face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
       store_(mesh.num_edges()),
       events_(mesh.num_vertices()),
@@ -38,6 +36,10 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
 // ---------------------------------------------------------------- seeding --
 
 void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites) {
+  // Each pseudo-source emits once (again only if its distance falls after),
+  // a face site up to twice: room for that, rather than a doubling array's.
+  const auto pseudo_sources = std::count(pm_.is_pseudo_source.begin(), pm_.is_pseudo_source.end(), std::uint8_t{1});
+  store_.reserve_sources(static_cast<std::size_t>(pseudo_sources) + 2 * sites.size());
   for (Index i = 0; i < static_cast<Index>(sites.size()); ++i) {
     const SurfacePoint& site = sites[i];
     if (site.kind == SurfacePoint::Kind::vertex) {
@@ -50,7 +52,7 @@ void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites) {
 
 void WindowVtp::add_vertex_site(Index vertex, Index site) {
   relax(vertex, 0.0, site);
-  emitted_at_[vertex] = 0.0;
+  vertex_flags_[vertex] |= kEmitted;
   emit_from_vertex(vertex, 0.0, site);
 }
 
@@ -100,6 +102,8 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
                                         int skip_local_edge, double sigma, Index site, int depth) {
   // Chains of zero-area faces are crossed, but never without end.
   constexpr int kMaxZeroAreaCrossings = 16;
+  const std::uint32_t source_id = store_.add_source(sigma, site);
+  const WindowSource window_source{sigma, site};
   for (int j = 0; j < 3; ++j) {
     if (j == skip_local_edge) continue;
     const Index e = pm_.face_edges(face)[j];
@@ -113,18 +117,20 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
       continue;
     }
     const Eigen::Vector2d s = face_frame_to_edge_frame(pm_, e, pm_.side_of(e, face), local);
-    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), sigma, site, 0});
+    submit(e, {0.0, pm_.edge_length(e), s.x(), s.y(), source_id, 0}, window_source);
   }
 }
 
 void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
+  const std::uint32_t source_id = store_.add_source(sigma, site);
+  const WindowSource window_source{sigma, site};
   for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
     const Index f = pm_.vertex_faces[i];
     const FaceRecord& face = pm_.face_records[f];
     int corner = 0;
     while (face.vertex[corner] != v) ++corner;
     const int k = (corner + 1) % 3;  // the edge opposite v
-    const EdgeLayout l = face.layout(k);
+    const EdgeLayout l = layout_on_edge(pm_.face_lengths(face), face.twice_area, k);
     if (!(l.apex.y() > 0) || !(l.length > 0)) {
       // A zero-area face: v lies on the line of its opposite edge. Its end
       // points are reached along the line; where v lies inside the edge, v is
@@ -137,33 +143,34 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
     // The apex in the frame of the opposite edge (see face_frame_to_edge_frame).
     const double x = face.flipped(k) ? l.length - l.apex.x() : l.apex.x();
     const double y = face.side(k) == 0 ? l.apex.y() : -l.apex.y();
-    submit(face.edge[k], l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, sigma, site, 0});
+    submit(face.edge(k), l.length, face.edge_start(k), face.edge_end(k), {0.0, l.length, x, y, source_id, 0},
+           window_source);
   }
 }
 
 // ------------------------------------------------------------ propagation --
 
-void WindowVtp::submit(Index e, const Window& w) {
+void WindowVtp::submit(Index e, const Window& w, const WindowSource& source) {
   const std::array<Index, 2> ends = pm_.edge_vertices(e);
-  submit(e, pm_.edge_length(e), ends[0], ends[1], w);
+  submit(e, pm_.edge_length(e), ends[0], ends[1], w, source);
 }
 
-void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w) {
+void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window& w, const WindowSource& source) {
   if (!(w.b1 > w.b0)) return;
   if (w.source_y == 0 || !(length > 0)) {
     // Paths along the edge's line: they matter only at its end points.
-    if (w.b0 <= kEndpointTolerance * length) relax(v0, w.distance_at(0), w.site);
-    if (w.b1 >= length * (1 - kEndpointTolerance)) relax(v1, w.distance_at(length), w.site);
+    if (w.b0 <= kEndpointTolerance * length) relax(v0, w.distance_at(0, source.sigma), source.site);
+    if (w.b1 >= length * (1 - kEndpointTolerance)) relax(v1, w.distance_at(length, source.sigma), source.site);
     return;
   }
   // Xin & Wang's filter: if the path through an end vertex along the edge is
   // no longer at the window's far end, it is no longer anywhere on the window
   // (the difference is monotone along the edge), and neither beyond it.
-  if (distance_[v0] + w.b1 < w.distance_at(w.b1)) return;
-  if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0)) return;
+  if (distance_[v0] + w.b1 < w.distance_at(w.b1, source.sigma)) return;
+  if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0, source.sigma)) return;
 
   created_.clear();
-  store_.insert(e, w, length, created_);
+  store_.insert(e, w, source, length, created_);
   stats_.windows_created += static_cast<std::int64_t>(created_.size());
   if (store_.bytes() > window_bytes_limit_) {
     throw Error("geodesic propagation needs more than the window memory limit of " +
@@ -175,13 +182,13 @@ void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window&
     Window piece = w;
     piece.b0 = created.b0;
     piece.b1 = created.b1;
-    if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0), piece.site);
-    if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length), piece.site);
-    schedule(e, v0, v1, piece, created.position);
+    if (piece.b0 <= kEndpointTolerance * length) relax(v0, piece.distance_at(0, source.sigma), source.site);
+    if (piece.b1 >= length * (1 - kEndpointTolerance)) relax(v1, piece.distance_at(length, source.sigma), source.site);
+    schedule(e, v0, v1, piece, source.sigma, created.position);
   }
 }
 
-void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, Index position) {
+void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, double sigma, Index position) {
   const Index face = pm_.edge_faces[e][w.entering_side()];
   if (face < 0) return;
   if (face_flags_[face] & kTraversed) {
@@ -190,7 +197,7 @@ void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, Index pos
     return;
   }
   // A wavefront window: its edge's end points wait in the vertex queue.
-  const double key = w.min_distance();
+  const double key = w.min_distance(sigma);
   push_expand(v0, key);
   push_expand(v1, key);
 }
@@ -202,12 +209,14 @@ void WindowVtp::enqueue_edge(Index e) {
 }
 
 void WindowVtp::propagate(Index e, const Window& w) {
+  store_.prefetch_source(w);  // a cache miss, overlapped with the face's
   const int side = w.entering_side();
   const Index g = pm_.edge_faces[e][side];
   if (g < 0) return;
   const int k = pm_.edge_local[e][side];
   const FaceRecord& face = pm_.face_records[g];
-  const EdgeLayout l = face.layout(k);
+  const std::array<double, 3> lengths = pm_.face_lengths(face);
+  const EdgeLayout l = layout_on_edge(lengths, face.twice_area, k);
   const double length = l.length;
 
   // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex
@@ -217,6 +226,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const double b0 = flip ? length - w.b1 : w.b0;
   const double b1 = flip ? length - w.b0 : w.b1;
   if (!(s.y() < 0)) return;
+  const WindowSource source = store_.source_of(w);
   const Eigen::Vector2d a(0, 0), b(length, 0), c = l.apex;
 
   // Where the ray from the source through C crosses the edge.
@@ -224,13 +234,13 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const double x_c = s.x() + (c.x() - s.x()) * t;
   const double tolerance = kEndpointTolerance * length;
   if (x_c >= b0 - tolerance && x_c <= b1 + tolerance) {
-    relax(face.vertex[(k + 2) % 3], w.sigma + (c - s).norm(), w.site);
+    relax(face.vertex[(k + 2) % 3], source.sigma + (c - s).norm(), source.site);
   }
 
   // Child windows: the part of the cone left of C lands on edge C -> A
   // (local edge k + 2), the part right of C on edge B -> C (local edge k + 1).
   auto emit_child = [&](int j, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double x_lo, double x_hi) {
-    const double len = face.length[j];
+    const double len = lengths[j];
     const Eigen::Vector2d pq = q - p;
     const double pq_norm = pq.norm();
     if (!(len > 0) || !(pq_norm > 0)) return;
@@ -251,8 +261,8 @@ void WindowVtp::propagate(Index e, const Window& w) {
     const bool flip_j = face.flipped(j);
     const double src_x = flip_j ? len - source_local.x() : source_local.x();
     const double src_y = face.side(j) == 0 ? source_local.y() : -source_local.y();
-    submit(face.edge[j], len, face.edge_start(j), face.edge_end(j),
-           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.sigma, w.site, 0});
+    submit(face.edge(j), len, face.edge_start(j), face.edge_end(j),
+           {flip_j ? len - hi : lo, flip_j ? len - lo : hi, src_x, src_y, w.source, 0}, source);
   };
   if (b0 < x_c) emit_child((k + 2) % 3, c, a, b0, std::min(b1, x_c));
   if (x_c < b1) emit_child((k + 1) % 3, b, c, std::max(b0, x_c), b1);
@@ -278,7 +288,7 @@ void WindowVtp::drain_fifo() {
 }
 
 void WindowVtp::expand(Index v) {
-  popped_[v] = 1;
+  vertex_flags_[v] |= kPopped;
   ++stats_.vertices_popped;
   new_faces_.clear();
   for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
@@ -292,7 +302,7 @@ void WindowVtp::expand(Index v) {
   for (const Index f : new_faces_) {
     const FaceRecord& face = pm_.face_records[f];
     for (int k = 0; k < 3; ++k) {
-      const Index e = face.edge[k];
+      const Index e = face.edge(k);
       const int side = face.side(k);
       bool any = false;
       for (Window& w : store_.on_edge(e)) {
@@ -316,6 +326,7 @@ void WindowVtp::relax(Index v, double d, Index site) {
   const bool first_time = distance_[v] == kInfinity;
   distance_[v] = d;
   label_[v] = site;
+  vertex_flags_[v] &= static_cast<std::uint8_t>(~kEmitted);
   if (pm_.is_pseudo_source[v]) events_.push_or_decrease({d, v, EventKind::emit});
   if (first_time && options_.remove_redundant_windows) {
     for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
@@ -326,8 +337,8 @@ void WindowVtp::relax(Index v, double d, Index site) {
 }
 
 void WindowVtp::push_expand(Index v, double key) {
-  if (popped_[v] || !(key < best_key_[v])) return;
-  best_key_[v] = key;
+  // The queue keeps the smallest key pushed while the vertex waits.
+  if ((vertex_flags_[v] & kPopped) || !(key < kInfinity)) return;
   events_.push_or_decrease({key, v, EventKind::expand});
 }
 
@@ -336,7 +347,7 @@ bool WindowVtp::pop_event(Event& event) {
     event = events_.top();
     events_.pop();
     // A vertex site emits at once, not from the queue.
-    if (event.kind == EventKind::expand || emitted_at_[event.vertex] > distance_[event.vertex]) return true;
+    if (event.kind == EventKind::expand || !(vertex_flags_[event.vertex] & kEmitted)) return true;
   }
   return false;
 }
@@ -351,7 +362,7 @@ void WindowVtp::push_face_key(Index face) {
   for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
   if (d_min == kInfinity) return;  // pushed when a corner is first reached
   face_flags_[face] |= kKeyPushed;
-  const std::array<double, 3>& lengths = pm_.face_records[face].length;
+  const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
   face_events_.push({d_min + std::max({lengths[0], lengths[1], lengths[2]}), face});
 }
 
@@ -367,7 +378,7 @@ bool WindowVtp::face_is_redundant(Index face) const {
     if (summary == site || summary == WindowStore::kNoSite) continue;
     if (summary != WindowStore::kMixedSites) return false;
     for (const Window& w : store_.on_edge(e)) {
-      if (w.site != site) return false;
+      if (store_.source_of(w).site != site) return false;
     }
   }
   return true;
@@ -411,7 +422,7 @@ void WindowVtp::run() {
   Event event{};
   while (pop_event(event)) {
     if (event.kind == EventKind::emit) {
-      emitted_at_[event.vertex] = event.key;
+      vertex_flags_[event.vertex] |= kEmitted;
       ++stats_.pseudo_sources;
       emit_from_vertex(event.vertex, event.key, label_[event.vertex]);
       drain_fifo();
@@ -423,6 +434,14 @@ void WindowVtp::run() {
   }
   if (options_.remove_redundant_windows) remove_redundant_windows(kInfinity);
   if (options_.progress && !options_.progress(1.0)) throw Cancelled("geodesic computation cancelled");
+  // The queues are empty now: their memory goes back before the caller
+  // builds its results next to what is kept (distances, labels, windows).
+  events_ = EventQueue(0);
+  face_events_ = decltype(face_events_)();
+  fifo_ = std::vector<Index>();
+  in_fifo_ = std::vector<std::uint8_t>();
+  created_ = std::vector<WindowStore::Piece>();
+  new_faces_ = std::vector<Index>();
   stats_.windows_stored = store_.live();
   stats_.peak_windows = store_.peak();
   stats_.peak_window_bytes = peak_window_bytes_;

@@ -48,6 +48,7 @@ class WindowVtp {
   const std::vector<FacePointSource>& point_sources() const { return point_sources_; }
 
  private:
+  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2 };
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
   struct FaceEvent {
     double key;
@@ -69,12 +70,14 @@ class WindowVtp {
 
   /// Inserts a window on edge e (of the given length, from v0 to v1); its
   /// surviving pieces relax the edge's end points and are scheduled.
-  void submit(Index e, double length, Index v0, Index v1, const Window& window);
-  void submit(Index e, const Window& window);
+  /// `source` is the window's (the store's table has it too; passing it on
+  /// saves looking it up in the hot path).
+  void submit(Index e, double length, Index v0, Index v1, const Window& window, const WindowSource& source);
+  void submit(Index e, const Window& window, const WindowSource& source);
   /// A window on e goes into the FIFO if the face it enters is traversed;
   /// otherwise it is on the wavefront and its edge's end points wait in the
   /// vertex queue.
-  void schedule(Index e, Index v0, Index v1, const Window& window, Index position);
+  void schedule(Index e, Index v0, Index v1, const Window& window, double sigma, Index position);
   void enqueue_edge(Index e);
   void propagate(Index e, const Window& window);
   void drain_fifo();
@@ -94,9 +97,9 @@ class WindowVtp {
 
   std::vector<double> distance_;
   std::vector<Index> label_;
-  std::vector<double> best_key_;
-  std::vector<double> emitted_at_;
-  std::vector<std::uint8_t> popped_;
+  /// Per vertex: expanded; emitted windows as a pseudo-source (or vertex
+  /// site) at its current distance.
+  std::vector<std::uint8_t> vertex_flags_;
   std::vector<std::uint8_t> face_flags_;
   Index faces_traversed_ = 0;
 
