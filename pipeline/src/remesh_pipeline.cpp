@@ -69,15 +69,23 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   report(options.progress, Stage::sample, 1.0);
 
   // Relaxation and dual: the geodesic engine reports the fraction of faces
-  // reached in each diagram; Lloyd's iterations split the relax stage.
+  // reached in each diagram; Lloyd's accepted iterations split the relax
+  // stage, and the diagrams after the relaxation are the dual's repair rounds.
   remesh::RemeshOptions remesh_options = options.remesh;
   const int diagrams = remesh_options.lloyd.iterations + 1;
-  int diagram = 0;
+  int diagrams_done = 0;  // the first diagram, then one per accepted iteration
+  bool relaxing = true;
+  double relaxed = 0;     // the relax stage's fraction reported last
   if (options.progress) {
+    remesh_options.lloyd.on_iteration = [&](int iterations_done, bool finished) {
+      diagrams_done = iterations_done + 1;
+      relaxing = !finished;
+    };
     remesh_options.lloyd.voronoi.geodesic.progress = [&](double fraction) {
-      if (fraction >= 1.0) ++diagram;
-      const double done = std::min(1.0, (diagram + (fraction >= 1.0 ? 0.0 : fraction)) / diagrams);
-      return options.progress(diagram < diagrams ? Stage::relax : Stage::dual, diagram < diagrams ? done : 0.5);
+      if (!relaxing) return options.progress(Stage::dual, 0.5);
+      // Never backwards: a rejected step's diagram holds the fraction where it is.
+      relaxed = std::max(relaxed, std::min(1.0, (diagrams_done + std::min(fraction, 1.0)) / diagrams));
+      return options.progress(Stage::relax, relaxed);
     };
   }
   report(options.progress, Stage::relax, 0.0);

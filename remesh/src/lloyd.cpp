@@ -149,6 +149,10 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
   result.sites = std::move(sites);
   result.diagram = diagram_of(result.sites);
   result.energy.push_back(total_energy(result.diagram));
+  auto tell = [&](bool finished) {
+    if (options.on_iteration) options.on_iteration(result.iterations, finished);
+  };
+  tell(false);
 
   double factor = options.over_relaxation;
   double damping = options.newton_damping;
@@ -192,7 +196,9 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
     if (!accepted) break;  // not even Lloyd's step lowers the energy: stop here
     ++result.iterations;
     if (previous - result.energy.back() < options.tolerance * previous) break;
+    tell(false);
   }
+  tell(true);
   return result;
 }
 

@@ -52,6 +52,32 @@ TEST(RemeshPipeline, RunsEveryStageAndKeepsEveryIntermediate) {
   EXPECT_EQ(seen.back(), pipeline::Stage::statistics);
 }
 
+TEST(RemeshPipeline, RelaxProgressRisesAndEndsWithTheRelaxationEvenWhenStepsAreRejected) {
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.remesh.lloyd.iterations = 4;
+  options.remesh.lloyd.tolerance = 0;
+  // Undamped, unbounded Newton steps: some overshoot and are rejected, each
+  // costing a diagram that is not an iteration.
+  options.remesh.lloyd.newton_damping = 1e-9;
+  options.remesh.lloyd.newton_max_step = 1e9;
+  std::vector<pipeline::Stage> seen;
+  double relax_fraction = 0;
+  options.progress = [&](pipeline::Stage stage, double fraction) {
+    if (seen.empty() || seen.back() != stage) seen.push_back(stage);
+    if (stage == pipeline::Stage::relax) {
+      EXPECT_GE(fraction, relax_fraction);
+      relax_fraction = fraction;
+    }
+    return true;
+  };
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(genus_four, options);
+  ASSERT_GT(result.remesh.lloyd_diagrams, result.remesh.lloyd_iterations + 1);  // the case this test is about
+  const std::vector<pipeline::Stage> expected = {pipeline::Stage::load, pipeline::Stage::sample, pipeline::Stage::relax,
+                                                 pipeline::Stage::dual, pipeline::Stage::statistics};
+  EXPECT_EQ(seen, expected);
+  EXPECT_LE(relax_fraction, 1.0);
+}
+
 TEST(RemeshPipeline, TheProgressCallbackCancels) {
   pipeline::RemeshPipelineOptions options = small_options();
   options.progress = [](pipeline::Stage stage, double fraction) {

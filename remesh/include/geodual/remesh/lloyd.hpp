@@ -22,6 +22,7 @@
 #include "geodual/voronoi/surface_point.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace geodual::remesh {
@@ -48,6 +49,10 @@ struct LloydOptions {
   /// boundary loops into the remesh); true moves them like the others.
   bool move_boundary_sites = false;
   voronoi::VoronoiOptions voronoi;
+  /// For progress reports: told the iterations accepted so far once the
+  /// first diagram is done and after each accepted iteration (a rejected
+  /// step costs a diagram but no iteration), then `finished` at the end.
+  std::function<void(int iterations_done, bool finished)> on_iteration;
 };
 
 struct LloydResult {
