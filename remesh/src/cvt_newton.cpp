@@ -9,9 +9,14 @@ namespace geodual::remesh::detail {
 namespace {
 
 /// Conjugate-gradient iterations stop once the preconditioned residual has
-/// shrunk by this factor, or after this many.
+/// shrunk by this factor, or after this many. Few iterations on purpose
+/// (truncated Newton): the softest directions of H (rows of cells sliding
+/// together) are the last CG resolves and where the surface Hessian is least
+/// exact; after 10 iterations the step is smoother and rejected less often
+/// (on four scans at 5K and 20K sites, Qavg after 10 steps +0.000 to +0.005
+/// over 200 iterations, with 11-12 diagrams instead of 11-14).
 constexpr double kRelativeResidual = 1e-3;
-constexpr int kMaximumIterations = 200;
+constexpr int kMaximumIterations = 10;
 
 Eigen::Vector3d face_normal(const TriangleMesh& mesh, Index face) {
   const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(face, 0)).transpose();
