@@ -1,5 +1,7 @@
 #include "sampling_grid.hpp"
 
+#include "geodual/morton_code.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -9,17 +11,6 @@ namespace geodual::remesh::detail {
 namespace {
 
 using CellCoordinates = std::array<std::int64_t, 3>;
-
-/// Spreads the low 21 bits of x to every third bit.
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
 
 std::uint64_t hash_cell(const CellCoordinates& c) {
   std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 0x9e3779b97f4a7c15ULL;
@@ -71,9 +62,8 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
   // is millions of spacings long); row order otherwise.
   const bool z_order = largest < (std::int64_t{1} << 21);
   for (Keyed& k : keyed) {
-    k.morton = z_order ? spread_bits(static_cast<std::uint64_t>(k.cell[0])) |
-                             spread_bits(static_cast<std::uint64_t>(k.cell[1])) << 1 |
-                             spread_bits(static_cast<std::uint64_t>(k.cell[2])) << 2
+    k.morton = z_order ? morton_code(static_cast<std::uint64_t>(k.cell[0]), static_cast<std::uint64_t>(k.cell[1]),
+                                     static_cast<std::uint64_t>(k.cell[2]))
                        : 0;
   }
   std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {

@@ -1,26 +1,15 @@
 #include "locality_order.hpp"
 
+#include "geodual/morton_code.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
 
 namespace geodual::voronoi::detail {
-namespace {
-
-/// Spreads the low 21 bits of x to every third bit.
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
-
-}  // namespace
 
 LocalityOrder locality_order(const TriangleMesh& mesh) {
   const Index num_vertices = mesh.num_vertices();
@@ -42,13 +31,12 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
     const Eigen::RowVector3d c =
         (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) + mesh.vertices.row(mesh.faces(f, 2))) /
         3.0;
-    std::uint64_t key = 0;
+    std::array<std::uint64_t, 3> cell;
     for (int axis = 0; axis < 3; ++axis) {
       const double q = (c[axis] - lo[axis]) * scale;
-      const double cell = q > 0 ? std::min(q, kCells) : 0.0;  // also for NaN
-      key |= spread_bits(static_cast<std::uint64_t>(cell)) << axis;
+      cell[axis] = static_cast<std::uint64_t>(q > 0 ? std::min(q, kCells) : 0.0);  // also for NaN
     }
-    code[f] = key;
+    code[f] = morton_code(cell[0], cell[1], cell[2]);
   }
   order.old_face.resize(static_cast<std::size_t>(num_faces));
   std::iota(order.old_face.begin(), order.old_face.end(), Index{0});
