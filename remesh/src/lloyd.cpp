@@ -1,6 +1,7 @@
 #include "geodual/remesh/lloyd.hpp"
 
 #include "cvt_newton.hpp"
+#include "geodual/error.hpp"
 #include "surface_walk.hpp"
 
 #include <Eigen/Geometry>
@@ -9,6 +10,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <string>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -135,9 +138,25 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const std::vector
   return moved;
 }
 
+/// geodual::UsageError naming the first option out of range.
+void check_options(const LloydOptions& options) {
+  auto require = [](bool holds, const std::string& what) {
+    if (!holds) throw UsageError("lloyd_relax: " + what);
+  };
+  require(options.iterations >= 0, "iterations must be >= 0, got " + std::to_string(options.iterations));
+  require(options.tolerance >= 0, "tolerance must be >= 0, got " + std::to_string(options.tolerance));
+  require(options.over_relaxation > 0 && options.over_relaxation < 2,
+          "over_relaxation must be in (0, 2), got " + std::to_string(options.over_relaxation));
+  require(options.newton_damping > 0 && std::isfinite(options.newton_damping),
+          "newton_damping must be a finite number > 0, got " + std::to_string(options.newton_damping));
+  require(options.newton_max_step > 0 && std::isfinite(options.newton_max_step),
+          "newton_max_step must be a finite number > 0, got " + std::to_string(options.newton_max_step));
+}
+
 }  // namespace
 
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options) {
+  check_options(options);
   LloydResult result;
   auto diagram_of = [&](const std::vector<SurfacePoint>& points) {
     voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, points, options.voronoi);

@@ -3,6 +3,7 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
+#include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh_report.hpp"
 #include "geodual/remesh/lloyd.hpp"
@@ -15,6 +16,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
 #include <numbers>
 
 namespace geodual {
@@ -142,6 +145,35 @@ TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   // down in as many iterations.
   EXPECT_LT(by_newton.energy.back(), by_lloyd.energy.back());
   EXPECT_GT(remesh::triangle_quality(by_newton.mesh).q_avg, remesh::triangle_quality(by_lloyd.mesh).q_avg);
+}
+
+TEST(Lloyd, OptionsOutOfRangeAreRefusedByName) {
+  const TriangleMesh disk = test::disk(8, 32);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(disk, 20);
+  auto refused = [&](const remesh::LloydOptions& options, const std::string& name) {
+    try {
+      (void)remesh::lloyd_relax(disk, sites, options);
+    } catch (const UsageError& error) {
+      EXPECT_NE(std::string(error.what()).find(name), std::string::npos) << error.what();
+      return;
+    }
+    ADD_FAILURE() << name << " was accepted";
+  };
+  remesh::LloydOptions options;
+  options.iterations = -1;
+  refused(options, "iterations");
+  options = {};
+  options.tolerance = std::nan("");
+  refused(options, "tolerance");
+  options = {};
+  options.over_relaxation = 2;
+  refused(options, "over_relaxation");
+  options = {};
+  options.newton_damping = 0;
+  refused(options, "newton_damping");
+  options = {};
+  options.newton_max_step = std::numeric_limits<double>::infinity();
+  refused(options, "newton_max_step");
 }
 
 TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {

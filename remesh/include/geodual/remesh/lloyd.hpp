@@ -66,7 +66,7 @@ struct LloydResult {
   double move_seconds = 0;          ///< centroid steps
 };
 
-/// Throws as compute_voronoi does.
+/// Throws geodual::UsageError for options out of range, and as compute_voronoi does.
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options = {});
 
 }  // namespace geodual::remesh
