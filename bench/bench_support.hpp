@@ -149,6 +149,17 @@ inline std::optional<std::int64_t> memory_available_bytes() {
   return std::nullopt;
 }
 
+/// "a,b,c" -> {"a", "b", "c"} (a list option's items; views into text).
+inline std::vector<std::string_view> split_commas(std::string_view text) {
+  std::vector<std::string_view> parts;
+  while (true) {
+    const std::size_t comma = text.find(',');
+    parts.push_back(text.substr(0, comma));
+    if (comma == std::string_view::npos) return parts;
+    text.remove_prefix(comma + 1);
+  }
+}
+
 /// The 1, 5 and 15 minute load averages as /proc/loadavg prints them.
 inline std::string load_average() {
   std::ifstream in("/proc/loadavg");

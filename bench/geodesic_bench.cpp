@@ -144,16 +144,6 @@ T parse_number(std::string_view option, std::string_view text) {
   return value;
 }
 
-std::vector<std::string_view> split_commas(std::string_view text) {
-  std::vector<std::string_view> parts;
-  while (true) {
-    const std::size_t comma = text.find(',');
-    parts.push_back(text.substr(0, comma));
-    if (comma == std::string_view::npos) return parts;
-    text.remove_prefix(comma + 1);
-  }
-}
-
 Options parse_options(int argc, char** argv) {
   Options options;
   const std::vector<std::string_view> args(argv + 1, argv + argc);

@@ -542,14 +542,8 @@ Options parse_options(int argc, char** argv) {
     if (arg == "--sites") {
       options.site_counts.clear();
       const std::string list = value();
-      std::size_t start = 0;
-      while (true) {
-        const std::size_t comma = list.find(',', start);
-        options.site_counts.push_back(
-            parse_integer(arg, list.substr(start, comma == std::string::npos ? std::string::npos : comma - start), 4,
-                          100'000'000));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
+      for (const std::string_view item : split_commas(list)) {
+        options.site_counts.push_back(parse_integer(arg, std::string(item), 4, 100'000'000));
       }
     } else if (arg == "--lloyd") {
       options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));

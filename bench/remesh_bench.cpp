@@ -46,17 +46,12 @@ struct Run {
 
 std::vector<std::int64_t> parse_list(const std::string& text) {
   std::vector<std::int64_t> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+  for (const std::string_view item : split_commas(text)) {
     try {
-      values.push_back(std::stoll(item));
+      values.push_back(std::stoll(std::string(item)));
     } catch (const std::exception&) {
-      throw UsageError("not a number: '" + item + "'");
+      throw UsageError("not a number: '" + std::string(item) + "'");
     }
-    if (comma == std::string::npos) break;
-    start = comma + 1;
   }
   return values;
 }
