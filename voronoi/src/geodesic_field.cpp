@@ -1,6 +1,7 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include "geodual/error.hpp"
+#include "heap_trim.hpp"
 #include "locality_order.hpp"
 #include "propagation_mesh.hpp"
 #include "window_vtp.hpp"
@@ -65,9 +66,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
                     " has zero area; place the site on a neighbouring face");
       }
     }
-    if (site.kind == SurfacePoint::Kind::vertex &&
-        pm.vertex_face_begin[locality.new_vertex[site.element]] ==
-            pm.vertex_face_begin[locality.new_vertex[site.element] + 1]) {
+    if (site.kind == SurfacePoint::Kind::vertex && pm.vertex_face[locality.new_vertex[site.element]] < 0) {
       throw Error(site_name(i) + ": vertex " + std::to_string(site.element) + " is used by no triangle");
     }
   }
@@ -141,18 +140,23 @@ void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& ord
   pm = {};
 }
 
-/// The retained windows into the field, grouped by edge.
-void copy_windows(const detail::WindowStore& store, Index num_edges, GeodesicField& field) {
+/// The retained windows into the field, grouped by edge, emptying the store
+/// as they go (see WindowStore::drain: the two copies would otherwise be the
+/// peak of the whole computation).
+void move_windows(detail::WindowStore& store, Index num_edges, GeodesicField& field) {
+  constexpr int kRounds = 8;
   field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
   field.windows.reserve(static_cast<std::size_t>(store.live()));
-  for (Index e = 0; e < num_edges; ++e) {
-    field.window_begin[e] = static_cast<Index>(field.windows.size());
-    for (const detail::Window& w : store.on_edge(e)) {
+  Index next_edge = 0;
+  auto take = [&](Index edge, std::span<const detail::Window> windows) {
+    for (; next_edge <= edge; ++next_edge) field.window_begin[next_edge] = static_cast<Index>(field.windows.size());
+    for (const detail::Window& w : windows) {
       const detail::WindowSource& source = store.source_of(w);
       field.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site});
     }
-  }
-  field.window_begin.back() = static_cast<Index>(field.windows.size());
+  };
+  store.drain(take, kRounds);
+  for (; next_edge <= num_edges; ++next_edge) field.window_begin[next_edge] = static_cast<Index>(field.windows.size());
 }
 
 }  // namespace
@@ -177,18 +181,19 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   // keep a vector's memory: it is assignment from an empty initializer list.)
   order.new_vertex = std::vector<Index>();
   order.new_face = std::vector<Index>();
+  detail::trim_heap();  // the renumbered copy and the setup's scratch arrays
   const double setup_seconds = seconds_since(start);
 
   detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
   windows.compact();
   field.stats.setup_seconds = setup_seconds;
-  pm.vertex_face_begin = std::vector<Index>();
-  pm.vertex_faces = std::vector<Index>();
+  pm.vertex_face = std::vector<Index>();
+  pm.extra_fans = std::vector<std::array<Index, 2>>();
   pm.is_pseudo_source = std::vector<std::uint8_t>();
   const Index num_edges = pm.num_edges();
   move_topology(pm, order, field);
   order = {};
-  copy_windows(windows, num_edges, field);
+  move_windows(windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;
 }

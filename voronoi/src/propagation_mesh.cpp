@@ -27,34 +27,20 @@ std::array<double, 3> corner_angles(const PropagationMesh& pm, Index face) {
   return {at0, at1, std::max(0.0, std::numbers::pi - at0 - at1)};
 }
 
-/// Faces reachable from `start` by turning around `v` across shared edges.
-Index fan_size(const PropagationMesh& pm, Index v, Index start) {
-  Index visited = 1;
-  for (int direction = 0; direction < 2; ++direction) {
-    Index face = start;
-    int corner = 0;
-    while (pm.vertex(face, corner) != v) ++corner;
-    // The two local edges at corner c are c (c -> c+1) and c+2 (c+2 -> c).
-    int exit_edge_local = direction == 0 ? corner : (corner + 2) % 3;
-    for (;;) {
-      const Index e = pm.face_edges(face)[exit_edge_local];
-      const int side = pm.side_of(e, face);
-      const Index next = pm.edge_faces[e][1 - side];
-      if (next < 0) break;
-      if (next == start) return visited;  // closed fan: each face counted once
-      ++visited;
-      // In `next`, leave through its other edge incident to v.
-      const int entry_local = pm.edge_local[e][1 - side];
-      int next_corner = 0;
-      while (pm.vertex(next, next_corner) != v) ++next_corner;
-      exit_edge_local = entry_local == next_corner ? (next_corner + 2) % 3 : next_corner;
-      face = next;
-    }
-  }
-  return visited;
-}
-
 }  // namespace
+
+void PropagationMesh::faces_around(Index v, std::vector<Index>& faces) const {
+  faces.clear();
+  const Index first = vertex_face[v];
+  if (first < 0) return;
+  auto add = [&](Index f) { faces.push_back(f); };
+  walk_fan(v, first, add);
+  if (!extra_fans.empty()) {
+    auto it = std::lower_bound(extra_fans.begin(), extra_fans.end(), std::array<Index, 2>{v, -1});
+    for (; it != extra_fans.end() && (*it)[0] == v; ++it) walk_fan(v, (*it)[1], add);
+  }
+  std::sort(faces.begin(), faces.end());
+}
 
 PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   PropagationMesh pm;
@@ -143,19 +129,35 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     r.twice_area = twice_area_from_lengths(lengths[0], lengths[1], lengths[2]);
   }
 
-  // Vertex -> faces, by counting sort (faces in increasing order).
-  pm.vertex_face_begin.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
-  for (Index f = 0; f < num_faces; ++f) {
-    if (!pm.included(f)) continue;
-    for (int k = 0; k < 3; ++k) ++pm.vertex_face_begin[mesh.faces(f, k) + 1];
-  }
-  for (Index v = 0; v < num_vertices; ++v) pm.vertex_face_begin[v + 1] += pm.vertex_face_begin[v];
-  pm.vertex_faces.resize(pm.vertex_face_begin.back());
+  // One face per vertex (its first), and a start for each further fan of a
+  // vertex where several fans meet, found with a vertex -> faces table that
+  // goes again once they are known.
   {
-    std::vector<Index> fill(pm.vertex_face_begin.begin(), pm.vertex_face_begin.end() - 1);
+    std::vector<Index> begin(static_cast<std::size_t>(num_vertices) + 1, 0);
     for (Index f = 0; f < num_faces; ++f) {
       if (!pm.included(f)) continue;
-      for (int k = 0; k < 3; ++k) pm.vertex_faces[fill[mesh.faces(f, k)]++] = f;
+      for (int k = 0; k < 3; ++k) ++begin[mesh.faces(f, k) + 1];
+    }
+    for (Index v = 0; v < num_vertices; ++v) begin[v + 1] += begin[v];
+    std::vector<Index> faces(static_cast<std::size_t>(begin.back()));
+    {
+      std::vector<Index> fill(begin.begin(), begin.end() - 1);
+      for (Index f = 0; f < num_faces; ++f) {
+        if (!pm.included(f)) continue;
+        for (int k = 0; k < 3; ++k) faces[fill[mesh.faces(f, k)]++] = f;
+      }
+    }
+    pm.vertex_face.assign(static_cast<std::size_t>(num_vertices), -1);
+    std::vector<Index> reached_from(static_cast<std::size_t>(num_faces), -1);  // the vertex whose fans reached the face
+    for (Index v = 0; v < num_vertices; ++v) {
+      if (begin[v] == begin[v + 1]) continue;
+      pm.vertex_face[v] = faces[begin[v]];
+      for (Index i = begin[v]; i < begin[v + 1]; ++i) {
+        const Index start = faces[i];
+        if (reached_from[start] == v) continue;
+        if (i > begin[v]) pm.extra_fans.push_back({v, start});
+        pm.walk_fan(v, start, [&](Index f) { reached_from[f] = v; });
+      }
     }
   }
 
@@ -180,12 +182,11 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   // pseudo-source costs a little time but never accuracy.
   constexpr double kSaddleTolerance = 1e-9;
   pm.is_pseudo_source.assign(num_vertices, 0);
+  for (const auto& [v, face] : pm.extra_fans) pm.is_pseudo_source[v] = 1;
   for (Index v = 0; v < num_vertices; ++v) {
-    const Index begin = pm.vertex_face_begin[v], end = pm.vertex_face_begin[v + 1];
-    if (begin == end) continue;
+    if (pm.vertex_face[v] < 0) continue;
     const bool saddle = angle_sum[v] > 2 * std::numbers::pi - kSaddleTolerance;
-    const bool several_fans = !on_boundary[v] && fan_size(pm, v, pm.vertex_faces[begin]) < end - begin;
-    pm.is_pseudo_source[v] = saddle || on_boundary[v] || several_fans;
+    pm.is_pseudo_source[v] |= static_cast<std::uint8_t>(saddle || on_boundary[v]);
   }
   return pm;
 }

@@ -78,9 +78,14 @@ struct PropagationMesh {
   /// Per edge: its length.
   std::vector<double> edge_lengths;
 
-  /// Faces around each vertex (CSR): vertex_faces[vertex_face_begin[v] .. [v+1]).
-  std::vector<Index> vertex_face_begin;
-  std::vector<Index> vertex_faces;
+  /// Per vertex, one of its faces (-1: used by no face that takes part); the
+  /// others follow by turning around the vertex (for_each_face_around).
+  std::vector<Index> vertex_face;
+  /// (vertex, face), sorted: where several fans of faces meet at a vertex
+  /// (a pinch, or boundary and non-manifold edges), a face of each fan
+  /// after the one of vertex_face. Rare: a table of all the faces around
+  /// every vertex would be the size of the face records' corners.
+  std::vector<std::array<Index, 2>> extra_fans;
 
   /// Saddle (angle sum > 2 pi - tol), boundary or non-manifold vertices: paths
   /// may bend around them, so they emit windows once their distance is final.
@@ -88,7 +93,7 @@ struct PropagationMesh {
 
   Index num_included_faces = 0;
 
-  Index num_vertices() const { return static_cast<Index>(vertex_face_begin.size()) - 1; }
+  Index num_vertices() const { return static_cast<Index>(vertex_face.size()); }
   Index num_faces() const { return static_cast<Index>(face_records.size()); }
   Index num_edges() const { return static_cast<Index>(edge_faces.size()); }
   bool included(Index face) const { return face_records[face].included(); }
@@ -126,6 +131,45 @@ struct PropagationMesh {
   }
   /// Which side of edge e face `face` is on: 0 or 1.
   int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }
+  /// The corner of `face` at vertex v (which must be one of its corners).
+  int corner_of(Index face, Index v) const {
+    const FaceRecord& r = face_records[face];
+    return r.vertex[0] == v ? 0 : r.vertex[1] == v ? 1 : 2;
+  }
+
+  /// The faces around vertex v that take part, into `faces`, in increasing
+  /// order: propagation visits them in that order, and where distances tie
+  /// exactly (sites co-circular about a vertex) the order decides which
+  /// windows stay.
+  void faces_around(Index v, std::vector<Index>& faces) const;
+
+  /// Calls visit(face) for `start` and every face reached from it by turning
+  /// around v across shared edges: one way until the fan closes or ends at a
+  /// boundary edge, then the other way. (Each edge has at most two faces and
+  /// each face one corner at v, so the walk is a path or a cycle.)
+  template <class Visit>
+  void walk_fan(Index v, Index start, Visit&& visit) const {
+    visit(start);
+    for (int direction = 0; direction < 2; ++direction) {
+      Index face = start;
+      const int corner = corner_of(face, v);
+      // The two local edges at corner c are c (c -> c+1) and c+2 (c+2 -> c).
+      int exit = direction == 0 ? corner : (corner + 2) % 3;
+      for (;;) {
+        const FaceRecord& record = face_records[face];
+        const Index e = record.edge(exit);
+        const int side = record.side(exit);
+        const Index next = edge_faces[e][1 - side];
+        if (next < 0) break;
+        if (next == start) return;  // a closed fan
+        visit(next);
+        const int entry = edge_local[e][1 - side];
+        const int next_corner = corner_of(next, v);
+        exit = entry == next_corner ? (next_corner + 2) % 3 : next_corner;
+        face = next;
+      }
+    }
+  }
 };
 
 PropagationMesh build_propagation_mesh(const TriangleMesh& mesh);

@@ -268,15 +268,19 @@ void WindowStore::clear_edge(Index edge) {
   slot = Slot{};
 }
 
-void WindowStore::compact() {
-  // Blocks in the order they lie in memory, each moved down to the first
-  // free address in a page it fits in whole (so never onto windows not yet
-  // moved). A block larger than a page stays where it is, in its own pages.
+std::vector<Index> WindowStore::edges_in_memory_order() const {
   std::vector<Index> edges;
   for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
     if (slots_[e].count > 0) edges.push_back(e);
   }
   std::sort(edges.begin(), edges.end(), [&](Index a, Index b) { return slots_[a].begin < slots_[b].begin; });
+  return edges;
+}
+
+void WindowStore::slide_down(std::span<const Index> edges) {
+  // Blocks in the order they lie in memory, each moved down to the first
+  // free address in a page it fits in whole (so never onto windows not yet
+  // moved). A block larger than a page stays where it is, in its own pages.
   std::vector<std::uint8_t> page_used(page_of_.size(), 0);
   std::uint32_t cursor = 0;
   for (const Index e : edges) {
@@ -309,6 +313,31 @@ void WindowStore::compact() {
   for (std::vector<std::uint32_t>& free : free_blocks_) free = std::vector<std::uint32_t>();
   free_windows_ = 0;
   next_free_ = static_cast<std::uint32_t>(page_of_.size() << kPageShift);  // new blocks on new pages
+}
+
+void WindowStore::compact() { slide_down(edges_in_memory_order()); }
+
+void WindowStore::drain(const std::function<void(Index, std::span<const Window>)>& take, int rounds) {
+  std::vector<Index> left = edges_in_memory_order();
+  const std::int64_t total = live_;
+  std::int64_t taken = 0;
+  Index next_edge = 0;
+  for (int round = 1; round <= rounds && !left.empty(); ++round) {
+    // Edges from next_edge on, until this round's share of the windows is taken.
+    const std::int64_t goal = round == rounds ? total : total * round / rounds;
+    Index end_edge = next_edge;
+    for (; end_edge < static_cast<Index>(slots_.size()) && taken < goal; ++end_edge) {
+      Slot& slot = slots_[end_edge];
+      if (slot.count == 0) continue;
+      take(end_edge, on_edge(end_edge));
+      taken += slot.count;
+      live_ -= slot.count;
+      slot = Slot{};
+    }
+    next_edge = end_edge;
+    std::erase_if(left, [&](Index e) { return e < end_edge; });
+    slide_down(left);
+  }
 }
 
 Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed, std::uint32_t added) {

@@ -22,6 +22,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -49,6 +50,7 @@ class WindowStore {
   /// Registers the source of windows about to be inserted; they carry the
   /// returned id in Window::source.
   std::uint32_t add_source(double sigma, Index site);
+  std::size_t num_sources() const { return sources_.size(); }
   void reserve_sources(std::size_t count) { sources_.reserve(count); }
   const WindowSource& source(std::uint32_t id) const { return sources_[id]; }
   const WindowSource& source_of(const Window& w) const { return sources_[w.source]; }
@@ -84,10 +86,20 @@ class WindowStore {
   void clear_edge(Index edge);
 
   /// Packs the windows together in memory and gives back the pages left
-  /// empty: for keeping the windows once propagation is over, when the free
-  /// blocks and unused capacity would otherwise double what they take. The
-  /// store stays usable; an edge that grows afterwards moves to a new block.
+  /// empty: once propagation is over, when the free blocks and unused
+  /// capacity would otherwise add half as much again. The store stays
+  /// usable; an edge that grows afterwards moves to a new block.
   void compact();
+
+  /// Moves the windows out for good: calls take(edge, windows) for every
+  /// edge that holds windows, in increasing edge order, and gives the pages
+  /// back as it goes, so that the caller's copy and the store never hold the
+  /// windows twice. The edges go in `rounds` ranges of about equal numbers
+  /// of windows; after each, the windows left slide down to the front of the
+  /// pages and the pages emptied behind them are unmapped (moving
+  /// (rounds - 1) / 2 times the windows' bytes in all). The store is empty
+  /// afterwards; the table of sources stays.
+  void drain(const std::function<void(Index, std::span<const Window>)>& take, int rounds);
 
   std::int64_t live() const { return live_; }
   /// Times the blocks were packed together to make room (see allocate_block).
@@ -146,6 +158,12 @@ class WindowStore {
   void free_rest_of_pages();
   /// Slides the blocks together, dropping the free ones (see allocate_block).
   void repack();
+  /// The edges that hold windows, by their windows' address.
+  std::vector<Index> edges_in_memory_order() const;
+  /// Slides the blocks of `edges` (in memory order; every edge holding
+  /// windows) down to the front of the pages, exactly full, and unmaps the
+  /// pages left empty.
+  void slide_down(std::span<const Index> edges);
   static std::uint32_t capacity(const Slot& slot);
   void free_block(std::uint32_t begin, std::uint32_t block_class);
   /// Hands the unused [from, to) of one allocation to the free lists.

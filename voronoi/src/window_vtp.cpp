@@ -124,12 +124,11 @@ void WindowVtp::emit_from_point_in_face(Index face, const FaceInPlane& plane, co
 void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
   const std::uint32_t source_id = store_.add_source(sigma, site);
   const WindowSource window_source{sigma, site};
-  for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
-    const Index f = pm_.vertex_faces[i];
+  // Its own list: relaxing the far corners walks round them meanwhile.
+  pm_.faces_around(v, emit_faces_);
+  for (const Index f : emit_faces_) {
     const FaceRecord& face = pm_.face_records[f];
-    int corner = 0;
-    while (face.vertex[corner] != v) ++corner;
-    const int k = (corner + 1) % 3;  // the edge opposite v
+    const int k = (pm_.corner_of(f, v) + 1) % 3;  // the edge opposite v
     const EdgeLayout l = layout_on_edge(pm_.face_lengths(face), face.twice_area, k);
     if (!(l.apex.y() > 0) || !(l.length > 0)) {
       // A zero-area face: v lies on the line of its opposite edge. Its end
@@ -291,8 +290,8 @@ void WindowVtp::expand(Index v) {
   vertex_flags_[v] |= kPopped;
   ++stats_.vertices_popped;
   new_faces_.clear();
-  for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
-    const Index f = pm_.vertex_faces[i];
+  pm_.faces_around(v, fan_);
+  for (const Index f : fan_) {
     if (face_flags_[f] & kTraversed) continue;
     face_flags_[f] |= kTraversed;
     ++faces_traversed_;
@@ -329,8 +328,8 @@ void WindowVtp::relax(Index v, double d, Index site) {
   vertex_flags_[v] &= static_cast<std::uint8_t>(~kEmitted);
   if (pm_.is_pseudo_source[v]) events_.push_or_decrease({d, v, EventKind::emit});
   if (first_time && options_.remove_redundant_windows) {
-    for (Index i = pm_.vertex_face_begin[v]; i < pm_.vertex_face_begin[v + 1]; ++i) {
-      const Index f = pm_.vertex_faces[i];
+    pm_.faces_around(v, fan_);
+    for (const Index f : fan_) {
       if (face_flags_[f] & kTraversed) push_face_key(f);
     }
   }
@@ -363,7 +362,10 @@ void WindowVtp::push_face_key(Index face) {
   if (d_min == kInfinity) return;  // pushed when a corner is first reached
   face_flags_[face] |= kKeyPushed;
   const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
-  face_events_.push({d_min + std::max({lengths[0], lengths[1], lengths[2]}), face});
+  const double key = d_min + std::max({lengths[0], lengths[1], lengths[2]});
+  float rounded_up = static_cast<float>(key);
+  if (static_cast<double>(rounded_up) < key) rounded_up = std::nextafter(rounded_up, std::numeric_limits<float>::infinity());
+  face_events_.push({key, face}); (void)rounded_up;
 }
 
 bool WindowVtp::face_is_redundant(Index face) const {
@@ -389,7 +391,7 @@ void WindowVtp::remove_redundant_windows(double lower_bound) {
   // the true minimum over f), no window yet to come, all of which are at least
   // `lower_bound` away, can lower any distance on f's edges once
   // d_min(f) + |e_max(f)| <= lower_bound.
-  while (!face_events_.empty() && face_events_.top().key <= lower_bound) {
+  while (!face_events_.empty() && static_cast<double>(face_events_.top().key) <= lower_bound) {
     const Index f = face_events_.top().face;
     face_events_.pop();
     if (face_flags_[f] & kInactive) continue;
@@ -442,6 +444,8 @@ void WindowVtp::run() {
   in_fifo_ = std::vector<std::uint8_t>();
   created_ = std::vector<WindowStore::Piece>();
   new_faces_ = std::vector<Index>();
+  fan_ = std::vector<Index>();
+  emit_faces_ = std::vector<Index>();
   stats_.windows_stored = store_.live();
   stats_.peak_windows = store_.peak();
   stats_.peak_window_bytes = peak_window_bytes_;
