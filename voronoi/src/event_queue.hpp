@@ -30,7 +30,11 @@ struct Event {
 
 class EventQueue {
  public:
-  explicit EventQueue(Index num_vertices) : position_(2 * static_cast<std::size_t>(num_vertices), kAbsent) {}
+  /// Reserves room for every entry at once: address space costs no memory
+  /// until used, whereas a doubling array leaves its outgrown copies behind.
+  explicit EventQueue(Index num_vertices) : position_(2 * static_cast<std::size_t>(num_vertices), kAbsent) {
+    heap_.reserve(position_.size());
+  }
 
   bool empty() const { return heap_.empty(); }
   const Event& top() const { return heap_.front(); }

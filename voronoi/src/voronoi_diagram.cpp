@@ -187,6 +187,12 @@ void chain_arcs(const BoundaryGraph& graph, VoronoiDiagram& diagram) {
   }
   auto stops_at = [&](Index n) { return vertex_of_node[n] >= 0 || begin[n + 1] - begin[n] != 2; };
 
+  // Each arc has its start node's point, then per piece the piece's points
+  // and its end node's; there are no more arcs than pieces. Sized once: a
+  // doubling array would leave its outgrown copies behind at the peak.
+  const std::size_t most_points = graph.points.size() + 2 * static_cast<std::size_t>(num_pieces);
+  diagram.points.reserve(most_points);
+  diagram.point_locations.reserve(most_points);
   std::vector<std::uint8_t> used(num_pieces, 0);
   auto walk = [&](Index start, Index first_piece) {
     VoronoiArc arc;
@@ -382,7 +388,13 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
             idle.push_back(work);
           }));
 
+  // The graph holds the crossings' nodes now: the crossings, the tracers'
+  // scratch and the face marks go before the arcs are built beside it.
+  store = EdgeCrossingStore(0);
+  tracers.clear();
+  std::vector<std::uint8_t>().swap(traced);
   chain_arcs(graph, diagram);
+  graph = BoundaryGraph{};
   collect_adjacency(diagram);
   diagram.stats.extraction_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

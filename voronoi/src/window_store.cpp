@@ -1,6 +1,7 @@
 #include "window_store.hpp"
 
 #include "geodual/error.hpp"
+#include "heap_trim.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <new>
+#include <numeric>
 
 #if defined(__unix__)
 #include <sys/mman.h>
@@ -182,6 +184,7 @@ std::uint32_t WindowStore::allocate_block(std::uint32_t block_class) {
     if (free_windows_ >= held_pages_ * (kPageWindows / kRepackFraction)) {
       repack();
       ++repacks_;
+      trim_heap();  // the sorted list of blocks
     }
     if (!carve(size)) {
       free_rest_of_pages();
@@ -236,14 +239,10 @@ void WindowStore::repack() {
   // windows not yet moved), keeping its capacity; a block larger than a page
   // stays in its pages. The free blocks are gone; what follows the last
   // block is carved anew.
-  std::vector<std::pair<std::uint32_t, Index>> blocks;
-  for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
-    if (capacity(slots_[e]) > 0) blocks.emplace_back(slots_[e].begin, e);
-  }
-  std::sort(blocks.begin(), blocks.end());
   std::uint32_t cursor = 0;
-  for (const auto& [begin, e] : blocks) {
+  for (const Index e : edges_by_address(Holding::a_block)) {
     Slot& slot = slots_[e];
+    const std::uint32_t begin = slot.begin;
     const std::uint32_t size = capacity(slot);
     if (size > kPageWindows) {
       cursor = begin;
@@ -268,12 +267,35 @@ void WindowStore::clear_edge(Index edge) {
   slot = Slot{};
 }
 
-std::vector<Index> WindowStore::edges_in_memory_order() const {
-  std::vector<Index> edges;
-  for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
-    if (slots_[e].count > 0) edges.push_back(e);
+std::vector<Index> WindowStore::edges_by_address(Holding holding) const {
+  auto holds = [&](const Slot& slot) { return holding == Holding::windows ? slot.count > 0 : capacity(slot) > 0; };
+  // By page first (a counting sort), then by address within each page: this
+  // runs when memory is tightest, so the list is sized once, and sorting
+  // small runs of plain keys is several times faster than one sort of all
+  // the edges by their slots' addresses.
+  std::vector<Index> page_first(page_of_.size() + 1, 0);
+  for (const Slot& slot : slots_) {
+    if (holds(slot)) ++page_first[(slot.begin >> kPageShift) + 1];
   }
-  std::sort(edges.begin(), edges.end(), [&](Index a, Index b) { return slots_[a].begin < slots_[b].begin; });
+  std::partial_sum(page_first.begin(), page_first.end(), page_first.begin());
+  std::vector<Index> edges(static_cast<std::size_t>(page_first.back()));
+  {
+    std::vector<Index> fill(page_first.begin(), page_first.end() - 1);
+    for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
+      if (holds(slots_[e])) edges[fill[slots_[e].begin >> kPageShift]++] = e;
+    }
+  }
+  std::vector<std::uint64_t> keyed;  // address, then edge
+  for (std::size_t page = 0; page + 1 < page_first.size(); ++page) {
+    const auto first = edges.begin() + page_first[page], last = edges.begin() + page_first[page + 1];
+    if (last - first < 2) continue;
+    keyed.clear();
+    for (auto it = first; it != last; ++it) {
+      keyed.push_back(std::uint64_t{slots_[*it].begin} << 32 | static_cast<std::uint32_t>(*it));
+    }
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < keyed.size(); ++i) first[static_cast<std::ptrdiff_t>(i)] = static_cast<Index>(keyed[i] & 0xffffffffu);
+  }
   return edges;
 }
 
@@ -315,10 +337,10 @@ void WindowStore::slide_down(std::span<const Index> edges) {
   next_free_ = static_cast<std::uint32_t>(page_of_.size() << kPageShift);  // new blocks on new pages
 }
 
-void WindowStore::compact() { slide_down(edges_in_memory_order()); }
+void WindowStore::compact() { slide_down(edges_by_address(Holding::windows)); }
 
 void WindowStore::drain(const std::function<void(Index, std::span<const Window>)>& take, int rounds) {
-  std::vector<Index> left = edges_in_memory_order();
+  std::vector<Index> left = edges_by_address(Holding::windows);
   const std::int64_t total = live_;
   std::int64_t taken = 0;
   Index next_edge = 0;

@@ -158,8 +158,9 @@ class WindowStore {
   void free_rest_of_pages();
   /// Slides the blocks together, dropping the free ones (see allocate_block).
   void repack();
-  /// The edges that hold windows, by their windows' address.
-  std::vector<Index> edges_in_memory_order() const;
+  /// The edges that hold windows, or a block (possibly emptied), by address.
+  enum class Holding { windows, a_block };
+  std::vector<Index> edges_by_address(Holding holding) const;
   /// Slides the blocks of `edges` (in memory order; every edge holding
   /// windows) down to the front of the pages, exactly full, and unmaps the
   /// pages left empty.
@@ -193,7 +194,7 @@ class WindowStore {
   std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
   std::int64_t free_windows_ = 0;                       ///< capacity of the free blocks
   /// Repack rather than add a page once the free blocks hold 1/kRepackFraction of the pages.
-  static constexpr std::int64_t kRepackFraction = 8;
+  static constexpr std::int64_t kRepackFraction = 16;
   std::int64_t repacks_ = 0;
   std::vector<Slot> slots_;
   std::vector<WindowSource> sources_;

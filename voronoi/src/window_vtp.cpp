@@ -31,6 +31,11 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       in_fifo_(static_cast<std::size_t>(mesh.num_edges()), 0) {
   window_bytes_limit_ = static_cast<std::int64_t>(
       std::min<std::size_t>(options.window_memory_limit_bytes, std::numeric_limits<std::int64_t>::max()));
+  // Room for every face at once: reserved address space costs no memory until
+  // used, whereas a doubling array leaves its outgrown copies in the heap.
+  std::vector<FaceEvent> face_events;
+  if (options.remove_redundant_windows) face_events.reserve(static_cast<std::size_t>(mesh.num_faces()));
+  face_events_ = decltype(face_events_)(std::greater<>(), std::move(face_events));
 }
 
 // ---------------------------------------------------------------- seeding --
