@@ -36,10 +36,12 @@ struct ComponentTopology {
 
 /// Faces with a repeated index are skipped. Boundary loops are the connected
 /// pieces of the graph of edges with one face (loops that touch at a vertex
-/// count once, as in MeshReport).
-std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mesh, UnionFind& components) {
+/// count once, as in MeshReport). `for_each_edge(visit)` calls
+/// visit(u, v, boundary) once for every edge of the mesh.
+template <class ForEachEdge>
+std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mesh, UnionFind& components,
+                                                         ForEachEdge for_each_edge) {
   const Index n = static_cast<Index>(mesh.vertices.rows());
-  std::vector<std::array<Index, 2>> edges;
   std::vector<std::uint8_t> used(n, 0);
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
     const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
@@ -47,10 +49,6 @@ std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mes
     components.unite(a, b);
     components.unite(b, c);
     used[a] = used[b] = used[c] = 1;
-    for (int k = 0; k < 3; ++k) {
-      const Index u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
-      edges.push_back({std::min(u, v), std::max(u, v)});
-    }
   }
   std::map<Index, ComponentTopology> result;
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
@@ -61,23 +59,68 @@ std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mes
   for (Index v = 0; v < n; ++v) {
     if (used[v]) ++result[components.find(v)].vertices;
   }
-  std::sort(edges.begin(), edges.end());
   UnionFind boundary(n);
   std::vector<std::uint8_t> on_boundary(n, 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    ++result[components.find(edges[i][0])].edges;
-    if (j - i == 1) {
-      boundary.unite(edges[i][0], edges[i][1]);
-      on_boundary[edges[i][0]] = on_boundary[edges[i][1]] = 1;
-    }
-    i = j;
-  }
+  for_each_edge([&](Index u, Index v, bool is_boundary) {
+    ++result[components.find(u)].edges;
+    if (!is_boundary) return;
+    boundary.unite(u, v);
+    on_boundary[u] = on_boundary[v] = 1;
+  });
   for (Index v = 0; v < n; ++v) {
     if (on_boundary[v] && boundary.find(v) == v) ++result[components.find(v)].boundary_loops;
   }
   return result;
+}
+
+/// Calls visit(u, v, boundary) for each run of equal vertex pairs in
+/// `pairs` (sorted here): one edge, on the boundary if the pair is alone.
+template <class Visit>
+void visit_pair_runs(std::vector<std::array<Index, 2>>& pairs, Visit&& visit) {
+  std::sort(pairs.begin(), pairs.end());
+  for (std::size_t i = 0; i < pairs.size();) {
+    std::size_t j = i;
+    while (j < pairs.size() && pairs[j] == pairs[i]) ++j;
+    visit(pairs[i][0], pairs[i][1], j - i == 1);
+    i = j;
+  }
+}
+
+/// The edges of a small mesh (the dual): its 3F half-edges sorted by vertex pair.
+std::map<Index, ComponentTopology> mesh_topology(const TriangleMesh& mesh, UnionFind& components) {
+  return topology_by_component(mesh, components, [&](auto&& visit) {
+    std::vector<std::array<Index, 2>> pairs;
+    pairs.reserve(3 * static_cast<std::size_t>(mesh.faces.rows()));
+    for (Index f = 0; f < mesh.faces.rows(); ++f) {
+      const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+      if (a == b || b == c || c == a) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Index u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
+        pairs.push_back({std::min(u, v), std::max(u, v)});
+      }
+    }
+    visit_pair_runs(pairs, visit);
+  });
+}
+
+/// The edges of the surface the diagram lies on, from the field's edge table
+/// (a large input's half-edges need not be sorted again): an edge with two
+/// faces is one edge there; an edge with one face, or three or more, is one
+/// boundary edge per face, told apart here by how many share its ends.
+std::map<Index, ComponentTopology> field_topology(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
+                                                  UnionFind& components) {
+  return topology_by_component(mesh, components, [&](auto&& visit) {
+    std::vector<std::array<Index, 2>> split;
+    for (std::size_t e = 0; e < field.edge_vertices.size(); ++e) {
+      const auto [u, v] = field.edge_vertices[e];
+      if (field.edge_faces[e][1] >= 0) {
+        visit(u, v, false);
+      } else {
+        split.push_back({std::min(u, v), std::max(u, v)});
+      }
+    }
+    visit_pair_runs(split, visit);
+  });
 }
 
 Index vertex_of(const TriangleMesh& mesh, const SurfacePoint& p) {
@@ -211,9 +254,9 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   // Topology per component: the input's (faces with a repeated index aside)
   // against the dual's, matched through the sites.
   UnionFind input_components(static_cast<Index>(input.vertices.rows()));
-  const auto input_topology = topology_by_component(input, input_components);
+  const auto input_topology = field_topology(input, field, input_components);
   UnionFind dual_components(num_sites);
-  const auto dual_topology = topology_by_component(dual.mesh, dual_components);
+  const auto dual_topology = mesh_topology(dual.mesh, dual_components);
   std::map<Index, std::vector<Index>> sites_by_component;
   for (Index s = 0; s < num_sites; ++s) {
     sites_by_component[input_components.find(vertex_of(input, field.sites[s]))].push_back(s);

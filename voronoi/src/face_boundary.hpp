@@ -77,10 +77,19 @@ struct EdgeCrossingStore {
   std::vector<Index> first;  ///< per edge: its first crossing, -1 until computed
   std::vector<Index> count;
   std::vector<EdgeCrossing> crossings;
-  std::vector<BoundaryNode> nodes;  ///< per crossing
+  /// The nodes of crossings nodes_begin, nodes_begin + 1, ...: those before
+  /// have been handed to the graph and dropped (release_given_nodes).
+  std::vector<BoundaryNode> nodes;
+  Index nodes_begin = 0;
 
   explicit EdgeCrossingStore(std::size_t num_edges) : first(num_edges, -1), count(num_edges, 0) {}
   bool computed(Index edge) const { return first[edge] >= 0; }
+  const BoundaryNode& node(Index crossing) const { return nodes[crossing - nodes_begin]; }
+  /// Drops the nodes of every crossing found so far, once the graph has them.
+  void release_given_nodes() {
+    nodes_begin = static_cast<Index>(crossings.size());
+    nodes = std::vector<BoundaryNode>();
+  }
   std::span<const EdgeCrossing> of(Index edge) const {
     return {crossings.data() + first[edge], static_cast<std::size_t>(count[edge])};
   }

@@ -193,6 +193,7 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   const Index num_edges = pm.num_edges();
   move_topology(pm, order, field);
   order = {};
+  detail::trim_heap();  // the propagation's arrays
   move_windows(windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;

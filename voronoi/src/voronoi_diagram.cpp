@@ -1,6 +1,7 @@
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include "face_boundary.hpp"
+#include "heap_trim.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -56,7 +57,13 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
       out.counts.push_back(static_cast<Index>(out.crossings.size() - before));
     }
   });
-  for (const Found& chunk : found) {
+  // Sized once (a doubling array would hold up to twice the crossings and
+  // leave its outgrown copies behind), each chunk freed once merged.
+  std::size_t added = 0;
+  for (const Found& chunk : found) added += chunk.crossings.size();
+  store.crossings.reserve(store.crossings.size() + added);
+  store.nodes.reserve(store.nodes.size() + added);
+  for (Found& chunk : found) {
     Index next = static_cast<Index>(store.crossings.size());
     for (std::size_t i = 0; i < chunk.edges.size(); ++i) {
       store.first[chunk.edges[i]] = next;
@@ -65,7 +72,9 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
     }
     store.crossings.insert(store.crossings.end(), chunk.crossings.begin(), chunk.crossings.end());
     store.nodes.insert(store.nodes.end(), chunk.nodes.begin(), chunk.nodes.end());
+    chunk = Found{};
   }
+  detail::trim_heap();  // the chunks' lists, scattered through the heap
 }
 
 /// The merged graph under construction, and where each edge crossing's node is in it.
@@ -93,7 +102,7 @@ class GraphMerger {
     if (node_of_crossing_[first] >= 0) return;
     for (Index i = first; i < first + count; ++i) {
       node_of_crossing_[i] = static_cast<Index>(graph_.nodes.size());
-      graph_.nodes.push_back(store_.nodes[i]);
+      graph_.nodes.push_back(store_.node(i));
     }
   }
 
@@ -311,10 +320,21 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
   compute_edge_crossings(needed, tracers, store);
+  // Nearly every node of the graph is an edge crossing, found by now but for
+  // the few of the faces next to these (2, below); the rest are Voronoi
+  // vertices (two per cell) and the crossings inside refined faces, fewer
+  // than three per cell; there are about as many pieces as nodes. Sized
+  // up front: these are the extraction's largest arrays, and doubling one
+  // briefly holds its old and new copies.
+  const std::size_t expected_nodes = store.crossings.size() + store.crossings.size() / 8 + 6 * f.sites.size();
+  graph.nodes.reserve(expected_nodes);
+  graph.pieces.reserve(expected_nodes);
   for (Index face = 0; face < num_faces; ++face) {
     if (!traced[face]) continue;
     for (const Index e : f.face_edges[face]) merger.give_nodes(e);
   }
+  store.release_given_nodes();  // every crossing found so far is on a traced face's edge
+  detail::trim_heap();
   // Then faces (2) next to an edge a boundary crosses whose other face is
   // traced; in face order, as a face marked here counts for later ones.
   FaceBoundaryTracer& serial_tracer = tracers.local();
@@ -396,6 +416,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   chain_arcs(graph, diagram);
   graph = BoundaryGraph{};
   collect_adjacency(diagram);
+  detail::trim_heap();  // the graph and the tracing's scratch
   diagram.stats.extraction_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return diagram;
