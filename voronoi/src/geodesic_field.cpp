@@ -12,6 +12,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace geodual::voronoi {
@@ -89,6 +90,24 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
   return result;
 }
 
+/// Renumbers per-vertex values in place: value v goes to old_vertex[v]
+/// (following each cycle of the permutation; no second array at the peak).
+template <class... Values>
+void to_caller_numbering(const std::vector<Index>& old_vertex, std::vector<Values>&... values) {
+  std::vector<bool> placed(old_vertex.size(), false);
+  for (std::size_t start = 0; start < old_vertex.size(); ++start) {
+    if (placed[start]) continue;
+    // Carry start's values round its cycle: each lands where it belongs and
+    // picks up the values that were there.
+    auto carried = std::make_tuple(values[start]...);
+    for (std::size_t to = static_cast<std::size_t>(old_vertex[start]);; to = static_cast<std::size_t>(old_vertex[to])) {
+      placed[to] = true;
+      std::apply([&](auto&... carry) { (std::swap(carry, values[to]), ...); }, carried);
+      if (to == start) break;
+    }
+  }
+}
+
 /// Runs window-VTP from the sites (in the propagation's numbering) and fills
 /// the field's per-vertex and per-face results in the caller's numbering.
 /// Returns the windows; the rest of the propagation's state is freed.
@@ -102,18 +121,14 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
   field.stats = vtp.stats();
   field.stats.propagation_seconds = seconds_since(start);
 
-  const std::size_t num_vertices = order.old_vertex.size();
-  field.distance.resize(num_vertices);
-  field.nearest_site.resize(num_vertices);
-  for (std::size_t v = 0; v < num_vertices; ++v) {
-    field.distance[order.old_vertex[v]] = vtp.distance()[v];
-    field.nearest_site[order.old_vertex[v]] = vtp.label()[v];
-  }
   const std::vector<bool> valid = vtp.valid_faces();
   field.valid_face.resize(order.old_face.size());
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
   field.face_point_sources = vtp.point_sources();
   for (FacePointSource& source : field.face_point_sources) source.face = order.old_face[source.face];
+  field.distance = vtp.take_distance();
+  field.nearest_site = vtp.take_label();
+  to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
                    [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return vtp.take_windows();
@@ -130,7 +145,6 @@ void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& ord
     field.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
   }
   field.edge_length = std::move(pm.edge_lengths);
-  pm.edge_local = std::vector<std::array<std::uint8_t, 2>>();
   field.edge_faces = std::move(pm.edge_faces);
   for (auto& faces : field.edge_faces) {
     for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;

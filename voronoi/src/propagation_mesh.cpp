@@ -82,7 +82,6 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     i = j;
   }
   pm.edge_faces.reserve(num_edges);
-  pm.edge_local.reserve(num_edges);
   pm.edge_lengths.reserve(num_edges);
 
   if (num_edges > FaceRecord::kEdgeMask) {
@@ -103,10 +102,8 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
       const bool reversed = mesh.faces(second->face, second->local) == v1;
       attach(*second, FaceRecord::kSide1 | (reversed ? FaceRecord::kReversed : 0));
       pm.edge_faces.push_back({first.face, second->face});
-      pm.edge_local.push_back({static_cast<std::uint8_t>(first.local), static_cast<std::uint8_t>(second->local)});
     } else {
       pm.edge_faces.push_back({first.face, -1});
-      pm.edge_local.push_back({static_cast<std::uint8_t>(first.local), 0});
     }
   };
   for (std::size_t i = 0; i < half_edges.size();) {

@@ -71,10 +71,8 @@ struct PropagationMesh {
   /// repeated vertex index take no part and keep default records (edges -1).
   std::vector<FaceRecord> face_records;
   /// Per edge: the faces on its y > 0 side ([0]) and its y < 0 side ([1], or
-  /// -1), and the edge's local index within each. The edge runs from v0 to
-  /// v1 in the direction of face [0].
+  /// -1). The edge runs from v0 to v1 in the direction of face [0].
   std::vector<std::array<Index, 2>> edge_faces;
-  std::vector<std::array<std::uint8_t, 2>> edge_local;
   /// Per edge: its length.
   std::vector<double> edge_lengths;
 
@@ -111,17 +109,22 @@ struct PropagationMesh {
   std::array<double, 3> face_lengths(const FaceRecord& face) const {
     return {edge_lengths[face.edge(0)], edge_lengths[face.edge(1)], edge_lengths[face.edge(2)]};
   }
+  /// The local index (0, 1, 2) of `edge` in `face`, one of its faces.
+  static int local_edge(const FaceRecord& face, Index edge) {
+    return face.edge(0) == edge ? 0 : face.edge(1) == edge ? 1 : 2;
+  }
+  int local_edge(Index face, Index edge) const { return local_edge(face_records[face], edge); }
   /// End vertices v0, v1 of the edge's frame.
   std::array<Index, 2> edge_vertices(Index edge) const {
     const FaceRecord& face = face_records[edge_faces[edge][0]];
-    const int k = edge_local[edge][0];
+    const int k = local_edge(face, edge);
     return {face.vertex[k], face.vertex[(k + 1) % 3]};
   }
   /// True where face [1] runs along the edge from v1 to v0 (consistent
   /// orientation); false where it runs v0 -> v1 like face [0].
   bool edge_reversed_in_face1(Index edge) const {
     const Index face = edge_faces[edge][1];
-    return face >= 0 && face_records[face].flipped(edge_local[edge][1]);
+    return face >= 0 && face_records[face].flipped(local_edge(face, edge));
   }
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
@@ -163,7 +166,7 @@ struct PropagationMesh {
         if (next < 0) break;
         if (next == start) return;  // a closed fan
         visit(next);
-        const int entry = edge_local[e][1 - side];
+        const int entry = local_edge(next, e);
         const int next_corner = corner_of(next, v);
         exit = entry == next_corner ? (next_corner + 2) % 3 : next_corner;
         face = next;

@@ -88,7 +88,7 @@ void WindowVtp::emit_across_edge(Index face, int k, double x_face, double sigma,
   const Index other = pm_.edge_faces[e][1 - side];
   if (other < 0) return;
   const double x_edge = face_frame_to_edge_frame(pm_, e, side, {x_face, 0.0}).x();
-  const int other_k = pm_.edge_local[e][1 - side];
+  const int other_k = pm_.local_edge(other, e);
   const bool flip = (1 - side) == 1 && pm_.edge_reversed_in_face1(e);
   const Eigen::Vector2d p_other(flip ? pm_.edge_length(e) - x_edge : x_edge, 0.0);
   const FaceInPlane other_plane = lay_out_face(pm_, other, other_k);
@@ -217,8 +217,8 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const int side = w.entering_side();
   const Index g = pm_.edge_faces[e][side];
   if (g < 0) return;
-  const int k = pm_.edge_local[e][side];
   const FaceRecord& face = pm_.face_records[g];
+  const int k = PropagationMesh::local_edge(face, e);
   const std::array<double, 3> lengths = pm_.face_lengths(face);
   const EdgeLayout l = layout_on_edge(lengths, face.twice_area, k);
   const double length = l.length;

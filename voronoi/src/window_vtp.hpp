@@ -37,6 +37,9 @@ class WindowVtp {
 
   const std::vector<double>& distance() const { return distance_; }
   const std::vector<Index>& label() const { return label_; }
+  /// Moves the distances and labels out (valid_faces() needs them: call it first).
+  std::vector<double> take_distance() { return std::move(distance_); }
+  std::vector<Index> take_label() { return std::move(label_); }
   const WindowStore& windows() const { return store_; }
   /// Moves the windows out, for the caller to keep when the rest goes.
   WindowStore take_windows() { return std::move(store_); }
