@@ -2,6 +2,7 @@
 
 #include "geodual/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
+#include "geodual/trim_heap.hpp"
 
 #include <algorithm>
 #include <array>
@@ -36,6 +37,7 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
     }
   }
   if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
+  trim_heap();  // the cut's scratch (a sorted list of all half-edges)
   const TriangleMesh& input = changed ? cut.mesh : mesh;
   LloydResult relaxed = lloyd_relax(input, std::move(sites), options.lloyd);
   result.lloyd_seconds = relaxed.move_seconds;

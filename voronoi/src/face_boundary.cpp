@@ -86,8 +86,26 @@ bool FaceBoundaryTracer::may_hold_boundary(Index face) const {
   return it != field_.face_point_sources.end() && it->face == face;
 }
 
-void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings,
-                                             std::vector<BoundaryNode>& nodes) {
+BoundaryNode edge_crossing_node(const TriangleMesh& mesh, const GeodesicField& field, Index edge,
+                                const EdgeCrossing& crossing) {
+  const double length = field.edge_length[edge];
+  const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
+  const Index face = field.edge_faces[edge][0] >= 0 ? field.edge_faces[edge][0] : field.edge_faces[edge][1];
+  const double t = crossing.x / length;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c) {
+    if (mesh.faces(face, c) == v0) barycentric[c] = 1 - t;
+    if (mesh.faces(face, c) == v1) barycentric[c] = t;
+  }
+  BoundaryNode node;
+  node.kind = BoundaryNode::Kind::mesh_edge_crossing;
+  node.location = SurfacePoint::in_face(face, barycentric[0], barycentric[1], barycentric[2]);
+  node.position = (1 - t) * mesh.vertices.row(v0).transpose() + t * mesh.vertices.row(v1).transpose();
+  node.distance = crossing.distance;
+  return node;
+}
+
+void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings) {
   const double length = field_.edge_length[edge];
   const Index v0 = field_.edge_vertices[edge][0], v1 = field_.edge_vertices[edge][1];
   const Index site0 = field_.nearest_site[v0], site1 = field_.nearest_site[v1];
@@ -126,22 +144,9 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
     for (const SiteChange& change : changes_) {
       EdgeCrossing crossing;
       crossing.x = std::clamp(change.t * length, 0.0, length);
+      crossing.distance = edge_envelope_.distance(edge_envelope_.slot_of(change.to), Eigen::Vector2d(crossing.x, 0));
       crossing.from = change.from;
       crossing.to = change.to;
-      // The node, located in the edge's first face.
-      const Index face = field_.edge_faces[edge][0] >= 0 ? field_.edge_faces[edge][0] : field_.edge_faces[edge][1];
-      const double t = crossing.x / length;
-      Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
-      for (int c = 0; c < 3; ++c) {
-        if (mesh_.faces(face, c) == v0) barycentric[c] = 1 - t;
-        if (mesh_.faces(face, c) == v1) barycentric[c] = t;
-      }
-      BoundaryNode node;
-      node.kind = BoundaryNode::Kind::mesh_edge_crossing;
-      node.location = SurfacePoint::in_face(face, barycentric[0], barycentric[1], barycentric[2]);
-      node.position = (1 - t) * mesh_.vertices.row(v0).transpose() + t * mesh_.vertices.row(v1).transpose();
-      node.distance = edge_envelope_.distance(edge_envelope_.slot_of(change.to), Eigen::Vector2d(crossing.x, 0));
-      nodes.push_back(node);
       crossings.push_back(crossing);
     }
   }

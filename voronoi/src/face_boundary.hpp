@@ -68,28 +68,22 @@ struct BoundaryGraph {
 /// (x from edge_vertices[e][0]); `from` is the site on the side of smaller x.
 struct EdgeCrossing {
   double x = 0;
+  double distance = 0;  ///< to both sites
   Index from = -1, to = -1;
 };
 
-/// The crossings of the mesh edges computed so far, each edge's contiguous,
-/// with the node (location, position, distance) each crossing becomes.
+/// The graph node of a crossing of `edge`: located in the edge's first face.
+BoundaryNode edge_crossing_node(const TriangleMesh& mesh, const GeodesicField& field, Index edge,
+                                const EdgeCrossing& crossing);
+
+/// The crossings of the mesh edges computed so far, each edge's contiguous.
 struct EdgeCrossingStore {
   std::vector<Index> first;  ///< per edge: its first crossing, -1 until computed
   std::vector<Index> count;
   std::vector<EdgeCrossing> crossings;
-  /// The nodes of crossings nodes_begin, nodes_begin + 1, ...: those before
-  /// have been handed to the graph and dropped (release_given_nodes).
-  std::vector<BoundaryNode> nodes;
-  Index nodes_begin = 0;
 
   explicit EdgeCrossingStore(std::size_t num_edges) : first(num_edges, -1), count(num_edges, 0) {}
   bool computed(Index edge) const { return first[edge] >= 0; }
-  const BoundaryNode& node(Index crossing) const { return nodes[crossing - nodes_begin]; }
-  /// Drops the nodes of every crossing found so far, once the graph has them.
-  void release_given_nodes() {
-    nodes_begin = static_cast<Index>(crossings.size());
-    nodes = std::vector<BoundaryNode>();
-  }
   std::span<const EdgeCrossing> of(Index edge) const {
     return {crossings.data() + first[edge], static_cast<std::size_t>(count[edge])};
   }
@@ -131,7 +125,7 @@ class FaceBoundaryTracer {
   /// corners have different nearest sites, or a site lies in it.
   bool may_hold_boundary(Index face) const;
   /// Appends the crossings of a mesh edge, ordered along it, and their nodes.
-  void find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings, std::vector<BoundaryNode>& nodes);
+  void find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings);
   /// Adds the face's boundary pieces and Voronoi vertices to `out`'s graph
   /// and its area and integrals, split among the cells, to its contributions.
   void trace_face(Index face, TracedChunk& out);

@@ -1,7 +1,7 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include "geodual/error.hpp"
-#include "heap_trim.hpp"
+#include "geodual/trim_heap.hpp"
 #include "locality_order.hpp"
 #include "propagation_mesh.hpp"
 #include "window_vtp.hpp"
@@ -195,7 +195,7 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   // keep a vector's memory: it is assignment from an empty initializer list.)
   order.new_vertex = std::vector<Index>();
   order.new_face = std::vector<Index>();
-  detail::trim_heap();  // the renumbered copy and the setup's scratch arrays
+  trim_heap();  // the renumbered copy and the setup's scratch arrays
   const double setup_seconds = seconds_since(start);
 
   detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
@@ -207,7 +207,7 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   const Index num_edges = pm.num_edges();
   move_topology(pm, order, field);
   order = {};
-  detail::trim_heap();  // the propagation's arrays
+  trim_heap();  // the propagation's arrays
   move_windows(windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;

@@ -9,16 +9,6 @@
 namespace geodual::voronoi::detail {
 namespace {
 
-/// Twice the area of a triangle with side lengths a, b, c, by Kahan's
-/// cancellation-free form of Heron's formula (0 for impossible lengths).
-double twice_area_from_lengths(double a, double b, double c) {
-  if (a < b) std::swap(a, b);
-  if (b < c) std::swap(b, c);
-  if (a < b) std::swap(a, b);
-  const double product = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
-  return product > 0 ? 0.5 * std::sqrt(product) : 0.0;
-}
-
 /// Interior angle at each corner of a face, from its planar layout.
 std::array<double, 3> corner_angles(const PropagationMesh& pm, Index face) {
   const EdgeLayout l = pm.layout(face, 0);
@@ -120,10 +110,7 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
 
   for (Index f = 0; f < num_faces; ++f) {
     if (!pm.included(f)) continue;
-    FaceRecord& r = pm.face_records[f];
-    for (int k = 0; k < 3; ++k) r.vertex[k] = mesh.faces(f, k);
-    const std::array<double, 3> lengths = pm.face_lengths(r);
-    r.twice_area = twice_area_from_lengths(lengths[0], lengths[1], lengths[2]);
+    for (int k = 0; k < 3; ++k) pm.face_records[f].vertex[k] = mesh.faces(f, k);
   }
 
   // One face per vertex (its first), and a start for each further fan of a

@@ -9,7 +9,9 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace geodual::voronoi::detail {
@@ -22,33 +24,43 @@ struct EdgeLayout {
   Eigen::Vector2d apex = Eigen::Vector2d::Zero();
 };
 
-/// A face laid out for its edge k (see EdgeLayout), from its edge lengths and
-/// twice its area. Law of cosines for the apex's x; its height from the
-/// cancellation-free area, which keeps needles and slivers accurate.
-inline EdgeLayout layout_on_edge(const std::array<double, 3>& length, double twice_area, int k) {
+/// Twice the area of a triangle with side lengths a, b, c, by Kahan's
+/// cancellation-free form of Heron's formula (0 for impossible lengths).
+inline double twice_area_from_lengths(double a, double b, double c) {
+  if (a < b) std::swap(a, b);
+  if (b < c) std::swap(b, c);
+  if (a < b) std::swap(a, b);
+  const double product = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+  return product > 0 ? 0.5 * std::sqrt(product) : 0.0;
+}
+
+/// A face laid out for its edge k (see EdgeLayout), from its edge lengths.
+/// Law of cosines for the apex's x; its height from the cancellation-free
+/// area, which keeps needles and slivers accurate. (Computed where needed
+/// rather than stored: a square root costs less than 8 bytes a face.)
+inline EdgeLayout layout_on_edge(const std::array<double, 3>& length, int k) {
   EdgeLayout l;
   const double a = length[k];
   l.length = a;
   if (!(a > 0)) return l;
   const double next = length[(k + 1) % 3], prev = length[(k + 2) % 3];
+  const double twice_area = twice_area_from_lengths(length[0], length[1], length[2]);
   l.apex = Eigen::Vector2d((a * a + prev * prev - next * next) / (2 * a), twice_area / a);
   return l;
 }
 
 /// What propagating a window through a face needs besides its edge lengths
-/// (kept per edge): the face's edges and corners, twice its area (the
-/// layouts follow from these without a square root), and per edge which side
-/// of it the face is on and whether the face runs along it against the
-/// edge's direction.
+/// (kept per edge): the face's edges and corners, and per edge which side of
+/// it the face is on and whether the face runs along it against the edge's
+/// direction.
 struct FaceRecord {
   static constexpr std::uint32_t kSide1 = std::uint32_t{1} << 30;    ///< the face is edge_faces[e][1]
   static constexpr std::uint32_t kReversed = std::uint32_t{1} << 31; ///< and runs from v1 to v0
   static constexpr std::uint32_t kEdgeMask = kSide1 - 1;
   static constexpr std::uint32_t kNoEdge = ~std::uint32_t{0};
-  double twice_area = 0;
   std::array<Index, 3> vertex{-1, -1, -1};
   /// Per local edge: the edge's index, with the kSide1 and kReversed flags
-  /// in its two top bits (so the record is 32 bytes); kNoEdge for a face
+  /// in its two top bits (so the record is 24 bytes); kNoEdge for a face
   /// that takes no part.
   std::array<std::uint32_t, 3> edge_bits{kNoEdge, kNoEdge, kNoEdge};
 
@@ -61,7 +73,7 @@ struct FaceRecord {
   Index edge_start(int k) const { return flipped(k) ? vertex[(k + 1) % 3] : vertex[k]; }
   Index edge_end(int k) const { return flipped(k) ? vertex[k] : vertex[(k + 1) % 3]; }
 };
-static_assert(sizeof(FaceRecord) == 32);
+static_assert(sizeof(FaceRecord) == 24);
 
 /// Built from a mesh, it keeps no reference to it: the mesh may go once built.
 /// Each fact is stored once: an edge's end vertices are read from the record
@@ -129,8 +141,7 @@ struct PropagationMesh {
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
   EdgeLayout layout(Index face, int k) const {
-    const FaceRecord& record = face_records[face];
-    return layout_on_edge(face_lengths(record), record.twice_area, k);
+    return layout_on_edge(face_lengths(face_records[face]), k);
   }
   /// Which side of edge e face `face` is on: 0 or 1.
   int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }

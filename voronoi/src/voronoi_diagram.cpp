@@ -1,7 +1,7 @@
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include "geodual/trim_heap.hpp"
 #include "face_boundary.hpp"
-#include "heap_trim.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -40,7 +40,6 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
   struct Found {
     std::vector<Index> edges, counts;
     std::vector<detail::EdgeCrossing> crossings;
-    std::vector<BoundaryNode> nodes;
   };
   const Index num_edges = static_cast<Index>(needed.size());
   std::vector<Found> found(static_cast<std::size_t>(chunk_count(num_edges, edges_per_chunk)));
@@ -52,18 +51,24 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
     for (Index e = begin; e < end; ++e) {
       if (!needed[e] || store.computed(e)) continue;
       const std::size_t before = out.crossings.size();
-      tracer.find_edge_crossings(e, out.crossings, out.nodes);
+      tracer.find_edge_crossings(e, out.crossings);
       out.edges.push_back(e);
       out.counts.push_back(static_cast<Index>(out.crossings.size() - before));
     }
+    // Every chunk waits for the merge: without the slack of its growth.
+    out.crossings.shrink_to_fit();
   });
   // Sized once (a doubling array would hold up to twice the crossings and
-  // leave its outgrown copies behind), each chunk freed once merged.
+  // leave its outgrown copies behind); the chunks are freed as they are
+  // merged, and their memory handed back now and then, so that the lists
+  // and the store are not both held whole.
   std::size_t added = 0;
   for (const Found& chunk : found) added += chunk.crossings.size();
   store.crossings.reserve(store.crossings.size() + added);
-  store.nodes.reserve(store.nodes.size() + added);
-  for (Found& chunk : found) {
+  constexpr std::size_t kChunksBetweenTrims = 64;
+  for (std::size_t c = 0; c < found.size(); ++c) {
+    Found& chunk = found[c];
+    if (c % kChunksBetweenTrims == kChunksBetweenTrims - 1) trim_heap();
     Index next = static_cast<Index>(store.crossings.size());
     for (std::size_t i = 0; i < chunk.edges.size(); ++i) {
       store.first[chunk.edges[i]] = next;
@@ -71,16 +76,16 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
       next += chunk.counts[i];
     }
     store.crossings.insert(store.crossings.end(), chunk.crossings.begin(), chunk.crossings.end());
-    store.nodes.insert(store.nodes.end(), chunk.nodes.begin(), chunk.nodes.end());
     chunk = Found{};
   }
-  detail::trim_heap();  // the chunks' lists, scattered through the heap
+  trim_heap();  // the chunks' lists, scattered through the heap
 }
 
 /// The merged graph under construction, and where each edge crossing's node is in it.
 class GraphMerger {
  public:
-  GraphMerger(EdgeCrossingStore& store, BoundaryGraph& graph) : store_(store), graph_(graph) {}
+  GraphMerger(const TriangleMesh& mesh, const GeodesicField& field, EdgeCrossingStore& store, BoundaryGraph& graph)
+      : mesh_(mesh), field_(field), store_(store), graph_(graph) {}
 
   /// The crossings of `edge`, computed now (by `tracer`) if not yet; gives them
   /// nodes the first time an edge is asked for, as tracing one face after
@@ -88,7 +93,7 @@ class GraphMerger {
   std::span<const detail::EdgeCrossing> crossings(Index edge, FaceBoundaryTracer& tracer) {
     if (!store_.computed(edge)) {
       store_.first[edge] = static_cast<Index>(store_.crossings.size());
-      tracer.find_edge_crossings(edge, store_.crossings, store_.nodes);
+      tracer.find_edge_crossings(edge, store_.crossings);
       store_.count[edge] = static_cast<Index>(store_.crossings.size()) - store_.first[edge];
     }
     give_nodes(edge);
@@ -102,7 +107,7 @@ class GraphMerger {
     if (node_of_crossing_[first] >= 0) return;
     for (Index i = first; i < first + count; ++i) {
       node_of_crossing_[i] = static_cast<Index>(graph_.nodes.size());
-      graph_.nodes.push_back(store_.node(i));
+      graph_.nodes.push_back(detail::edge_crossing_node(mesh_, field_, edge, store_.crossings[i]));
     }
   }
 
@@ -140,6 +145,8 @@ class GraphMerger {
   }
 
  private:
+  const TriangleMesh& mesh_;
+  const GeodesicField& field_;
   EdgeCrossingStore& store_;
   BoundaryGraph& graph_;
   std::vector<Index> node_of_crossing_;  ///< per store crossing, -1 until given a node
@@ -304,7 +311,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   EdgeCrossingStore store(f.edge_length.size());
   Tracers tracers([&] { return FaceBoundaryTracer(mesh, f, options, store, site_normals); });
   BoundaryGraph graph;
-  GraphMerger merger(store, graph);
+  GraphMerger merger(mesh, f, store, graph);
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   const std::size_t num_edges = f.edge_length.size();
 
@@ -333,8 +340,6 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     if (!traced[face]) continue;
     for (const Index e : f.face_edges[face]) merger.give_nodes(e);
   }
-  store.release_given_nodes();  // every crossing found so far is on a traced face's edge
-  detail::trim_heap();
   // Then faces (2) next to an edge a boundary crosses whose other face is
   // traced; in face order, as a face marked here counts for later ones.
   FaceBoundaryTracer& serial_tracer = tracers.local();
@@ -413,10 +418,11 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   store = EdgeCrossingStore(0);
   tracers.clear();
   std::vector<std::uint8_t>().swap(traced);
+  trim_heap();
   chain_arcs(graph, diagram);
   graph = BoundaryGraph{};
   collect_adjacency(diagram);
-  detail::trim_heap();  // the graph and the tracing's scratch
+  trim_heap();  // the graph and the tracing's scratch
   diagram.stats.extraction_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return diagram;

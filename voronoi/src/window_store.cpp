@@ -1,7 +1,7 @@
 #include "window_store.hpp"
 
 #include "geodual/error.hpp"
-#include "heap_trim.hpp"
+#include "geodual/trim_heap.hpp"
 
 #include <algorithm>
 #include <array>

@@ -134,7 +134,7 @@ void WindowVtp::emit_from_vertex(Index v, double sigma, Index site) {
   for (const Index f : emit_faces_) {
     const FaceRecord& face = pm_.face_records[f];
     const int k = (pm_.corner_of(f, v) + 1) % 3;  // the edge opposite v
-    const EdgeLayout l = layout_on_edge(pm_.face_lengths(face), face.twice_area, k);
+    const EdgeLayout l = layout_on_edge(pm_.face_lengths(face), k);
     if (!(l.apex.y() > 0) || !(l.length > 0)) {
       // A zero-area face: v lies on the line of its opposite edge. Its end
       // points are reached along the line; where v lies inside the edge, v is
@@ -220,7 +220,7 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const FaceRecord& face = pm_.face_records[g];
   const int k = PropagationMesh::local_edge(face, e);
   const std::array<double, 3> lengths = pm_.face_lengths(face);
-  const EdgeLayout l = layout_on_edge(lengths, face.twice_area, k);
+  const EdgeLayout l = layout_on_edge(lengths, k);
   const double length = l.length;
 
   // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex
