@@ -5,15 +5,15 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <tuple>
 #include <utility>
 
 namespace geodual::remesh::detail {
 namespace {
 
 /// The gradient of the linear interpolant of `density` on face f (a vector in
-/// its plane): sum_c rho_c grad(lambda_c), grad(lambda_c) = n x (p_{c+2} - p_{c+1}) / |n|^2.
-/// Also its unnormalised normal n (|n| = twice the area).
+/// its plane), sum_c rho_c grad(lambda_c) with grad(lambda_c) =
+/// n x (p_{c+2} - p_{c+1}) / |n|^2, and the face's unnormalised normal n
+/// (|n| = twice its area).
 std::pair<Eigen::Vector3d, Eigen::Vector3d> face_gradient(const TriangleMesh& mesh, Index f,
                                                           std::span<const double> density) {
   Eigen::Vector3d p[3];
@@ -51,7 +51,7 @@ WeightedCells weighted_cells(const TriangleMesh& mesh, std::span<const SurfacePo
   // on the plane normal to their area-weighted normal (the tangent plane of
   // cell_log_moment).
   std::vector<double> rho(n, 0.0);
-  std::vector<Eigen::Vector3d> gradient(n, Eigen::Vector3d::Zero()), normal(n, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> gradient(n, Eigen::Vector3d::Zero());
   std::vector<Index> vertex_site;
   for (std::size_t s = 0; s < n; ++s) {
     const SurfacePoint& site = sites[s];
@@ -59,7 +59,7 @@ WeightedCells weighted_cells(const TriangleMesh& mesh, std::span<const SurfacePo
       const double rho0 = density[mesh.faces(site.element, 0)];
       rho[s] = rho0 + site.barycentric[1] * (density[mesh.faces(site.element, 1)] - rho0) +
                site.barycentric[2] * (density[mesh.faces(site.element, 2)] - rho0);
-      std::tie(gradient[s], normal[s]) = face_gradient(mesh, site.element, density);
+      gradient[s] = face_gradient(mesh, site.element, density).first;
       continue;
     }
     rho[s] = density[site.element];
@@ -68,6 +68,7 @@ WeightedCells weighted_cells(const TriangleMesh& mesh, std::span<const SurfacePo
   }
   if (!vertex_site.empty()) {
     std::vector<double> weight(n, 0.0);
+    std::vector<Eigen::Vector3d> normal(n, Eigen::Vector3d::Zero());
     for (Index f = 0; f < mesh.num_faces(); ++f) {
       if (diagram.field.face_edges[f][0] < 0) continue;
       for (int c = 0; c < 3; ++c) {
