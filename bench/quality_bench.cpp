@@ -3,6 +3,7 @@
 // shared/DESIGN.md for all of them (issue 5, deliverable 4).
 //
 //   build/bench/quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd]
+//                             [--adapt S] [--no-cgal]
 //                             [--cgal-iterations N] [--cgal-border keep|protect]
 //                             [--tolerance PCT] [--max-runs R] [--samples S]
 //                             [--time-limit S] [MESH...]
@@ -20,7 +21,10 @@
 //                  energy stalls below --lloyd-tol).
 //   geodual+plain  with --plain-lloyd: the same, plain (over-relaxed) Lloyd
 //                  steps.
-//   CGAL           CGAL::Polygon_mesh_processing::isotropic_remeshing of a
+//   geodual+adapt  with --adapt S: the Lloyd row's run with curvature-adapted
+//                  sizing (RemeshOptions::curvature_adaptation = S, a
+//                  weighted CVT; see remesh/curvature_density.hpp).
+//   CGAL           (not with --no-cgal) CGAL::Polygon_mesh_processing::isotropic_remeshing of a
 //                  Surface_mesh built from the input, number_of_iterations N
 //                  (default 3), with a target edge length L searched so that
 //                  its vertex count is within --tolerance % (default 3) of the
@@ -98,6 +102,8 @@ struct Options {
   int lloyd = 10;
   double lloyd_tolerance = remesh::LloydOptions{}.tolerance;
   bool plain_lloyd = false;  ///< also a row with plain Lloyd steps
+  double adapt = 0;          ///< > 0: also a row with curvature-adapted sizing of this strength
+  bool cgal = true;          ///< the CGAL row
   unsigned cgal_iterations = 3;
   BorderMode border = BorderMode::keep;
   double tolerance_pct = 3.0;
@@ -171,12 +177,13 @@ RunResult from_bytes(const std::vector<std::byte>& bytes) {
 // ---------------------------------------------------------------------------
 // geodual
 
-RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd, bool newton,
+RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd, bool newton, double adapt,
                       const Options& options) {
   pipeline::RemeshPipelineOptions pipeline_options;
   pipeline_options.sites = sites;
   pipeline_options.remesh.lloyd.iterations = lloyd;
   pipeline_options.remesh.lloyd.newton = newton;
+  pipeline_options.remesh.curvature_adaptation = adapt;
   pipeline_options.remesh.lloyd.tolerance = options.lloyd_tolerance;
   pipeline_options.statistics = false;  // measured below, the same way for every row
   RunResult run;
@@ -452,15 +459,17 @@ int run_benchmark(const Options& options) {
       struct Variant {
         int lloyd;
         bool newton;
+        double adapt;
         std::string method;
       };
-      std::vector<Variant> variants = {{0, true, "geodual"}};
-      if (options.lloyd > 0 && options.plain_lloyd) variants.push_back({options.lloyd, false, "geodual+plain"});
-      if (options.lloyd > 0) variants.push_back({options.lloyd, true, "geodual+Lloyd"});
-      for (const auto& [lloyd, newton, method] : variants) {
+      std::vector<Variant> variants = {{0, true, 0.0, "geodual"}};
+      if (options.lloyd > 0 && options.plain_lloyd) variants.push_back({options.lloyd, false, 0.0, "geodual+plain"});
+      if (options.lloyd > 0) variants.push_back({options.lloyd, true, 0.0, "geodual+Lloyd"});
+      if (options.lloyd > 0 && options.adapt > 0) variants.push_back({options.lloyd, true, options.adapt, "geodual+adapt"});
+      for (const auto& [lloyd, newton, adapt, method] : variants) {
         std::cerr << "quality_bench:   " << method << " " << sites << " sites\n";
         const ChildOutcome outcome =
-            run_in_child(limits, [&] { return to_bytes(run_geodual(input, sites, lloyd, newton, options)); });
+            run_in_child(limits, [&] { return to_bytes(run_geodual(input, sites, lloyd, newton, adapt, options)); });
         if (outcome.status != ChildOutcome::Status::ok) {
           add_failed_row(table, method, sites, outcome.message, outcome.child_max_rss_bytes);
           ++failures;
@@ -472,8 +481,9 @@ int run_benchmark(const Options& options) {
         if (lloyd > 0) notes = std::to_string(run.lloyd_iterations) + " Lloyd iterations";
         if (run.sites_added > 0) notes += (notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
         add_run_row(table, method, sites, run, notes);
-        target = run.vertices;  // the Lloyd row's when it succeeds
+        if (adapt == 0) target = run.vertices;  // the Lloyd row's when it succeeds
       }
+      if (!options.cgal) continue;
       if (!target) target = sites;
       std::cerr << "quality_bench:   CGAL isotropic_remeshing to " << *target << " vertices\n";
       const CgalSearch search = search_cgal(input.mesh, *target, options);
@@ -526,7 +536,8 @@ std::int64_t parse_integer(const std::string& option, const std::string& text, s
 }
 
 constexpr const char* usage =
-    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd] [--cgal-iterations N]\n"
+    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd] [--adapt S] [--no-cgal]\n"
+    "                     [--cgal-iterations N]\n"
     "                     [--cgal-border keep|protect] [--tolerance PCT] [--max-runs R] [--samples S]\n"
     "                     [--time-limit S] [MESH...]\n"
     "default meshes: ../shared/data/meshes/{bunny,igea,armadillo_86k,fertility}.ply\n";
@@ -549,6 +560,11 @@ Options parse_options(int argc, char** argv) {
       options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
     } else if (arg == "--plain-lloyd") {
       options.plain_lloyd = true;
+    } else if (arg == "--adapt") {
+      options.adapt = parse_number(arg, value());
+      if (options.adapt < 0) throw UsageError("--adapt must be >= 0");
+    } else if (arg == "--no-cgal") {
+      options.cgal = false;
     } else if (arg == "--lloyd-tol") {
       options.lloyd_tolerance = parse_number(arg, value());
       if (options.lloyd_tolerance < 0) throw UsageError("--lloyd-tol must be >= 0");

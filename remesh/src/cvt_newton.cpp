@@ -115,7 +115,8 @@ Eigen::VectorXd truncated_newton(const Eigen::SparseMatrix<double>& hessian, con
 }  // namespace
 
 std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                              const voronoi::VoronoiDiagram& diagram, const std::vector<bool>& movable,
+                                              const voronoi::VoronoiDiagram& diagram, const WeightedCells& cells,
+                                              const std::vector<bool>& movable,
                                               double damping, double max_step) {
   // Unknowns: two tangent coordinates per movable site.
   std::vector<Index> unknown(sites.size(), -1);
@@ -140,20 +141,20 @@ std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const st
     }
   };
   Eigen::VectorXd rhs(2 * unknowns);
-  Eigen::VectorXd lloyd_scale(unknowns);  // 2 A_i: Lloyd's Hessian
+  Eigen::VectorXd lloyd_scale(unknowns);  // 2 A_i (the weighted mass): Lloyd's Hessian
   for (std::size_t s = 0; s < sites.size(); ++s) {
     const Index k = unknown[s];
     if (k < 0) continue;
-    lloyd_scale[k] = 2 * diagram.cell_area[s];
+    lloyd_scale[k] = 2 * cells.mass[s];
     add_block(static_cast<Index>(s), static_cast<Index>(s), lloyd_scale[k] * Eigen::Matrix2d::Identity());
-    rhs.segment<2>(2 * k) = 2 * frame[s].transpose() * diagram.cell_log_moment[s];  // -g
+    rhs.segment<2>(2 * k) = 2 * frame[s].transpose() * cells.moment[s];  // -g
   }
   for (const voronoi::VoronoiArc& arc : diagram.arcs) {
     const Index i = arc.left_site, j = arc.right_site;
     if (i < 0 || j < 0 || i == j || (unknown[i] < 0 && unknown[j] < 0)) continue;
     const double separation = (position[i] - position[j]).norm();
     if (!(separation > 0)) continue;
-    const double weight = 2 / separation;
+    const double weight = (cells.site_density[i] + cells.site_density[j]) / separation;
     const auto polyline = diagram.polyline(arc);
     add_block(i, i, -weight * frame[i].transpose() * second_moment(polyline, position[i], position[i]) * frame[i]);
     add_block(j, j, -weight * frame[j].transpose() * second_moment(polyline, position[j], position[j]) * frame[j]);

@@ -16,6 +16,13 @@
 // Newton's step, a large damping a short Lloyd step. Away from a CVT, H is
 // indefinite: the system is solved by conjugate gradients that stop at a
 // direction of negative curvature (Steihaug 1983).
+//
+// Under a density rho (weighted_cells.hpp) A_i and M_i become the cell's
+// rho-weighted mass and moment, and each arc's terms are weighted by rho
+// there, taken as the mean of its two sites' rho (rho varies little across a
+// cell).
+
+#include "weighted_cells.hpp"
 
 #include "geodual/triangle_mesh.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
@@ -29,7 +36,8 @@ namespace geodual::remesh::detail {
 /// Per site, its step as a 3D vector in the site's tangent plane (zero for the
 /// sites not movable), at most max_step * sqrt(cell area) long.
 std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                              const voronoi::VoronoiDiagram& diagram, const std::vector<bool>& movable,
+                                              const voronoi::VoronoiDiagram& diagram, const WeightedCells& cells,
+                                              const std::vector<bool>& movable,
                                               double damping, double max_step);
 
 }  // namespace geodual::remesh::detail

@@ -3,6 +3,7 @@
 #include "cvt_newton.hpp"
 #include "geodual/error.hpp"
 #include "surface_walk.hpp"
+#include "weighted_cells.hpp"
 
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
@@ -18,10 +19,6 @@
 
 namespace geodual::remesh {
 namespace {
-
-double total_energy(const voronoi::VoronoiDiagram& diagram) {
-  return std::accumulate(diagram.cell_energy.begin(), diagram.cell_energy.end(), 0.0);
-}
 
 /// True for a face point on a boundary edge of the propagation surface.
 bool on_boundary(const voronoi::GeodesicField& field, const SurfacePoint& point) {
@@ -59,12 +56,12 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, const std::vector<Surf
   return movable;
 }
 
-/// Lloyd's steps, `factor` times each cell's mean log map.
-std::vector<Eigen::Vector3d> lloyd_steps(const voronoi::VoronoiDiagram& diagram, const std::vector<bool>& movable,
+/// Lloyd's steps, `factor` times each cell's (density-weighted) mean log map.
+std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, const std::vector<bool>& movable,
                                          double factor) {
   std::vector<Eigen::Vector3d> steps(movable.size(), Eigen::Vector3d::Zero());
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    if (movable[i]) steps[i] = factor * diagram.cell_log_moment[i] / diagram.cell_area[i];
+    if (movable[i] && cells.mass[i] > 0) steps[i] = factor * cells.moment[i] / cells.mass[i];
   }
   return steps;
 }
@@ -151,12 +148,21 @@ void check_options(const LloydOptions& options) {
           "newton_damping must be a finite number > 0, got " + std::to_string(options.newton_damping));
   require(options.newton_max_step > 0 && std::isfinite(options.newton_max_step),
           "newton_max_step must be a finite number > 0, got " + std::to_string(options.newton_max_step));
+  for (std::size_t v = 0; v < options.density.size(); ++v) {
+    require(options.density[v] > 0 && std::isfinite(options.density[v]),
+            "density must be finite and > 0, got " + std::to_string(options.density[v]) + " at vertex " +
+                std::to_string(v));
+  }
 }
 
 }  // namespace
 
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options) {
   check_options(options);
+  if (!options.density.empty() && options.density.size() != static_cast<std::size_t>(mesh.num_vertices())) {
+    throw UsageError("lloyd_relax: density has " + std::to_string(options.density.size()) +
+                     " values for a mesh of " + std::to_string(mesh.num_vertices()) + " vertices");
+  }
   LloydResult result;
   auto diagram_of = [&](const std::vector<SurfacePoint>& points) {
     voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, points, options.voronoi);
@@ -165,9 +171,13 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
     ++result.diagrams;
     return diagram;
   };
+  auto cells_of = [&](const std::vector<SurfacePoint>& points, const voronoi::VoronoiDiagram& diagram) {
+    return detail::weighted_cells(mesh, points, diagram, options.density);
+  };
   result.sites = std::move(sites);
   result.diagram = diagram_of(result.sites);
-  result.energy.push_back(total_energy(result.diagram));
+  detail::WeightedCells cells = cells_of(result.sites, result.diagram);
+  result.energy.push_back(cells.total_energy());
   auto tell = [&](bool finished) {
     if (options.on_iteration) options.on_iteration(result.iterations, finished);
   };
@@ -184,10 +194,12 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
       std::vector<SurfacePoint> moved = move_sites(mesh, result.sites, result.diagram, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       voronoi::VoronoiDiagram next = diagram_of(moved);
-      const double energy = total_energy(next);
+      detail::WeightedCells next_cells = cells_of(moved, next);
+      const double energy = next_cells.total_energy();
       if (!(energy < previous)) return false;
       result.sites = std::move(moved);
       result.diagram = std::move(next);
+      cells = std::move(next_cells);
       result.energy.push_back(energy);
       return true;
     };
@@ -200,18 +212,18 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
       for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
         const auto start = std::chrono::steady_clock::now();
         const std::vector<Eigen::Vector3d> steps = detail::cvt_newton_steps(
-            mesh, result.sites, result.diagram, movable, damping, options.newton_max_step);
+            mesh, result.sites, result.diagram, cells, movable, damping, options.newton_max_step);
         result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         accepted = try_step(steps);
         damping = accepted ? std::max(damping / 4, options.newton_damping) : damping * 4;
       }
     }
     if (!accepted && factor > 1) {
-      accepted = try_step(lloyd_steps(result.diagram, movable, factor));
+      accepted = try_step(lloyd_steps(cells, movable, factor));
       // Over-relaxed too far: the plain Lloyd step from here on.
       if (!accepted) factor = 1;
     }
-    if (!accepted) accepted = try_step(lloyd_steps(result.diagram, movable, factor));
+    if (!accepted) accepted = try_step(lloyd_steps(cells, movable, factor));
     if (!accepted) break;  // not even Lloyd's step lowers the energy: stop here
     ++result.iterations;
     if (previous - result.energy.back() < options.tolerance * previous) break;

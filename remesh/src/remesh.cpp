@@ -39,7 +39,13 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
   trim_heap();  // the cut's scratch (a sorted list of all half-edges)
   const TriangleMesh& input = changed ? cut.mesh : mesh;
-  LloydResult relaxed = lloyd_relax(input, std::move(sites), options.lloyd);
+  LloydOptions lloyd = options.lloyd;
+  if (options.curvature_adaptation > 0 && lloyd.density.empty() && lloyd.iterations > 0 && !sites.empty()) {
+    lloyd.density = curvature_density(input, {.strength = options.curvature_adaptation,
+                                              .spacing = uniform_spacing(input, static_cast<std::int64_t>(sites.size())),
+                                              .max_ratio = options.curvature_max_ratio});
+  }
+  LloydResult relaxed = lloyd_relax(input, std::move(sites), lloyd);
   result.lloyd_seconds = relaxed.move_seconds;
   result.geodesic_seconds = relaxed.geodesic_seconds;
   result.diagram_seconds = relaxed.diagram_seconds;

@@ -13,7 +13,9 @@
 // energy 40 would); by default each iteration instead takes a damped Newton
 // step on the energy (Lloyd–Newton), whose gradient is -2 int log_{s_i}(x) dA
 // and whose Hessian comes from the cell boundaries, and walks it the same way.
-// The energy E = sum_i int_cell d(x, s_i)^2 dA is recorded each iteration; a
+// With a density rho (LloydOptions::density) the energy, gradient, Lloyd step
+// and Hessian are weighted by it (a weighted CVT). The energy
+// E = sum_i int_cell rho(x) d(x, s_i)^2 dA is recorded each iteration; a
 // step that would raise it is not taken (a Newton step is retried more
 // damped, then Lloyd's is tried), and when no step lowers it the relaxation
 // stops there, so the recorded energies never increase.
@@ -45,6 +47,13 @@ struct LloydOptions {
   bool newton = true;
   double newton_damping = 0.1;
   double newton_max_step = 0.2;
+  /// A density per mesh vertex (linear inside faces, > 0) for a weighted CVT:
+  /// the energy becomes sum_i int_cell rho(x) d(x, s_i)^2 dA, and its
+  /// minimisers space the sites like rho^(-1/4) (see curvature_density.hpp).
+  /// The weighted integrals come from the diagram's to first order in rho's
+  /// variation across a cell (remesh/src/weighted_cells.hpp). Empty: rho = 1,
+  /// the plain geodesic CVT.
+  std::vector<double> density;
   /// Sites on the mesh boundary stay where they are (they carry the
   /// boundary loops into the remesh); true moves them like the others.
   bool move_boundary_sites = false;
@@ -58,7 +67,9 @@ struct LloydOptions {
 struct LloydResult {
   std::vector<SurfacePoint> sites;  ///< the relaxed sites, in the given order
   voronoi::VoronoiDiagram diagram;  ///< of the relaxed sites
-  std::vector<double> energy;       ///< CVT energy of the given sites, then after each accepted iteration
+  /// CVT energy (weighted by `density` when given) of the given sites, then
+  /// after each accepted iteration.
+  std::vector<double> energy;
   int iterations = 0;               ///< iterations accepted
   int diagrams = 0;                 ///< diagrams computed (rejected steps cost one each)
   double geodesic_seconds = 0;      ///< all diagrams

@@ -7,6 +7,7 @@
 //   auto result = geodual::remesh::remesh_from_sites(mesh, sites);  // 10 Lloyd iterations first
 //   result.mesh  // one vertex per site, oriented like the input
 
+#include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/lloyd.hpp"
 #include "geodual/triangle_mesh.hpp"
@@ -22,6 +23,17 @@ struct RemeshOptions {
   /// Lloyd relaxation of the given sites first (iterations = 0: none). Its
   /// `voronoi` options are used for every diagram.
   LloydOptions lloyd;
+  /// Curvature-adapted sizing: when > 0 and lloyd.density is empty, Lloyd
+  /// relaxes towards the weighted CVT of curvature_density(surface,
+  /// {.strength = curvature_adaptation, .spacing = uniform_spacing(surface,
+  /// sites), .max_ratio = curvature_max_ratio}), so that sites gather where
+  /// the surface bends sharply at the scale of the remesh's edges (smaller
+  /// chord error there, hence a smaller Hausdorff distance) with the same
+  /// number of vertices. 0: the uniform geodesic CVT. A density given in
+  /// lloyd.density is used as it is (one value per vertex of the surface
+  /// remeshed, i.e. of the input cut to a manifold).
+  double curvature_adaptation = 0;
+  double curvature_max_ratio = CurvatureDensityOptions{}.max_ratio;
   /// Rounds of "add sites where the dual fails, recompute" before giving up
   /// with a geodual::Error.
   int max_repair_rounds = 10;
@@ -40,7 +52,7 @@ struct RemeshResult {
   /// the cut), left out.
   std::int64_t faces_disabled = 0;
   int repair_rounds = 0;
-  std::vector<double> energy;   ///< CVT energy before and after each Lloyd iteration
+  std::vector<double> energy;   ///< CVT energy (density-weighted with curvature_adaptation) before and after each Lloyd iteration
   int lloyd_iterations = 0;
   int lloyd_diagrams = 0;       ///< diagrams Lloyd computed: one per iteration, one per rejected step, plus the first
   double lloyd_seconds = 0;     ///< Lloyd's centroid steps (its diagrams count below)

@@ -1,0 +1,148 @@
+#include "geodual/remesh/curvature_density.hpp"
+
+#include "geodual/error.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace geodual::remesh {
+namespace {
+
+bool degenerate(const TriangleMesh& mesh, Index f) {
+  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+  return a == b || b == c || c == a;
+}
+
+Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int c) { return mesh.vertices.row(mesh.faces(f, c)).transpose(); }
+
+/// Per vertex, a third of the area of the faces around it.
+std::vector<double> vertex_areas(const TriangleMesh& mesh) {
+  std::vector<double> area(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (degenerate(mesh, f)) continue;
+    const double third =
+        (corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0)).norm() / 6;
+    for (int c = 0; c < 3; ++c) area[mesh.faces(f, c)] += third;
+  }
+  return area;
+}
+
+/// The undirected edges (low, high, face), sorted: an edge's faces are adjacent.
+std::vector<std::array<Index, 3>> edge_sides(const TriangleMesh& mesh) {
+  std::vector<std::array<Index, 3>> sides;
+  sides.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (degenerate(mesh, f)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const Index u = mesh.faces(f, c), v = mesh.faces(f, (c + 1) % 3);
+      sides.push_back({std::min(u, v), std::max(u, v), f});
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  return sides;
+}
+
+/// |k1| + |k2| per vertex: sum over its edges of |dihedral angle| * length,
+/// over twice its area. Boundary and non-manifold edges add nothing.
+std::vector<double> total_curvature(const TriangleMesh& mesh, const std::vector<std::array<Index, 3>>& sides,
+                                    const std::vector<double>& area) {
+  std::vector<double> bend(area.size(), 0.0);
+  auto normal = [&](Index f) {
+    return Eigen::Vector3d((corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0)));
+  };
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j][0] == sides[i][0] && sides[j][1] == sides[i][1]) ++j;
+    if (j - i == 2) {
+      const Eigen::Vector3d n0 = normal(sides[i][2]), n1 = normal(sides[i + 1][2]);
+      const double angle = std::atan2(n0.cross(n1).norm(), n0.dot(n1));  // in [0, pi]
+      const double length = (mesh.vertices.row(sides[i][0]) - mesh.vertices.row(sides[i][1])).norm();
+      if (std::isfinite(angle)) {
+        bend[sides[i][0]] += angle * length;
+        bend[sides[i][1]] += angle * length;
+      }
+    }
+    i = j;
+  }
+  std::vector<double> k(area.size(), 0.0);
+  for (std::size_t v = 0; v < k.size(); ++v) {
+    if (area[v] > 0) k[v] = bend[v] / (2 * area[v]);
+  }
+  return k;
+}
+
+/// `passes` Jacobi sweeps of area-weighted one-ring averaging; vertices
+/// without area keep their value.
+void smooth(std::vector<double>& value, const std::vector<std::array<Index, 3>>& sides, const std::vector<double>& area,
+            int passes) {
+  std::vector<double> sum(value.size()), weight(value.size());
+  for (int pass = 0; pass < passes; ++pass) {
+    for (std::size_t v = 0; v < value.size(); ++v) {
+      sum[v] = area[v] * value[v];
+      weight[v] = area[v];
+    }
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+      if (i > 0 && sides[i][0] == sides[i - 1][0] && sides[i][1] == sides[i - 1][1]) continue;  // each edge once
+      const Index u = sides[i][0], v = sides[i][1];
+      sum[u] += area[v] * value[v];
+      weight[u] += area[v];
+      sum[v] += area[u] * value[u];
+      weight[v] += area[u];
+    }
+    for (std::size_t v = 0; v < value.size(); ++v) {
+      if (weight[v] > 0) value[v] = sum[v] / weight[v];
+    }
+  }
+}
+
+}  // namespace
+
+double uniform_spacing(const TriangleMesh& mesh, std::int64_t sites) {
+  double area = 0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (degenerate(mesh, f)) continue;
+    area += (corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0)).norm() / 2;
+  }
+  return sites > 0 ? std::sqrt(2 * area / (std::sqrt(3.0) * static_cast<double>(sites))) : 0.0;
+}
+
+std::vector<double> curvature_density(const TriangleMesh& mesh, const CurvatureDensityOptions& options) {
+  auto require = [](bool holds, const std::string& what) {
+    if (!holds) throw UsageError("curvature_density: " + what);
+  };
+  require(options.strength >= 0 && std::isfinite(options.strength),
+          "strength must be a finite number >= 0, got " + std::to_string(options.strength));
+  require(options.spacing > 0 && std::isfinite(options.spacing),
+          "spacing must be a finite number > 0, got " + std::to_string(options.spacing));
+  require(options.max_ratio >= 1 && std::isfinite(options.max_ratio),
+          "max_ratio must be a finite number >= 1, got " + std::to_string(options.max_ratio));
+  std::vector<double> density(static_cast<std::size_t>(mesh.num_vertices()), 1.0);
+  if (options.strength == 0 || options.max_ratio == 1) return density;
+
+  const std::vector<double> area = vertex_areas(mesh);
+  const std::vector<std::array<Index, 3>> sides = edge_sides(mesh);
+  double edge_sum = 0;
+  for (const auto& side : sides) edge_sum += (mesh.vertices.row(side[0]) - mesh.vertices.row(side[1])).norm();
+  if (sides.empty() || !(edge_sum > 0)) return density;
+  // One averaging pass diffuses over about one mesh edge; n passes over
+  // sqrt(n) edges: (spacing / edge)^2 passes smooth over one spacing.
+  const double edge = edge_sum / static_cast<double>(sides.size());
+  constexpr int kMaxPasses = 400;
+  const int passes = static_cast<int>(std::clamp(std::ceil(std::pow(options.spacing / edge, 2)), 1.0, double(kMaxPasses)));
+
+  std::vector<double> k = total_curvature(mesh, sides, area);
+  smooth(k, sides, area, passes);
+  for (std::size_t v = 0; v < density.size(); ++v) {
+    const double scaled = options.spacing * k[v];
+    density[v] = std::min(options.max_ratio, 1 + options.strength * scaled * scaled);
+  }
+  smooth(density, sides, area, passes);
+  return density;
+}
+
+}  // namespace geodual::remesh
