@@ -29,7 +29,13 @@ void PropagationMesh::faces_around(Index v, std::vector<Index>& faces) const {
     auto it = std::lower_bound(extra_fans.begin(), extra_fans.end(), std::array<Index, 2>{v, -1});
     for (; it != extra_fans.end() && (*it)[0] == v; ++it) walk_fan(v, (*it)[1], add);
   }
-  std::sort(faces.begin(), faces.end());
+  // Insertion sort: a vertex has a handful of faces.
+  for (std::size_t i = 1; i < faces.size(); ++i) {
+    const Index f = faces[i];
+    std::size_t j = i;
+    for (; j > 0 && faces[j - 1] > f; --j) faces[j] = faces[j - 1];
+    faces[j] = f;
+  }
 }
 
 PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {

@@ -332,7 +332,7 @@ void WindowVtp::relax(Index v, double d, Index site) {
   label_[v] = site;
   vertex_flags_[v] &= static_cast<std::uint8_t>(~kEmitted);
   if (pm_.is_pseudo_source[v]) events_.push_or_decrease({d, v, EventKind::emit});
-  if (first_time && options_.remove_redundant_windows) {
+  if (first_time && (vertex_flags_[v] & kFaceWaits) && options_.remove_redundant_windows) {
     pm_.faces_around(v, fan_);
     for (const Index f : fan_) {
       if (face_flags_[f] & kTraversed) push_face_key(f);
@@ -364,7 +364,12 @@ void WindowVtp::push_face_key(Index face) {
   if (face_flags_[face] & kKeyPushed) return;
   double d_min = kInfinity;
   for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
-  if (d_min == kInfinity) return;  // pushed when a corner is first reached
+  if (d_min == kInfinity) {
+    // Pushed when a corner is first reached (relax looks round the corners
+    // marked here, and only those).
+    for (int c = 0; c < 3; ++c) vertex_flags_[pm_.vertex(face, c)] |= kFaceWaits;
+    return;
+  }
   face_flags_[face] |= kKeyPushed;
   const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
   const double key = d_min + std::max({lengths[0], lengths[1], lengths[2]});

@@ -51,7 +51,9 @@ class WindowVtp {
   const std::vector<FacePointSource>& point_sources() const { return point_sources_; }
 
  private:
-  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2 };
+  /// kFaceWaits: a traversed face at the vertex waits for its key until one
+  /// of its corners is reached (see push_face_key).
+  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2, kFaceWaits = 4 };
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
   /// A face's inactivity key d_min(f) + |e_max(f)| (Proposition 3.1),
   /// rounded up to a float: a key no smaller only makes the face inactive
