@@ -1,9 +1,10 @@
 #include "geodual/remesh/manifold_cut.hpp"
 
+#include "geodual/vertex_pair_sort.hpp"
+
 #include <algorithm>
 #include <array>
 #include <numeric>
-#include <tuple>
 #include <vector>
 
 namespace geodual::remesh {
@@ -39,9 +40,9 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
       edges.push_back(u < v ? HalfEdge{u, v, cu, cv} : HalfEdge{v, u, cv, cu});
     }
   }
-  std::sort(edges.begin(), edges.end(), [](const HalfEdge& a, const HalfEdge& b) {
-    return std::tie(a.low, a.high, a.corner_low) < std::tie(b.low, b.high, b.corner_low);
-  });
+  // By (low, high), then corner_low: equal pairs keep their order, by face.
+  sort_by_vertex_pair(edges, num_vertices, [](const HalfEdge& e) { return e.low; },
+                      [](const HalfEdge& e) { return e.high; });
   std::vector<Index> parent(static_cast<std::size_t>(3 * num_faces));
   std::iota(parent.begin(), parent.end(), Index{0});
   auto unite = [&](Index a, Index b) {

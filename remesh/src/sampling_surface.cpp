@@ -1,6 +1,7 @@
 #include "sampling_surface.hpp"
 
 #include "geodual/error.hpp"
+#include "geodual/vertex_pair_sort.hpp"
 
 #include <Eigen/Geometry>
 
@@ -65,9 +66,8 @@ void find_boundary_loops(SamplingSurface& surface) {
       half_edges.push_back({std::min(u, w) << 32 | std::max(u, w), f, k});
     }
   }
-  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.key != y.key ? x.key < y.key : (x.face != y.face ? x.face < y.face : x.corner < y.corner);
-  });
+  sort_by_vertex_pair(half_edges, mesh.num_vertices(), [](const HalfEdge& h) { return static_cast<Index>(h.key >> 32); },
+                      [](const HalfEdge& h) { return static_cast<Index>(h.key & 0xffffffffu); });
   std::vector<HalfEdge> boundary;
   for (std::size_t i = 0; i < half_edges.size();) {
     std::size_t j = i + 1;

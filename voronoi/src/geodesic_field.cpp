@@ -158,7 +158,7 @@ void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& ord
 /// as they go (see WindowStore::drain: the two copies would otherwise be the
 /// peak of the whole computation).
 void move_windows(detail::WindowStore& store, Index num_edges, GeodesicField& field) {
-  constexpr int kRounds = 8;
+  constexpr int kRounds = 2;
   field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
   field.windows.reserve(static_cast<std::size_t>(store.live()));
   Index next_edge = 0;

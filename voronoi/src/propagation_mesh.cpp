@@ -1,6 +1,7 @@
 #include "propagation_mesh.hpp"
 
 #include "geodual/error.hpp"
+#include "geodual/vertex_pair_sort.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -61,9 +62,9 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
       half_edges.push_back({std::min(u, w) << 32 | std::max(u, w), f, k});
     }
   }
-  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.key != y.key ? x.key < y.key : (x.face != y.face ? x.face < y.face : x.local < y.local);
-  });
+  // By vertex pair; equal pairs keep their order (the input's, by face and corner).
+  sort_by_vertex_pair(half_edges, num_vertices, [](const HalfEdge& h) { return static_cast<Index>(h.key >> 32); },
+                      [](const HalfEdge& h) { return static_cast<Index>(h.key & 0xffffffffu); });
   // Runs of equal keys: two half-edges make one edge; a boundary or
   // non-manifold edge gives each of its faces its own copy.
   auto run_end = [&](std::size_t i) {
@@ -113,6 +114,31 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   }
   half_edges.clear();
   half_edges.shrink_to_fit();
+
+  // Edges renumbered in the order the faces first use them: the faces are in
+  // locality order, and propagation reads the edges of nearby faces together
+  // (their windows, lengths and faces), so their data shares cache lines.
+  {
+    constexpr Index kUnnumbered = -1;
+    std::vector<Index> new_edge(pm.edge_faces.size(), kUnnumbered);
+    Index next = 0;
+    for (FaceRecord& record : pm.face_records) {
+      if (!record.included()) continue;
+      for (int k = 0; k < 3; ++k) {
+        Index& id = new_edge[record.edge(k)];
+        if (id == kUnnumbered) id = next++;
+        record.edge_bits[k] = static_cast<std::uint32_t>(id) | (record.edge_bits[k] & ~FaceRecord::kEdgeMask);
+      }
+    }
+    std::vector<std::array<Index, 2>> edge_faces(pm.edge_faces.size());
+    std::vector<double> edge_lengths(pm.edge_lengths.size());
+    for (std::size_t e = 0; e < new_edge.size(); ++e) {
+      edge_faces[new_edge[e]] = pm.edge_faces[e];
+      edge_lengths[new_edge[e]] = pm.edge_lengths[e];
+    }
+    pm.edge_faces = std::move(edge_faces);
+    pm.edge_lengths = std::move(edge_lengths);
+  }
 
   for (Index f = 0; f < num_faces; ++f) {
     if (!pm.included(f)) continue;
