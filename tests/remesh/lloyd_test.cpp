@@ -6,6 +6,7 @@
 #include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh_report.hpp"
+#include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/lloyd.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
@@ -179,23 +180,28 @@ TEST(Lloyd, OptionsOutOfRangeAreRefusedByName) {
 TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {
   const TriangleMesh mesh = scan("fertility.ply");
   const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 600);
-  remesh::LloydOptions options;
-  options.iterations = 3;
-  remesh::LloydResult one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = remesh::lloyd_relax(mesh, sites, options);
+  // The plain geodesic CVT, and one weighted by a curvature density.
+  for (const bool weighted : {false, true}) {
+    SCOPED_TRACE(weighted ? "weighted" : "uniform");
+    remesh::LloydOptions options;
+    options.iterations = 3;
+    if (weighted) options.density = remesh::curvature_density(mesh, {.spacing = remesh::uniform_spacing(mesh, 600)});
+    remesh::LloydResult one, two;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = remesh::lloyd_relax(mesh, sites, options);
+    }
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      two = remesh::lloyd_relax(mesh, sites, options);
+    }
+    ASSERT_EQ(one.sites.size(), two.sites.size());
+    for (std::size_t i = 0; i < one.sites.size(); ++i) {
+      EXPECT_EQ(one.sites[i].element, two.sites[i].element);
+      EXPECT_EQ(one.sites[i].barycentric, two.sites[i].barycentric);
+    }
+    EXPECT_EQ(one.energy, two.energy);
   }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = remesh::lloyd_relax(mesh, sites, options);
-  }
-  ASSERT_EQ(one.sites.size(), two.sites.size());
-  for (std::size_t i = 0; i < one.sites.size(); ++i) {
-    EXPECT_EQ(one.sites[i].element, two.sites[i].element);
-    EXPECT_EQ(one.sites[i].barycentric, two.sites[i].barycentric);
-  }
-  EXPECT_EQ(one.energy, two.energy);
 }
 
 }  // namespace

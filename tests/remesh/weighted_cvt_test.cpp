@@ -12,7 +12,6 @@
 #include "geodual/remesh/sample_sites.hpp"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -146,29 +145,6 @@ TEST(WeightedLloyd, BadDensitiesAreRefused) {
   EXPECT_THROW((void)remesh::lloyd_relax(disk, sites, options), UsageError);
   options.density[3] = std::nan("");
   EXPECT_THROW((void)remesh::lloyd_relax(disk, sites, options), UsageError);
-}
-
-TEST(WeightedLloyd, OneOrTwoThreadsGiveTheSameSites) {
-  const TriangleMesh mesh = scan("fertility.ply");
-  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 600);
-  remesh::LloydOptions options;
-  options.iterations = 3;
-  options.density = remesh::curvature_density(mesh, {.spacing = remesh::uniform_spacing(mesh, 600)});
-  remesh::LloydResult one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = remesh::lloyd_relax(mesh, sites, options);
-  }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = remesh::lloyd_relax(mesh, sites, options);
-  }
-  ASSERT_EQ(one.sites.size(), two.sites.size());
-  for (std::size_t i = 0; i < one.sites.size(); ++i) {
-    EXPECT_EQ(one.sites[i].element, two.sites[i].element);
-    EXPECT_EQ(one.sites[i].barycentric, two.sites[i].barycentric);
-  }
-  EXPECT_EQ(one.energy, two.energy);
 }
 
 TEST(WeightedLloyd, CurvatureAdaptedRemeshKeepsCountTopologyAndShrinksEdgesWhereBent) {

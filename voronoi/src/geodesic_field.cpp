@@ -109,8 +109,9 @@ void to_caller_numbering(const std::vector<Index>& old_vertex, std::vector<Value
 }
 
 /// Runs window-VTP from the sites (in the propagation's numbering) and fills
-/// the field's per-vertex and per-face results in the caller's numbering.
-/// Returns the windows; the rest of the propagation's state is freed.
+/// the field's per-face results in the caller's numbering, its per-vertex
+/// ones still in the propagation's. Returns the windows; the rest of the
+/// propagation's state is freed.
 detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::LocalityOrder& order,
                               const std::vector<SurfacePoint>& local_sites, const GeodesicOptions& options,
                               GeodesicField& field) {
@@ -126,9 +127,8 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
   field.face_point_sources = vtp.point_sources();
   for (FacePointSource& source : field.face_point_sources) source.face = order.old_face[source.face];
-  field.distance = vtp.take_distance();
+  field.distance = vtp.take_distance();  // still in the propagation's numbering
   field.nearest_site = vtp.take_label();
-  to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
                    [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return vtp.take_windows();
@@ -191,17 +191,25 @@ GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const S
   for (SurfacePoint& site : local_sites) {
     site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
   }
-  // Results map back through old_vertex and old_face. (Assigning {} would
-  // keep a vector's memory: it is assignment from an empty initializer list.)
+  // Results map back through old_face, and old_vertex, made again from it
+  // once propagation is over. (Assigning {} would keep a vector's memory: it
+  // is assignment from an empty initializer list.)
   order.new_vertex = std::vector<Index>();
+  order.old_vertex = std::vector<Index>();
   order.new_face = std::vector<Index>();
   trim_heap();  // the renumbered copy and the setup's scratch arrays
   const double setup_seconds = seconds_since(start);
 
   detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
   windows.compact();
+  {
+    std::vector<Index> new_vertex;  // goes at once: only old_vertex is needed
+    detail::number_vertices(mesh, order.old_face, new_vertex, order.old_vertex);
+  }
+  to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   field.stats.setup_seconds = setup_seconds;
   pm.vertex_face = std::vector<Index>();
+  pm.fan_offsets = std::vector<std::array<std::uint8_t, detail::PropagationMesh::kFanOffsets>>();
   pm.extra_fans = std::vector<std::array<Index, 2>>();
   pm.is_pseudo_source = std::vector<std::uint8_t>();
   const Index num_edges = pm.num_edges();

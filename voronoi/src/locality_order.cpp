@@ -45,25 +45,7 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
   order.new_face.resize(static_cast<std::size_t>(num_faces));
   for (Index f = 0; f < num_faces; ++f) order.new_face[order.old_face[f]] = f;
 
-  // Vertices in the order the sorted faces first use them, then the rest.
-  order.new_vertex.assign(static_cast<std::size_t>(num_vertices), -1);
-  order.old_vertex.clear();
-  order.old_vertex.reserve(static_cast<std::size_t>(num_vertices));
-  for (const Index f : order.old_face) {
-    for (int c = 0; c < 3; ++c) {
-      const Index v = mesh.faces(f, c);
-      if (order.new_vertex[v] < 0) {
-        order.new_vertex[v] = static_cast<Index>(order.old_vertex.size());
-        order.old_vertex.push_back(v);
-      }
-    }
-  }
-  for (Index v = 0; v < num_vertices; ++v) {
-    if (order.new_vertex[v] < 0) {
-      order.new_vertex[v] = static_cast<Index>(order.old_vertex.size());
-      order.old_vertex.push_back(v);
-    }
-  }
+  number_vertices(mesh, order.old_face, order.new_vertex, order.old_vertex);
 
   order.mesh.vertices.resize(num_vertices, 3);
   for (Index v = 0; v < num_vertices; ++v) order.mesh.vertices.row(v) = mesh.vertices.row(order.old_vertex[v]);
@@ -72,6 +54,29 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
     for (int c = 0; c < 3; ++c) order.mesh.faces(f, c) = order.new_vertex[mesh.faces(order.old_face[f], c)];
   }
   return order;
+}
+
+void number_vertices(const TriangleMesh& mesh, const std::vector<Index>& old_face, std::vector<Index>& new_vertex,
+                     std::vector<Index>& old_vertex) {
+  const Index num_vertices = mesh.num_vertices();
+  new_vertex.assign(static_cast<std::size_t>(num_vertices), -1);
+  old_vertex.clear();
+  old_vertex.reserve(static_cast<std::size_t>(num_vertices));
+  for (const Index f : old_face) {
+    for (int c = 0; c < 3; ++c) {
+      const Index v = mesh.faces(f, c);
+      if (new_vertex[v] < 0) {
+        new_vertex[v] = static_cast<Index>(old_vertex.size());
+        old_vertex.push_back(v);
+      }
+    }
+  }
+  for (Index v = 0; v < num_vertices; ++v) {
+    if (new_vertex[v] < 0) {
+      new_vertex[v] = static_cast<Index>(old_vertex.size());
+      old_vertex.push_back(v);
+    }
+  }
 }
 
 }  // namespace geodual::voronoi::detail

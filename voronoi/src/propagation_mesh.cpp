@@ -24,6 +24,15 @@ void PropagationMesh::faces_around(Index v, std::vector<Index>& faces) const {
   faces.clear();
   const Index first = vertex_face[v];
   if (first < 0) return;
+  const std::array<std::uint8_t, kFanOffsets>& offsets = fan_offsets[v];
+  if (offsets[0] != kFanWalked) {
+    faces.push_back(first);
+    for (const std::uint8_t offset : offsets) {
+      if (offset == 0) break;
+      faces.push_back(first + offset);
+    }
+    return;
+  }
   auto add = [&](Index f) { faces.push_back(f); };
   walk_fan(v, first, add);
   if (!extra_fans.empty()) {
@@ -164,6 +173,18 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
       }
     }
     pm.vertex_face.assign(static_cast<std::size_t>(num_vertices), -1);
+    pm.fan_offsets.assign(static_cast<std::size_t>(num_vertices), {});
+    for (Index v = 0; v < num_vertices; ++v) {
+      const Index count = begin[v + 1] - begin[v];
+      if (count == 0) continue;
+      std::array<std::uint8_t, PropagationMesh::kFanOffsets>& offsets = pm.fan_offsets[v];
+      const Index base = faces[begin[v]];
+      if (count - 1 > PropagationMesh::kFanOffsets || faces[begin[v + 1] - 1] - base > PropagationMesh::kFanMaxOffset) {
+        offsets[0] = PropagationMesh::kFanWalked;
+        continue;
+      }
+      for (Index i = 1; i < count; ++i) offsets[i - 1] = static_cast<std::uint8_t>(faces[begin[v] + i] - base);
+    }
     std::vector<Index> reached_from(static_cast<std::size_t>(num_faces), -1);  // the vertex whose fans reached the face
     for (Index v = 0; v < num_vertices; ++v) {
       if (begin[v] == begin[v + 1]) continue;

@@ -264,7 +264,9 @@ void WindowStore::clear_edge(Index edge) {
   Slot& slot = slots_[edge];
   live_ -= slot.count;
   free_block(slot.begin, slot.block_class);
+  const bool marked = slot.marked != 0;
   slot = Slot{};
+  slot.marked = marked ? 1 : 0;
 }
 
 std::vector<Index> WindowStore::edges_by_address(Holding holding) const {
@@ -380,7 +382,7 @@ Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed,
     std::copy(from + at + removed, from + at + removed + tail, to + at + added);
     free_block(slot.begin, slot.block_class);
     slot.begin = begin;
-    slot.block_class = block_class & 0xff;
+    slot.block_class = block_class & 0x7f;  // < kClasses
   }
   live_ += static_cast<std::int64_t>(count) - old_count;
   peak_ = std::max(peak_, live_);

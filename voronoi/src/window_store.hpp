@@ -82,8 +82,13 @@ class WindowStore {
   /// may still all share one site).
   Index edge_site(Index edge) const { return slots_[edge].site; }
 
-  /// Frees every window of the edge.
+  /// Frees every window of the edge (its mark stays).
   void clear_edge(Index edge);
+
+  /// One bit per edge for the caller, kept with the edge's windows (window-VTP
+  /// marks the edges waiting in its FIFO); false at first.
+  bool marked(Index edge) const { return slots_[edge].marked != 0; }
+  void set_marked(Index edge, bool marked) { slots_[edge].marked = marked ? 1 : 0; }
 
   /// Packs the windows together in memory and gives back the pages left
   /// empty: once propagation is over, when the free blocks and unused
@@ -138,9 +143,11 @@ class WindowStore {
   struct Slot {
     std::uint32_t begin = 0;
     std::uint32_t count : 24 = 0;
-    std::uint32_t block_class : 8 = kNoBlock;
+    std::uint32_t block_class : 7 = kNoBlock;
+    std::uint32_t marked : 1 = 0;  ///< see marked()
     Index site = kNoSite;
   };
+  static_assert(kClasses <= 128, "block classes fit in Slot::block_class");
   struct Segment {
     double lo, hi;
     int owner;  ///< -1: the candidate; k >= 0: the k-th overlapped window

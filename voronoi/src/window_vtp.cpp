@@ -27,8 +27,7 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       vertex_flags_(static_cast<std::size_t>(mesh.num_vertices()), 0),
       face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
       store_(mesh.num_edges()),
-      events_(mesh.num_vertices()),
-      in_fifo_(static_cast<std::size_t>(mesh.num_edges()), 0) {
+      events_(mesh.num_vertices()) {
   window_bytes_limit_ = static_cast<std::int64_t>(
       std::min<std::size_t>(options.window_memory_limit_bytes, std::numeric_limits<std::int64_t>::max()));
   // Room for every face at once: reserved address space costs no memory until
@@ -207,8 +206,8 @@ void WindowVtp::schedule(Index e, Index v0, Index v1, const Window& w, double si
 }
 
 void WindowVtp::enqueue_edge(Index e) {
-  if (in_fifo_[e]) return;
-  in_fifo_[e] = 1;
+  if (store_.marked(e)) return;  // already waiting
+  store_.set_marked(e, true);
   fifo_.push_back(e);
 }
 
@@ -278,7 +277,7 @@ void WindowVtp::drain_fifo() {
   // (the entered face's two others), so the edge's array stays as it is.
   while (fifo_head_ < fifo_.size()) {
     const Index e = fifo_[fifo_head_++];
-    in_fifo_[e] = 0;
+    store_.set_marked(e, false);
     const std::size_t count = store_.on_edge(e).size();
     for (std::size_t i = 0; i < count; ++i) {
       Window& w = store_.on_edge(e)[i];
@@ -451,7 +450,6 @@ void WindowVtp::run() {
   events_ = EventQueue(0);
   face_events_ = decltype(face_events_)();
   fifo_ = std::vector<Index>();
-  in_fifo_ = std::vector<std::uint8_t>();
   created_ = std::vector<WindowStore::Piece>();
   new_faces_ = std::vector<Index>();
   fan_ = std::vector<Index>();

@@ -115,8 +115,7 @@ class WindowVtp {
   WindowStore store_;
   EventQueue events_;
   std::priority_queue<FaceEvent, std::vector<FaceEvent>, std::greater<>> face_events_;
-  std::vector<Index> fifo_;            // edges with queued windows
-  std::vector<std::uint8_t> in_fifo_;  // per edge
+  std::vector<Index> fifo_;  // edges with queued windows (marked in the store while they wait)
   std::size_t fifo_head_ = 0;
   std::vector<WindowStore::Piece> created_;  // scratch for WindowStore::insert
   std::vector<Index> new_faces_;   // scratch for expand
