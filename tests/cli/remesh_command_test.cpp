@@ -92,6 +92,31 @@ TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
   EXPECT_LT(newton["energy_history"][4].get<double>(), plain["energy_history"][4].get<double>());
 }
 
+TEST(RemeshCommand, CurvatureAdaptationOnRequest) {
+  ScratchFolder folder;
+  auto remesh = [&](std::vector<std::string> extra) {
+    std::vector<std::string> arguments = {"remesh", open_scan, "--sites", "800", "--lloyd", "2", "--samples", "-1",
+                                          "-o", (folder.path() / "out.ply").string(), "--json",
+                                          "--report", (folder.path() / "report.json").string()};
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    const CliRun run = run_cli(arguments);
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    return std::pair(nlohmann::json::parse(run.out), nlohmann::json::parse(slurp(folder.path() / "report.json")));
+  };
+  const auto [uniform, uniform_report] = remesh({});
+  const auto [adapted, adapted_report] = remesh({"--curvature-adaptation", "1"});
+  EXPECT_EQ(uniform_report["options"]["curvature_adaptation"], 0.0);
+  EXPECT_EQ(adapted_report["options"]["curvature_adaptation"], 1.0);
+  EXPECT_EQ(adapted["vertices"], uniform["vertices"]);  // the same vertex count
+  // The same sites to start from, weighted by a density >= 1 that exceeds 1
+  // where the scan bends: a larger energy.
+  EXPECT_GT(adapted["energy_history"][0].get<double>(), uniform["energy_history"][0].get<double>());
+  const CliRun negative = run_cli({"remesh", open_scan, "--sites", "800", "--curvature-adaptation", "-1", "-o",
+                                   (folder.path() / "bad.ply").string()});
+  EXPECT_EQ(negative.exit_status, 2);
+  EXPECT_FALSE(std::filesystem::exists(folder.path() / "bad.ply"));
+}
+
 TEST(RemeshCommand, BadRequestsFailCleanly) {
   ScratchFolder folder;
   const auto out = folder.path() / "out.glb";

@@ -217,9 +217,19 @@ void WindowVtp::propagate(Index e, const Window& w) {
   const Index g = pm_.edge_faces[e][side];
   if (g < 0) return;
   const FaceRecord& face = pm_.face_records[g];
-  const int k = PropagationMesh::local_edge(face, e);
-  const std::array<double, 3> lengths = pm_.face_lengths(face);
-  const EdgeLayout l = layout_on_edge(lengths, k);
+  // The windows of an edge go through in turn (drain_fifo), most into the
+  // same face: its layout is made once for them.
+  EnteredFace& entered = entered_face_;
+  if (entered.edge != e || entered.side != side) {
+    entered.edge = e;
+    entered.side = side;
+    entered.k = PropagationMesh::local_edge(face, e);
+    entered.lengths = pm_.face_lengths(face);
+    entered.layout = layout_on_edge(entered.lengths, entered.k);
+  }
+  const int k = entered.k;
+  const std::array<double, 3>& lengths = entered.lengths;
+  const EdgeLayout& l = entered.layout;
   const double length = l.length;
 
   // The window in g's frame for edge k: A = (0,0), B = (length,0), C = apex

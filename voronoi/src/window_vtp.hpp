@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <queue>
 #include <utility>
@@ -118,6 +119,14 @@ class WindowVtp {
   std::vector<Index> fifo_;  // edges with queued windows (marked in the store while they wait)
   std::size_t fifo_head_ = 0;
   std::vector<WindowStore::Piece> created_;  // scratch for WindowStore::insert
+  /// The face the last propagated window entered, laid out (see propagate).
+  struct EnteredFace {
+    Index edge = -1;
+    int side = 0, k = 0;
+    std::array<double, 3> lengths{};
+    EdgeLayout layout;
+  };
+  EnteredFace entered_face_;
   std::vector<Index> new_faces_;   // scratch for expand
   std::vector<Index> fan_;         // scratch: faces around a vertex (expand, relax)
   std::vector<Index> emit_faces_;  // scratch: faces around a pseudo-source (emit_from_vertex)
