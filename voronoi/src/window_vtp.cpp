@@ -384,7 +384,7 @@ void WindowVtp::push_face_key(Index face) {
   const double key = d_min + std::max({lengths[0], lengths[1], lengths[2]});
   float rounded_up = static_cast<float>(key);
   if (static_cast<double>(rounded_up) < key) rounded_up = std::nextafter(rounded_up, std::numeric_limits<float>::infinity());
-  face_events_.push({key, face}); (void)rounded_up;
+  face_events_.push({rounded_up, face});
 }
 
 bool WindowVtp::face_is_redundant(Index face) const {

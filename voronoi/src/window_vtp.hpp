@@ -60,11 +60,10 @@ class WindowVtp {
   /// rounded up to a float: a key no smaller only makes the face inactive
   /// no earlier, which is safe, and halves the queue (8 bytes an event).
   struct FaceEvent {
-    double key;
+    float key;
     Index face;
     bool operator>(const FaceEvent& o) const { return key != o.key ? key > o.key : face > o.face; }
   };
-
 
   void add_vertex_site(Index vertex, Index site);
   void add_face_site(Index face, const Eigen::Vector3d& barycentric, Index site);
