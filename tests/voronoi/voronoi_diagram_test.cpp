@@ -141,7 +141,7 @@ TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
   for (const VoronoiArc& arc : diagram.arcs) {
     for (const Eigen::Vector3d& p : diagram.polyline(arc)) {
       const double left = distance_to(arc.left_site, p), right = distance_to(arc.right_site, p);
-      EXPECT_NEAR(left, right, 1e-10);
+      EXPECT_NEAR(left, right, 1e-13);
       EXPECT_NEAR(nearest(p), std::min(left, right), 1e-10);
     }
     // The left site lies to the left of the arc's first segment.
