@@ -215,10 +215,8 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
 Eigen::Vector2d FaceBoundaryTracer::bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
                                                         const Eigen::Vector2d& b, Index from, Index to, double g_a,
                                                         double g_b) const {
-  // g = d_from - d_to changes sign between a and b; oriented to rise.
-  const double sign = g_a <= 0 ? 1.0 : -1.0;
-  const double t = sign_change([&](double u) { return sign * envelope.difference(from, to, a + u * (b - a)); },
-                               sign * g_a, sign * g_b);
+  // g = d_from - d_to changes sign between a and b.
+  const double t = sign_change([&](double u) { return envelope.difference(from, to, a + u * (b - a)); }, g_a, g_b);
   return a + t * (b - a);
 }
 
