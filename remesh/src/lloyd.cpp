@@ -189,14 +189,14 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
     const double previous = result.energy.back();
     const std::vector<bool> movable = movable_sites(mesh, result.sites, result.diagram, options);
     // Tries a step; keeps it when it lowers the energy.
-    auto try_step = [&](const std::vector<Eigen::Vector3d>& steps) {
+    auto try_step = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       const auto start = std::chrono::steady_clock::now();
       std::vector<SurfacePoint> moved = move_sites(mesh, result.sites, result.diagram, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       voronoi::VoronoiDiagram next = diagram_of(moved);
       detail::WeightedCells next_cells = cells_of(moved, next);
       const double energy = next_cells.total_energy();
-      if (!(energy < previous)) return false;
+      if (!(energy < previous - least_decrease)) return false;
       result.sites = std::move(moved);
       result.diagram = std::move(next);
       cells = std::move(next_cells);
@@ -208,22 +208,25 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
       // Levenberg–Marquardt on the damping: a Newton step that lowers the
       // energy lets the next be less damped (down to newton_damping); one
       // that does not is retried once, more damped, before Lloyd's step is
-      // taken instead.
+      // taken instead. A Newton step must lower the energy by the tolerance
+      // at least: one that lowers it by less has fallen short of its model
+      // (overshooting along some sites, short along others) rather than
+      // shown convergence, which Lloyd's step then decides.
       for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
         const auto start = std::chrono::steady_clock::now();
         const std::vector<Eigen::Vector3d> steps = detail::cvt_newton_steps(
             mesh, result.sites, result.diagram, cells, movable, damping, options.newton_max_step);
         result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        accepted = try_step(steps);
+        accepted = try_step(steps, options.tolerance * previous);
         damping = accepted ? std::max(damping / 4, options.newton_damping) : damping * 4;
       }
     }
     if (!accepted && factor > 1) {
-      accepted = try_step(lloyd_steps(cells, movable, factor));
+      accepted = try_step(lloyd_steps(cells, movable, factor), 0);
       // Over-relaxed too far: the plain Lloyd step from here on.
       if (!accepted) factor = 1;
     }
-    if (!accepted) accepted = try_step(lloyd_steps(cells, movable, factor));
+    if (!accepted) accepted = try_step(lloyd_steps(cells, movable, factor), 0);
     if (!accepted) break;  // not even Lloyd's step lowers the energy: stop here
     ++result.iterations;
     if (previous - result.energy.back() < options.tolerance * previous) break;

@@ -32,7 +32,9 @@ namespace geodual::remesh {
 struct LloydOptions {
   /// At most this many iterations (0: none, the diagram of the given sites).
   int iterations = 10;
-  /// Stop once an iteration lowers the energy by less than this fraction.
+  /// Stop once an iteration lowers the energy by less than this fraction of
+  /// it. A Newton step must lower it by this much to be taken (one that
+  /// lowers it by less is retried more damped, then Lloyd's step decides).
   double tolerance = 1e-5;
   /// Each step goes this many times the way to the centroid (over-relaxed
   /// Lloyd; 1 is the plain one). When an over-relaxed step would raise the
