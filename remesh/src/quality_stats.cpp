@@ -6,6 +6,7 @@
 #include "geodual/remesh/quality_stats.hpp"
 
 #include "geodual/error.hpp"
+#include "geodual/morton_code.hpp"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -95,20 +96,30 @@ double squared_distance_to_triangle(const Point& point, const Triangle& triangle
 
 /// Traversal traits for the exact squared distance from a point to the
 /// triangles of an AABB tree: children are visited nearest box first, and a
-/// box no nearer than the best triangle so far is skipped. Unlike the tree's
-/// closest_point, it needs no k-d tree hint (costly for points far from the
-/// surface) and starts from an infinite bound. The result depends on the
-/// query alone, not on the order of queries or the thread.
+/// box no nearer than the best triangle so far is skipped. It starts from the
+/// distance to a given triangle (the previous query's nearest, for queries
+/// in spatial order) instead of the tree's k-d tree hint (costly for points
+/// far from the surface). The result is the minimum over the triangles, so
+/// it depends on the query alone, not on the start, the order of queries or
+/// the thread.
 class NearestTriangle {
  public:
+  NearestTriangle(double start_squared, std::size_t start_triangle)
+      : best_(start_squared), best_triangle_(start_triangle) {}
+
   using Node = CGAL::AABB_node<CGAL::AABB_traits<Kernel, Primitive>>;
   using Priority = double;  ///< higher first: minus the squared distance to the box
 
   bool go_further() const { return true; }
 
   void intersection(const Point& query, const Primitive& primitive) {
-    best_ = std::min(best_, squared_distance_to_triangle(query, primitive.datum()));
+    const double d2 = squared_distance_to_triangle(query, primitive.datum());
+    if (d2 < best_) {
+      best_ = d2;
+      best_triangle_ = static_cast<std::size_t>(primitive.id() - first_);
+    }
   }
+  void set_first(TriangleIterator first) { first_ = first; }
 
   bool do_intersect(const Point& query, const Node& node) const { return box_distance(query, node) < best_; }
 
@@ -118,6 +129,7 @@ class NearestTriangle {
   }
 
   double squared_distance() const { return best_; }
+  std::size_t nearest_triangle() const { return best_triangle_; }
 
  private:
   static double box_distance(const Point& q, const Node& node) {
@@ -133,6 +145,8 @@ class NearestTriangle {
   }
 
   double best_ = std::numeric_limits<double>::infinity();
+  std::size_t best_triangle_ = 0;
+  TriangleIterator first_{};
 };
 
 /// One mesh as a surface to sample and to measure distances to: its faces of
@@ -167,6 +181,7 @@ class Surface {
     tree_.insert(triangles_.begin(), triangles_.end());
     // Built now, not lazily on the first query, so that the queries only read.
     tree_.build();
+    bbox_ = tree_.bbox();
   }
   Surface(const Surface&) = delete;
   Surface& operator=(const Surface&) = delete;
@@ -194,18 +209,26 @@ class Surface {
                  wa * t[0].z() + wb * t[1].z() + wc * t[2].z());
   }
 
-  /// Squared distance from p to the closest point of the surface.
-  double squared_distance(const Point& p) const {
-    NearestTriangle nearest;
+  /// Squared distance from p to the closest point of the surface; `near`,
+  /// the index of a triangle close to p, bounds the search from the start,
+  /// and is set to the nearest triangle.
+  double squared_distance(const Point& p, std::size_t& near) const {
+    NearestTriangle nearest(squared_distance_to_triangle(p, triangles_[near]), near);
+    nearest.set_first(triangles_.cbegin());
     tree_.traversal_with_priority(p, nearest);
+    near = nearest.nearest_triangle();
     return nearest.squared_distance();
   }
+
+  /// The corners of its bounding box.
+  const CGAL::Bbox_3& bbox() const { return bbox_; }
 
  private:
   std::vector<Triangle> triangles_;
   std::vector<double> cumulative_area_;
   std::vector<Point> vertices_;
   Tree tree_;
+  CGAL::Bbox_3 bbox_;
 };
 
 struct OneSided {
@@ -215,29 +238,61 @@ struct OneSided {
 };
 
 /// Distances from `from`'s vertices and `samples` area-uniform samples of it
-/// to `to`. Fixed blocks, each summed in order, then the blocks summed in
-/// order: the same bits for any number of threads.
+/// to `to`. Fixed blocks of points, each summed in order, then the blocks
+/// summed in order: the same bits for any number of threads. The points of
+/// a run of blocks are queried in Morton order, each search bounded from the
+/// start by the previous point's nearest triangle, which is near: a few
+/// times fewer boxes visited, and the same distances.
 OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, std::uint64_t stream) {
   constexpr std::int64_t block = 4096;
+  constexpr std::int64_t blocks_per_run = 16;
   const std::int64_t vertices = from.vertex_count();
   const std::int64_t count = vertices + samples;
   const auto blocks = static_cast<std::size_t>((count + block - 1) / block);
+  const auto runs = (blocks + blocks_per_run - 1) / blocks_per_run;
   std::vector<double> block_max(blocks, 0.0);
   std::vector<double> block_sum(blocks, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t b = range.begin(); b != range.end(); ++b) {
-      const std::int64_t first = static_cast<std::int64_t>(b) * block;
-      const std::int64_t last = std::min(first + block, count);
-      double max_squared = 0.0;
-      double sum_squared = 0.0;
-      for (std::int64_t i = first; i < last; ++i) {
+  const CGAL::Bbox_3& box = to.bbox();
+  const double extent = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
+  const double cells_per_unit = extent > 0 ? 1048575.0 / extent : 0.0;  // 2^20 - 1 cells along the longest side
+  auto cell = [&](double x, double low) {
+    return static_cast<std::uint64_t>(std::clamp((x - low) * cells_per_unit, 0.0, 2097151.0));
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<Point> points;
+    std::vector<std::pair<std::uint64_t, std::int32_t>> order;
+    std::vector<double> squared;
+    for (std::size_t run = range.begin(); run != range.end(); ++run) {
+      const std::int64_t first = static_cast<std::int64_t>(run) * block * blocks_per_run;
+      const std::int64_t last = std::min(first + block * blocks_per_run, count);
+      const auto size = static_cast<std::size_t>(last - first);
+      points.resize(size);
+      order.resize(size);
+      squared.resize(size);
+      for (std::size_t k = 0; k < size; ++k) {
+        const std::int64_t i = first + static_cast<std::int64_t>(k);
         const Point p = i < vertices ? from.vertex(i) : from.sample(stream, i - vertices);
-        const double d2 = to.squared_distance(p);
-        max_squared = std::max(max_squared, d2);
-        sum_squared += d2;
+        points[k] = p;
+        order[k] = {morton_code(cell(p.x(), box.xmin()), cell(p.y(), box.ymin()), cell(p.z(), box.zmin())),
+                    static_cast<std::int32_t>(k)};
       }
-      block_max[b] = max_squared;
-      block_sum[b] = sum_squared;
+      std::sort(order.begin(), order.end());
+      std::size_t near = 0;
+      for (const auto& [code, k] : order) {
+        const auto at = static_cast<std::size_t>(k);
+        squared[at] = to.squared_distance(points[at], near);
+      }
+      for (std::int64_t b = first / block; b * block < last; ++b) {
+        double max_squared = 0.0;
+        double sum_squared = 0.0;
+        for (std::int64_t i = b * block; i < std::min((b + 1) * block, last); ++i) {
+          const double d2 = squared[static_cast<std::size_t>(i - first)];
+          max_squared = std::max(max_squared, d2);
+          sum_squared += d2;
+        }
+        block_max[static_cast<std::size_t>(b)] = max_squared;
+        block_sum[static_cast<std::size_t>(b)] = sum_squared;
+      }
     }
   });
   OneSided result;
