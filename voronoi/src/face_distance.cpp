@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace geodual::voronoi::detail {
 namespace {
@@ -64,18 +65,22 @@ Eigen::Vector3d FaceLayout::barycentric(const Eigen::Vector2d& p) const {
   return b;
 }
 
+void DistanceCone::set_rays(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+  in_wedge_only = true;
+  ray0 = from;
+  ray1 = to;
+  wedge_opens = cross(ray0, ray1) > 0;
+}
+
 bool DistanceCone::sees(const Eigen::Vector2d& p) const {
   if (!in_wedge_only) return true;
   const Eigen::Vector2d q = p - apex;
-  if (!(cross(ray0, ray1) > 0)) {
-    // The apex lies on the line of the interval: only the interval itself.
-    return cross(ray0, q) == 0 && (q - ray0).dot(q - ray1) <= 0;
-  }
+  if (!wedge_opens) return cross(ray0, q) == 0 && (q - ray0).dot(q - ray1) <= 0;
   return cross(ray0, q) >= 0 && cross(q, ray1) >= 0;
 }
 
 void ConeEnvelope::clear() {
-  cones_.clear();
+  for (int slot = 0; slot < slot_count(); ++slot) slot_cones_[slot].clear();
   slot_site_.clear();
 }
 
@@ -90,6 +95,7 @@ int ConeEnvelope::slot_for(Index site) {
   const int slot = slot_of(site);
   if (slot >= 0) return slot;
   slot_site_.push_back(site);
+  if (slot_cones_.size() < slot_site_.size()) slot_cones_.emplace_back();
   return slot_count() - 1;
 }
 
@@ -98,8 +104,7 @@ void ConeEnvelope::add(const Eigen::Vector2d& apex, double sigma, Index site) {
   DistanceCone cone;
   cone.apex = apex;
   cone.sigma = sigma;
-  cone.slot = slot_for(site);
-  cones_.push_back(cone);
+  slot_cones_[slot_for(site)].push_back(cone);
 }
 
 void ConeEnvelope::add_wedge(const Eigen::Vector2d& apex, double sigma, Index site, const Eigen::Vector2d& end0,
@@ -108,24 +113,37 @@ void ConeEnvelope::add_wedge(const Eigen::Vector2d& apex, double sigma, Index si
   DistanceCone cone;
   cone.apex = apex;
   cone.sigma = sigma;
-  cone.slot = slot_for(site);
-  cone.in_wedge_only = true;
-  cone.ray0 = end0 - apex;
-  cone.ray1 = end1 - apex;
-  if (cross(cone.ray0, cone.ray1) < 0) std::swap(cone.ray0, cone.ray1);
-  cones_.push_back(cone);
+  Eigen::Vector2d ray0 = end0 - apex, ray1 = end1 - apex;
+  if (cross(ray0, ray1) < 0) std::swap(ray0, ray1);
+  cone.set_rays(ray0, ray1);
+  slot_cones_[slot_for(site)].push_back(cone);
   // The paths that bend at either end of the window's interval.
   add(end0, sigma + (end0 - apex).norm(), site);
   add(end1, sigma + (end1 - apex).norm(), site);
 }
 
+// The queries compute a cone's value first and test whether the cone sees p
+// only where the value would change the answer: the same results as testing
+// every cone, with far fewer wedge tests.
+
+double ConeEnvelope::lowest(int slot, const Eigen::Vector2d& p) const {
+  double best = infinity;
+  if (slot < 0) return best;
+  for (const DistanceCone& cone : slot_cones_[slot]) {
+    const double d = cone.sigma + (p - cone.apex).norm();
+    if (d < best && cone.sees(p)) best = d;
+  }
+  return best;
+}
+
 double ConeEnvelope::distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
   double best = infinity;
   const DistanceCone* best_cone = nullptr;
-  for (const DistanceCone& cone : cones_) {
-    if (cone.slot != slot || !cone.sees(p)) continue;
+  const std::span<const DistanceCone> cones =
+      slot >= 0 ? std::span<const DistanceCone>(slot_cones_[slot]) : std::span<const DistanceCone>();
+  for (const DistanceCone& cone : cones) {
     const double d = cone.sigma + (p - cone.apex).norm();
-    if (d < best) best = d, best_cone = &cone;
+    if (d < best && cone.sees(p)) best = d, best_cone = &cone;
   }
   if (gradient) {
     gradient->setZero();
@@ -139,28 +157,24 @@ double ConeEnvelope::distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2
 }
 
 Index ConeEnvelope::nearest_site(const Eigen::Vector2d& p) const {
+  // The smallest value, ties to the smallest site: the same whatever order
+  // the cones are read in.
   double best = infinity;
   Index site = -1;
-  for (const DistanceCone& cone : cones_) {
-    if (!cone.sees(p)) continue;
-    const double d = cone.sigma + (p - cone.apex).norm();
-    const Index s = slot_site_[cone.slot];
-    if (d < best || (d == best && s < site)) best = d, site = s;
+  for (int slot = 0; slot < slot_count(); ++slot) {
+    const Index s = slot_site_[slot];
+    for (const DistanceCone& cone : slot_cones_[slot]) {
+      const double d = cone.sigma + (p - cone.apex).norm();
+      if ((d < best || (d == best && s < site)) && cone.sees(p)) best = d, site = s;
+    }
   }
   return site;
 }
 
 double ConeEnvelope::difference(Index site_a, Index site_b, const Eigen::Vector2d& p) const {
-  // One pass over the cones for both sites.
   const int a = slot_of(site_a), b = slot_of(site_b);
-  double da = infinity, db = infinity;
-  for (const DistanceCone& cone : cones_) {
-    if (cone.slot != a && cone.slot != b) continue;
-    if (!cone.sees(p)) continue;
-    const double d = cone.sigma + (p - cone.apex).norm();
-    double& best = cone.slot == a ? da : db;
-    best = std::min(best, d);
-  }
+  // With site_a == site_b, only a's value counts (b's stays unreachable).
+  const double da = lowest(a, p), db = b == a ? infinity : lowest(b, p);
   if (da == db) return 0;  // also both infinite
   return da - db;
 }
@@ -209,16 +223,22 @@ void ConeEnvelope::add_moved(const ConeEnvelope& other, const Eigen::Vector2d& o
                              const Eigen::Vector2d& y_axis) {
   auto move = [&](const Eigen::Vector2d& v) { return Eigen::Vector2d(v.dot(x_axis), v.dot(y_axis)); };
   const bool reflects = cross(x_axis, y_axis) < 0;
-  for (const DistanceCone& cone : other.cones_) {
-    DistanceCone moved = cone;
-    moved.apex = move(cone.apex - origin);
-    moved.slot = slot_for(other.slot_site_[cone.slot]);
-    if (cone.in_wedge_only) {
-      moved.ray0 = move(cone.ray0);
-      moved.ray1 = move(cone.ray1);
-      if (reflects) std::swap(moved.ray0, moved.ray1);
+  // other's slots are numbered in order of first appearance, so taking them
+  // in order numbers the new sites here as adding its cones one by one would.
+  for (int other_slot = 0; other_slot < other.slot_count(); ++other_slot) {
+    std::vector<DistanceCone>& cones = slot_cones_[slot_for(other.slot_site_[other_slot])];
+    for (const DistanceCone& cone : other.slot_cones_[other_slot]) {
+      DistanceCone moved = cone;
+      moved.apex = move(cone.apex - origin);
+      if (cone.in_wedge_only) {
+        if (reflects) {
+          moved.set_rays(move(cone.ray1), move(cone.ray0));
+        } else {
+          moved.set_rays(move(cone.ray0), move(cone.ray1));
+        }
+      }
+      cones.push_back(moved);
     }
-    cones_.push_back(moved);
   }
 }
 

@@ -41,15 +41,20 @@ struct FaceLayout {
 struct DistanceCone {
   Eigen::Vector2d apex = Eigen::Vector2d::Zero();
   double sigma = 0;
-  int slot = 0;  ///< which site, as an index into the evaluator's site list
   bool in_wedge_only = false;
+  /// cross(ray0, ray1) > 0, kept with the rays; otherwise the apex lies on
+  /// the line of the interval and the cone sees only the interval itself.
+  bool wedge_opens = false;
   Eigen::Vector2d ray0 = Eigen::Vector2d::Zero();
   Eigen::Vector2d ray1 = Eigen::Vector2d::Zero();
 
+  void set_rays(const Eigen::Vector2d& from, const Eigen::Vector2d& to);
   bool sees(const Eigen::Vector2d& p) const;
 };
 
-/// The lower envelopes, one per site, of a set of cones in one plane.
+/// The lower envelopes, one per site, of a set of cones in one plane. The
+/// cones are kept grouped by site (a slot each, numbered in order of first
+/// appearance), so a query about one or two sites reads only their cones.
 class ConeEnvelope {
  public:
   void clear();
@@ -78,8 +83,13 @@ class ConeEnvelope {
 
  private:
   int slot_for(Index site);
+  /// The lowest value at p of the slot's cones (+inf if none sees p).
+  double lowest(int slot, const Eigen::Vector2d& p) const;
 
-  std::vector<DistanceCone> cones_;
+  /// The cones of each slot in the order they were added (distance() gives
+  /// a tie to the earlier cone). Buckets past slot_count() are spares kept
+  /// empty with their capacity, so rebuilding an envelope does not allocate.
+  std::vector<std::vector<DistanceCone>> slot_cones_;
   std::vector<Index> slot_site_;
 };
 
