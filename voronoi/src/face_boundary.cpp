@@ -241,17 +241,15 @@ void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const E
                                            const Eigen::Vector2d& q, double t0, double t1, Index site0,
                                            Index site1) {
   // Where the two sites are equally far, found on the difference of their
-  // distances, is the change when they are the nearest on either side of it
-  // (a tie at t1, common where t1 is a mesh vertex on the boundary, puts the
-  // change there).
+  // distances, is the change when they are the nearest on either side of it.
   const Eigen::Vector2d a = p + t0 * (q - p), b = p + t1 * (q - p);
   const double g_a = envelope.difference(site0, site1, a), g_b = envelope.difference(site0, site1, b);
-  if (g_a < 0 && g_b >= 0) {
+  if (g_a < 0 && g_b > 0) {
     const double u = sign_change([&](double s) { return envelope.difference(site0, site1, a + s * (b - a)); }, g_a, g_b);
     const double step = std::ldexp(t1 - t0, -bisection_steps + 2);
     const double t = t0 + u * (t1 - t0);
     if (envelope.nearest_site(p + (t - step) * (q - p)) == site0 &&
-        (t + step >= t1 || envelope.nearest_site(p + (t + step) * (q - p)) == site1)) {
+        envelope.nearest_site(p + (t + step) * (q - p)) == site1) {
       changes_.push_back({t, site0, site1});
       return;
     }
