@@ -10,7 +10,9 @@ namespace geodual::voronoi::detail {
 namespace {
 
 constexpr int samples_per_inner_side = 8;
-constexpr int bisection_steps = 46;  // 2^-46 of a segment (at most a triangle's side): ~1e-14 of it
+/// Every search along a segment ends within 2^-46 of it (at most a triangle's
+/// side: ~1e-14 of it): bisection's number of halvings, Brent's tolerance.
+constexpr int bisection_steps = 46;
 constexpr int max_polyline_depth = 12;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
