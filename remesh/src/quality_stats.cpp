@@ -104,8 +104,9 @@ double squared_distance_to_triangle(const Point& point, const Triangle& triangle
 /// the thread.
 class NearestTriangle {
  public:
-  NearestTriangle(double start_squared, std::size_t start_triangle)
-      : best_(start_squared), best_triangle_(start_triangle) {}
+  /// `first`: the tree's first triangle, to number the primitives from.
+  NearestTriangle(TriangleIterator first, double start_squared, std::size_t start_triangle)
+      : first_(first), best_(start_squared), best_triangle_(start_triangle) {}
 
   using Node = CGAL::AABB_node<CGAL::AABB_traits<Kernel, Primitive>>;
   using Priority = double;  ///< higher first: minus the squared distance to the box
@@ -119,7 +120,6 @@ class NearestTriangle {
       best_triangle_ = static_cast<std::size_t>(primitive.id() - first_);
     }
   }
-  void set_first(TriangleIterator first) { first_ = first; }
 
   bool do_intersect(const Point& query, const Node& node) const { return box_distance(query, node) < best_; }
 
@@ -144,9 +144,9 @@ class NearestTriangle {
     return d2;
   }
 
-  double best_ = std::numeric_limits<double>::infinity();
-  std::size_t best_triangle_ = 0;
-  TriangleIterator first_{};
+  TriangleIterator first_;
+  double best_;
+  std::size_t best_triangle_;
 };
 
 /// One mesh as a surface to sample and to measure distances to: its faces of
@@ -213,8 +213,7 @@ class Surface {
   /// the index of a triangle close to p, bounds the search from the start,
   /// and is set to the nearest triangle.
   double squared_distance(const Point& p, std::size_t& near) const {
-    NearestTriangle nearest(squared_distance_to_triangle(p, triangles_[near]), near);
-    nearest.set_first(triangles_.cbegin());
+    NearestTriangle nearest(triangles_.cbegin(), squared_distance_to_triangle(p, triangles_[near]), near);
     tree_.traversal_with_priority(p, nearest);
     near = nearest.nearest_triangle();
     return nearest.squared_distance();

@@ -214,12 +214,11 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
   }
 }
 
-Eigen::Vector2d FaceBoundaryTracer::bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
-                                                        const Eigen::Vector2d& b, Index from, Index to, double g_a,
-                                                        double g_b) const {
+double FaceBoundaryTracer::equal_distance_parameter(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
+                                                    const Eigen::Vector2d& b, Index from, Index to, double g_a,
+                                                    double g_b) {
   // g = d_from - d_to changes sign between a and b.
-  const double t = sign_change([&](double u) { return envelope.difference(from, to, a + u * (b - a)); }, g_a, g_b);
-  return a + t * (b - a);
+  return sign_change([&](double u) { return envelope.difference(from, to, a + u * (b - a)); }, g_a, g_b);
 }
 
 void FaceBoundaryTracer::drop_zero_width_stretches() {
@@ -247,7 +246,7 @@ void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const E
   const Eigen::Vector2d a = p + t0 * (q - p), b = p + t1 * (q - p);
   const double g_a = envelope.difference(site0, site1, a), g_b = envelope.difference(site0, site1, b);
   if (g_a < 0 && g_b > 0) {
-    const double u = sign_change([&](double s) { return envelope.difference(site0, site1, a + s * (b - a)); }, g_a, g_b);
+    const double u = equal_distance_parameter(envelope, a, b, site0, site1, g_a, g_b);
     const double step = std::ldexp(t1 - t0, -bisection_steps + 2);
     const double t = t0 + u * (t1 - t0);
     if (envelope.nearest_site(p + (t - step) * (q - p)) == site0 &&
@@ -643,7 +642,8 @@ double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen:
   const Eigen::Vector2d low = middle + s_min * normal, high = middle + s_max * normal;
   const double g_low = envelope_.difference(left, right, low), g_high = envelope_.difference(left, right, high);
   if (!((g_low <= 0) != (g_high <= 0))) return 0;
-  const Eigen::Vector2d on_curve = bisector_on_segment(envelope_, low, high, left, right, g_low, g_high);
+  const Eigen::Vector2d on_curve =
+      low + equal_distance_parameter(envelope_, low, high, left, right, g_low, g_high) * (high - low);
   if (const Index nearest = envelope_.nearest_site(on_curve); nearest != left && nearest != right) {
     trace_valid_ = false;  // a third site's part lies across the way
   }

@@ -180,11 +180,10 @@ class FaceBoundaryTracer {
                          double t1, Index site0, Index site1);
   /// Removes from changes_ the pairs A -> B -> A that enclose no length.
   void drop_zero_width_stretches();
-  /// The point on segment [a, b] where sites `from` and `to` are equally far,
-  /// given g = d_from - d_to at a and b (of opposite signs: g_a <= 0 < g_b or
-  /// g_b <= 0 < g_a).
-  Eigen::Vector2d bisector_on_segment(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
-                                      const Eigen::Vector2d& b, Index from, Index to, double g_a, double g_b) const;
+  /// The u in [0, 1] where sites `from` and `to` are equally far at
+  /// a + u (b - a), given g = d_from - d_to at a and b (of opposite signs).
+  static double equal_distance_parameter(const ConeEnvelope& envelope, const Eigen::Vector2d& a,
+                                         const Eigen::Vector2d& b, Index from, Index to, double g_a, double g_b);
   /// Appends the polyline strictly between p and q that follows the bisector of
   /// `left` and `right` within the tolerance; returns its length.
   double trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left, Index right,

@@ -126,16 +126,6 @@ void ConeEnvelope::add_wedge(const Eigen::Vector2d& apex, double sigma, Index si
 // only where the value would change the answer: the same results as testing
 // every cone, with far fewer wedge tests.
 
-double ConeEnvelope::lowest(int slot, const Eigen::Vector2d& p) const {
-  double best = infinity;
-  if (slot < 0) return best;
-  for (const DistanceCone& cone : slot_cones_[slot]) {
-    const double d = cone.sigma + (p - cone.apex).norm();
-    if (d < best && cone.sees(p)) best = d;
-  }
-  return best;
-}
-
 double ConeEnvelope::distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
   double best = infinity;
   const DistanceCone* best_cone = nullptr;
@@ -174,7 +164,7 @@ Index ConeEnvelope::nearest_site(const Eigen::Vector2d& p) const {
 double ConeEnvelope::difference(Index site_a, Index site_b, const Eigen::Vector2d& p) const {
   const int a = slot_of(site_a), b = slot_of(site_b);
   // With site_a == site_b, only a's value counts (b's stays unreachable).
-  const double da = lowest(a, p), db = b == a ? infinity : lowest(b, p);
+  const double da = distance(a, p), db = b == a ? infinity : distance(b, p);
   if (da == db) return 0;  // also both infinite
   return da - db;
 }

@@ -83,8 +83,6 @@ class ConeEnvelope {
 
  private:
   int slot_for(Index site);
-  /// The lowest value at p of the slot's cones (+inf if none sees p).
-  double lowest(int slot, const Eigen::Vector2d& p) const;
 
   /// The cones of each slot in the order they were added (distance() gives
   /// a tie to the earlier cone). Buckets past slot_count() are spares kept
