@@ -280,40 +280,47 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     for (std::size_t i = 0; i < count && i < by_area.size(); ++i) repair_far_from(by_area[i].second);
   }
 
-  // Repair sites: apart from each other and from the sites (the engine
-  // rejects two sites at one point; points 1e-9 of the diagonal apart are
-  // one point here).
+  // Repair sites: apart from the sites (the engine rejects two sites at one
+  // point; points 1e-9 of the diagonal apart are one point here), and from
+  // each other by a quarter of the sites' mean spacing (two arcs of one
+  // problem often end side by side, and two sites there would make a sliver).
+  double cells_area = 0;
+  for (const double area : diagram.cell_area) cells_area += area;
+  const double apart = 0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
   const double spacing = std::max(1e-9 * diagonal, 1e-300);
-  std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
-  auto cell_of = [&](const Eigen::Vector3d& x) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / spacing)),
-                                       static_cast<std::int64_t>(std::floor(x.y() / spacing)),
-                                       static_cast<std::int64_t>(std::floor(x.z() / spacing))};
+  using Grid = std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>>;
+  auto cell_of = [](const Eigen::Vector3d& x, double size) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / size)),
+                                       static_cast<std::int64_t>(std::floor(x.y() / size)),
+                                       static_cast<std::int64_t>(std::floor(x.z() / size))};
   };
-  auto taken = [&](const Eigen::Vector3d& x) {
-    const auto cell = cell_of(x);
+  // Whether a point of `grid` (cubes of `size`) lies within `size` of x.
+  auto taken = [&](const Grid& grid, const Eigen::Vector3d& x, double size) {
+    const auto cell = cell_of(x, size);
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
         for (std::int64_t dz = -1; dz <= 1; ++dz) {
           const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
           if (it == grid.end()) continue;
           for (const Eigen::Vector3d& y : it->second) {
-            if ((x - y).norm() <= spacing) return true;
+            if ((x - y).norm() <= size) return true;
           }
         }
       }
     }
     return false;
   };
+  Grid site_grid, repair_grid;
   for (const SurfacePoint& site : field.sites) {
     const Eigen::Vector3d x = site.position(input);
-    grid[cell_of(x)].push_back(x);
+    site_grid[cell_of(x, spacing)].push_back(x);
   }
   std::vector<SurfacePoint> repairs;
   for (const SurfacePoint& p : check.repair_sites) {
     const Eigen::Vector3d x = p.position(input);
-    if (taken(x)) continue;
-    grid[cell_of(x)].push_back(x);
+    if (taken(site_grid, x, spacing) || (apart > 0 && taken(repair_grid, x, apart))) continue;
+    site_grid[cell_of(x, spacing)].push_back(x);
+    if (apart > 0) repair_grid[cell_of(x, apart)].push_back(x);
     repairs.push_back(p);
   }
   check.repair_sites = std::move(repairs);

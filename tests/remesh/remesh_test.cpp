@@ -120,6 +120,17 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
   EXPECT_FALSE(dual.check.valid);
   EXPECT_FALSE(dual.check.problems.empty());
   EXPECT_FALSE(dual.check.repair_sites.empty());
+  // Repair sites keep a quarter of the sites' mean spacing between them (two
+  // side by side would make a sliver).
+  double area = 0;
+  for (const double a : diagram.cell_area) area += a;
+  const double spacing = std::sqrt(area / static_cast<double>(sites.size()));
+  for (std::size_t i = 0; i < dual.check.repair_sites.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_GT((dual.check.repair_sites[i].position(torus) - dual.check.repair_sites[j].position(torus)).norm(),
+                0.25 * spacing);
+    }
+  }
   // Without repair rounds: a clear error, never an invalid mesh.
   remesh::RemeshOptions no_repair;
   no_repair.lloyd.iterations = 0;
