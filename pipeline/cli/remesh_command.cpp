@@ -1,5 +1,6 @@
 // geodual remesh MESH -o OUT (--sites N [--sampling S] [--seed S] | --site-file F) [--plain-lloyd]
-//                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--json] [--preview OUT.png]
+//                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--warm-start K] [--json]
+//                     [--preview OUT.png]
 //                     [--max-repair-rounds K]
 // The main job: a dense scan in, an isotropic mesh of about N vertices out,
 // through the dual of the exact geodesic Voronoi diagram.
@@ -45,6 +46,11 @@ class RemeshCommand final : public Command {
         ->check(CLI::NonNegativeNumber);
     command.add_option("--lloyd-tol", options_.lloyd.tolerance,
                        "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    command.add_option("--warm-start", options_.lloyd.warm_start_iterations,
+                       "Steps on the restricted (Euclidean) Voronoi diagram before the geodesic Lloyd iterations: "
+                       "a cheap start close to a CVT (0: none)")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     command.add_flag_callback(
@@ -117,6 +123,7 @@ class RemeshCommand final : public Command {
     json["seed"] = sites_.seed();
     json["sites"] = run.initial_sites.size();
     json["lloyd_iterations"] = result.lloyd_iterations;
+    json["warm_start_iterations"] = result.warm_start_iterations;
     json["lloyd_diagrams"] = result.lloyd_diagrams;
     json["energy_history"] = result.energy;
     json["sites_added"] = result.sites_added;
@@ -143,6 +150,7 @@ class RemeshCommand final : public Command {
     json["geodesic_s"] = result.geodesic_seconds;
     json["diagram_s"] = result.diagram_seconds;
     json["lloyd_move_s"] = result.lloyd_seconds;
+    json["warm_start_s"] = result.warm_start_seconds;
     json["dual_s"] = result.dual_seconds;
     const auto write_start = std::chrono::steady_clock::now();
     const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
@@ -175,7 +183,11 @@ class RemeshCommand final : public Command {
                                                   : " (" + sites_.file() + ")") +
                            (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
     if (!result.energy.empty()) {
-      table.add("lloyd", std::to_string(result.lloyd_iterations) + " iterations, CVT energy " +
+      table.add("lloyd", std::to_string(result.lloyd_iterations) + " iterations" +
+                             (result.warm_start_iterations > 0
+                                  ? " after " + std::to_string(result.warm_start_iterations) + " warm-start steps"
+                                  : std::string()) +
+                             ", CVT energy " +
                              significant(result.energy.front(), 4) + " -> " + significant(result.energy.back(), 4));
     }
     table.add("output", output_path_ + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
@@ -211,6 +223,7 @@ class RemeshCommand final : public Command {
     options["seed"] = sites_.seed();
     options["lloyd"] = options_.lloyd.iterations;
     options["lloyd_tol"] = options_.lloyd.tolerance;
+    options["warm_start"] = options_.lloyd.warm_start_iterations;
     options["lloyd_newton"] = options_.lloyd.newton;
     options["curvature_adaptation"] = options_.curvature_adaptation;
     options["max_repair_rounds"] = options_.max_repair_rounds;

@@ -25,50 +25,16 @@ Eigen::Vector3d face_normal(const TriangleMesh& mesh, Index face) {
   return (b - a).cross(c - a);
 }
 
-/// Per site, an orthonormal basis of its tangent plane as the columns of a
-/// 3x2 matrix: the plane of its face, or for a vertex site the plane normal to
-/// the area-weighted normal of the faces around it (the planes in which the
-/// diagram's log moments lie).
-std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                                        const voronoi::GeodesicField& field) {
-  std::vector<Eigen::Vector3d> normal(sites.size(), Eigen::Vector3d::Zero());
-  std::vector<Index> vertex_site;
-  for (std::size_t s = 0; s < sites.size(); ++s) {
-    if (sites[s].kind == SurfacePoint::Kind::face) {
-      normal[s] = face_normal(mesh, sites[s].element);
-      continue;
-    }
-    if (vertex_site.empty()) vertex_site.assign(static_cast<std::size_t>(mesh.vertices.rows()), -1);
-    vertex_site[sites[s].element] = static_cast<Index>(s);
-  }
-  if (!vertex_site.empty()) {
-    for (Index f = 0; f < mesh.faces.rows(); ++f) {
-      if (field.face_edges[f][0] < 0) continue;
-      for (int c = 0; c < 3; ++c) {
-        const Index s = vertex_site[mesh.faces(f, c)];
-        if (s >= 0) normal[s] += face_normal(mesh, f);
-      }
-    }
-  }
-  std::vector<Eigen::Matrix<double, 3, 2>> frames(sites.size());
-  for (std::size_t s = 0; s < sites.size(); ++s) {
-    const Eigen::Vector3d n = normal[s].norm() > 0 ? Eigen::Vector3d(normal[s].normalized()) : Eigen::Vector3d::UnitZ();
-    const Eigen::Vector3d u = n.unitOrthogonal();
-    frames[s].col(0) = u;
-    frames[s].col(1) = n.cross(u);
-  }
-  return frames;
-}
-
-/// int over the polyline of (x - a)(x - b)^T ds, exact for straight segments:
+/// int over the boundary of (x - a)(x - b)^T ds, exact for straight segments:
 /// on a segment from p to q of length L, with u = p - a, v = q - a,
 /// u' = p - b, v' = q - b, it is L (u u'^T / 3 + (u v'^T + v u'^T) / 6 + v v'^T / 3).
-Eigen::Matrix3d second_moment(std::span<const Eigen::Vector3d> polyline, const Eigen::Vector3d& a,
-                              const Eigen::Vector3d& b) {
+Eigen::Matrix3d second_moment(const CvtBoundary& boundary, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const std::span<const Eigen::Vector3d> points = boundary.points;
+  const std::size_t stride = boundary.separate_segments ? 2 : 1;
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-  for (std::size_t k = 1; k < polyline.size(); ++k) {
-    const Eigen::Vector3d& p = polyline[k - 1];
-    const Eigen::Vector3d& q = polyline[k];
+  for (std::size_t k = 1; k < points.size(); k += stride) {
+    const Eigen::Vector3d& p = points[k - 1];
+    const Eigen::Vector3d& q = points[k];
     const double length = (q - p).norm();
     const Eigen::Vector3d u = p - a, v = q - a, u2 = p - b, v2 = q - b;
     sum += length * ((u * u2.transpose() + v * v2.transpose()) / 3 + (u * v2.transpose() + v * u2.transpose()) / 6);
@@ -114,25 +80,53 @@ Eigen::VectorXd truncated_newton(const Eigen::SparseMatrix<double>& hessian, con
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                              const voronoi::VoronoiDiagram& diagram, const WeightedCells& cells,
-                                              const std::vector<bool>& movable,
-                                              double damping, double max_step) {
-  // Unknowns: two tangent coordinates per movable site.
-  std::vector<Index> unknown(sites.size(), -1);
-  Index unknowns = 0;
+std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                                        const voronoi::GeodesicField& field) {
+  std::vector<Eigen::Vector3d> normal(sites.size(), Eigen::Vector3d::Zero());
+  std::vector<Index> vertex_site;
   for (std::size_t s = 0; s < sites.size(); ++s) {
+    if (sites[s].kind == SurfacePoint::Kind::face) {
+      normal[s] = face_normal(mesh, sites[s].element);
+      continue;
+    }
+    if (vertex_site.empty()) vertex_site.assign(static_cast<std::size_t>(mesh.vertices.rows()), -1);
+    vertex_site[sites[s].element] = static_cast<Index>(s);
+  }
+  if (!vertex_site.empty()) {
+    for (Index f = 0; f < mesh.faces.rows(); ++f) {
+      if (field.face_edges[f][0] < 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        const Index s = vertex_site[mesh.faces(f, c)];
+        if (s >= 0) normal[s] += face_normal(mesh, f);
+      }
+    }
+  }
+  std::vector<Eigen::Matrix<double, 3, 2>> frames(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    const Eigen::Vector3d n = normal[s].norm() > 0 ? Eigen::Vector3d(normal[s].normalized()) : Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d u = n.unitOrthogonal();
+    frames[s].col(0) = u;
+    frames[s].col(1) = n.cross(u);
+  }
+  return frames;
+}
+
+std::vector<Eigen::Vector3d> cvt_newton_steps(const CvtCells& cells, std::span<const CvtBoundary> boundaries,
+                                              const std::vector<bool>& movable, double damping, double max_step) {
+  const std::size_t site_count = movable.size();
+  // Unknowns: two tangent coordinates per movable site.
+  std::vector<Index> unknown(site_count, -1);
+  Index unknowns = 0;
+  for (std::size_t s = 0; s < site_count; ++s) {
     if (movable[s]) unknown[s] = unknowns++;
   }
-  std::vector<Eigen::Vector3d> steps(sites.size(), Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> steps(site_count, Eigen::Vector3d::Zero());
   if (unknowns == 0) return steps;
 
-  const std::vector<Eigen::Matrix<double, 3, 2>> frame = tangent_frames(mesh, sites, diagram.field);
-  std::vector<Eigen::Vector3d> position(sites.size());
-  for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
-
+  const auto& frame = cells.frame;
+  const auto& position = cells.position;
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(unknowns) * 2 + diagram.arcs.size() * 16);
+  entries.reserve(static_cast<std::size_t>(unknowns) * 2 + boundaries.size() * 16);
   auto add_block = [&](Index row_site, Index column_site, const Eigen::Matrix2d& block) {
     const Index row = unknown[row_site], column = unknown[column_site];
     if (row < 0 || column < 0) return;  // a fixed site: its coordinates are not unknowns
@@ -142,24 +136,23 @@ std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const st
   };
   Eigen::VectorXd rhs(2 * unknowns);
   Eigen::VectorXd lloyd_scale(unknowns);  // 2 A_i (the weighted mass): Lloyd's Hessian
-  for (std::size_t s = 0; s < sites.size(); ++s) {
+  for (std::size_t s = 0; s < site_count; ++s) {
     const Index k = unknown[s];
     if (k < 0) continue;
     lloyd_scale[k] = 2 * cells.mass[s];
     add_block(static_cast<Index>(s), static_cast<Index>(s), lloyd_scale[k] * Eigen::Matrix2d::Identity());
     rhs.segment<2>(2 * k) = 2 * frame[s].transpose() * cells.moment[s];  // -g
   }
-  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
-    const Index i = arc.left_site, j = arc.right_site;
+  for (const CvtBoundary& boundary : boundaries) {
+    const Index i = boundary.i, j = boundary.j;
     if (i < 0 || j < 0 || i == j || (unknown[i] < 0 && unknown[j] < 0)) continue;
     const double separation = (position[i] - position[j]).norm();
     if (!(separation > 0)) continue;
-    const double weight = (cells.site_density[i] + cells.site_density[j]) / separation;
-    const auto polyline = diagram.polyline(arc);
-    add_block(i, i, -weight * frame[i].transpose() * second_moment(polyline, position[i], position[i]) * frame[i]);
-    add_block(j, j, -weight * frame[j].transpose() * second_moment(polyline, position[j], position[j]) * frame[j]);
+    const double weight = 2 * boundary.density / separation;
+    add_block(i, i, -weight * frame[i].transpose() * second_moment(boundary, position[i], position[i]) * frame[i]);
+    add_block(j, j, -weight * frame[j].transpose() * second_moment(boundary, position[j], position[j]) * frame[j]);
     const Eigen::Matrix2d coupling =
-        weight * frame[i].transpose() * second_moment(polyline, position[i], position[j]) * frame[j];
+        weight * frame[i].transpose() * second_moment(boundary, position[i], position[j]) * frame[j];
     add_block(i, j, coupling);
     add_block(j, i, coupling.transpose());
   }
@@ -167,15 +160,15 @@ std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const st
   hessian.setFromTriplets(entries.begin(), entries.end());
 
   const Eigen::VectorXd solution = truncated_newton(hessian, lloyd_scale, rhs, damping);
-  for (std::size_t s = 0; s < sites.size(); ++s) {
+  for (std::size_t s = 0; s < site_count; ++s) {
     const Index k = unknown[s];
     if (k >= 0) steps[s] = frame[s] * solution.segment<2>(2 * k);
   }
   // A step is only trusted within a fraction of the cell's size: the
   // quadratic model of E holds near the sites, and its softest directions
   // (sliding whole rows of cells) are where the surface Hessian is least exact.
-  for (std::size_t s = 0; s < sites.size(); ++s) {
-    const double limit = max_step * std::sqrt(diagram.cell_area[s]);
+  for (std::size_t s = 0; s < site_count; ++s) {
+    const double limit = max_step * std::sqrt(cells.area[s]);
     const double length = steps[s].norm();
     if (length > limit) steps[s] *= limit / length;
   }

@@ -22,22 +22,47 @@
 // there, taken as the mean of its two sites' rho (rho varies little across a
 // cell).
 
-#include "weighted_cells.hpp"
-
 #include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/voronoi_diagram.hpp"
+#include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/surface_point.hpp"
 
 #include <Eigen/Core>
 
+#include <span>
 #include <vector>
 
 namespace geodual::remesh::detail {
 
+/// What the Newton step needs of the cells, from a geodesic Voronoi diagram
+/// or a restricted one (restricted_voronoi.hpp). Per site:
+struct CvtCells {
+  std::span<const Eigen::Vector3d> position;           ///< the site in space
+  std::span<const Eigen::Matrix<double, 3, 2>> frame;  ///< its tangent plane (tangent_frames)
+  std::span<const double> area;                        ///< its cell's area (bounds the step)
+  std::span<const double> mass;                        ///< int rho dA
+  std::span<const Eigen::Vector3d> moment;             ///< int rho (x - s) dA, taken into the tangent plane
+};
+
+/// The boundary between the cells of sites i and j, with the density along
+/// it: a polyline, or separate segments given by their ends in pairs.
+struct CvtBoundary {
+  Index i = -1;
+  Index j = -1;
+  double density = 1;
+  std::span<const Eigen::Vector3d> points;
+  bool separate_segments = false;
+};
+
+/// Per site, an orthonormal basis of its tangent plane as the columns of a
+/// 3x2 matrix: the plane of its face, or for a vertex site the plane normal to
+/// the area-weighted normal of the faces around it (the planes in which the
+/// diagram's log moments lie).
+std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                                        const voronoi::GeodesicField& field);
+
 /// Per site, its step as a 3D vector in the site's tangent plane (zero for the
 /// sites not movable), at most max_step * sqrt(cell area) long.
-std::vector<Eigen::Vector3d> cvt_newton_steps(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                              const voronoi::VoronoiDiagram& diagram, const WeightedCells& cells,
-                                              const std::vector<bool>& movable,
-                                              double damping, double max_step);
+std::vector<Eigen::Vector3d> cvt_newton_steps(const CvtCells& cells, std::span<const CvtBoundary> boundaries,
+                                              const std::vector<bool>& movable, double damping, double max_step);
 
 }  // namespace geodual::remesh::detail

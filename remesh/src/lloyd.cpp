@@ -2,19 +2,17 @@
 
 #include "cvt_newton.hpp"
 #include "geodual/error.hpp"
+#include "restricted_voronoi.hpp"
 #include "surface_walk.hpp"
 #include "weighted_cells.hpp"
 
 #include <Eigen/Geometry>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <span>
 #include <string>
-#include <numeric>
-#include <tuple>
 #include <utility>
 
 namespace geodual::remesh {
@@ -32,9 +30,9 @@ bool on_boundary(const voronoi::GeodesicField& field, const SurfacePoint& point)
 
 /// Per site, whether a step may move it: its cell has area, and it is not on
 /// the boundary unless boundary sites move.
-std::vector<bool> movable_sites(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                const voronoi::VoronoiDiagram& diagram, const LloydOptions& options) {
-  const voronoi::GeodesicField& field = diagram.field;
+std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                const voronoi::GeodesicField& field, std::span<const double> cell_area,
+                                const LloydOptions& options) {
   std::vector<bool> boundary_vertex;
   const bool vertex_sites =
       std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
@@ -51,7 +49,7 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, const std::vector<Surf
     const bool boundary = !options.move_boundary_sites && (site.kind == SurfacePoint::Kind::vertex
                                                                 ? bool(boundary_vertex[site.element])
                                                                 : on_boundary(field, site));
-    movable[i] = diagram.cell_area[i] > 0 && !boundary;
+    movable[i] = cell_area[i] > 0 && !boundary;
   }
   return movable;
 }
@@ -66,73 +64,125 @@ std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, con
   return steps;
 }
 
-/// Every site walked along the surface by its step (a tangent vector at the
-/// site); a pair landing on one point keeps its old places.
-std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
-                                     const voronoi::VoronoiDiagram& diagram, const std::vector<Eigen::Vector3d>& steps) {
-  std::vector<SurfacePoint> moved = sites;
-  // A vertex site steps from the corner of the face around it whose angle
-  // holds the step's direction.
-  std::vector<Index> fan_begin, fan;
-  if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
-    fan_begin.assign(static_cast<std::size_t>(mesh.vertices.rows()) + 1, 0);
-    for (Index f = 0; f < mesh.faces.rows(); ++f) {
-      if (diagram.field.face_edges[f][0] < 0) continue;
-      for (int c = 0; c < 3; ++c) ++fan_begin[mesh.faces(f, c) + 1];
-    }
-    for (std::size_t v = 1; v < fan_begin.size(); ++v) fan_begin[v] += fan_begin[v - 1];
-    fan.resize(static_cast<std::size_t>(fan_begin.back()));
-    std::vector<Index> fill(fan_begin.begin(), fan_begin.end() - 1);
-    for (Index f = 0; f < mesh.faces.rows(); ++f) {
-      if (diagram.field.face_edges[f][0] < 0) continue;
-      for (int c = 0; c < 3; ++c) fan[fill[mesh.faces(f, c)]++] = f;
+/// The Newton step on the geodesic diagram's cells (cvt_newton.hpp); each
+/// arc's density is the mean of its two sites'.
+std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                          const voronoi::VoronoiDiagram& diagram, const detail::WeightedCells& cells,
+                                          const std::vector<bool>& movable, double damping, double max_step) {
+  const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, diagram.field);
+  std::vector<Eigen::Vector3d> position(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
+  std::vector<detail::CvtBoundary> boundaries;
+  boundaries.reserve(diagram.arcs.size());
+  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+    const Index i = arc.left_site, j = arc.right_site;
+    if (i < 0 || j < 0) continue;
+    boundaries.push_back({i, j, (cells.site_density[i] + cells.site_density[j]) / 2, diagram.polyline(arc)});
+  }
+  return detail::cvt_newton_steps({position, frames, diagram.cell_area, cells.mass, cells.moment}, boundaries, movable,
+                                  damping, max_step);
+}
+
+/// The Newton step on the restricted Voronoi diagram's cells.
+std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                          const voronoi::GeodesicField& topology, const detail::RestrictedCells& cells,
+                                          const std::vector<bool>& movable, double damping, double max_step) {
+  const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, topology);
+  std::vector<Eigen::Vector3d> position(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
+  std::vector<detail::CvtBoundary> boundaries;
+  boundaries.reserve(cells.boundaries.size());
+  for (const detail::RestrictedBoundary& boundary : cells.boundaries) {
+    const std::span<const Eigen::Vector3d> ends(cells.segment_ends.data() + boundary.begin,
+                                                static_cast<std::size_t>(boundary.end - boundary.begin));
+    boundaries.push_back({boundary.site, boundary.other, boundary.density, ends, true});
+  }
+  return detail::cvt_newton_steps({position, frames, cells.area, cells.mass, cells.moment}, boundaries, movable,
+                                  damping, max_step);
+}
+
+/// Lloyd's steps on the restricted diagram: `factor` times the way to each
+/// cell's centroid, taken into the site's tangent plane.
+std::vector<Eigen::Vector3d> lloyd_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                         const voronoi::GeodesicField& topology, const detail::RestrictedCells& cells,
+                                         const std::vector<bool>& movable, double factor) {
+  const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, topology);
+  std::vector<Eigen::Vector3d> steps(movable.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    if (movable[i] && cells.mass[i] > 0) {
+      steps[i] = factor * frames[i] * (frames[i].transpose() * cells.moment[i]) / cells.mass[i];
     }
   }
-  auto as_face_point = [&](const SurfacePoint& site, const Eigen::Vector3d& step) {
-    if (site.kind == SurfacePoint::Kind::face || fan_begin.empty()) return site;
-    const Index v = site.element;
-    SurfacePoint best = site;
-    for (Index i = fan_begin[v]; i < fan_begin[v + 1]; ++i) {
-      const Index f = fan[i];
-      int c = 0;
-      while (mesh.faces(f, c) != v) ++c;
-      const Eigen::Vector3d p = mesh.vertices.row(v).transpose();
-      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, (c + 1) % 3)).transpose() - p;
-      const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, (c + 2) % 3)).transpose() - p;
-      const Eigen::Vector3d n = a.cross(b);
-      Eigen::Vector3d b3 = Eigen::Vector3d::Zero();
-      b3[c] = 1;
-      if (best.kind == SurfacePoint::Kind::vertex) best = SurfacePoint::in_face(f, b3[0], b3[1], b3[2]);
-      if (n.dot(a.cross(step)) >= 0 && n.dot(step.cross(b)) >= 0) return SurfacePoint::in_face(f, b3[0], b3[1], b3[2]);
-    }
-    return best;
-  };
-  // Each site's step is independent of the others: bit-identical for any
-  // number of threads.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Eigen::Vector3d& step = steps[i];
-      const double length = step.norm();
-      if (!(length > 0)) continue;
-      const SurfacePoint site = as_face_point(sites[i], step);
-      if (site.kind != SurfacePoint::Kind::face) continue;
-      if (!(length > 0)) continue;
-      moved[i] = detail::walk_on_surface(mesh, diagram.field, site, step, length);
-    }
-  });
-  std::vector<std::size_t> order(moved.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::vector<Eigen::Vector3d> position(moved.size());
-  for (std::size_t i = 0; i < moved.size(); ++i) position[i] = moved[i].position(mesh);
-  auto key = [&](std::size_t i) { return std::tuple(position[i].x(), position[i].y(), position[i].z()); };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    if (key(order[k]) == key(order[k - 1])) {
-      moved[order[k]] = sites[order[k]];
-      moved[order[k - 1]] = sites[order[k - 1]];
+  return steps;
+}
+
+/// Where a relaxation stands between its steps: the damping of its Newton
+/// steps and the over-relaxation of its Lloyd steps, both adapted as it goes.
+struct StepControl {
+  double damping = 0;
+  double factor = 1;
+};
+
+/// One step of the relaxation from a state of energy `energy`:
+/// Levenberg–Marquardt on the damping — a Newton step that lowers the energy
+/// lets the next be less damped (down to newton_damping); one that does not
+/// is retried once, more damped, before Lloyd's step is taken instead. A
+/// Newton step must lower the energy by the tolerance at least: one that
+/// lowers it by less has fallen short of its model (overshooting along some
+/// sites, short along others) rather than shown convergence, which Lloyd's
+/// step then decides, over-relaxed and, once that fails, plain from there on.
+/// `newton(damping)` and `lloyd(factor)` give the steps; `take(steps,
+/// least_decrease)` keeps them when the energy falls by more than
+/// least_decrease. Returns whether a step was taken.
+template <class Newton, class Lloyd, class Take>
+bool relaxation_step(const LloydOptions& options, double energy, StepControl& control, Newton newton, Lloyd lloyd,
+                     Take take) {
+  bool taken = false;
+  if (options.newton) {
+    for (int attempt = 0; attempt < 2 && !taken; ++attempt) {
+      taken = take(newton(control.damping), options.tolerance * energy);
+      control.damping = taken ? std::max(control.damping / 4, options.newton_damping) : control.damping * 4;
     }
   }
-  return moved;
+  if (!taken && control.factor > 1) {
+    taken = take(lloyd(control.factor), 0.0);
+    if (!taken) control.factor = 1;  // over-relaxed too far: the plain Lloyd step from here on
+  }
+  if (!taken) taken = take(lloyd(control.factor), 0.0);
+  return taken;
+}
+
+/// The warm start: the relaxation's steps on the restricted Voronoi diagram
+/// (restricted_voronoi.hpp) for at most options.warm_start_iterations steps,
+/// stopping early by the same rules. Returns the sites reached and counts
+/// the steps taken.
+std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::GeodesicField& topology,
+                                     std::vector<SurfacePoint> sites, const std::vector<bool>& movable,
+                                     const LloydOptions& options, int& steps_taken) {
+  detail::RestrictedCells cells = detail::restricted_voronoi(mesh, topology, sites, options.density);
+  StepControl control{options.newton_damping, options.over_relaxation};
+  for (steps_taken = 0; steps_taken < options.warm_start_iterations;) {
+    const double previous = cells.total_energy();
+    // A site whose restricted cell is empty (it shares its place) stays.
+    std::vector<bool> moving = movable;
+    for (std::size_t i = 0; i < moving.size(); ++i) moving[i] = moving[i] && cells.mass[i] > 0;
+    auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
+      std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, sites, steps);
+      detail::RestrictedCells next = detail::restricted_voronoi(mesh, topology, moved, options.density);
+      if (!(next.total_energy() < previous - least_decrease)) return false;
+      sites = std::move(moved);
+      cells = std::move(next);
+      return true;
+    };
+    auto newton = [&](double damping) {
+      return newton_steps(mesh, sites, topology, cells, moving, damping, options.newton_max_step);
+    };
+    auto lloyd = [&](double factor) { return lloyd_steps(mesh, sites, topology, cells, moving, factor); };
+    if (!relaxation_step(options, previous, control, newton, lloyd, take)) break;
+    ++steps_taken;
+    if (previous - cells.total_energy() < options.tolerance * previous) break;
+  }
+  return sites;
 }
 
 /// geodual::UsageError naming the first option out of range.
@@ -141,6 +191,8 @@ void check_options(const LloydOptions& options) {
     if (!holds) throw UsageError("lloyd_relax: " + what);
   };
   require(options.iterations >= 0, "iterations must be >= 0, got " + std::to_string(options.iterations));
+  require(options.warm_start_iterations >= 0,
+          "warm_start_iterations must be >= 0, got " + std::to_string(options.warm_start_iterations));
   require(options.tolerance >= 0, "tolerance must be >= 0, got " + std::to_string(options.tolerance));
   require(options.over_relaxation > 0 && options.over_relaxation < 2,
           "over_relaxation must be in (0, 2), got " + std::to_string(options.over_relaxation));
@@ -183,15 +235,37 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
   };
   tell(false);
 
-  double factor = options.over_relaxation;
-  double damping = options.newton_damping;
+  if (options.iterations > 0 && options.warm_start_iterations > 0) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<bool> movable =
+        movable_sites(mesh, result.sites, result.diagram.field, result.diagram.cell_area, options);
+    std::vector<SurfacePoint> warm =
+        warm_start(mesh, result.diagram.field, result.sites, movable, options, result.warm_start_iterations);
+    result.warm_start_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (result.warm_start_iterations > 0) {
+      voronoi::VoronoiDiagram next = diagram_of(warm);
+      detail::WeightedCells next_cells = cells_of(warm, next);
+      // Kept only if it lowers the (geodesic) energy, which it does unless
+      // the two diagrams differ wildly.
+      if (next_cells.total_energy() < result.energy.back()) {
+        result.sites = std::move(warm);
+        result.diagram = std::move(next);
+        cells = std::move(next_cells);
+        result.energy.push_back(cells.total_energy());
+      } else {
+        result.warm_start_iterations = 0;
+      }
+    }
+  }
+
+  StepControl control{options.newton_damping, options.over_relaxation};
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const double previous = result.energy.back();
-    const std::vector<bool> movable = movable_sites(mesh, result.sites, result.diagram, options);
-    // Tries a step; keeps it when it lowers the energy.
-    auto try_step = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
+    const std::vector<bool> movable =
+        movable_sites(mesh, result.sites, result.diagram.field, result.diagram.cell_area, options);
+    auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       const auto start = std::chrono::steady_clock::now();
-      std::vector<SurfacePoint> moved = move_sites(mesh, result.sites, result.diagram, steps);
+      std::vector<SurfacePoint> moved = detail::move_sites(mesh, result.diagram.field, result.sites, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       voronoi::VoronoiDiagram next = diagram_of(moved);
       detail::WeightedCells next_cells = cells_of(moved, next);
@@ -203,31 +277,16 @@ LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> site
       result.energy.push_back(energy);
       return true;
     };
-    bool accepted = false;
-    if (options.newton) {
-      // Levenberg–Marquardt on the damping: a Newton step that lowers the
-      // energy lets the next be less damped (down to newton_damping); one
-      // that does not is retried once, more damped, before Lloyd's step is
-      // taken instead. A Newton step must lower the energy by the tolerance
-      // at least: one that lowers it by less has fallen short of its model
-      // (overshooting along some sites, short along others) rather than
-      // shown convergence, which Lloyd's step then decides.
-      for (int attempt = 0; attempt < 2 && !accepted; ++attempt) {
-        const auto start = std::chrono::steady_clock::now();
-        const std::vector<Eigen::Vector3d> steps = detail::cvt_newton_steps(
-            mesh, result.sites, result.diagram, cells, movable, damping, options.newton_max_step);
-        result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        accepted = try_step(steps, options.tolerance * previous);
-        damping = accepted ? std::max(damping / 4, options.newton_damping) : damping * 4;
-      }
-    }
-    if (!accepted && factor > 1) {
-      accepted = try_step(lloyd_steps(cells, movable, factor), 0);
-      // Over-relaxed too far: the plain Lloyd step from here on.
-      if (!accepted) factor = 1;
-    }
-    if (!accepted) accepted = try_step(lloyd_steps(cells, movable, factor), 0);
-    if (!accepted) break;  // not even Lloyd's step lowers the energy: stop here
+    auto newton = [&](double damping) {
+      const auto start = std::chrono::steady_clock::now();
+      std::vector<Eigen::Vector3d> steps =
+          newton_steps(mesh, result.sites, result.diagram, cells, movable, damping, options.newton_max_step);
+      result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return steps;
+    };
+    auto lloyd = [&](double factor) { return lloyd_steps(cells, movable, factor); };
+    // Not even Lloyd's step lowers the energy: stop here.
+    if (!relaxation_step(options, previous, control, newton, lloyd, take)) break;
     ++result.iterations;
     if (previous - result.energy.back() < options.tolerance * previous) break;
     tell(false);

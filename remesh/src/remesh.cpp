@@ -53,6 +53,8 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   result.energy = std::move(relaxed.energy);
   result.lloyd_iterations = relaxed.iterations;
   result.lloyd_diagrams = relaxed.diagrams;
+  result.warm_start_iterations = relaxed.warm_start_iterations;
+  result.warm_start_seconds = relaxed.warm_start_seconds;
   result.diagram = std::move(relaxed.diagram);
   for (int round = 0;; ++round) {
     if (round > 0) {

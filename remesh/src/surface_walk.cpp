@@ -2,8 +2,13 @@
 
 #include <Eigen/Geometry>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <tuple>
 
 namespace geodual::remesh::detail {
 namespace {
@@ -94,6 +99,79 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
   }
   const Eigen::Vector3d b = barycentric_in(mesh, face, p);
   return SurfacePoint::in_face(face, b[0], b[1], b[2]);
+}
+
+VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
+  VertexFans fans;
+  fans.begin.assign(static_cast<std::size_t>(mesh.num_vertices()) + 1, 0);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (field.face_edges[f][0] < 0) continue;
+    for (int c = 0; c < 3; ++c) ++fans.begin[mesh.faces(f, c) + 1];
+  }
+  std::partial_sum(fans.begin.begin(), fans.begin.end(), fans.begin.begin());
+  fans.face.resize(static_cast<std::size_t>(fans.begin.back()));
+  std::vector<Index> fill(fans.begin.begin(), fans.begin.end() - 1);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (field.face_edges[f][0] < 0) continue;
+    for (int c = 0; c < 3; ++c) fans.face[fill[mesh.faces(f, c)]++] = f;
+  }
+  return fans;
+}
+
+/// Every site walked along the surface by its step (a tangent vector at the
+/// site); a pair landing on one point keeps its old places.
+std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
+                                     std::span<const SurfacePoint> sites, std::span<const Eigen::Vector3d> steps) {
+  std::vector<SurfacePoint> moved(sites.begin(), sites.end());
+  // A vertex site steps from the corner of the face around it whose angle
+  // holds the step's direction.
+  VertexFans fans;
+  if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+    fans = vertex_fans(mesh, field);
+  }
+  auto as_face_point = [&](const SurfacePoint& site, const Eigen::Vector3d& step) {
+    if (site.kind == SurfacePoint::Kind::face || fans.begin.empty()) return site;
+    const Index v = site.element;
+    SurfacePoint best = site;
+    for (const Index f : fans.around(v)) {
+      int c = 0;
+      while (mesh.faces(f, c) != v) ++c;
+      const Eigen::Vector3d p = mesh.vertices.row(v).transpose();
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, (c + 1) % 3)).transpose() - p;
+      const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, (c + 2) % 3)).transpose() - p;
+      const Eigen::Vector3d n = a.cross(b);
+      Eigen::Vector3d b3 = Eigen::Vector3d::Zero();
+      b3[c] = 1;
+      if (best.kind == SurfacePoint::Kind::vertex) best = SurfacePoint::in_face(f, b3[0], b3[1], b3[2]);
+      if (n.dot(a.cross(step)) >= 0 && n.dot(step.cross(b)) >= 0) return SurfacePoint::in_face(f, b3[0], b3[1], b3[2]);
+    }
+    return best;
+  };
+  // Each site's step is independent of the others: bit-identical for any
+  // number of threads.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Eigen::Vector3d& step = steps[i];
+      const double length = step.norm();
+      if (!(length > 0)) continue;
+      const SurfacePoint site = as_face_point(sites[i], step);
+      if (site.kind != SurfacePoint::Kind::face) continue;
+      moved[i] = walk_on_surface(mesh, field, site, step, length);
+    }
+  });
+  std::vector<std::size_t> order(moved.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<Eigen::Vector3d> position(moved.size());
+  for (std::size_t i = 0; i < moved.size(); ++i) position[i] = moved[i].position(mesh);
+  auto key = [&](std::size_t i) { return std::tuple(position[i].x(), position[i].y(), position[i].z()); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    if (key(order[k]) == key(order[k - 1])) {
+      moved[order[k]] = sites[order[k]];
+      moved[order[k - 1]] = sites[order[k - 1]];
+    }
+  }
+  return moved;
 }
 
 }  // namespace geodual::remesh::detail

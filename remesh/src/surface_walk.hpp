@@ -10,6 +10,9 @@
 
 #include <Eigen/Core>
 
+#include <span>
+#include <vector>
+
 namespace geodual::remesh::detail {
 
 /// The point reached from `start` (a face point) after walking `length` along
@@ -17,5 +20,24 @@ namespace geodual::remesh::detail {
 /// ignored). Uses the propagation topology of `field` to cross edges.
 SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicField& field, const SurfacePoint& start,
                              const Eigen::Vector3d& direction, double length);
+
+/// Per vertex, the faces around it that take part in the propagation (see
+/// `field`): those of vertex v are around(v).
+struct VertexFans {
+  std::vector<Index> begin;
+  std::vector<Index> face;
+  std::span<const Index> around(Index v) const {
+    return {face.data() + begin[v], static_cast<std::size_t>(begin[v + 1] - begin[v])};
+  }
+};
+VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& field);
+
+/// Every site walked along the surface by its step (a 3D vector in the
+/// site's tangent plane, as cvt_newton.hpp's frames describe it): a face site
+/// from its face, a vertex site from the face around it whose corner angle
+/// holds the step. A pair of sites landing on one point keeps its old places.
+/// Bit-identical for any number of threads.
+std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
+                                     std::span<const SurfacePoint> sites, std::span<const Eigen::Vector3d> steps);
 
 }  // namespace geodual::remesh::detail

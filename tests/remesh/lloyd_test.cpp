@@ -107,6 +107,7 @@ TEST(Lloyd, NewtonStepsConvergeMuchFasterThanLloydOnAPlane) {
   const TriangleMesh disk = test::disk(32, 128);
   remesh::LloydOptions warm;
   warm.iterations = 20;
+  warm.warm_start_iterations = 0;  // the geodesic steps alone, here and below
   warm.tolerance = 0;
   warm.newton = false;
   const remesh::LloydResult start = remesh::lloyd_relax(disk, remesh::sample_sites(disk, 120), warm);
@@ -114,6 +115,7 @@ TEST(Lloyd, NewtonStepsConvergeMuchFasterThanLloydOnAPlane) {
 
   remesh::LloydOptions newton;
   newton.iterations = 5;
+  newton.warm_start_iterations = 0;
   newton.tolerance = 0;
   remesh::LloydOptions lloyd = newton;
   lloyd.newton = false;
@@ -135,6 +137,7 @@ TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
   remesh::RemeshOptions newton;
   newton.lloyd.iterations = 6;
+  newton.lloyd.warm_start_iterations = 0;  // the geodesic steps alone
   newton.lloyd.tolerance = 0;
   remesh::RemeshOptions lloyd = newton;
   lloyd.lloyd.newton = false;
@@ -175,6 +178,9 @@ TEST(Lloyd, OptionsOutOfRangeAreRefusedByName) {
   options = {};
   options.newton_max_step = std::numeric_limits<double>::infinity();
   refused(options, "newton_max_step");
+  options = {};
+  options.warm_start_iterations = -2;
+  refused(options, "warm_start_iterations");
 }
 
 TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {
@@ -214,14 +220,43 @@ TEST(Lloyd, VertexSitesMoveToo) {
   const TriangleMesh sphere = test::icosphere(4);
   std::vector<SurfacePoint> sites;
   for (Index v = 0; v < sphere.vertices.rows(); v += 17) sites.push_back(SurfacePoint::at_vertex(v));
-  remesh::LloydOptions options;
-  options.iterations = 3;
-  const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
-  EXPECT_EQ(relaxed.iterations, 3);
-  EXPECT_LT(relaxed.energy.back(), 0.9 * relaxed.energy.front());
-  int moved = 0;
-  for (std::size_t i = 0; i < sites.size(); ++i) moved += relaxed.sites[i].position(sphere) != sites[i].position(sphere);
-  EXPECT_GT(moved, static_cast<int>(sites.size()) / 2);
+  // By the geodesic steps, and by the warm start's.
+  for (const int warm_start : {0, 5}) {
+    SCOPED_TRACE(warm_start);
+    remesh::LloydOptions options;
+    options.iterations = 3;
+    options.warm_start_iterations = warm_start;
+    const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
+    EXPECT_EQ(relaxed.iterations, 3);
+    EXPECT_EQ(relaxed.warm_start_iterations, warm_start);
+    EXPECT_EQ(relaxed.energy.size(), warm_start > 0 ? 5u : 4u);
+    EXPECT_LT(relaxed.energy.back(), 0.9 * relaxed.energy.front());
+    int moved = 0;
+    for (std::size_t i = 0; i < sites.size(); ++i) moved += relaxed.sites[i].position(sphere) != sites[i].position(sphere);
+    EXPECT_GT(moved, static_cast<int>(sites.size()) / 2);
+  }
+}
+
+TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
+  // The restricted diagram's steps cost no geodesics; after them the
+  // geodesic iterations start from a lower energy, and as many of them end
+  // lower and with better triangles than without.
+  const TriangleMesh mesh = scan("bunny.ply");
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
+  remesh::RemeshOptions cold, warm;
+  cold.lloyd.iterations = warm.lloyd.iterations = 3;
+  cold.lloyd.tolerance = warm.lloyd.tolerance = 0;
+  cold.lloyd.warm_start_iterations = 0;
+  warm.lloyd.warm_start_iterations = 15;
+  const remesh::RemeshResult from_cold = remesh::remesh_from_sites(mesh, sites, cold);
+  const remesh::RemeshResult from_warm = remesh::remesh_from_sites(mesh, sites, warm);
+  EXPECT_EQ(from_warm.warm_start_iterations, 15);
+  ASSERT_EQ(from_warm.energy.size(), 5u);  // the given sites, the warm start, three iterations
+  EXPECT_EQ(from_warm.energy[0], from_cold.energy[0]);
+  for (std::size_t i = 1; i < from_warm.energy.size(); ++i) EXPECT_LT(from_warm.energy[i], from_warm.energy[i - 1]);
+  EXPECT_LT(from_warm.energy[1], from_cold.energy.back());  // the warm start alone beats three geodesic iterations
+  EXPECT_LT(from_warm.energy.back(), from_cold.energy.back());
+  EXPECT_GT(remesh::triangle_quality(from_warm.mesh).q_avg, remesh::triangle_quality(from_cold.mesh).q_avg + 0.01);
 }
 
 }  // namespace

@@ -54,8 +54,10 @@ struct RemeshResult {
   int repair_rounds = 0;
   std::vector<double> energy;   ///< CVT energy (density-weighted with curvature_adaptation) before and after each Lloyd iteration
   int lloyd_iterations = 0;
-  int lloyd_diagrams = 0;       ///< diagrams Lloyd computed: one per iteration, one per rejected step, plus the first
+  int warm_start_iterations = 0;  ///< Lloyd's warm-start steps on the restricted Voronoi diagram
+  int lloyd_diagrams = 0;       ///< diagrams Lloyd computed: one per iteration, one per rejected step, plus the first (and the warm start's)
   double lloyd_seconds = 0;     ///< Lloyd's centroid steps (its diagrams count below)
+  double warm_start_seconds = 0;  ///< Lloyd's warm start (its one geodesic diagram counts below)
   double geodesic_seconds = 0;  ///< every diagram: Lloyd iterations and repair rounds
   double diagram_seconds = 0;
   double dual_seconds = 0;

@@ -1,0 +1,360 @@
+#include "restricted_voronoi.hpp"
+
+#include "surface_walk.hpp"
+
+#include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+namespace geodual::remesh::detail {
+namespace {
+
+/// The sites bucketed in a uniform grid of cubes, for the sites near a site.
+class SiteGrid {
+ public:
+  /// Cubes of about `cell` on a side; larger where the sites' bounding box
+  /// would need more than 8 cubes per site.
+  SiteGrid(std::span<const Eigen::Vector3d> position, double cell) : position_(position) {
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d high = -low;
+    for (const Eigen::Vector3d& p : position) low = low.cwiseMin(p), high = high.cwiseMax(p);
+    const Eigen::Vector3d extent = (high - low).cwiseMax(0.0);
+    const double cubes = (extent / cell + Eigen::Vector3d::Ones()).prod();
+    const double most = 8.0 * static_cast<double>(std::max<std::size_t>(position.size(), 1));
+    if (!(cell > 0) || !std::isfinite(cubes)) cell = std::max(extent.maxCoeff(), 1.0);
+    else if (cubes > most) cell *= std::cbrt(cubes / most);
+    cell_ = cell;
+    origin_ = low;
+    for (int a = 0; a < 3; ++a) size_[a] = static_cast<Index>(extent[a] / cell_) + 1;
+    begin_.assign(static_cast<std::size_t>(size_[0]) * size_[1] * size_[2] + 1, 0);
+    for (const Eigen::Vector3d& p : position) ++begin_[cube_of(p) + 1];
+    std::partial_sum(begin_.begin(), begin_.end(), begin_.begin());
+    site_.resize(position.size());
+    std::vector<Index> fill(begin_.begin(), begin_.end() - 1);
+    for (std::size_t s = 0; s < position.size(); ++s) site_[fill[cube_of(position[s])]++] = static_cast<Index>(s);
+  }
+
+  double cell() const { return cell_; }
+
+  /// The sites other than `site` within `radius` of it, nearest first (ties
+  /// by index), into `near`.
+  void near(Index site, double radius, std::vector<Index>& near) const {
+    near.clear();
+    const Eigen::Vector3d& p = position_[site];
+    const auto reach = static_cast<Index>(std::ceil(radius / cell_));
+    std::array<Index, 3> low, high;
+    for (int a = 0; a < 3; ++a) {
+      const auto at = std::clamp(static_cast<Index>((p[a] - origin_[a]) / cell_), Index{0}, size_[a] - 1);
+      low[a] = std::max<Index>(at - reach, 0);
+      high[a] = std::min<Index>(at + reach, size_[a] - 1);
+    }
+    for (Index z = low[2]; z <= high[2]; ++z) {
+      for (Index y = low[1]; y <= high[1]; ++y) {
+        const std::size_t row = (static_cast<std::size_t>(z) * size_[1] + y) * size_[0];
+        for (Index s = begin_[row + low[0]]; s < begin_[row + high[0] + 1]; ++s) {
+          const Index other = site_[s];
+          if (other != site && (position_[other] - p).squaredNorm() <= radius * radius) near.push_back(other);
+        }
+      }
+    }
+    std::sort(near.begin(), near.end(), [&](Index a, Index b) {
+      const double da = (position_[a] - p).squaredNorm(), db = (position_[b] - p).squaredNorm();
+      return da < db || (da == db && a < b);
+    });
+  }
+
+ private:
+  std::size_t cube_of(const Eigen::Vector3d& p) const {
+    std::array<std::size_t, 3> at;
+    for (int a = 0; a < 3; ++a) {
+      at[a] = static_cast<std::size_t>(std::clamp(static_cast<Index>((p[a] - origin_[a]) / cell_), Index{0}, size_[a] - 1));
+    }
+    return (at[2] * static_cast<std::size_t>(size_[1]) + at[1]) * static_cast<std::size_t>(size_[0]) + at[0];
+  }
+
+  std::span<const Eigen::Vector3d> position_;
+  Eigen::Vector3d origin_;
+  double cell_ = 1;
+  std::array<Index, 3> size_{};
+  std::vector<Index> begin_;  // per cube, its sites: site_[begin_[c] .. begin_[c + 1])
+  std::vector<Index> site_;
+};
+
+/// The faces a cell has reached: a small open-addressing hash set, emptied
+/// for each cell (a cell reaches tens of faces; a per-face array would be
+/// touched at random across the whole mesh).
+class FaceSet {
+ public:
+  void clear() {
+    slot_.assign(64, -1);
+    count_ = 0;
+  }
+  /// Adds the face; false if it was there.
+  bool insert(Index face) {
+    if (2 * (count_ + 1) > slot_.size()) grow();
+    return place(face);
+  }
+
+ private:
+  bool place(Index face) {
+    const std::size_t mask = slot_.size() - 1;
+    for (std::size_t at = (static_cast<std::size_t>(face) * 0x9E3779B97F4A7C15ull) >> 32 & mask;; at = (at + 1) & mask) {
+      if (slot_[at] == face) return false;
+      if (slot_[at] < 0) {
+        slot_[at] = face;
+        ++count_;
+        return true;
+      }
+    }
+  }
+  void grow() {
+    std::vector<Index> old(slot_.size() * 2, -1);
+    std::swap(old, slot_);
+    count_ = 0;
+    for (const Index face : old) {
+      if (face >= 0) place(face);
+    }
+  }
+  std::vector<Index> slot_;
+  std::size_t count_ = 0;
+};
+
+/// A polygon corner: position and density (both linear along the sides, so
+/// clipping interpolates them together).
+using Corner = Eigen::Vector4d;
+
+/// What a polygon side lies on: a bisector (the other site, >= 0) or side k
+/// of the face (-1 - k).
+using SideLabel = Index;
+
+struct Scratch {
+  FaceSet reached;
+  std::vector<Index> queue;
+  std::vector<Index> near;              // the sites near the current one, nearest first
+  std::vector<Eigen::Vector4d> planes;  // and their bisectors: normal . (x - site) <= w
+  std::vector<Corner> polygon, clipped;
+  std::vector<SideLabel> label, clipped_label;
+  // The current cell's boundary segments: the other site, the density at
+  // the midpoint, the ends.
+  struct Segment {
+    Index other;
+    double density;
+    Eigen::Vector3d from, to;
+  };
+  std::vector<Segment> segments;
+  // The current block's boundaries, their segment ends numbered from 0.
+  std::vector<RestrictedBoundary> boundaries;
+  std::vector<Eigen::Vector3d> segment_ends;
+};
+
+}  // namespace
+
+double RestrictedCells::total_energy() const { return std::accumulate(energy.begin(), energy.end(), 0.0); }
+
+RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::GeodesicField& topology,
+                                   std::span<const SurfacePoint> sites, std::span<const double> density) {
+  const std::size_t site_count = sites.size();
+  std::vector<Eigen::Vector3d> position(site_count);
+  for (std::size_t s = 0; s < site_count; ++s) position[s] = sites[s].position(mesh);
+  auto corner = [&](Index face, int c) {
+    const Index v = mesh.faces(face, c);
+    Corner p;
+    p.head<3>() = mesh.vertices.row(v).transpose();
+    p[3] = density.empty() ? 1.0 : density[v];
+    return p;
+  };
+  // Grid cubes about as wide as the sites' spacing.
+  double area = 0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (topology.face_edges[f][0] < 0) continue;
+    area += (corner(f, 1) - corner(f, 0)).head<3>().cross((corner(f, 2) - corner(f, 0)).head<3>()).norm() / 2;
+  }
+  const SiteGrid grid(position, std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))));
+  // A vertex site's cell starts from every face around it.
+  VertexFans fans;
+  if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+    fans = vertex_fans(mesh, topology);
+  }
+
+  RestrictedCells cells;
+  cells.area.assign(site_count, 0.0);
+  cells.mass.assign(site_count, 0.0);
+  cells.moment.assign(site_count, Eigen::Vector3d::Zero());
+  cells.energy.assign(site_count, 0.0);
+  tbb::enumerable_thread_specific<Scratch> scratches;
+
+  // One cell: a flood fill over the faces it reaches from the site, each
+  // face clipped by the bisector planes of the sites near it.
+  auto cell = [&](Index s, Scratch& scratch) {
+    const Eigen::Vector3d& site = position[s];
+    // The sites within `searched` of this one, nearest first, and their
+    // bisector planes. A face's polygon within `reach` of the site can only
+    // be cut by sites within 2 reach: the search widens when that is beyond it.
+    double searched = 2 * grid.cell();
+    auto search = [&] {
+      grid.near(s, searched, scratch.near);
+      scratch.planes.clear();
+      for (const Index other : scratch.near) {
+        const Eigen::Vector3d normal = position[other] - site;
+        scratch.planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.squaredNorm() / 2);
+      }
+    };
+    search();
+    // Of two sites at one place, the first takes the cell.
+    if (!scratch.near.empty() && position[scratch.near.front()] == site && scratch.near.front() < s) return;
+    auto& queue = scratch.queue;
+    queue.clear();
+    if (sites[s].kind == SurfacePoint::Kind::face) {
+      queue.push_back(sites[s].element);
+    } else {
+      const std::span<const Index> around = fans.around(sites[s].element);
+      queue.insert(queue.end(), around.begin(), around.end());
+    }
+    scratch.reached.clear();
+    for (const Index f : queue) scratch.reached.insert(f);
+    scratch.segments.clear();
+    auto& polygon = scratch.polygon;
+    auto& label = scratch.label;
+    auto reach_squared = [&] {  // of the polygon from the site
+      double r = 0;
+      for (const Corner& p : polygon) r = std::max(r, (p.head<3>() - site).squaredNorm());
+      return r;
+    };
+    // Clips the face to the cell; false when a site beyond the search might cut it.
+    auto clip = [&](Index face) {
+      // label[k] names the side from polygon[k - 1] to polygon[k]; face side
+      // k joins corners k and k + 1.
+      polygon.assign({corner(face, 0), corner(face, 1), corner(face, 2)});
+      label.assign({-3, -1, -2});
+      double reach2 = reach_squared();
+      for (std::size_t n = 0; n < scratch.near.size(); ++n) {
+        // Nearest first: once a bisector lies beyond the polygon's reach
+        // (at half the sites' distance), so do all the others'.
+        const Eigen::Vector4d& plane = scratch.planes[n];
+        if (2 * plane[3] >= 4 * reach2) return true;
+        auto side = [&](const Corner& p) { return plane.head<3>().dot(p.head<3>() - site) - plane[3]; };
+        if (std::none_of(polygon.begin(), polygon.end(), [&](const Corner& p) { return side(p) > 0; })) continue;
+        auto& clipped = scratch.clipped;
+        auto& clipped_label = scratch.clipped_label;
+        clipped.clear();
+        clipped_label.clear();
+        for (std::size_t k = 0; k < polygon.size(); ++k) {
+          const Corner& from = polygon[(k + polygon.size() - 1) % polygon.size()];
+          const Corner& to = polygon[k];
+          const double a = side(from), b = side(to);
+          if (a <= 0 && b <= 0) {
+            clipped.push_back(to);
+            clipped_label.push_back(label[k]);
+          } else if (a <= 0) {
+            clipped.push_back(from + (a / (a - b)) * (to - from));
+            clipped_label.push_back(label[k]);
+          } else if (b <= 0) {
+            clipped.push_back(from + (a / (a - b)) * (to - from));
+            clipped_label.push_back(scratch.near[n]);
+            clipped.push_back(to);
+            clipped_label.push_back(label[k]);
+          }
+        }
+        std::swap(polygon, clipped);
+        std::swap(label, clipped_label);
+        if (polygon.size() < 3) return true;
+        reach2 = reach_squared();
+      }
+      return 4 * reach2 <= searched * searched;
+    };
+    for (std::size_t next = 0; next < queue.size(); ++next) {
+      const Index face = queue[next];
+      while (!clip(face)) {
+        searched = 2 * std::sqrt(reach_squared()) * (1 + 1e-9);
+        search();
+      }
+      if (polygon.size() < 3) continue;
+      // The three-edge-midpoint rule on the fan from polygon[0].
+      for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+        const Corner& a = polygon[0];
+        const Corner& b = polygon[k];
+        const Corner& c = polygon[k + 1];
+        const double piece = (b.head<3>() - a.head<3>()).cross(c.head<3>() - a.head<3>()).norm() / 2;
+        cells.area[s] += piece;
+        for (const Corner& m : {Corner((a + b) / 2), Corner((b + c) / 2), Corner((c + a) / 2)}) {
+          const Eigen::Vector3d offset = m.head<3>() - site;
+          const double weight = piece / 3 * m[3];
+          cells.mass[s] += weight;
+          cells.moment[s] += weight * offset;
+          cells.energy[s] += weight * offset.squaredNorm();
+        }
+      }
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Corner& from = polygon[(k + polygon.size() - 1) % polygon.size()];
+        const Corner& to = polygon[k];
+        if (from.head<3>() == to.head<3>()) continue;
+        if (label[k] >= 0) {
+          if (label[k] > s) scratch.segments.push_back({label[k], (from[3] + to[3]) / 2, from.head<3>(), to.head<3>()});
+          continue;
+        }
+        // A side on the face's side -1 - label: the cell goes on across it.
+        const Index edge = topology.face_edges[face][-1 - label[k]];
+        const Index across = topology.edge_faces[edge][0] == face ? topology.edge_faces[edge][1] : topology.edge_faces[edge][0];
+        if (across >= 0 && scratch.reached.insert(across)) queue.push_back(across);
+      }
+    }
+    // One boundary per other site, its segments together.
+    auto& segments = scratch.segments;
+    std::stable_sort(segments.begin(), segments.end(), [](const Scratch::Segment& a, const Scratch::Segment& b) { return a.other < b.other; });
+    for (std::size_t first = 0; first < segments.size();) {
+      std::size_t last = first;
+      double length = 0, weighted = 0;
+      const auto begin = static_cast<Index>(scratch.segment_ends.size());
+      for (; last < segments.size() && segments[last].other == segments[first].other; ++last) {
+        const double piece = (segments[last].to - segments[last].from).norm();
+        length += piece;
+        weighted += piece * segments[last].density;
+        scratch.segment_ends.push_back(segments[last].from);
+        scratch.segment_ends.push_back(segments[last].to);
+      }
+      scratch.boundaries.push_back({s, segments[first].other, length > 0 ? weighted / length : segments[first].density, begin,
+                                    static_cast<Index>(scratch.segment_ends.size())});
+      first = last;
+    }
+  };
+  // Each cell is integrated by one thread on its own, and each block of
+  // sites keeps its boundary pieces apart: the sums and the order of the
+  // pieces do not depend on the threads.
+  constexpr std::size_t kBlock = 256;
+  struct Block {
+    std::vector<RestrictedBoundary> boundaries;
+    std::vector<Eigen::Vector3d> segment_ends;
+  };
+  std::vector<Block> blocks((site_count + kBlock - 1) / kBlock);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    Scratch& scratch = scratches.local();
+    for (std::size_t block = range.begin(); block != range.end(); ++block) {
+      scratch.boundaries.clear();
+      scratch.segment_ends.clear();
+      for (std::size_t s = block * kBlock; s < std::min(site_count, (block + 1) * kBlock); ++s) {
+        cell(static_cast<Index>(s), scratch);
+      }
+      blocks[block] = {scratch.boundaries, scratch.segment_ends};
+    }
+  });
+  for (const Block& block : blocks) {
+    const auto offset = static_cast<Index>(cells.segment_ends.size());
+    for (RestrictedBoundary boundary : block.boundaries) {
+      boundary.begin += offset;
+      boundary.end += offset;
+      cells.boundaries.push_back(boundary);
+    }
+    cells.segment_ends.insert(cells.segment_ends.end(), block.segment_ends.begin(), block.segment_ends.end());
+  }
+  return cells;
+}
+
+}  // namespace geodual::remesh::detail

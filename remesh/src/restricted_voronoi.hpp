@@ -1,0 +1,58 @@
+#pragma once
+// The restricted Voronoi diagram (RVD) of sites on a surface: each site's
+// Euclidean Voronoi cell in space (the points nearer to it than to any other
+// site) intersected with the surface, keeping the piece reached from the site
+// through faces (so that a cell does not jump across a thin part of the
+// surface). It is the diagram geogram's CVT remeshing relaxes (Yan, Lévy et
+// al., "Isotropic remeshing with fast and exact computation of restricted
+// Voronoi diagram", SGP 2009). It needs no geodesics: a Delaunay
+// triangulation of the sites gives each cell's neighbours, and each face the
+// cell reaches is clipped by their bisector planes. Where the cells are
+// small against the surface's curvature it is close to the geodesic diagram,
+// which is why it serves as a cheap warm start for the geodesic relaxation.
+//
+// Integrals under a density rho (linear inside faces; none: 1) use the
+// three-edge-midpoint rule on a fan of each clipped polygon: exact for the
+// area and the first moment, and for the energy when rho is constant.
+
+#include "geodual/triangle_mesh.hpp"
+#include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/surface_point.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <vector>
+
+namespace geodual::remesh::detail {
+
+/// The boundary between the cells of sites `site` and `other` (site <
+/// other): straight segments, one per face it crosses, whose ends are
+/// RestrictedCells::segment_ends[begin .. end) in pairs; with the density's
+/// mean along it.
+struct RestrictedBoundary {
+  Index site = -1;
+  Index other = -1;
+  double density = 1;
+  Index begin = 0;
+  Index end = 0;
+};
+
+struct RestrictedCells {
+  std::vector<double> area;             ///< int dA
+  std::vector<double> mass;             ///< int rho dA
+  std::vector<Eigen::Vector3d> moment;  ///< int rho (x - s) dA, a 3D vector
+  std::vector<double> energy;           ///< int rho |x - s|^2 dA
+  std::vector<RestrictedBoundary> boundaries;  ///< sorted by site, then other
+  std::vector<Eigen::Vector3d> segment_ends;
+  double total_energy() const;
+};
+
+/// The cells of `sites` on `mesh`, crossing edges as `topology` (a geodesic
+/// field's propagation topology) joins faces. `density`: one value per mesh
+/// vertex, or empty for 1. A site that shares its position with another
+/// gets an empty cell. Bit-identical for any number of threads.
+RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::GeodesicField& topology,
+                                   std::span<const SurfacePoint> sites, std::span<const double> density);
+
+}  // namespace geodual::remesh::detail
