@@ -2,8 +2,8 @@
 // remeshing at the same vertex count, with the quality figures of
 // shared/DESIGN.md for all of them (issue 5, deliverable 4).
 //
-//   build/bench/quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd]
-//                             [--adapt S] [--no-cgal]
+//   build/bench/quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W]
+//                             [--plain-lloyd] [--adapt S] [--no-cgal]
 //                             [--cgal-iterations N] [--cgal-border keep|protect]
 //                             [--tolerance PCT] [--max-runs R] [--samples S]
 //                             [--time-limit S] [MESH...]
@@ -18,7 +18,9 @@
 //                  relaxation.
 //   geodual+Lloyd  the same sites, K Lloyd iterations with the default
 //                  (Newton-accelerated) steps (default 10; fewer when the
-//                  energy stalls below --lloyd-tol).
+//                  energy stalls below --lloyd-tol), after at most W
+//                  warm-start steps on the restricted Voronoi diagram
+//                  (default: LloydOptions' default; 0: none).
 //   geodual+plain  with --plain-lloyd: the same, plain (over-relaxed) Lloyd
 //                  steps.
 //   geodual+adapt  with --adapt S: the Lloyd row's run with curvature-adapted
@@ -101,6 +103,7 @@ struct Options {
   std::vector<std::int64_t> site_counts = {5000, 20000};
   int lloyd = 10;
   double lloyd_tolerance = remesh::LloydOptions{}.tolerance;
+  int warm_start = remesh::LloydOptions{}.warm_start_iterations;
   bool plain_lloyd = false;  ///< also a row with plain Lloyd steps
   double adapt = 0;          ///< > 0: also a row with curvature-adapted sizing of this strength
   bool cgal = true;          ///< the CGAL row
@@ -130,6 +133,7 @@ struct RunResult {
   std::int64_t peak_rss = 0;
   std::int64_t sites_added = 0;
   int lloyd_iterations = 0;
+  int warm_start_iterations = 0;
   bool has_figures = false;
   Figures output;
   Figures input;  ///< the reference side of compare_meshes, distances NaN
@@ -185,6 +189,7 @@ RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
   pipeline_options.remesh.lloyd.newton = newton;
   pipeline_options.remesh.curvature_adaptation = adapt;
   pipeline_options.remesh.lloyd.tolerance = options.lloyd_tolerance;
+  pipeline_options.remesh.lloyd.warm_start_iterations = options.warm_start;
   pipeline_options.statistics = false;  // measured below, the same way for every row
   RunResult run;
   reset_peak_rss();
@@ -197,6 +202,7 @@ RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
   run.vertices = result.remesh.mesh.num_vertices();
   run.sites_added = result.remesh.sites_added;
   run.lloyd_iterations = result.remesh.lloyd_iterations;
+  run.warm_start_iterations = result.remesh.warm_start_iterations;
   add_figures(run, input.mesh, result.remesh.mesh, options);
   return run;
 }
@@ -440,7 +446,7 @@ int run_benchmark(const Options& options) {
   std::cout << "machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads, load "
             << load_average() << "\n";
   std::cout << "options: Lloyd " << options.lloyd << " iterations (tolerance " << options.lloyd_tolerance
-            << "), CGAL isotropic_remeshing " << options.cgal_iterations << " iterations, borders "
+            << ", warm start " << options.warm_start << " steps), CGAL isotropic_remeshing " << options.cgal_iterations << " iterations, borders "
             << (options.border == BorderMode::keep ? "kept (CGAL default)" : "protected (split to L, then fixed)")
             << ", vertex count within " << options.tolerance_pct << " %, " << grouped(options.samples)
             << " samples per side\n";
@@ -479,6 +485,7 @@ int run_benchmark(const Options& options) {
         if (!input_figures) input_figures = run.input;
         std::string notes;
         if (lloyd > 0) notes = std::to_string(run.lloyd_iterations) + " Lloyd iterations";
+        if (run.warm_start_iterations > 0) notes += " after " + std::to_string(run.warm_start_iterations) + " warm-start steps";
         if (run.sites_added > 0) notes += (notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
         add_run_row(table, method, sites, run, notes);
         if (adapt == 0) target = run.vertices;  // the Lloyd row's when it succeeds
@@ -536,7 +543,8 @@ std::int64_t parse_integer(const std::string& option, const std::string& text, s
 }
 
 constexpr const char* usage =
-    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--plain-lloyd] [--adapt S] [--no-cgal]\n"
+    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--plain-lloyd] [--adapt S]\n"
+    "                     [--no-cgal]\n"
     "                     [--cgal-iterations N]\n"
     "                     [--cgal-border keep|protect] [--tolerance PCT] [--max-runs R] [--samples S]\n"
     "                     [--time-limit S] [MESH...]\n"
@@ -558,6 +566,8 @@ Options parse_options(int argc, char** argv) {
       }
     } else if (arg == "--lloyd") {
       options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
+    } else if (arg == "--warm-start") {
+      options.warm_start = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
     } else if (arg == "--plain-lloyd") {
       options.plain_lloyd = true;
     } else if (arg == "--adapt") {

@@ -18,9 +18,14 @@
 // direction of negative curvature (Steihaug 1983).
 //
 // Under a density rho (weighted_cells.hpp) A_i and M_i become the cell's
-// rho-weighted mass and moment, and each arc's terms are weighted by rho
-// there, taken as the mean of its two sites' rho (rho varies little across a
-// cell).
+// rho-weighted mass and moment, and each boundary's terms are weighted by rho
+// there (CvtBoundary::density; for the geodesic diagram the mean of its two
+// sites' rho, which varies little across a cell).
+//
+// The same step serves the restricted Voronoi diagram of the warm start
+// (restricted_voronoi.hpp), whose boundaries are straight segments, one per
+// face crossed, and whose moments are int (x - z) dA taken into the tangent
+// plane: there the formulas hold where the surface is flat across a cell.
 
 #include "geodual/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"

@@ -45,9 +45,9 @@ class SiteGrid {
   double cell() const { return cell_; }
 
   /// The sites other than `site` within `radius` of it, nearest first (ties
-  /// by index), into `near`.
-  void near(Index site, double radius, std::vector<Index>& near) const {
-    near.clear();
+  /// by index), into `near`; `scratch` holds their squared distances.
+  void near(Index site, double radius, std::vector<Index>& near, std::vector<std::pair<double, Index>>& scratch) const {
+    scratch.clear();
     const Eigen::Vector3d& p = position_[site];
     const auto reach = static_cast<Index>(std::ceil(radius / cell_));
     std::array<Index, 3> low, high;
@@ -61,14 +61,14 @@ class SiteGrid {
         const std::size_t row = (static_cast<std::size_t>(z) * size_[1] + y) * size_[0];
         for (Index s = begin_[row + low[0]]; s < begin_[row + high[0] + 1]; ++s) {
           const Index other = site_[s];
-          if (other != site && (position_[other] - p).squaredNorm() <= radius * radius) near.push_back(other);
+          const double distance = (position_[other] - p).squaredNorm();
+          if (other != site && distance <= radius * radius) scratch.emplace_back(distance, other);
         }
       }
     }
-    std::sort(near.begin(), near.end(), [&](Index a, Index b) {
-      const double da = (position_[a] - p).squaredNorm(), db = (position_[b] - p).squaredNorm();
-      return da < db || (da == db && a < b);
-    });
+    std::sort(scratch.begin(), scratch.end());
+    near.clear();
+    for (const auto& [distance, other] : scratch) near.push_back(other);
   }
 
  private:
@@ -139,6 +139,7 @@ struct Scratch {
   FaceSet reached;
   std::vector<Index> queue;
   std::vector<Index> near;              // the sites near the current one, nearest first
+  std::vector<std::pair<double, Index>> near_distance;
   std::vector<Eigen::Vector4d> planes;  // and their bisectors: normal . (x - site) <= w
   std::vector<Corner> polygon, clipped;
   std::vector<SideLabel> label, clipped_label;
@@ -171,13 +172,14 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     p[3] = density.empty() ? 1.0 : density[v];
     return p;
   };
-  // Grid cubes about as wide as the sites' spacing.
+  // Grid cubes twice as wide as the sites' spacing: the first search (twice
+  // the spacing) looks at 27 of them.
   double area = 0;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     if (topology.face_edges[f][0] < 0) continue;
     area += (corner(f, 1) - corner(f, 0)).head<3>().cross((corner(f, 2) - corner(f, 0)).head<3>()).norm() / 2;
   }
-  const SiteGrid grid(position, std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))));
+  const SiteGrid grid(position, 2 * std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))));
   // A vertex site's cell starts from every face around it.
   VertexFans fans;
   if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
@@ -198,9 +200,9 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     // The sites within `searched` of this one, nearest first, and their
     // bisector planes. A face's polygon within `reach` of the site can only
     // be cut by sites within 2 reach: the search widens when that is beyond it.
-    double searched = 2 * grid.cell();
+    double searched = grid.cell();
     auto search = [&] {
-      grid.near(s, searched, scratch.near);
+      grid.near(s, searched, scratch.near, scratch.near_distance);
       scratch.planes.clear();
       for (const Index other : scratch.near) {
         const Eigen::Vector3d normal = position[other] - site;

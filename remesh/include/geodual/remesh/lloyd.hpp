@@ -23,7 +23,7 @@
 // Warm start: before the geodesic iterations, the same steps are taken on the
 // restricted Voronoi diagram (each site's Euclidean Voronoi cell in space cut
 // down to the surface, as geogram's CVT remeshing uses), which needs no
-// geodesics and costs a few per cent of a geodesic diagram. Where cells are
+// geodesics and costs about a tenth of a geodesic diagram a step. Where cells are
 // small against the curvature the two diagrams nearly agree, so the geodesic
 // iterations start close to a CVT; they then make it the geodesic one.
 
@@ -41,7 +41,7 @@ struct LloydOptions {
   int iterations = 10;
   /// At most this many steps on the restricted Voronoi diagram first (the
   /// warm start, see above; 0: none). Skipped when `iterations` is 0.
-  int warm_start_iterations = 30;
+  int warm_start_iterations = 20;
   /// Stop once an iteration lowers the energy by less than this fraction of
   /// it. A Newton step must lower it by this much to be taken (one that
   /// lowers it by less is retried more damped, then Lloyd's step decides).
