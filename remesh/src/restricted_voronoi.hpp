@@ -10,6 +10,10 @@
 // cell reaches is clipped by their bisector planes. Where the cells are
 // small against the surface's curvature it is close to the geodesic diagram,
 // which is why it serves as a cheap warm start for the geodesic relaxation.
+// Where two sheets of the surface come closer than a cell's size (a thin
+// part, a fold), the sites of one still cut the cells of the other, unlike
+// geodesic cells: there the warm start is off, and the geodesic iterations
+// after it make up for it.
 //
 // Integrals under a density rho (linear inside faces; none: 1) use the
 // three-edge-midpoint rule on a fan of each clipped polygon: exact for the
