@@ -44,6 +44,17 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
   v.normalize();
   double remaining = length;
   Index entry_edge = -1;
+  // A zero-area face is crossed flat but never ended in (a site there would
+  // have no barycentric coordinates): a walk ending in one stops where it
+  // entered it, on the last face with area.
+  bool flat = false;
+  Index last_face = face;
+  Eigen::Vector3d last_point = p;
+  auto end_at = [&](Index at, const Eigen::Vector3d& point) {
+    if (flat) at = last_face;
+    const Eigen::Vector3d b = barycentric_in(mesh, at, flat ? last_point : point);
+    return SurfacePoint::in_face(at, b[0], b[1], b[2]);
+  };
   for (int step = 0; step < 1'000'000; ++step) {
     // The nearest side the ray leaves through (not the one it came in by).
     double exit_t = INFINITY;
@@ -61,24 +72,22 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     }
     if (exit_side < 0 || exit_t >= remaining) {
       p += std::min(remaining, exit_side < 0 ? 0.0 : remaining) * v;
-      const Eigen::Vector3d b = barycentric_in(mesh, face, p);
-      return SurfacePoint::in_face(face, b[0], b[1], b[2]);
+      return end_at(face, p);
     }
     p += exit_t * v;
     remaining -= exit_t;
     const Index edge = field.face_edges[face][exit_side];
     const Index next = field.edge_faces[edge][0] == face ? field.edge_faces[edge][1] : field.edge_faces[edge][0];
-    if (next < 0) {  // the mesh boundary: stop on it
-      const Eigen::Vector3d b = barycentric_in(mesh, face, p);
-      return SurfacePoint::in_face(face, b[0], b[1], b[2]);
-    }
+    if (next < 0) return end_at(face, p);  // the mesh boundary: stop on it
     // Unfold about the edge: keep the component along it, and turn the rest
     // into the next face's plane, pointing into that face.
     const Eigen::Vector3d a = corner(mesh, face, exit_side), b = corner(mesh, face, (exit_side + 1) % 3);
     const Eigen::Vector3d along = (b - a).normalized();
     Eigen::Vector3d next_normal =
         (corner(mesh, next, 1) - corner(mesh, next, 0)).cross(corner(mesh, next, 2) - corner(mesh, next, 0));
-    if (!(next_normal.norm() > 0)) next_normal = normal;  // a zero-area face: cross it flat
+    if (!flat) last_face = face, last_point = p;
+    flat = !(next_normal.norm() > 0);
+    if (flat) next_normal = normal;  // a zero-area face: cross it flat
     next_normal.normalize();
     Eigen::Vector3d inward = next_normal.cross(along);
     // `inward` must point from the edge into the next face.
@@ -97,8 +106,7 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     normal = next_normal;
     entry_edge = edge;
   }
-  const Eigen::Vector3d b = barycentric_in(mesh, face, p);
-  return SurfacePoint::in_face(face, b[0], b[1], b[2]);
+  return end_at(face, p);
 }
 
 VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
