@@ -180,6 +180,10 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Ge
     auto lloyd = [&](double factor) { return lloyd_steps(mesh, sites, topology, cells, moving, factor); };
     if (!relaxation_step(options, previous, control, newton, lloyd, take)) break;
     ++steps_taken;
+    // No geodesics run here, so the progress callback that can cancel them
+    // is asked between the steps (with a fraction of 0: no diagram is under way).
+    const auto& progress = options.voronoi.geodesic.progress;
+    if (progress && !progress(0.0)) throw Cancelled("Lloyd's warm start cancelled");
     if (previous - cells.total_energy() < options.tolerance * previous) break;
   }
   return sites;

@@ -237,6 +237,26 @@ TEST(Lloyd, VertexSitesMoveToo) {
   }
 }
 
+TEST(Lloyd, TheWarmStartCanBeCancelled) {
+  // The progress callback of the geodesics is asked between warm-start
+  // steps too: cancelled once the first diagram is done, the warm start stops.
+  const TriangleMesh sphere = test::icosphere(4);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 200);
+  remesh::LloydOptions options;
+  options.iterations = 3;
+  bool first_diagram_done = false;
+  options.voronoi.geodesic.progress = [&](double fraction) {
+    if (fraction >= 1.0) first_diagram_done = true;
+    return !first_diagram_done || fraction > 0.0;
+  };
+  try {
+    (void)remesh::lloyd_relax(sphere, sites, options);
+    ADD_FAILURE() << "not cancelled";
+  } catch (const Cancelled& cancelled) {
+    EXPECT_NE(std::string(cancelled.what()).find("warm start"), std::string::npos) << cancelled.what();
+  }
+}
+
 TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
   // The restricted diagram's steps cost no geodesics; after them the
   // geodesic iterations start from a lower energy, and as many of them end

@@ -40,7 +40,8 @@ struct LloydOptions {
   /// At most this many iterations (0: none, the diagram of the given sites).
   int iterations = 10;
   /// At most this many steps on the restricted Voronoi diagram first (the
-  /// warm start, see above; 0: none). Skipped when `iterations` is 0.
+  /// warm start, see above; 0: none). Skipped when `iterations` is 0. Between
+  /// its steps it asks voronoi.geodesic.progress (with 0), which can cancel it.
   int warm_start_iterations = 20;
   /// Stop once an iteration lowers the energy by less than this fraction of
   /// it. A Newton step must lower it by this much to be taken (one that
