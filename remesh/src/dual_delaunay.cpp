@@ -258,6 +258,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   UnionFind dual_components(num_sites);
   const auto dual_topology = mesh_topology(dual.mesh, dual_components);
   std::map<Index, std::vector<Index>> sites_by_component;
+  std::string first_mismatch;
   for (Index s = 0; s < num_sites; ++s) {
     sites_by_component[input_components.find(vertex_of(input, field.sites[s]))].push_back(s);
   }
@@ -269,7 +270,15 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     same = same && dual_it != dual_topology.end() && dual_it->second.euler() == expected.euler() &&
            dual_it->second.boundary_loops == expected.boundary_loops;
     if (same) continue;
-    ++check.topology_mismatches;
+    if (check.topology_mismatches++ == 0) {
+      // Named in the message: where to look (a scrap far below the sites'
+      // spacing may need to go; a large piece needs more sites).
+      first_mismatch = " (the first: the piece with input vertex " + std::to_string(component) + ", " +
+                       std::to_string(expected.faces) + " faces, " + std::to_string(sites.size()) +
+                       " sites, Euler characteristic " + std::to_string(expected.euler()) + ", " +
+                       std::to_string(expected.boundary_loops) +
+                       (expected.boundary_loops == 1 ? " boundary loop)" : " boundary loops)");
+    }
     // Local problems explain most mismatches; without any, refine where
     // cells are largest (a handle or hole inside one): their farthest vertices.
     if (!check.repair_sites.empty()) continue;
@@ -335,7 +344,8 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   note(check.degenerate_triangles, "zero-area triangles");
   note(check.split_arcs, "cell pairs meeting along several arcs");
   note(check.closed_arcs, "cells enclosed by another");
-  note(check.topology_mismatches, "components whose Euler characteristic or boundary loops differ from the input's");
+  note(check.topology_mismatches,
+       "components whose Euler characteristic or boundary loops differ from the input's" + first_mismatch);
   check.valid = check.problems.empty();
   return dual;
 }
