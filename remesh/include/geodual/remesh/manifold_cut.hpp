@@ -15,10 +15,13 @@ namespace geodual::remesh {
 
 struct ManifoldCutOptions {
   /// Connected pieces (after the cut) with fewer faces than this are scraps
-  /// no remesh can represent (a flap of two faces glued back to back, a lone
-  /// triangle): their faces are disabled (all three corners set to the
-  /// first), so that every later stage ignores them. 0 keeps everything.
-  Index min_component_faces = 4;
+  /// below any remesh's resolution (a flap of two faces glued back to back, a
+  /// lone triangle, a few faces left as a star of flaps where pinch vertices
+  /// were cut; a remesh puts at least 4 sites on every piece): their faces
+  /// are disabled (all three corners set to the first), so that every later
+  /// stage ignores them. 0 keeps everything. (With 4, ogre's four-face star
+  /// got no valid dual at any site count.)
+  Index min_component_faces = 8;
 };
 
 struct ManifoldCut {
