@@ -14,11 +14,23 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
 namespace geodual {
 namespace {
+
+/// An oriented 2-manifold with the topology of `expected`: its pieces, Euler
+/// characteristic and boundary loops.
+void expect_oriented_manifold_like(const MeshReport& out, const MeshReport& expected) {
+  EXPECT_EQ(out.nonmanifold_edges, 0);
+  EXPECT_EQ(out.nonmanifold_vertices, 0);
+  EXPECT_TRUE(out.oriented);
+  EXPECT_EQ(out.components, expected.components);
+  EXPECT_EQ(out.euler_characteristic, expected.euler_characteristic);
+  EXPECT_EQ(out.boundary_loops, expected.boundary_loops);
+}
 
 void expect_faithful_remesh(const TriangleMesh& input, std::int64_t count, const std::string& label) {
   SCOPED_TRACE(label + ", " + std::to_string(count) + " sites");
@@ -37,14 +49,9 @@ void expect_faithful_remesh(const TriangleMesh& input, std::int64_t count, const
   }
   EXPECT_EQ(out.unreferenced_vertices, 0);
   // A clean 2-manifold, oriented, with the input's topology.
-  EXPECT_EQ(out.nonmanifold_edges, 0);
-  EXPECT_EQ(out.nonmanifold_vertices, 0);
+  expect_oriented_manifold_like(out, in);
   EXPECT_EQ(out.duplicate_faces, 0);
   EXPECT_EQ(out.degenerate_faces, 0);
-  EXPECT_TRUE(out.oriented);
-  EXPECT_EQ(out.components, in.components);
-  EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
-  EXPECT_EQ(out.boundary_loops, in.boundary_loops);
   EXPECT_TRUE(result.check.valid);
   // Repair stays local.
   EXPECT_LE(result.sites_added, count / 10 + 10);
@@ -236,6 +243,15 @@ TriangleMesh without_disabled_faces(const TriangleMesh& mesh) {
   return test::mesh_from_lists(points, faces);
 }
 
+/// Remeshes `cut` (2000 sites, no Lloyd) and expects an oriented 2-manifold
+/// with the topology of `surface` (the cut without its scraps).
+void expect_remesh_with_the_topology_of(const TriangleMesh& cut, const MeshReport& surface) {
+  remesh::RemeshOptions options;
+  options.lloyd.iterations = 0;
+  const remesh::RemeshResult result = remesh::remesh_from_sites(cut, remesh::sample_sites(cut, 2000), options);
+  expect_oriented_manifold_like(analyze_mesh(result.mesh), surface);
+}
+
 TEST(ManifoldCut, ScansWithNonManifoldEdgesAreRemeshed) {
   for (const std::string name : {"dragon_100k.ply", "bunny_res2.ply"}) {
     SCOPED_TRACE(name);
@@ -245,16 +261,7 @@ TEST(ManifoldCut, ScansWithNonManifoldEdgesAreRemeshed) {
     EXPECT_GT(cut.faces_disabled, 0);  // flaps glued back to back
     const MeshReport surface = analyze_mesh(without_disabled_faces(cut.mesh));
     EXPECT_EQ(surface.nonmanifold_edges, 0);
-    remesh::RemeshOptions options;
-    options.lloyd.iterations = 0;
-    const remesh::RemeshResult result = remesh::remesh_from_sites(cut.mesh, remesh::sample_sites(cut.mesh, 2000), options);
-    const MeshReport out = analyze_mesh(result.mesh);
-    EXPECT_EQ(out.nonmanifold_edges, 0);
-    EXPECT_EQ(out.nonmanifold_vertices, 0);
-    EXPECT_TRUE(out.oriented);
-    EXPECT_EQ(out.euler_characteristic, surface.euler_characteristic);
-    EXPECT_EQ(out.boundary_loops, surface.boundary_loops);
-    EXPECT_EQ(out.components, surface.components);
+    expect_remesh_with_the_topology_of(cut.mesh, surface);
   }
 }
 
@@ -268,16 +275,7 @@ TEST(ManifoldCut, OgresPiecesAreRemeshedButItsStarOfFlaps) {
   EXPECT_EQ(cut.faces_disabled, 4);
   const MeshReport surface = analyze_mesh(without_disabled_faces(cut.mesh));
   EXPECT_EQ(surface.components, 44 - 1 + 1);  // a pinch cut splits one piece in two, the star goes
-  remesh::RemeshOptions options;
-  options.lloyd.iterations = 0;
-  const remesh::RemeshResult result = remesh::remesh_from_sites(cut.mesh, remesh::sample_sites(cut.mesh, 2000), options);
-  const MeshReport out = analyze_mesh(result.mesh);
-  EXPECT_EQ(out.nonmanifold_edges, 0);
-  EXPECT_EQ(out.nonmanifold_vertices, 0);
-  EXPECT_TRUE(out.oriented);
-  EXPECT_EQ(out.euler_characteristic, surface.euler_characteristic);
-  EXPECT_EQ(out.boundary_loops, surface.boundary_loops);
-  EXPECT_EQ(out.components, surface.components);
+  expect_remesh_with_the_topology_of(cut.mesh, surface);
 }
 
 }  // namespace
