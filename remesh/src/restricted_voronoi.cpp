@@ -93,8 +93,11 @@ class SiteGrid {
 /// touched at random across the whole mesh).
 class FaceSet {
  public:
+  /// Empties the set, keeping the size it grew to (cells on one mesh reach
+  /// similar numbers of faces).
   void clear() {
-    slot_.assign(64, -1);
+    if (slot_.empty()) slot_.resize(64);
+    std::fill(slot_.begin(), slot_.end(), Index{-1});
     count_ = 0;
   }
   /// Adds the face; false if it was there.
@@ -142,6 +145,7 @@ struct Scratch {
   std::vector<std::pair<double, Index>> near_distance;
   std::vector<Eigen::Vector4d> planes;  // and their bisectors: normal . (x - site) <= w
   std::vector<Corner> polygon, clipped;
+  std::vector<double> side;
   std::vector<SideLabel> label, clipped_label;
   // The current cell's boundary segments: the other site, the density at
   // the midpoint, the ends.
@@ -242,8 +246,11 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
         // (at half the sites' distance), so do all the others'.
         const Eigen::Vector4d& plane = scratch.planes[n];
         if (2 * plane[3] >= 4 * reach2) return true;
-        auto side = [&](const Corner& p) { return plane.head<3>().dot(p.head<3>() - site) - plane[3]; };
-        if (std::none_of(polygon.begin(), polygon.end(), [&](const Corner& p) { return side(p) > 0; })) continue;
+        // Each corner's signed offset from the plane, positive beyond it.
+        auto& side = scratch.side;
+        side.clear();
+        for (const Corner& p : polygon) side.push_back(plane.head<3>().dot(p.head<3>() - site) - plane[3]);
+        if (std::none_of(side.begin(), side.end(), [](double offset) { return offset > 0; })) continue;
         auto& clipped = scratch.clipped;
         auto& clipped_label = scratch.clipped_label;
         clipped.clear();
@@ -251,7 +258,7 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
         for (std::size_t k = 0; k < polygon.size(); ++k) {
           const Corner& from = polygon[(k + polygon.size() - 1) % polygon.size()];
           const Corner& to = polygon[k];
-          const double a = side(from), b = side(to);
+          const double a = side[(k + polygon.size() - 1) % polygon.size()], b = side[k];
           if (a <= 0 && b <= 0) {
             clipped.push_back(to);
             clipped_label.push_back(label[k]);
