@@ -1,5 +1,6 @@
 #include "restricted_voronoi.hpp"
 
+#include "sampling_grid.hpp"
 #include "surface_walk.hpp"
 
 #include <Eigen/Geometry>
@@ -10,83 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <numeric>
 #include <utility>
 
 namespace geodual::remesh::detail {
 namespace {
-
-/// The sites bucketed in a uniform grid of cubes, for the sites near a site.
-class SiteGrid {
- public:
-  /// Cubes of about `cell` on a side; larger where the sites' bounding box
-  /// would need more than 8 cubes per site.
-  SiteGrid(std::span<const Eigen::Vector3d> position, double cell) : position_(position) {
-    Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector3d high = -low;
-    for (const Eigen::Vector3d& p : position) low = low.cwiseMin(p), high = high.cwiseMax(p);
-    const Eigen::Vector3d extent = (high - low).cwiseMax(0.0);
-    const double cubes = (extent / cell + Eigen::Vector3d::Ones()).prod();
-    const double most = 8.0 * static_cast<double>(std::max<std::size_t>(position.size(), 1));
-    if (!(cell > 0) || !std::isfinite(cubes)) cell = std::max(extent.maxCoeff(), 1.0);
-    else if (cubes > most) cell *= std::cbrt(cubes / most);
-    cell_ = cell;
-    origin_ = low;
-    for (int a = 0; a < 3; ++a) size_[a] = static_cast<Index>(extent[a] / cell_) + 1;
-    begin_.assign(static_cast<std::size_t>(size_[0]) * size_[1] * size_[2] + 1, 0);
-    for (const Eigen::Vector3d& p : position) ++begin_[cube_of(p) + 1];
-    std::partial_sum(begin_.begin(), begin_.end(), begin_.begin());
-    site_.resize(position.size());
-    std::vector<Index> fill(begin_.begin(), begin_.end() - 1);
-    for (std::size_t s = 0; s < position.size(); ++s) site_[fill[cube_of(position[s])]++] = static_cast<Index>(s);
-  }
-
-  double cell() const { return cell_; }
-
-  /// The sites other than `site` within `radius` of it, nearest first (ties
-  /// by index), into `near`; `scratch` holds their squared distances.
-  void near(Index site, double radius, std::vector<Index>& near, std::vector<std::pair<double, Index>>& scratch) const {
-    scratch.clear();
-    const Eigen::Vector3d& p = position_[site];
-    const auto reach = static_cast<Index>(std::ceil(radius / cell_));
-    std::array<Index, 3> low, high;
-    for (int a = 0; a < 3; ++a) {
-      const auto at = std::clamp(static_cast<Index>((p[a] - origin_[a]) / cell_), Index{0}, size_[a] - 1);
-      low[a] = std::max<Index>(at - reach, 0);
-      high[a] = std::min<Index>(at + reach, size_[a] - 1);
-    }
-    for (Index z = low[2]; z <= high[2]; ++z) {
-      for (Index y = low[1]; y <= high[1]; ++y) {
-        const std::size_t row = (static_cast<std::size_t>(z) * size_[1] + y) * size_[0];
-        for (Index s = begin_[row + low[0]]; s < begin_[row + high[0] + 1]; ++s) {
-          const Index other = site_[s];
-          const double distance = (position_[other] - p).squaredNorm();
-          if (other != site && distance <= radius * radius) scratch.emplace_back(distance, other);
-        }
-      }
-    }
-    std::sort(scratch.begin(), scratch.end());
-    near.clear();
-    for (const auto& [distance, other] : scratch) near.push_back(other);
-  }
-
- private:
-  std::size_t cube_of(const Eigen::Vector3d& p) const {
-    std::array<std::size_t, 3> at;
-    for (int a = 0; a < 3; ++a) {
-      at[a] = static_cast<std::size_t>(std::clamp(static_cast<Index>((p[a] - origin_[a]) / cell_), Index{0}, size_[a] - 1));
-    }
-    return (at[2] * static_cast<std::size_t>(size_[1]) + at[1]) * static_cast<std::size_t>(size_[0]) + at[0];
-  }
-
-  std::span<const Eigen::Vector3d> position_;
-  Eigen::Vector3d origin_;
-  double cell_ = 1;
-  std::array<Index, 3> size_{};
-  std::vector<Index> begin_;  // per cube, its sites: site_[begin_[c] .. begin_[c + 1])
-  std::vector<Index> site_;
-};
 
 /// The faces a cell has reached: a small open-addressing hash set, emptied
 /// for each cell (a cell reaches tens of faces; a per-face array would be
@@ -176,14 +105,16 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     p[3] = density.empty() ? 1.0 : density[v];
     return p;
   };
-  // Grid cubes twice as wide as the sites' spacing: the first search (twice
+  // Grid cells twice as wide as the sites' spacing: the first search (twice
   // the spacing) looks at 27 of them.
   double area = 0;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     if (topology.face_edges[f][0] < 0) continue;
     area += (corner(f, 1) - corner(f, 0)).head<3>().cross((corner(f, 2) - corner(f, 0)).head<3>()).norm() / 2;
   }
-  const SiteGrid grid(position, 2 * std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))));
+  const double spacing =
+      area > 0 ? std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
+  const PointGrid grid(position, 2 * spacing);
   // A vertex site's cell starts from every face around it.
   VertexFans fans;
   if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
@@ -204,9 +135,18 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     // The sites within `searched` of this one, nearest first, and their
     // bisector planes. A face's polygon within `reach` of the site can only
     // be cut by sites within 2 reach: the search widens when that is beyond it.
-    double searched = grid.cell();
+    double searched = 2 * spacing;
     auto search = [&] {
-      grid.near(s, searched, scratch.near, scratch.near_distance);
+      // Nearest first, ties by index.
+      auto& found = scratch.near_distance;
+      found.clear();
+      grid.for_each_within(site, searched, [&](Index slot, double squared_distance) {
+        const Index other = grid.original(slot);
+        if (other != s) found.emplace_back(squared_distance, other);
+      });
+      std::sort(found.begin(), found.end());
+      scratch.near.clear();
+      for (const auto& [squared_distance, other] : found) scratch.near.push_back(other);
       scratch.planes.clear();
       for (const Index other : scratch.near) {
         const Eigen::Vector3d normal = position[other] - site;

@@ -10,9 +10,7 @@
 namespace geodual::remesh::detail {
 namespace {
 
-using CellCoordinates = std::array<std::int64_t, 3>;
-
-std::uint64_t hash_cell(const CellCoordinates& c) {
+std::uint64_t hash_cell(const std::array<std::int64_t, 3>& c) {
   std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 0x9e3779b97f4a7c15ULL;
   h ^= static_cast<std::uint64_t>(c[1]) * 0xc2b2ae3d27d4eb4fULL;
   h ^= static_cast<std::uint64_t>(c[2]) * 0x165667b19e3779f9ULL;
@@ -42,6 +40,9 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
   double cell_size = std::max(radius, extent * 0x1p-40);
   if (!(cell_size > 0)) cell_size = 1;
   const double inverse = 1 / cell_size;
+  origin_ = lo;
+  cell_size_ = cell_size;
+  inverse_cell_ = inverse;
 
   struct Keyed {
     CellCoordinates cell;
@@ -75,7 +76,7 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
   slot_point_.resize(n);
   slot_position_.resize(n);
   slot_cell_.resize(n);
-  std::vector<CellCoordinates> cells;
+  std::vector<CellCoordinates>& cells = cells_;
   for (std::size_t i = 0; i < n; ++i) {
     if (i == 0 || keyed[i].cell != keyed[i - 1].cell) {
       cells.push_back(keyed[i].cell);
@@ -89,21 +90,16 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
   keyed.clear();
   keyed.shrink_to_fit();
 
-  // Occupied neighbour cells, found once per cell through a hash table.
+  // Occupied cells in a hash table: each cell's occupied neighbours are
+  // found through it once here, other cells by for_each_within.
   const std::uint64_t table_size = std::bit_ceil(static_cast<std::uint64_t>(cells.size()) * 2);
   const std::uint64_t mask = table_size - 1;
-  std::vector<Index> table(table_size, -1);
+  table_.assign(table_size, -1);
   for (Index c = 0; c < static_cast<Index>(cells.size()); ++c) {
     std::uint64_t slot = hash_cell(cells[c]) & mask;
-    while (table[slot] >= 0) slot = (slot + 1) & mask;
-    table[slot] = c;
+    while (table_[slot] >= 0) slot = (slot + 1) & mask;
+    table_[slot] = c;
   }
-  auto find = [&](const CellCoordinates& cell) -> Index {
-    for (std::uint64_t slot = hash_cell(cell) & mask;; slot = (slot + 1) & mask) {
-      const Index c = table[slot];
-      if (c < 0 || cells[c] == cell) return c;
-    }
-  };
   neighbour_begin_.reserve(cells.size() + 1);
   neighbour_begin_.push_back(0);
   for (const CellCoordinates& cell : cells) {
@@ -111,13 +107,21 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
         for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const Index c = find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          const Index c = find_cell({cell[0] + dx, cell[1] + dy, cell[2] + dz});
           if (c >= 0) neighbours_.push_back(c);
         }
       }
     }
     std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first), neighbours_.end());
     neighbour_begin_.push_back(static_cast<Index>(neighbours_.size()));
+  }
+}
+
+Index PointGrid::find_cell(const CellCoordinates& cell) const {
+  const std::uint64_t mask = table_.size() - 1;
+  for (std::uint64_t slot = hash_cell(cell) & mask;; slot = (slot + 1) & mask) {
+    const Index c = table_[slot];
+    if (c < 0 || cells_[c] == cell) return c;
   }
 }
 

@@ -3,12 +3,15 @@
 // is the radius, so that the points near a point lie in the 3 x 3 x 3 cells
 // around its own. Used by Poisson sample elimination and by the candidate
 // graph of farthest point sampling, where every query is about a point of the
-// set itself.
+// set itself; and, with queries of any radius, by the restricted Voronoi
+// diagram for the sites near a site.
 
 #include "geodual/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -45,7 +48,38 @@ class PointGrid {
     }
   }
 
+  /// Calls visit(slot, squared_distance) for every point within `radius` of
+  /// `p` (any radius; the cells it spans are looked up), cell by cell.
+  template <typename Visit>
+  void for_each_within(const Eigen::Vector3d& p, double radius, Visit&& visit) const {
+    if (cell_begin_.size() < 2) return;
+    const auto reach = static_cast<std::int64_t>(std::ceil(radius / cell_size_));
+    CellCoordinates at;
+    for (int a = 0; a < 3; ++a) at[a] = static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) * inverse_cell_));
+    for (std::int64_t dx = -reach; dx <= reach; ++dx) {
+      for (std::int64_t dy = -reach; dy <= reach; ++dy) {
+        for (std::int64_t dz = -reach; dz <= reach; ++dz) {
+          const Index cell = find_cell({at[0] + dx, at[1] + dy, at[2] + dz});
+          if (cell < 0) continue;
+          for (Index other = cell_begin_[cell]; other < cell_begin_[cell + 1]; ++other) {
+            const double d2 = (slot_position_[other] - p).squaredNorm();
+            if (d2 <= radius * radius) visit(other, d2);
+          }
+        }
+      }
+    }
+  }
+
  private:
+  using CellCoordinates = std::array<std::int64_t, 3>;
+  /// The occupied cell at these coordinates, or -1.
+  Index find_cell(const CellCoordinates& cell) const;
+
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  double cell_size_ = 1;
+  double inverse_cell_ = 1;
+  std::vector<CellCoordinates> cells_;  ///< coordinates of each occupied cell
+  std::vector<Index> table_;            ///< open-addressing table of the occupied cells
   double radius2_ = 0;
   std::vector<Index> slot_point_;
   std::vector<Eigen::Vector3d> slot_position_;
