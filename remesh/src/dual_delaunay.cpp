@@ -295,41 +295,44 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   // problem often end side by side, and two sites there would make a sliver).
   double cells_area = 0;
   for (const double area : diagram.cell_area) cells_area += area;
-  const double apart = 0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
+  const double apart =
+      0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
   const double spacing = std::max(1e-9 * diagonal, 1e-300);
-  using Grid = std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>>;
-  auto cell_of = [](const Eigen::Vector3d& x, double size) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / size)),
-                                       static_cast<std::int64_t>(std::floor(x.y() / size)),
-                                       static_cast<std::int64_t>(std::floor(x.z() / size))};
+  std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
+  auto cell_of = [&](const Eigen::Vector3d& x) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / spacing)),
+                                       static_cast<std::int64_t>(std::floor(x.y() / spacing)),
+                                       static_cast<std::int64_t>(std::floor(x.z() / spacing))};
   };
-  // Whether a point of `grid` (cubes of `size`) lies within `size` of x.
-  auto taken = [&](const Grid& grid, const Eigen::Vector3d& x, double size) {
-    const auto cell = cell_of(x, size);
+  auto taken = [&](const Eigen::Vector3d& x) {
+    const auto cell = cell_of(x);
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
         for (std::int64_t dz = -1; dz <= 1; ++dz) {
           const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
           if (it == grid.end()) continue;
           for (const Eigen::Vector3d& y : it->second) {
-            if ((x - y).norm() <= size) return true;
+            if ((x - y).norm() <= spacing) return true;
           }
         }
       }
     }
     return false;
   };
-  Grid site_grid, repair_grid;
   for (const SurfacePoint& site : field.sites) {
     const Eigen::Vector3d x = site.position(input);
-    site_grid[cell_of(x, spacing)].push_back(x);
+    grid[cell_of(x)].push_back(x);
   }
+  // Repair sites are few (a round adds tens to hundreds): each is compared
+  // with those kept before it.
   std::vector<SurfacePoint> repairs;
+  std::vector<Eigen::Vector3d> kept;
   for (const SurfacePoint& p : check.repair_sites) {
     const Eigen::Vector3d x = p.position(input);
-    if (taken(site_grid, x, spacing) || (apart > 0 && taken(repair_grid, x, apart))) continue;
-    site_grid[cell_of(x, spacing)].push_back(x);
-    if (apart > 0) repair_grid[cell_of(x, apart)].push_back(x);
+    auto near_kept = [&](const Eigen::Vector3d& y) { return (x - y).norm() <= apart; };
+    if (taken(x) || std::any_of(kept.begin(), kept.end(), near_kept)) continue;
+    grid[cell_of(x)].push_back(x);
+    kept.push_back(x);
     repairs.push_back(p);
   }
   check.repair_sites = std::move(repairs);

@@ -50,9 +50,9 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
   bool flat = false;
   Index last_face = face;
   Eigen::Vector3d last_point = p;
-  auto end_at = [&](Index at, const Eigen::Vector3d& point) {
-    if (flat) at = last_face;
-    const Eigen::Vector3d b = barycentric_in(mesh, at, flat ? last_point : point);
+  auto stop = [&] {
+    const Index at = flat ? last_face : face;
+    const Eigen::Vector3d b = barycentric_in(mesh, at, flat ? last_point : p);
     return SurfacePoint::in_face(at, b[0], b[1], b[2]);
   };
   for (int step = 0; step < 1'000'000; ++step) {
@@ -72,13 +72,13 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     }
     if (exit_side < 0 || exit_t >= remaining) {
       p += std::min(remaining, exit_side < 0 ? 0.0 : remaining) * v;
-      return end_at(face, p);
+      return stop();
     }
     p += exit_t * v;
     remaining -= exit_t;
     const Index edge = field.face_edges[face][exit_side];
     const Index next = field.edge_faces[edge][0] == face ? field.edge_faces[edge][1] : field.edge_faces[edge][0];
-    if (next < 0) return end_at(face, p);  // the mesh boundary: stop on it
+    if (next < 0) return stop();  // the mesh boundary: stop on it
     // Unfold about the edge: keep the component along it, and turn the rest
     // into the next face's plane, pointing into that face.
     const Eigen::Vector3d a = corner(mesh, face, exit_side), b = corner(mesh, face, (exit_side + 1) % 3);
@@ -106,7 +106,7 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     normal = next_normal;
     entry_edge = edge;
   }
-  return end_at(face, p);
+  return stop();
 }
 
 VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
