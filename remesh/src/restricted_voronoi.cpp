@@ -70,8 +70,7 @@ using SideLabel = Index;
 struct Scratch {
   FaceSet reached;
   std::vector<Index> queue;
-  std::vector<Index> near;              // the sites near the current one, nearest first
-  std::vector<std::pair<double, Index>> near_distance;
+  std::vector<std::pair<double, Index>> near;  // the sites near the current one (squared distance, site), nearest first
   std::vector<Eigen::Vector4d> planes;  // and their bisectors: normal . (x - site) <= w
   std::vector<Corner> polygon, clipped;
   std::vector<double> side;
@@ -138,24 +137,22 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     double searched = 2 * spacing;
     auto search = [&] {
       // Nearest first, ties by index.
-      auto& found = scratch.near_distance;
+      auto& found = scratch.near;
       found.clear();
       grid.for_each_within(site, searched, [&](Index slot, double squared_distance) {
         const Index other = grid.original(slot);
         if (other != s) found.emplace_back(squared_distance, other);
       });
       std::sort(found.begin(), found.end());
-      scratch.near.clear();
-      for (const auto& [squared_distance, other] : found) scratch.near.push_back(other);
       scratch.planes.clear();
-      for (const Index other : scratch.near) {
+      for (const auto& [squared_distance, other] : found) {
         const Eigen::Vector3d normal = position[other] - site;
         scratch.planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.squaredNorm() / 2);
       }
     };
     search();
     // Of two sites at one place, the first takes the cell.
-    if (!scratch.near.empty() && position[scratch.near.front()] == site && scratch.near.front() < s) return;
+    if (!scratch.near.empty() && scratch.near.front().first == 0 && scratch.near.front().second < s) return;
     auto& queue = scratch.queue;
     queue.clear();
     if (sites[s].kind == SurfacePoint::Kind::face) {
@@ -207,7 +204,7 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
             clipped_label.push_back(label[k]);
           } else if (b <= 0) {
             clipped.push_back(from + (a / (a - b)) * (to - from));
-            clipped_label.push_back(scratch.near[n]);
+            clipped_label.push_back(scratch.near[n].second);
             clipped.push_back(to);
             clipped_label.push_back(label[k]);
           }
