@@ -213,8 +213,9 @@ constexpr double kCornerAngle = 100.0 * 3.14159265358979323846 / 180.0;
 /// after it (r = spacing / 2, at most a sixth of the loop) make an angle:
 /// about 180 degrees where the boundary runs straight or bends gently at
 /// that scale, 90 at a square's corner, about 0 at the end of a slit, where
-/// it turns back on itself. Corners are the starts below kCornerAngle that
-/// are the sharpest within r on either side, the sharpest first.
+/// it turns back on itself. Corners are the starts below kCornerAngle, the
+/// sharpest first, each at least 2 r along the loop from a sharper one (two
+/// corner sites closer than a spacing would make a short edge).
 std::vector<std::size_t> loop_corners(const LoopWalk& walk, const BoundaryLoop& loop, double spacing,
                                       std::int64_t limit) {
   const double r = std::min(spacing / 2, loop.length / 6);
@@ -232,7 +233,7 @@ std::vector<std::size_t> loop_corners(const LoopWalk& walk, const BoundaryLoop& 
     if (static_cast<std::int64_t>(corners.size()) == limit) break;
     const bool near_sharper = std::any_of(corners.begin(), corners.end(), [&](std::size_t c) {
       const double gap = std::abs(walk.start(c) - walk.start(i));
-      return std::min(gap, loop.length - gap) < r;
+      return std::min(gap, loop.length - gap) < 2 * r;
     });
     if (!near_sharper) corners.push_back(i);
   }
