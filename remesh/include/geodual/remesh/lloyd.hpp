@@ -47,9 +47,10 @@ struct LloydOptions {
   /// it. A Newton step must lower it by this much to be taken (one that
   /// lowers it by less is retried more damped, then Lloyd's step decides).
   double tolerance = 1e-5;
-  /// Each step goes this many times the way to the centroid (over-relaxed
-  /// Lloyd; 1 is the plain one). When an over-relaxed step would raise the
-  /// energy, the relaxation falls back to 1 from there on.
+  /// With newton = false, each step goes this many times the way to the
+  /// centroid (over-relaxed Lloyd; 1 is the plain one); when an over-relaxed
+  /// step would raise the energy, the relaxation falls back to 1 from there
+  /// on. The Lloyd step that replaces rejected Newton steps is the plain one.
   double over_relaxation = 1.8;
   /// Newton-accelerated steps (Lloyd–Newton): each step solves the CVT
   /// energy's Hessian system, damped by at least `newton_damping` times
