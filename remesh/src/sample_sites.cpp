@@ -5,12 +5,10 @@
 #include "geodual/remesh/sample_sites.hpp"
 
 #include "geodual/error.hpp"
+#include "boundary_corners.hpp"
 #include "sampling_strategies.hpp"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -163,100 +161,21 @@ std::vector<std::int64_t> sites_per_loop(const std::vector<const BoundaryLoop*>&
   return proportional_split(lengths, std::vector<std::int64_t>(loops.size(), 3), cap);
 }
 
-/// Positions along a boundary loop: the point at an arc length, walking its
-/// edges in order (the length taken modulo the loop's).
-class LoopWalk {
- public:
-  LoopWalk(const TriangleMesh& mesh, const BoundaryLoop& loop) : mesh_(mesh), loop_(loop) {
-    start_.reserve(loop.edges.size());
-    double at = 0;
-    for (const detail::BoundaryEdge& e : loop.edges) {
-      start_.push_back(at);
-      at += e.length;
-    }
-  }
-  /// Arc length where edge i starts.
-  double start(std::size_t i) const { return start_[i]; }
-  /// The edge the point at arc length `at` (in [0, length)) lies on.
-  std::size_t edge_at(double at) const {
-    const auto after = std::upper_bound(start_.begin(), start_.end(), at);
-    return static_cast<std::size_t>(std::max<std::ptrdiff_t>(after - start_.begin() - 1, 0));
-  }
-  Eigen::Vector3d point(double at) const {
-    at = std::fmod(at, loop_.length);
-    if (at < 0) at += loop_.length;
-    const std::size_t i = edge_at(at);
-    const detail::BoundaryEdge& e = loop_.edges[i];
-    const Eigen::Vector3d a = mesh_.vertices.row(mesh_.faces(e.face, e.corner));
-    const Eigen::Vector3d b = mesh_.vertices.row(mesh_.faces(e.face, (e.corner + 1) % 3));
-    return a + std::clamp((at - start_[i]) / e.length, 0.0, 1.0) * (b - a);
-  }
-  /// The site on the loop at arc length `at` (in [0, length)).
-  SurfacePoint site(double at) const {
-    const std::size_t i = edge_at(at);
-    const detail::BoundaryEdge& e = loop_.edges[i];
-    return detail::point_on_face_edge(e.face, e.corner, (at - start_[i]) / e.length);
-  }
-
- private:
-  const TriangleMesh& mesh_;
-  const BoundaryLoop& loop_;
-  std::vector<double> start_;
-};
-
-/// A corner turns the boundary by more than 80 degrees over about a spacing.
-constexpr double kCornerAngle = 100.0 * 3.14159265358979323846 / 180.0;
-
-/// The corners of a boundary loop at the scale of the remesh (`spacing`, its
-/// edge length), as edge indices in walking order, at most `limit`. At the
-/// start v of each edge, the chords from v to the loop's points r before and
-/// after it (r = spacing / 2, at most a sixth of the loop) make an angle:
-/// about 180 degrees where the boundary runs straight or bends gently at
-/// that scale, 90 at a square's corner, about 0 at the end of a slit, where
-/// it turns back on itself. Corners are the starts below kCornerAngle, the
-/// sharpest first, each at least 2 r along the loop from a sharper one (two
-/// corner sites closer than a spacing would make a short edge).
-std::vector<std::size_t> loop_corners(const LoopWalk& walk, const BoundaryLoop& loop, double spacing,
-                                      std::int64_t limit) {
-  const double r = std::min(spacing / 2, loop.length / 6);
-  std::vector<std::pair<double, std::size_t>> sharp;  // (angle, edge)
-  for (std::size_t i = 0; i < loop.edges.size(); ++i) {
-    const double at = walk.start(i);
-    const Eigen::Vector3d v = walk.point(at);
-    const Eigen::Vector3d before = walk.point(at - r) - v, after = walk.point(at + r) - v;
-    const double angle = std::atan2(before.cross(after).norm(), before.dot(after));
-    if (angle < kCornerAngle) sharp.emplace_back(angle, i);
-  }
-  std::sort(sharp.begin(), sharp.end());
-  std::vector<std::size_t> corners;
-  for (const auto& [angle, i] : sharp) {
-    if (static_cast<std::int64_t>(corners.size()) == limit) break;
-    const bool near_sharper = std::any_of(corners.begin(), corners.end(), [&](std::size_t c) {
-      const double gap = std::abs(walk.start(c) - walk.start(i));
-      return std::min(gap, loop.length - gap) < 2 * r;
-    });
-    if (!near_sharper) corners.push_back(i);
-  }
-  std::sort(corners.begin(), corners.end());
-  return corners;
-}
-
 /// `k` sites along the loop, `spacing` the remesh's edge length. One at each
-/// corner (loop_corners; just off its vertex, which sites avoid), so that the
-/// remesh keeps the corner and no triangle spans a slit's end; the others
-/// evenly by arc length between them. A loop without corners gets them
-/// evenly all round, at (j + 1/2) L / k.
+/// corner (boundary_corners.hpp), so that the remesh keeps it and no triangle
+/// spans a slit's end; the others evenly by arc length between consecutive
+/// corners, shared in proportion to the stretches' lengths. A loop without
+/// corners gets them evenly all round, at (j + 1/2) L / k.
 void place_on_loop(const TriangleMesh& mesh, const BoundaryLoop& loop, std::int64_t k, double spacing,
                    std::vector<SurfacePoint>& out) {
-  const LoopWalk walk(mesh, loop);
-  const std::vector<std::size_t> corners = loop_corners(walk, loop, spacing, k);
+  const detail::LoopWalk walk(mesh, loop);
+  const std::vector<std::size_t> corners = detail::loop_corners(walk, spacing, k);
   if (corners.empty()) {
     for (std::int64_t j = 0; j < k; ++j) {
       out.push_back(walk.site((static_cast<double>(j) + 0.5) * loop.length / static_cast<double>(k)));
     }
     return;
   }
-  // The stretches between consecutive corners share the other sites by length.
   const std::size_t m = corners.size();
   std::vector<double> from(m), length(m);
   for (std::size_t c = 0; c < m; ++c) {
@@ -269,8 +188,7 @@ void place_on_loop(const TriangleMesh& mesh, const BoundaryLoop& loop, std::int6
   for (std::size_t c = 0; c < m; ++c) {
     out.push_back(walk.site(from[c]));
     for (std::int64_t j = 1; j <= between[c]; ++j) {
-      const double at = from[c] + static_cast<double>(j) * length[c] / static_cast<double>(between[c] + 1);
-      out.push_back(walk.site(at < loop.length ? at : at - loop.length));
+      out.push_back(walk.site(from[c] + static_cast<double>(j) * length[c] / static_cast<double>(between[c] + 1)));
     }
   }
 }

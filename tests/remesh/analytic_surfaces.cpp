@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -140,6 +141,7 @@ TriangleMesh disk(int rings, int segments) {
 }
 
 TriangleMesh slit_square(int n) {
+  if (n < 2 || n % 2 != 0) throw std::invalid_argument("slit_square: n must be even and >= 2");
   std::vector<Eigen::Vector3d> vertices;
   auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
   for (int j = 0; j <= n; ++j) {
@@ -154,7 +156,10 @@ TriangleMesh slit_square(int n) {
   std::vector<std::array<Index, 3>> faces;
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      auto v = [&](int a, int b) { return b == n / 2 && j == n / 2 && a < n / 2 ? above[static_cast<std::size_t>(a)] : id(a, b); };
+      // Row n / 2 left of the centre, seen from the cells above it: the copies.
+      auto v = [&](int a, int b) {
+        return b == n / 2 && j == n / 2 && a < n / 2 ? above[static_cast<std::size_t>(a)] : id(a, b);
+      };
       faces.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
       faces.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
     }

@@ -473,7 +473,8 @@ TEST(SampleSites, SquareBoundaryGetsItsCornersAndEvenlySpacedSitesBetween) {
         }
         per_side.push_back(m);
       }
-      EXPECT_LE(*std::max_element(per_side.begin(), per_side.end()) - *std::min_element(per_side.begin(), per_side.end()), 1);
+      const auto [fewest, most] = std::minmax_element(per_side.begin(), per_side.end());
+      EXPECT_LE(*most - *fewest, 1);
     }
   }
 }
@@ -498,10 +499,10 @@ TEST(SampleSites, ASlitsEndAndTheCornersWhereItMeetsTheSideGetSites) {
   }
 }
 
-TEST(SampleSites, ScanHolesWithoutSharpCornersGetEvenlySpacedSites) {
-  // A boundary that bends gently at the remesh's scale has no corner: the
-  // annulus's two circles keep their evenly spaced sites (previous test),
-  // and so does a disk's rim at every site count.
+TEST(SampleSites, ASmoothRimGetsEvenlySpacedSites) {
+  // A boundary that bends gently at the remesh's scale has no corner: a
+  // disk's rim keeps its evenly spaced sites at every site count (so do the
+  // annulus's two circles, next test).
   const TriangleMesh mesh = test::disk(8, 64);
   for (const std::int64_t n : {20, 200, 2000}) {
     SCOPED_TRACE(n);
@@ -516,7 +517,8 @@ TEST(SampleSites, ScanHolesWithoutSharpCornersGetEvenlySpacedSites) {
     std::sort(angles.begin(), angles.end());
     const double even = 2 * std::numbers::pi / double(angles.size());
     for (std::size_t j = 0; j < angles.size(); ++j) {
-      const double gap = j + 1 < angles.size() ? angles[j + 1] - angles[j] : angles[0] + 2 * std::numbers::pi - angles[j];
+      const double next = j + 1 < angles.size() ? angles[j + 1] : angles[0] + 2 * std::numbers::pi;
+      const double gap = next - angles[j];
       EXPECT_NEAR(gap, even, 0.02 * even);
     }
   }

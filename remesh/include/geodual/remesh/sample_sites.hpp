@@ -77,15 +77,16 @@ struct SamplingOptions {
 /// with no such part gets none). First one at each corner of the loop at the
 /// scale s, just off its vertex: where the chords to the loop's points s / 2
 /// before and after a vertex (at most L / 6) meet at less than 100 degrees,
-/// sharpest first, none within s / 2 of a sharper one, at most k. A square's
-/// corners are corners, and so is the end of a slit, where the loop turns
-/// back on itself; a hole that bends gently at that scale has none. The
-/// remesh then keeps the corners, and no triangle spans a slit's end. The
-/// others go evenly by arc length between consecutive corners, in proportion
-/// to the stretches' lengths; on a loop without corners, k of them at
-/// (j + 1/2) L / k. Loops are walks along the boundary edges: two loops touching at
-/// a pinch vertex may be walked as one figure eight, and on broken meshes (a
-/// vertex with an odd number of boundary edges) a walk may be an open chain.
+/// sharpest first, none within s (at most L / 3) along the loop of a sharper
+/// one, at most k. A square's corners are corners, and so is the end of a
+/// slit, where the loop turns back on itself; a hole that bends gently at
+/// that scale has none. The remesh then keeps the corners, and no triangle
+/// spans a slit's end. The others go evenly by arc length between
+/// consecutive corners, in proportion to the stretches' lengths; on a loop
+/// without corners, k of them at (j + 1/2) L / k. Loops are walks along the
+/// boundary edges: two loops touching at a pinch vertex may be walked as one
+/// figure eight, and on broken meshes (a vertex with an odd number of
+/// boundary edges) a walk may be an open chain, which gets no corners.
 ///
 /// The spacing figures of SamplingStrategy are without boundary sites: a
 /// loop shorter than 3 s still gets 3 sites, closer together than s.
