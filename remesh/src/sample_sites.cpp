@@ -5,7 +5,6 @@
 #include "geodual/remesh/sample_sites.hpp"
 
 #include "geodual/error.hpp"
-#include "boundary_corners.hpp"
 #include "sampling_strategies.hpp"
 
 #include <algorithm>
@@ -161,35 +160,18 @@ std::vector<std::int64_t> sites_per_loop(const std::vector<const BoundaryLoop*>&
   return proportional_split(lengths, std::vector<std::int64_t>(loops.size(), 3), cap);
 }
 
-/// `k` sites along the loop, `spacing` the remesh's edge length. One at each
-/// corner (boundary_corners.hpp), so that the remesh keeps it and no triangle
-/// spans a slit's end; the others evenly by arc length between consecutive
-/// corners, shared in proportion to the stretches' lengths. A loop without
-/// corners gets them evenly all round, at (j + 1/2) L / k.
-void place_on_loop(const TriangleMesh& mesh, const BoundaryLoop& loop, std::int64_t k, double spacing,
-                   std::vector<SurfacePoint>& out) {
-  const detail::LoopWalk walk(mesh, loop);
-  const std::vector<std::size_t> corners = detail::loop_corners(walk, spacing, k);
-  if (corners.empty()) {
-    for (std::int64_t j = 0; j < k; ++j) {
-      out.push_back(walk.site((static_cast<double>(j) + 0.5) * loop.length / static_cast<double>(k)));
+/// `k` sites evenly by arc length along the loop: at (j + 1/2) L / k.
+void place_on_loop(const BoundaryLoop& loop, std::int64_t k, std::vector<SurfacePoint>& out) {
+  std::size_t edge = 0;
+  double start = 0;  // arc length where `edge` starts
+  for (std::int64_t j = 0; j < k; ++j) {
+    const double at = (static_cast<double>(j) + 0.5) * loop.length / static_cast<double>(k);
+    while (edge + 1 < loop.edges.size() && at >= start + loop.edges[edge].length) {
+      start += loop.edges[edge].length;
+      ++edge;
     }
-    return;
-  }
-  const std::size_t m = corners.size();
-  std::vector<double> from(m), length(m);
-  for (std::size_t c = 0; c < m; ++c) {
-    from[c] = walk.start(corners[c]);
-    const double to = c + 1 < m ? walk.start(corners[c + 1]) : walk.start(corners[0]) + loop.length;
-    length[c] = to - from[c];
-  }
-  const std::vector<std::int64_t> between =
-      proportional_split(length, std::vector<std::int64_t>(m, 0), k - static_cast<std::int64_t>(m));
-  for (std::size_t c = 0; c < m; ++c) {
-    out.push_back(walk.site(from[c]));
-    for (std::int64_t j = 1; j <= between[c]; ++j) {
-      out.push_back(walk.site(from[c] + static_cast<double>(j) * length[c] / static_cast<double>(between[c] + 1)));
-    }
+    const detail::BoundaryEdge& e = loop.edges[edge];
+    out.push_back(detail::point_on_face_edge(e.face, e.corner, (at - start) / e.length));
   }
 }
 
@@ -281,10 +263,7 @@ std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t co
     const std::size_t first_boundary = boundary_sites.size();
     if (!loops[c].empty()) {
       const std::vector<std::int64_t> per_loop = sites_per_loop(loops[c], surface.component_area[c], sites[c]);
-      const double spacing = detail::hexagonal_spacing(surface.component_area[c], sites[c]);
-      for (std::size_t l = 0; l < loops[c].size(); ++l) {
-        place_on_loop(mesh, *loops[c][l], per_loop[l], spacing, boundary_sites);
-      }
+      for (std::size_t l = 0; l < loops[c].size(); ++l) place_on_loop(*loops[c][l], per_loop[l], boundary_sites);
     }
     detail::ComponentTask task;
     task.component = c;

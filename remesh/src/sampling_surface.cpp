@@ -9,7 +9,6 @@
 #include <cmath>
 #include <numeric>
 #include <string>
-#include <utility>
 
 namespace geodual::remesh::detail {
 namespace {
@@ -114,16 +113,15 @@ void find_boundary_loops(SamplingSurface& surface) {
   // on broken meshes (a vertex with an odd number of boundary edges) walks
   // start at such a vertex and end at another, and are sampled as open
   // chains.
-  std::vector<std::pair<Index, bool>> walk;  // (edge, run against its direction)
-  auto add_walk = [&](bool closed) {
+  std::vector<Index> walk;
+  auto add_walk = [&]() {
     BoundaryLoop loop;
-    loop.closed = closed;
-    for (const auto& [e, reversed] : walk) {
+    for (const Index e : walk) {
       const HalfEdge& h = boundary[e];
       if (!(surface.face_area[h.face] > 0)) continue;
       const Index a = mesh.faces(h.face, h.corner), b = mesh.faces(h.face, (h.corner + 1) % 3);
       const double length = (mesh.vertices.row(b) - mesh.vertices.row(a)).norm();
-      loop.edges.push_back({h.face, h.corner, length, reversed});
+      loop.edges.push_back({h.face, h.corner, length});
       loop.length += length;
     }
     if (!loop.edges.empty() && loop.length > 0) {
@@ -135,27 +133,24 @@ void find_boundary_loops(SamplingSurface& surface) {
   auto walk_from = [&](Index v) {
     for (Index e = next_unused(v); e >= 0; e = next_unused(v)) {
       used[e] = 1;
-      const bool reversed = from(boundary[e]) != v;
-      walk.emplace_back(e, reversed);
-      v = reversed ? from(boundary[e]) : to(boundary[e]);
+      walk.push_back(e);
+      v = from(boundary[e]) == v ? to(boundary[e]) : from(boundary[e]);
     }
   };
   for (Index v = 0; v < static_cast<Index>(num_vertices); ++v) {
     if ((begin[v + 1] - begin[v]) % 2 == 1 && next_unused(v) >= 0) {
       walk_from(v);
-      add_walk(false);
+      add_walk();
     }
   }
   for (Index e = 0; e < static_cast<Index>(boundary.size()); ++e) {
     if (used[e]) continue;
     // Start along the edge's own direction, so that closed loops run the way
     // their faces orient them.
-    // Every vertex has an even number of unused edges left, so the walk
-    // comes back to where it started.
     used[e] = 1;
-    walk.emplace_back(e, false);
+    walk.push_back(e);
     walk_from(to(boundary[e]));
-    add_walk(true);
+    add_walk();
   }
   // Loops of components without area are of no use (they get no sites).
   std::erase_if(surface.boundary_loops,

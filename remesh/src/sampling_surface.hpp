@@ -55,10 +55,6 @@ struct BoundaryEdge {
   Index face = -1;
   int corner = 0;
   double length = 0;
-  /// The walk runs it the other way, from corner + 1 to `corner` (faces
-  /// oriented against their neighbours, a non-orientable surface, the second
-  /// half of a figure eight).
-  bool reversed = false;
 };
 
 struct BoundaryLoop {
@@ -67,9 +63,6 @@ struct BoundaryLoop {
   /// cannot carry a site); never empty.
   std::vector<BoundaryEdge> edges;
   double length = 0;  ///< sum of `edges`' lengths
-  /// false for an open chain (a walk between two vertices with an odd number
-  /// of boundary edges, on a broken mesh).
-  bool closed = true;
 };
 
 struct SamplingSurface {

@@ -47,9 +47,8 @@ struct SamplingOptions {
   /// random generator and every step are ours (no std:: distributions, no
   /// threads), so neither the standard library nor the machine changes them.
   std::uint64_t seed = 1;
-  /// Put sites along every boundary loop (one at each of its corners, the
-  /// others evenly by arc length, at least 3 per loop) so that the dual mesh
-  /// keeps the input's holes and borders.
+  /// Put sites along every boundary loop (evenly by arc length, at least 3
+  /// per loop) so that the dual mesh keeps the input's holes and borders.
   bool sites_on_boundary = true;
 };
 
@@ -73,20 +72,11 @@ struct SamplingOptions {
 /// A, the target spacing is the hexagonal s = sqrt(2 A / (sqrt(3) n)); a loop
 /// of length L gets max(3, round(L / s)) sites, but all the loops of a
 /// component together take at most n - 1 sites (never fewer than 3 each).
-/// Sites go along the parts of the loop whose face has positive area (a loop
-/// with no such part gets none). First one at each corner of the loop at the
-/// scale s, just off its vertex: where the chords to the loop's points s / 2
-/// before and after a vertex (at most L / 6) meet at less than 100 degrees,
-/// sharpest first, none within s (at most L / 3) along the loop of a sharper
-/// one, at most k. A square's corners are corners, and so is the end of a
-/// slit, where the loop turns back on itself; a hole that bends gently at
-/// that scale has none. The remesh then keeps the corners, and no triangle
-/// spans a slit's end. The others go evenly by arc length between
-/// consecutive corners, in proportion to the stretches' lengths; on a loop
-/// without corners, k of them at (j + 1/2) L / k. Loops are walks along the
-/// boundary edges: two loops touching at a pinch vertex may be walked as one
-/// figure eight, and on broken meshes (a vertex with an odd number of
-/// boundary edges) a walk may be an open chain, which gets no corners.
+/// Sites go evenly by arc length along the parts of the loop whose face has
+/// positive area, k of them at (j + 1/2) L / k; a loop with no such part
+/// gets none. Loops are walks along the boundary edges: two loops touching at
+/// a pinch vertex may be walked as one figure eight, and on broken meshes (a
+/// vertex with an odd number of boundary edges) a walk may be an open chain.
 ///
 /// The spacing figures of SamplingStrategy are without boundary sites: a
 /// loop shorter than 3 s still gets 3 sites, closer together than s.
