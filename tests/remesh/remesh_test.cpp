@@ -265,6 +265,24 @@ TEST(ManifoldCut, ScansWithNonManifoldEdgesAreRemeshed) {
   }
 }
 
+TEST(ManifoldCut, BunnyRes2RemeshesWithTheDefaultRelaxation) {
+  // After the cut, bunny_res2 has 64 boundary loops, most of them slits of
+  // two or three edges a side, a fraction of a spacing long, whose sides lie
+  // on each other. Their boundary sites are what the dual is most sensitive
+  // to: a placement with a site at each slit's end (branch `corners`) left
+  // no valid dual at 500 and 2000 sites after 10 repair rounds.
+  const TriangleMesh cut = remesh::cut_to_manifold(scan("bunny_res2.ply")).mesh;
+  const MeshReport surface = analyze_mesh(without_disabled_faces(cut));
+  for (const std::int64_t count : {500, 2000}) {
+    SCOPED_TRACE(count);
+    const std::vector<SurfacePoint> sites =
+        remesh::sample_sites(cut, count, {.strategy = remesh::SamplingStrategy::poisson});
+    const remesh::RemeshResult result = remesh::remesh_from_sites(cut, sites);
+    EXPECT_TRUE(result.check.valid);
+    expect_oriented_manifold_like(analyze_mesh(result.mesh), surface);
+  }
+}
+
 TEST(ManifoldCut, OgresPiecesAreRemeshedButItsStarOfFlaps) {
   // ogre: 44 pieces and 3 pinch vertices. Cutting them leaves one piece of
   // four faces as a star of flaps round a triangle, below any remesh's
