@@ -5,6 +5,7 @@
 #include "geodual/remesh/sample_sites.hpp"
 
 #include "geodual/error.hpp"
+#include "boundary_sites.hpp"
 #include "sampling_strategies.hpp"
 
 #include <algorithm>
@@ -16,6 +17,7 @@ namespace geodual::remesh {
 namespace {
 
 using detail::BoundaryLoop;
+using detail::proportional_split;
 using detail::Rng;
 using detail::SamplingSurface;
 
@@ -23,67 +25,6 @@ using detail::SamplingSurface;
 enum Purpose : std::uint64_t { interior_random = 1, interior_poisson = 2, interior_fps = 3, repair = 4 };
 std::uint64_t stream(Index component, Purpose purpose) {
   return (static_cast<std::uint64_t>(component) + 1) << 8 | purpose;
-}
-
-/// Splits `total` into integer parts proportional to `weights` (all > 0),
-/// part i at least minimum[i] (total >= sum of the minimums): parts whose
-/// share falls below their minimum are fixed there and the rest is shared
-/// again; then largest remainders, ties to the lower index.
-std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
-                                             const std::vector<std::int64_t>& minimum, std::int64_t total) {
-  const std::size_t n = weights.size();
-  std::vector<std::int64_t> part(n, 0);
-  std::vector<std::uint8_t> fixed(n, 0);
-  for (;;) {
-    std::int64_t rest = total;
-    double weight = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (fixed[i]) {
-        rest -= minimum[i];
-      } else {
-        weight += weights[i];
-      }
-    }
-    bool changed = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!fixed[i] && static_cast<double>(rest) * weights[i] / weight < static_cast<double>(minimum[i])) {
-        fixed[i] = 1;
-        changed = true;
-      }
-    }
-    if (changed) continue;
-    std::vector<std::pair<double, std::size_t>> remainders;
-    std::int64_t given = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (fixed[i]) {
-        part[i] = minimum[i];
-      } else {
-        const double share = static_cast<double>(rest) * weights[i] / weight;
-        part[i] = std::max(minimum[i], static_cast<std::int64_t>(share));
-        remainders.push_back({share - static_cast<double>(part[i]), i});
-      }
-      given += part[i];
-    }
-    std::stable_sort(remainders.begin(), remainders.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
-    // Rounding may leave a part or two over or under; settle it on the
-    // largest remainders (or take from the smallest, never below minimum).
-    for (std::size_t k = 0; given < total && !remainders.empty(); k = (k + 1) % remainders.size(), ++given) {
-      ++part[remainders[k].second];
-    }
-    for (bool progress = true; given > total && progress;) {
-      progress = false;
-      for (std::size_t k = remainders.size(); k-- > 0 && given > total;) {
-        const std::size_t i = remainders[k].second;
-        if (part[i] > minimum[i]) {
-          --part[i];
-          --given;
-          progress = true;
-        }
-      }
-    }
-    return part;
-  }
 }
 
 std::string plural(std::int64_t n, const std::string& word) {
@@ -158,21 +99,6 @@ std::vector<std::int64_t> sites_per_loop(const std::vector<const BoundaryLoop*>&
   const std::int64_t cap = std::max(3 * num_loops, sites - 1);
   if (sum <= cap) return parts;
   return proportional_split(lengths, std::vector<std::int64_t>(loops.size(), 3), cap);
-}
-
-/// `k` sites evenly by arc length along the loop: at (j + 1/2) L / k.
-void place_on_loop(const BoundaryLoop& loop, std::int64_t k, std::vector<SurfacePoint>& out) {
-  std::size_t edge = 0;
-  double start = 0;  // arc length where `edge` starts
-  for (std::int64_t j = 0; j < k; ++j) {
-    const double at = (static_cast<double>(j) + 0.5) * loop.length / static_cast<double>(k);
-    while (edge + 1 < loop.edges.size() && at >= start + loop.edges[edge].length) {
-      start += loop.edges[edge].length;
-      ++edge;
-    }
-    const detail::BoundaryEdge& e = loop.edges[edge];
-    out.push_back(detail::point_on_face_edge(e.face, e.corner, (at - start) / e.length));
-  }
 }
 
 /// Moves sites that sit exactly on a corner of their face or on another
@@ -263,7 +189,8 @@ std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t co
     const std::size_t first_boundary = boundary_sites.size();
     if (!loops[c].empty()) {
       const std::vector<std::int64_t> per_loop = sites_per_loop(loops[c], surface.component_area[c], sites[c]);
-      for (std::size_t l = 0; l < loops[c].size(); ++l) place_on_loop(*loops[c][l], per_loop[l], boundary_sites);
+      const double spacing = detail::hexagonal_spacing(surface.component_area[c], sites[c]);
+      detail::place_boundary_sites(mesh, loops[c], per_loop, spacing, boundary_sites);
     }
     detail::ComponentTask task;
     task.component = c;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <utility>
 
 namespace geodual::remesh::detail {
 namespace {
@@ -113,15 +114,16 @@ void find_boundary_loops(SamplingSurface& surface) {
   // on broken meshes (a vertex with an odd number of boundary edges) walks
   // start at such a vertex and end at another, and are sampled as open
   // chains.
-  std::vector<Index> walk;
-  auto add_walk = [&]() {
+  std::vector<std::pair<Index, bool>> walk;  // (edge, run against its direction)
+  auto add_walk = [&](bool closed) {
     BoundaryLoop loop;
-    for (const Index e : walk) {
+    loop.closed = closed;
+    for (const auto& [e, reversed] : walk) {
       const HalfEdge& h = boundary[e];
       if (!(surface.face_area[h.face] > 0)) continue;
       const Index a = mesh.faces(h.face, h.corner), b = mesh.faces(h.face, (h.corner + 1) % 3);
       const double length = (mesh.vertices.row(b) - mesh.vertices.row(a)).norm();
-      loop.edges.push_back({h.face, h.corner, length});
+      loop.edges.push_back({h.face, h.corner, length, reversed});
       loop.length += length;
     }
     if (!loop.edges.empty() && loop.length > 0) {
@@ -133,24 +135,27 @@ void find_boundary_loops(SamplingSurface& surface) {
   auto walk_from = [&](Index v) {
     for (Index e = next_unused(v); e >= 0; e = next_unused(v)) {
       used[e] = 1;
-      walk.push_back(e);
-      v = from(boundary[e]) == v ? to(boundary[e]) : from(boundary[e]);
+      const bool reversed = from(boundary[e]) != v;
+      walk.emplace_back(e, reversed);
+      v = reversed ? from(boundary[e]) : to(boundary[e]);
     }
   };
   for (Index v = 0; v < static_cast<Index>(num_vertices); ++v) {
     if ((begin[v + 1] - begin[v]) % 2 == 1 && next_unused(v) >= 0) {
       walk_from(v);
-      add_walk();
+      add_walk(false);
     }
   }
   for (Index e = 0; e < static_cast<Index>(boundary.size()); ++e) {
     if (used[e]) continue;
     // Start along the edge's own direction, so that closed loops run the way
     // their faces orient them.
+    // Every vertex has an even number of unused edges left, so the walk
+    // comes back to where it started.
     used[e] = 1;
-    walk.push_back(e);
+    walk.emplace_back(e, false);
     walk_from(to(boundary[e]));
-    add_walk();
+    add_walk(true);
   }
   // Loops of components without area are of no use (they get no sites).
   std::erase_if(surface.boundary_loops,
@@ -328,6 +333,67 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
   }
   if (with_boundary_loops) find_boundary_loops(surface);
   return surface;
+}
+
+/// Splits `total` into integer parts proportional to `weights` (all > 0),
+/// part i at least minimum[i] (total >= sum of the minimums): parts whose
+/// share falls below their minimum are fixed there and the rest is shared
+/// again; then largest remainders, ties to the lower index.
+std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
+                                             const std::vector<std::int64_t>& minimum, std::int64_t total) {
+  const std::size_t n = weights.size();
+  std::vector<std::int64_t> part(n, 0);
+  std::vector<std::uint8_t> fixed(n, 0);
+  for (;;) {
+    std::int64_t rest = total;
+    double weight = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (fixed[i]) {
+        rest -= minimum[i];
+      } else {
+        weight += weights[i];
+      }
+    }
+    bool changed = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!fixed[i] && static_cast<double>(rest) * weights[i] / weight < static_cast<double>(minimum[i])) {
+        fixed[i] = 1;
+        changed = true;
+      }
+    }
+    if (changed) continue;
+    std::vector<std::pair<double, std::size_t>> remainders;
+    std::int64_t given = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (fixed[i]) {
+        part[i] = minimum[i];
+      } else {
+        const double share = static_cast<double>(rest) * weights[i] / weight;
+        part[i] = std::max(minimum[i], static_cast<std::int64_t>(share));
+        remainders.push_back({share - static_cast<double>(part[i]), i});
+      }
+      given += part[i];
+    }
+    std::stable_sort(remainders.begin(), remainders.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    // Rounding may leave a part or two over or under; settle it on the
+    // largest remainders (or take from the smallest, never below minimum).
+    for (std::size_t k = 0; given < total && !remainders.empty(); k = (k + 1) % remainders.size(), ++given) {
+      ++part[remainders[k].second];
+    }
+    for (bool progress = true; given > total && progress;) {
+      progress = false;
+      for (std::size_t k = remainders.size(); k-- > 0 && given > total;) {
+        const std::size_t i = remainders[k].second;
+        if (part[i] > minimum[i]) {
+          --part[i];
+          --given;
+          progress = true;
+        }
+      }
+    }
+    return part;
+  }
 }
 
 }  // namespace geodual::remesh::detail

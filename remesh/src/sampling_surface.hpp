@@ -49,12 +49,23 @@ SurfacePoint random_point_in_face(Index face, Rng& rng);
 /// away from both ends; the opposite corner's barycentric is exactly 0.
 SurfacePoint point_on_face_edge(Index face, int corner, double t);
 
+/// Splits `total` into integer parts proportional to `weights` (all > 0),
+/// part i at least minimum[i] (total >= sum of the minimums): parts whose
+/// share falls below their minimum are fixed there and the rest is shared
+/// again; then largest remainders, ties to the lower index.
+std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
+                                             const std::vector<std::int64_t>& minimum, std::int64_t total);
+
 /// A boundary edge as the face that carries it: from corner `corner` to
 /// corner + 1 of `face`.
 struct BoundaryEdge {
   Index face = -1;
   int corner = 0;
   double length = 0;
+  /// The walk runs it the other way, from corner + 1 to `corner` (faces
+  /// oriented against their neighbours, a non-orientable surface, the second
+  /// half of a figure eight).
+  bool reversed = false;
 };
 
 struct BoundaryLoop {
@@ -63,6 +74,9 @@ struct BoundaryLoop {
   /// cannot carry a site); never empty.
   std::vector<BoundaryEdge> edges;
   double length = 0;  ///< sum of `edges`' lengths
+  /// false for an open chain (a walk between two vertices with an odd number
+  /// of boundary edges, on a broken mesh).
+  bool closed = true;
 };
 
 struct SamplingSurface {

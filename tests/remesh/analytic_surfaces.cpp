@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -134,6 +135,33 @@ TriangleMesh disk(int rings, int segments) {
     for (int s = 0; s < segments; ++s) {
       faces.push_back({id(ring, s), id(ring + 1, s), id(ring + 1, s + 1)});
       faces.push_back({id(ring, s), id(ring + 1, s + 1), id(ring, s + 1)});
+    }
+  }
+  return mesh_from_lists(vertices, faces);
+}
+
+TriangleMesh slit_square(int n) {
+  if (n < 2 || n % 2 != 0) throw std::invalid_argument("slit_square: n must be even and >= 2");
+  std::vector<Eigen::Vector3d> vertices;
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) vertices.emplace_back(static_cast<double>(i) / n, static_cast<double>(j) / n, 0);
+  }
+  // Copies of the slit's vertices (i < n / 2 on row n / 2), for the faces above it.
+  std::vector<Index> above(static_cast<std::size_t>(n / 2));
+  for (int i = 0; i < n / 2; ++i) {
+    above[static_cast<std::size_t>(i)] = static_cast<Index>(vertices.size());
+    vertices.push_back(vertices[static_cast<std::size_t>(id(i, n / 2))]);
+  }
+  std::vector<std::array<Index, 3>> faces;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      // Row n / 2 left of the centre, seen from the cells above it: the copies.
+      auto v = [&](int a, int b) {
+        return b == n / 2 && j == n / 2 && a < n / 2 ? above[static_cast<std::size_t>(a)] : id(a, b);
+      };
+      faces.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      faces.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
     }
   }
   return mesh_from_lists(vertices, faces);

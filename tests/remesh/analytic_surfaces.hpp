@@ -25,5 +25,12 @@ TriangleMesh double_torus(double R, double r, int n, int m, int k);
 /// The unit disk as a polar grid: `rings` rings of `segments` quads around a
 /// central fan (one boundary loop, chi = 1).
 TriangleMesh disk(int rings, int segments);
+/// The unit square [0, 1]^2 in z = 0 as an n x n grid of two triangles per
+/// cell (n even), slit along y = 1/2 from its left side to the centre: the
+/// grid vertices there (but the centre) are doubled, those above the slit
+/// using the copies. One boundary loop (chi = 1), which runs into the slit
+/// along its lower side and back along its upper side, the two at the same
+/// points.
+TriangleMesh slit_square(int n);
 
 }  // namespace geodual::test

@@ -454,6 +454,19 @@ TEST(SampleSites, SquareBoundaryGetsEvenlySpacedSites) {
   }
 }
 
+TEST(SampleSites, ASlitsEndGetsASite) {
+  // The loop runs into the slit along y = 1/2 and back: one site at its end
+  // (1/2, 1/2), just off the vertex; the rest of the loop's sites evenly
+  // between (they come back to the end from both sides).
+  const TriangleMesh mesh = test::slit_square(16);
+  const auto sites = sample_sites(mesh, 300);
+  expect_valid_sites(mesh, sites, 300);
+  const auto at_end = std::count_if(sites.begin(), sites.end(), [&](const SurfacePoint& s) {
+    return (s.position(mesh) - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-6;
+  });
+  EXPECT_EQ(at_end, 1);
+}
+
 TEST(SampleSites, AnnulusGetsSitesOnBothLoopsInProportionToLength) {
   const TriangleMesh mesh = annulus(1, 3, 96, 12);
   int num_loops = 0;

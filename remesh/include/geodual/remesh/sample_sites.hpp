@@ -74,7 +74,12 @@ struct SamplingOptions {
 /// component together take at most n - 1 sites (never fewer than 3 each).
 /// Sites go evenly by arc length along the parts of the loop whose face has
 /// positive area, k of them at (j + 1/2) L / k; a loop with no such part
-/// gets none. Loops are walks along the boundary edges: two loops touching at
+/// gets none. The exception is a slit, where the loop runs out and back
+/// along itself for at least s / 2 (at most L / 6): its end gets a site
+/// (just off the vertex) and the others go evenly between such ends, in
+/// proportion to the stretches' lengths. Evenly spaced sites would land in
+/// mirrored pairs at one point on its two sides, and the pair next to the
+/// end would share a triangle of zero area. Loops are walks along the boundary edges: two loops touching at
 /// a pinch vertex may be walked as one figure eight, and on broken meshes (a
 /// vertex with an odd number of boundary edges) a walk may be an open chain.
 ///

@@ -1,0 +1,180 @@
+#include "boundary_sites.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+namespace geodual::remesh::detail {
+
+LoopWalk::LoopWalk(const TriangleMesh& mesh, const BoundaryLoop& loop) : mesh_(mesh), loop_(loop) {
+  start_.reserve(loop.edges.size());
+  double at = 0;
+  for (const BoundaryEdge& e : loop.edges) {
+    start_.push_back(at);
+    at += e.length;
+  }
+}
+
+std::size_t LoopWalk::locate(double at, double& fraction) const {
+  if (closed()) {
+    at = std::fmod(at, length());
+    if (at < 0) at += length();
+  } else {
+    at = std::clamp(at, 0.0, length());
+  }
+  const auto after = std::upper_bound(start_.begin(), start_.end(), at);
+  const auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(std::distance(start_.begin(), after) - 1, 0));
+  const BoundaryEdge& e = loop_.edges[i];
+  fraction = std::clamp((at - start_[i]) / e.length, 0.0, 1.0);
+  return i;
+}
+
+Eigen::Vector3d LoopWalk::point(double at) const {
+  double t = 0;
+  const BoundaryEdge& e = loop_.edges[locate(at, t)];
+  Eigen::Vector3d a = mesh_.vertices.row(mesh_.faces(e.face, e.corner));
+  Eigen::Vector3d b = mesh_.vertices.row(mesh_.faces(e.face, (e.corner + 1) % 3));
+  if (e.reversed) std::swap(a, b);
+  return a + t * (b - a);
+}
+
+SurfacePoint LoopWalk::site(double at) const {
+  double t = 0;
+  const BoundaryEdge& e = loop_.edges[locate(at, t)];
+  return point_on_face_edge(e.face, e.corner, e.reversed ? 1 - t : t);
+}
+
+namespace {
+
+/// Points in space by cells of a fixed size, for "is any point kept so far
+/// within this distance (at most the cell size) of p".
+class PointHash {
+ public:
+  explicit PointHash(double cell) : inverse_cell_(1 / cell) {}
+  void insert(const Eigen::Vector3d& p) { cells_[key(cell_of(p))].push_back(p); }
+  bool any_within(const Eigen::Vector3d& p, double distance) const {
+    const Cell at = cell_of(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto found = cells_.find(key({at[0] + dx, at[1] + dy, at[2] + dz}));
+          if (found == cells_.end()) continue;
+          for (const Eigen::Vector3d& q : found->second) {
+            if ((q - p).norm() < distance) return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+ private:
+  using Cell = std::array<std::int64_t, 3>;
+  Cell cell_of(const Eigen::Vector3d& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x() * inverse_cell_)),
+            static_cast<std::int64_t>(std::floor(p.y() * inverse_cell_)),
+            static_cast<std::int64_t>(std::floor(p.z() * inverse_cell_))};
+  }
+  /// 21 bits a coordinate: distinct for every cell of a bounding box up to
+  /// 2^21 cells across; cells further apart may share a key, which only
+  /// costs a comparison.
+  static std::uint64_t key(const Cell& c) {
+    constexpr std::uint64_t mask = (std::uint64_t{1} << 21) - 1;
+    return (static_cast<std::uint64_t>(c[0]) & mask) << 42 | (static_cast<std::uint64_t>(c[1]) & mask) << 21 |
+           (static_cast<std::uint64_t>(c[2]) & mask);
+  }
+
+  double inverse_cell_;
+  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3d>> cells_;
+};
+
+}  // namespace
+
+std::vector<std::vector<std::size_t>> slit_ends(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
+                                                double spacing, std::span<const std::int64_t> limits) {
+  // cos 20 degrees: the chords from v leave it together.
+  constexpr double kTogether = 0.93969262078590838;
+  struct Candidate {
+    double negative_cosine;  // the sharpest first once sorted
+    std::size_t loop, edge;
+    double r;
+    Eigen::Vector3d point;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const LoopWalk walk(mesh, *loops[l]);
+    if (!walk.closed()) continue;
+    const double r = std::min(spacing / 2, walk.length() / 6);
+    for (std::size_t i = 0; i < walk.num_edges(); ++i) {
+      const double at = walk.start(i);
+      const Eigen::Vector3d v = walk.point(at), before = walk.point(at - r), after = walk.point(at + r);
+      // Cosines, not angles: correctly rounded operations only, so the ends
+      // do not depend on the maths library. false for NaN (a chord of length 0).
+      const double cosine = (before - v).dot(after - v) / ((before - v).norm() * (after - v).norm());
+      if (cosine > kTogether && (before - after).norm() < r / 4) candidates.push_back({-cosine, l, i, r, v});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.negative_cosine, a.loop, a.edge) < std::tie(b.negative_cosine, b.loop, b.edge);
+  });
+  std::vector<std::vector<std::size_t>> ends(loops.size());
+  PointHash taken(spacing);  // 2 r <= spacing: the neighbouring cells hold every end that near
+  for (const Candidate& candidate : candidates) {
+    if (static_cast<std::int64_t>(ends[candidate.loop].size()) >= limits[candidate.loop]) continue;
+    if (taken.any_within(candidate.point, 2 * candidate.r)) continue;
+    taken.insert(candidate.point);
+    ends[candidate.loop].push_back(candidate.edge);
+  }
+  for (std::vector<std::size_t>& edges : ends) std::sort(edges.begin(), edges.end());
+  return ends;
+}
+
+namespace {
+
+/// Arc lengths of k sites on the loop of `walk`: one at each of `ends`, the
+/// others evenly between them (see place_boundary_sites).
+std::vector<double> site_arc_lengths(const LoopWalk& walk, std::int64_t k, const std::vector<std::size_t>& ends) {
+  std::vector<double> at;
+  at.reserve(static_cast<std::size_t>(k));
+  if (ends.empty()) {
+    for (std::int64_t j = 0; j < k; ++j) {
+      at.push_back((static_cast<double>(j) + 0.5) * walk.length() / static_cast<double>(k));
+    }
+    return at;
+  }
+  const std::size_t m = ends.size();
+  std::vector<double> from(m), length(m);
+  for (std::size_t c = 0; c < m; ++c) {
+    from[c] = walk.start(ends[c]);
+    at.push_back(from[c]);
+    const double to = c + 1 < m ? walk.start(ends[c + 1]) : walk.start(ends[0]) + walk.length();
+    length[c] = to - from[c];
+  }
+  const std::vector<std::int64_t> between =
+      proportional_split(length, std::vector<std::int64_t>(m, 0), k - static_cast<std::int64_t>(m));
+  for (std::size_t c = 0; c < m; ++c) {
+    for (std::int64_t j = 1; j <= between[c]; ++j) {
+      at.push_back(from[c] + static_cast<double>(j) * length[c] / static_cast<double>(between[c] + 1));
+    }
+  }
+  return at;
+}
+
+}  // namespace
+
+void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
+                          std::span<const std::int64_t> sites, double spacing, std::vector<SurfacePoint>& out) {
+  const std::vector<std::vector<std::size_t>> ends = slit_ends(mesh, loops, spacing, sites);
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const LoopWalk walk(mesh, *loops[l]);
+    for (const double at : site_arc_lengths(walk, sites[l], ends[l])) out.push_back(walk.site(at));
+  }
+}
+
+}  // namespace geodual::remesh::detail

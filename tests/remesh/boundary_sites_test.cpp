@@ -1,0 +1,135 @@
+// Boundary sites (remesh/src/boundary_sites.hpp): the walk along a loop and
+// the slit ends that get a site of their own. Oracles: hand-built loops
+// whose slits are known (a square slit to its centre), loops without any
+// (a rectangle, a disk's rim, a Möbius strip's edge), and loops the walk
+// runs partly against their faces' orientation.
+
+#include "remesh/analytic_surfaces.hpp"
+#include "../../remesh/src/boundary_sites.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace geodual::remesh::detail {
+namespace {
+
+/// The rectangle [0, nx] x [0, ny] in z = 0, unit cells of two triangles;
+/// the cell (flip_x, flip_y) wound the other way when given.
+TriangleMesh rectangle(int nx, int ny, int flip_x = -1, int flip_y = -1) {
+  std::vector<Eigen::Vector3d> vertices;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) vertices.emplace_back(i, j, 0);
+  }
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (nx + 1) + i); };
+  std::vector<std::array<Index, 3>> faces;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      std::array<Index, 3> a = {id(i, j), id(i + 1, j), id(i + 1, j + 1)};
+      std::array<Index, 3> b = {id(i, j), id(i + 1, j + 1), id(i, j + 1)};
+      if (i == flip_x && j == flip_y) {
+        std::swap(a[1], a[2]);
+        std::swap(b[1], b[2]);
+      }
+      faces.push_back(a);
+      faces.push_back(b);
+    }
+  }
+  return test::mesh_from_lists(vertices, faces);
+}
+
+/// A Möbius strip of n quads round a circle of radius 1, width 2w: its edge
+/// is one smooth loop of 2n edges, and no orientation of the faces agrees
+/// along all of it.
+TriangleMesh moebius(int n, double w) {
+  std::vector<Eigen::Vector3d> vertices;
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2 * std::numbers::pi * i / n, twist = angle / 2;
+    const Eigen::Vector3d centre(std::cos(angle), std::sin(angle), 0);
+    const Eigen::Vector3d across = std::cos(twist) * centre + std::sin(twist) * Eigen::Vector3d::UnitZ();
+    vertices.push_back(centre - w * across);
+    vertices.push_back(centre + w * across);
+  }
+  std::vector<std::array<Index, 3>> faces;
+  for (int i = 0; i < n; ++i) {
+    const auto a = static_cast<Index>(2 * i), b = a + 1;
+    // Across the seam the strip comes back upside down.
+    const Index c = i + 1 < n ? a + 2 : 1, d = i + 1 < n ? a + 3 : 0;
+    faces.push_back({a, c, d});
+    faces.push_back({a, d, b});
+  }
+  return test::mesh_from_lists(vertices, faces);
+}
+
+/// The slit ends of the loops of `mesh`, as points, at the given spacing.
+std::vector<Eigen::Vector3d> slit_end_points(const TriangleMesh& mesh, double spacing, std::int64_t limit = 1000) {
+  const SamplingSurface surface = build_sampling_surface(mesh, true);
+  std::vector<const BoundaryLoop*> loops;
+  for (const BoundaryLoop& loop : surface.boundary_loops) loops.push_back(&loop);
+  const std::vector<std::int64_t> limits(loops.size(), limit);
+  const std::vector<std::vector<std::size_t>> ends = slit_ends(mesh, loops, spacing, limits);
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const LoopWalk walk(mesh, *loops[l]);
+    for (const std::size_t edge : ends[l]) points.push_back(walk.point(walk.start(edge)));
+  }
+  return points;
+}
+
+TEST(SlitEnds, ASlitToTheCentreOfASquareHasOne) {
+  // Its end (1/2, 1/2); not the square's corners nor the slit's mouth, where
+  // the boundary turns by 90 degrees.
+  for (const double spacing : {0.05, 0.1, 0.5}) {
+    SCOPED_TRACE(spacing);
+    const std::vector<Eigen::Vector3d> ends = slit_end_points(test::slit_square(16), spacing);
+    ASSERT_EQ(ends.size(), 1u);
+    EXPECT_LT((ends[0] - Eigen::Vector3d(0.5, 0.5, 0)).norm(), 1e-12);
+  }
+  EXPECT_TRUE(slit_end_points(test::slit_square(16), 0.1, 0).empty());  // no sites to spare
+}
+
+TEST(SlitEnds, ASlitShallowerThanHalfASpacingHasNone) {
+  // The slit is 1/2 deep; with a spacing of 2 the points r = 5/6 (a sixth
+  // of the loop) either side of its end lie on the square's side, apart.
+  EXPECT_TRUE(slit_end_points(test::slit_square(16), 2.0).empty());
+}
+
+TEST(SlitEnds, LoopsWithoutSlitsHaveNone) {
+  for (const double spacing : {0.5, 1.0, 4.0}) {
+    SCOPED_TRACE(spacing);
+    EXPECT_TRUE(slit_end_points(rectangle(8, 4), spacing).empty());
+    EXPECT_TRUE(slit_end_points(test::disk(8, 64), spacing / 8).empty());
+  }
+  // Nor where the walk runs edges against their faces: a cell wound the
+  // other way, a Möbius strip's edge.
+  EXPECT_TRUE(slit_end_points(rectangle(4, 1, 2, 0), 0.5).empty());
+  EXPECT_TRUE(slit_end_points(rectangle(8, 4, 0, 0), 1.0).empty());
+  EXPECT_TRUE(slit_end_points(moebius(96, 0.2), 0.2).empty());
+}
+
+TEST(LoopWalk, FollowsTheEdgesItRunsBackwards) {
+  // Half of a Möbius strip's edge is run against its faces: its points by
+  // arc length must still advance along the loop, each edge's length at a
+  // time, and the sites sit at the same points.
+  const TriangleMesh mesh = moebius(48, 0.2);
+  const SamplingSurface surface = build_sampling_surface(mesh, true);
+  ASSERT_EQ(surface.boundary_loops.size(), 1u);
+  const BoundaryLoop& loop = surface.boundary_loops.front();
+  EXPECT_TRUE(std::any_of(loop.edges.begin(), loop.edges.end(), [](const BoundaryEdge& e) { return e.reversed; }));
+  const LoopWalk walk(mesh, loop);
+  for (std::size_t i = 0; i < walk.num_edges(); ++i) {
+    const double at = walk.start(i), next = i + 1 < walk.num_edges() ? walk.start(i + 1) : walk.length();
+    EXPECT_NEAR((walk.point(next) - walk.point(at)).norm(), loop.edges[i].length, 1e-12) << "edge " << i;
+    const double middle = (at + next) / 2;
+    EXPECT_NEAR((walk.site(middle).position(mesh) - walk.point(middle)).norm(), 0, 1e-9) << "edge " << i;
+  }
+}
+
+}  // namespace
+}  // namespace geodual::remesh::detail
