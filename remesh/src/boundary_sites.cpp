@@ -1,13 +1,13 @@
 #include "boundary_sites.hpp"
 
+#include "sampling_grid.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <iterator>
 #include <tuple>
-#include <unordered_map>
 #include <utility>
 
 namespace geodual::remesh::detail {
@@ -50,54 +50,8 @@ SurfacePoint LoopWalk::site(double at) const {
   return point_on_face_edge(e.face, e.corner, e.reversed ? 1 - t : t);
 }
 
-namespace {
-
-/// Points in space by cells of a fixed size, for "is any point kept so far
-/// within this distance (at most the cell size) of p".
-class PointHash {
- public:
-  explicit PointHash(double cell) : inverse_cell_(1 / cell) {}
-  void insert(const Eigen::Vector3d& p) { cells_[key(cell_of(p))].push_back(p); }
-  bool any_within(const Eigen::Vector3d& p, double distance) const {
-    const Cell at = cell_of(p);
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto found = cells_.find(key({at[0] + dx, at[1] + dy, at[2] + dz}));
-          if (found == cells_.end()) continue;
-          for (const Eigen::Vector3d& q : found->second) {
-            if ((q - p).norm() < distance) return true;
-          }
-        }
-      }
-    }
-    return false;
-  }
-
- private:
-  using Cell = std::array<std::int64_t, 3>;
-  Cell cell_of(const Eigen::Vector3d& p) const {
-    return {static_cast<std::int64_t>(std::floor(p.x() * inverse_cell_)),
-            static_cast<std::int64_t>(std::floor(p.y() * inverse_cell_)),
-            static_cast<std::int64_t>(std::floor(p.z() * inverse_cell_))};
-  }
-  /// 21 bits a coordinate: distinct for every cell of a bounding box up to
-  /// 2^21 cells across; cells further apart may share a key, which only
-  /// costs a comparison.
-  static std::uint64_t key(const Cell& c) {
-    constexpr std::uint64_t mask = (std::uint64_t{1} << 21) - 1;
-    return (static_cast<std::uint64_t>(c[0]) & mask) << 42 | (static_cast<std::uint64_t>(c[1]) & mask) << 21 |
-           (static_cast<std::uint64_t>(c[2]) & mask);
-  }
-
-  double inverse_cell_;
-  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3d>> cells_;
-};
-
-}  // namespace
-
-std::vector<std::vector<std::size_t>> slit_ends(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
-                                                double spacing, std::span<const std::int64_t> limits) {
+std::vector<std::vector<std::size_t>> slit_ends(std::span<const LoopWalk> walks, double spacing,
+                                                std::span<const std::int64_t> limits) {
   // cos 20 degrees: the chords from v leave it together.
   constexpr double kTogether = 0.93969262078590838;
   struct Candidate {
@@ -107,8 +61,8 @@ std::vector<std::vector<std::size_t>> slit_ends(const TriangleMesh& mesh, std::s
     Eigen::Vector3d point;
   };
   std::vector<Candidate> candidates;
-  for (std::size_t l = 0; l < loops.size(); ++l) {
-    const LoopWalk walk(mesh, *loops[l]);
+  for (std::size_t l = 0; l < walks.size(); ++l) {
+    const LoopWalk& walk = walks[l];
     if (!walk.closed()) continue;
     const double r = std::min(spacing / 2, walk.length() / 6);
     for (std::size_t i = 0; i < walk.num_edges(); ++i) {
@@ -123,12 +77,25 @@ std::vector<std::vector<std::size_t>> slit_ends(const TriangleMesh& mesh, std::s
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return std::tie(a.negative_cosine, a.loop, a.edge) < std::tie(b.negative_cosine, b.loop, b.edge);
   });
-  std::vector<std::vector<std::size_t>> ends(loops.size());
-  PointHash taken(spacing);  // 2 r <= spacing: the neighbouring cells hold every end that near
-  for (const Candidate& candidate : candidates) {
+  std::vector<std::vector<std::size_t>> ends(walks.size());
+  if (candidates.empty()) return ends;
+  // Taken greedily: a candidate is kept unless one kept before it lies within
+  // its 2 r, found among the candidates near it.
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(candidates.size());
+  for (const Candidate& candidate : candidates) points.push_back(candidate.point);
+  const PointGrid grid(points, spacing);
+  std::vector<std::uint8_t> kept(candidates.size(), 0);  // by candidate
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const Candidate& candidate = candidates[c];
     if (static_cast<std::int64_t>(ends[candidate.loop].size()) >= limits[candidate.loop]) continue;
-    if (taken.any_within(candidate.point, 2 * candidate.r)) continue;
-    taken.insert(candidate.point);
+    const double reach = 2 * candidate.r;
+    bool near = false;
+    grid.for_each_within(candidate.point, reach, [&](Index slot, double squared_distance) {
+      near = near || (kept[static_cast<std::size_t>(grid.original(slot))] && squared_distance < reach * reach);
+    });
+    if (near) continue;
+    kept[c] = 1;
     ends[candidate.loop].push_back(candidate.edge);
   }
   for (std::vector<std::size_t>& edges : ends) std::sort(edges.begin(), edges.end());
@@ -170,10 +137,12 @@ std::vector<double> site_arc_lengths(const LoopWalk& walk, std::int64_t k, const
 
 void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
                           std::span<const std::int64_t> sites, double spacing, std::vector<SurfacePoint>& out) {
-  const std::vector<std::vector<std::size_t>> ends = slit_ends(mesh, loops, spacing, sites);
-  for (std::size_t l = 0; l < loops.size(); ++l) {
-    const LoopWalk walk(mesh, *loops[l]);
-    for (const double at : site_arc_lengths(walk, sites[l], ends[l])) out.push_back(walk.site(at));
+  std::vector<LoopWalk> walks;
+  walks.reserve(loops.size());
+  for (const BoundaryLoop* loop : loops) walks.emplace_back(mesh, *loop);
+  const std::vector<std::vector<std::size_t>> ends = slit_ends(walks, spacing, sites);
+  for (std::size_t l = 0; l < walks.size(); ++l) {
+    for (const double at : site_arc_lengths(walks[l], sites[l], ends[l])) out.push_back(walks[l].site(at));
   }
 }
 

@@ -49,9 +49,9 @@ class LoopWalk {
   std::vector<double> start_;
 };
 
-/// The slit ends of boundary loops, for a remesh of edge length `spacing`:
-/// per loop, the edges the walk enters at a slit's end, in walking order, at
-/// most limits[l] on loops[l], none on an open chain. At the point v where
+/// The slit ends of boundary loops (one walk each), for a remesh of edge
+/// length `spacing`: per loop, the edges the walk enters at a slit's end, in
+/// walking order, at most limits[l] on walks[l], none on an open chain. At the point v where
 /// the walk enters an edge, take the loop's points r before and after it
 /// (r = spacing / 2, at most a sixth of the loop): v ends a slit when the
 /// chords to them leave v within 20 degrees of each other and the two
@@ -60,8 +60,8 @@ class LoopWalk {
 /// placement: sites at their ends left bunny_res2's cut with no valid dual.)
 /// Ends are taken sharpest first over all the loops, each at least 2 r in
 /// space from every end taken before it, on its loop or another.
-std::vector<std::vector<std::size_t>> slit_ends(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
-                                                double spacing, std::span<const std::int64_t> limits);
+std::vector<std::vector<std::size_t>> slit_ends(std::span<const LoopWalk> walks, double spacing,
+                                                std::span<const std::int64_t> limits);
 
 /// Sites on the loops of one component: sites[l] of them on loops[l] (at
 /// least 3 each), for a remesh of edge length `spacing`, appended to `out`

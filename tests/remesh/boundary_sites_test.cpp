@@ -70,14 +70,13 @@ TriangleMesh moebius(int n, double w) {
 /// The slit ends of the loops of `mesh`, as points, at the given spacing.
 std::vector<Eigen::Vector3d> slit_end_points(const TriangleMesh& mesh, double spacing, std::int64_t limit = 1000) {
   const SamplingSurface surface = build_sampling_surface(mesh, true);
-  std::vector<const BoundaryLoop*> loops;
-  for (const BoundaryLoop& loop : surface.boundary_loops) loops.push_back(&loop);
-  const std::vector<std::int64_t> limits(loops.size(), limit);
-  const std::vector<std::vector<std::size_t>> ends = slit_ends(mesh, loops, spacing, limits);
+  std::vector<LoopWalk> walks;
+  for (const BoundaryLoop& loop : surface.boundary_loops) walks.emplace_back(mesh, loop);
+  const std::vector<std::int64_t> limits(walks.size(), limit);
+  const std::vector<std::vector<std::size_t>> ends = slit_ends(walks, spacing, limits);
   std::vector<Eigen::Vector3d> points;
-  for (std::size_t l = 0; l < loops.size(); ++l) {
-    const LoopWalk walk(mesh, *loops[l]);
-    for (const std::size_t edge : ends[l]) points.push_back(walk.point(walk.start(edge)));
+  for (std::size_t l = 0; l < walks.size(); ++l) {
+    for (const std::size_t edge : ends[l]) points.push_back(walks[l].point(walks[l].start(edge)));
   }
   return points;
 }
