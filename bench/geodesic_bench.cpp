@@ -127,8 +127,7 @@ options:
                          levels (1: 1,074,744 faces, 2: 4,298,976 faces),
                          generated once into the cache folder if missing
   --subdivided-input P   the mesh to subdivide (default: igea.ply among the
-                         meshes given, else $GEODUAL_MESH_DIR/igea.ply, else
-                         ../shared/data/meshes/igea.ply)
+                         meshes given, else examples/data/bunny.ply)
   --subdivided-cache D   where subdivided meshes are kept (default: the
                          folder 'subdivided' next to this executable)
   -h, --help             this text
@@ -808,10 +807,7 @@ std::filesystem::path subdivision_input(const Options& options) {
   for (const auto& mesh : options.meshes) {
     if (mesh.filename() == "igea.ply") return mesh;
   }
-  if (const char* folder = std::getenv("GEODUAL_MESH_DIR"); folder && *folder) {
-    return std::filesystem::path(folder) / "igea.ply";
-  }
-  return std::filesystem::path("..") / "shared" / "data" / "meshes" / "igea.ply";
+  return std::filesystem::path("examples") / "data" / "bunny.ply";
 }
 
 std::filesystem::path subdivision_cache(const Options& options) {

@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Figures for `geodual info`: wall time and peak memory of the whole command
 # (median of 5 runs of /usr/bin/time -v), file size, and read throughput (file
-# bytes over the read time the tool reports), on igea.ply (268,686 faces,
-# float32) and on igea Loop-subdivided once (1,074,744 faces, float64 as
-# written by geodual::io::write_ply). With --profile, also a perf profile of
+# bytes over the read time the tool reports), on MESH and on MESH Loop-subdivided
+# once (four times the faces, float64 as written by geodual::io::write_ply).
+# The README's figures are for igea.ply (268,686 faces, float32; the team's
+# larger scans, not in the repository). With --profile, also a perf profile of
 # one run on the larger file.
 #
-# usage: bench/info_figures.sh [--profile] [BUILD_DIR]   (from the repository root;
-#        BUILD_DIR defaults to build, which must hold geodual and bench/make_subdivided)
+# usage: bench/info_figures.sh [--profile] [MESH [BUILD_DIR]]   (from the repository root;
+#        MESH defaults to examples/data/bunny.ply, BUILD_DIR to build, which must
+#        hold geodual and bench/make_subdivided)
 set -euo pipefail
 
 profile=false
@@ -15,8 +17,8 @@ if [[ "${1:-}" == "--profile" ]]; then
   profile=true
   shift
 fi
-build=${1:-build}
-meshes=${GEODUAL_MESH_DIR:-../shared/data/meshes}
+mesh=${1:-examples/data/bunny.ply}
+build=${2:-build}
 runs=5
 geodual=$build/geodual
 cache=$build/bench-data
@@ -26,9 +28,9 @@ for tool in "$geodual" "$build/bench/make_subdivided" /usr/bin/time; do
 done
 
 mkdir -p "$cache"
-subdivided=$cache/igea_loop1.ply
+subdivided=$cache/$(basename "$mesh" .ply)_loop1.ply
 if [[ ! -f "$subdivided" ]]; then
-  "$build/bench/make_subdivided" "$meshes/igea.ply" 1 "$subdivided"
+  "$build/bench/make_subdivided" "$mesh" 1 "$subdivided"
 fi
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
@@ -40,7 +42,7 @@ trap 'rm -rf "$scratch"' EXIT
 echo "geodual info figures: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), median of $runs runs"
 printf '%-22s %10s %12s %10s %10s %10s %10s %12s\n' \
   file faces bytes "wall s" "peak MiB" "read s" "read MB/s" "analysis s"
-for file in "$meshes/igea.ply" "$subdivided"; do
+for file in "$mesh" "$subdivided"; do
   "$geodual" info "$file" > /dev/null  # warm the page cache: the figures are for a file in memory
   : > "$scratch/wall"; : > "$scratch/rss"; : > "$scratch/read"; : > "$scratch/analysis"
   for ((run = 0; run < runs; ++run)); do

@@ -1,7 +1,7 @@
 // make_subdivided INPUT LEVELS OUTPUT.ply
 //
 // Writes INPUT Loop-subdivided LEVELS times as binary PLY (float64), e.g.
-//   build/bench/make_subdivided ../shared/data/meshes/igea.ply 1 igea_1M.ply
+//   build/bench/make_subdivided path/to/igea.ply 1 igea_1M.ply
 // gives the 1,074,744-face igea, 2 levels the 4,298,976-face one.
 
 #include "subdivided_inputs.hpp"

@@ -8,7 +8,7 @@
 //                             [--tolerance PCT] [--max-runs R] [--samples S]
 //                             [--time-limit S] [MESH...]
 //
-// Default meshes: ../shared/data/meshes/{bunny,igea,armadillo_86k,fertility}.ply
+// Default meshes: tests/data/{bunny,armadillo_86k,fertility}.ply
 // (run from the repository root). For each mesh (read once, by the parent
 // process) and each site count n, every run below is a forked child, so its
 // peak RSS is its own (plus the input the parent had already read):
@@ -548,7 +548,7 @@ constexpr const char* usage =
     "                     [--cgal-iterations N]\n"
     "                     [--cgal-border keep|protect] [--tolerance PCT] [--max-runs R] [--samples S]\n"
     "                     [--time-limit S] [MESH...]\n"
-    "default meshes: ../shared/data/meshes/{bunny,igea,armadillo_86k,fertility}.ply\n";
+    "default meshes: tests/data/{bunny,armadillo_86k,fertility}.ply\n";
 
 Options parse_options(int argc, char** argv) {
   Options options;
@@ -608,8 +608,8 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (options.meshes.empty()) {
-    for (const char* name : {"bunny", "igea", "armadillo_86k", "fertility"}) {
-      options.meshes.push_back(std::filesystem::path("../shared/data/meshes") / (std::string(name) + ".ply"));
+    for (const char* name : {"bunny", "armadillo_86k", "fertility"}) {
+      options.meshes.push_back(std::filesystem::path("tests/data") / (std::string(name) + ".ply"));
     }
   }
   return options;

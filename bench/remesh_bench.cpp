@@ -32,7 +32,7 @@ struct Options {
   std::vector<std::int64_t> site_counts = {2000, 4000};
   int lloyd = 0;  ///< Lloyd iterations before the dual
   std::vector<int> subdivided_levels;
-  std::filesystem::path subdivided_input = "../shared/data/meshes/igea.ply";
+  std::filesystem::path subdivided_input = "examples/data/bunny.ply";
   std::filesystem::path cache;
   unsigned time_limit_seconds = 600;
   std::vector<std::filesystem::path> meshes;

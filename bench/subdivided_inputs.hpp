@@ -1,8 +1,7 @@
 #pragma once
-// The large-mesh tier of the benchmarks: no >= 1M-face scan is stored in
-// shared/data (see its MANIFEST.md), so it is made at run time by Loop
-// subdivision of a clean closed manifold, igea.ply (268,686 faces): one step
-// gives 1,074,744 faces, two give 4,298,976. Files are cached by name, so a
+// The large-mesh tier of the benchmarks: no >= 1M-face scan is stored, so it
+// is made at run time by Loop subdivision of a given mesh (igea.ply, 268,686
+// faces: one step gives 1,074,744 faces, two give 4,298,976). Files are cached by name, so a
 // benchmark calls ensure_subdivided() and pays for the subdivision once.
 //
 // The files are written with geodual::io::write_ply, which stores float64

@@ -48,7 +48,8 @@ std::string file_contents(const std::filesystem::path& path) {
 TEST(CliUsage, VersionAndHelpSucceed) {
   const CliRun version = run_cli({"--version"});
   EXPECT_EQ(version.exit_status, 0);
-  EXPECT_EQ(version.out.rfind("geodual ", 0), 0U) << version.out;
+  // project(VERSION), then the commit where the build had git.
+  EXPECT_EQ(version.out.rfind("geodual " GEODUAL_PROJECT_VERSION, 0), 0U) << version.out;
   const CliRun help = run_cli({"--help"});
   EXPECT_EQ(help.exit_status, 0);
   EXPECT_NE(help.out.find("info"), std::string::npos) << help.out;

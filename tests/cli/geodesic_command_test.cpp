@@ -21,7 +21,7 @@
 namespace geodual::cli_test {
 namespace {
 
-constexpr const char* small_mesh = "../shared/data/meshes/fertility.ply";
+constexpr const char* small_mesh = "tests/data/fertility.ply";
 
 std::string slurp(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

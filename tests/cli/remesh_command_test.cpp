@@ -20,7 +20,7 @@
 namespace geodual::cli_test {
 namespace {
 
-constexpr const char* genus_four = "../shared/data/meshes/fertility.ply";
+constexpr const char* genus_four = "tests/data/fertility.ply";
 constexpr const char* open_scan = "examples/data/bunny.ply";
 
 std::string slurp(const std::filesystem::path& path) {
@@ -85,6 +85,7 @@ TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
   const auto [plain, plain_report] = remesh({"--plain-lloyd"});
   EXPECT_EQ(newton["sampling"], "poisson");  // remesh starts from blue noise
   EXPECT_EQ(newton_report["options"]["lloyd_newton"], true);
+  EXPECT_EQ(newton_report["geodual_version"].get<std::string>().rfind(GEODUAL_PROJECT_VERSION, 0), 0U);
   EXPECT_EQ(plain_report["options"]["lloyd_newton"], false);
   EXPECT_EQ(newton["lloyd_iterations"], 4);
   EXPECT_EQ(plain["lloyd_iterations"], 4);

@@ -19,8 +19,8 @@
 namespace geodual::cli_test {
 namespace {
 
-constexpr const char* reference_mesh = "../shared/data/meshes/bunny.ply";
-constexpr const char* candidate_mesh = "../shared/data/meshes/bunny_res2.ply";
+constexpr const char* reference_mesh = "tests/data/bunny.ply";
+constexpr const char* candidate_mesh = "tests/data/bunny_res2.ply";
 constexpr std::int64_t test_samples = 20000;
 
 /// The figures of one mesh, in the order the README documents them.

@@ -3,7 +3,7 @@
 // into <folder>/ply, <folder>/obj, <folder>/off and <folder>/stl, next to a
 // few hand-written files for the rarer forms.
 //
-//   make_seed_corpus fuzz-corpus ../shared/data/meshes/woody.ply ...
+//   make_seed_corpus fuzz-corpus tests/data/woody.ply ...
 
 #include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"

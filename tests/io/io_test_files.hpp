@@ -96,10 +96,10 @@ std::string error_message(Action&& action) {
   return {};
 }
 
-/// The real scans: ../shared/data/meshes relative to the repository root,
+/// The real scans the tests read: tests/data relative to the repository root,
 /// where the tests run.
-inline fs::path shared_mesh(std::string_view name) {
-  return fs::path("../shared/data/meshes") / name;
+inline fs::path test_mesh(std::string_view name) {
+  return fs::path("tests/data") / name;
 }
 
 /// Builds binary file contents value by value in a chosen byte order.

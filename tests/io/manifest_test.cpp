@@ -1,4 +1,4 @@
-// Every mesh of the shared data set loads with exactly the counts its
+// Every mesh of tests/data loads with exactly the counts its
 // MANIFEST.tsv gives, and analyze_mesh finds exactly the defects listed there.
 // The manifest is parsed here; no figure is copied into this file.
 
@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -22,13 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The shared meshes: $GEODUAL_MESH_DIR, or ../shared/data/meshes beside the repository.
-fs::path mesh_folder() {
-  if (const char* folder = std::getenv("GEODUAL_MESH_DIR"); folder != nullptr && *folder != '\0') {
-    return folder;
-  }
-  return fs::path(GEODUAL_SOURCE_DIR) / ".." / "shared" / "data" / "meshes";
-}
+/// The test meshes (tests/data in the source tree).
+fs::path mesh_folder() { return fs::path(GEODUAL_SOURCE_DIR) / "tests" / "data"; }
 
 /// One row of MANIFEST.tsv, by column name.
 using ManifestRow = std::map<std::string, std::string>;
@@ -65,10 +59,7 @@ class Manifest : public testing::Test {
  protected:
   void SetUp() override {
     manifest_ = mesh_folder() / "MANIFEST.tsv";
-    if (!fs::exists(manifest_)) {
-      GTEST_SKIP() << manifest_ << " not found: the shared mesh data set is not next to this "
-                   << "checkout (set GEODUAL_MESH_DIR to its folder)";
-    }
+    ASSERT_TRUE(fs::exists(manifest_)) << manifest_ << " not found";
     rows_ = read_manifest(manifest_);
   }
 
@@ -77,7 +68,7 @@ class Manifest : public testing::Test {
 };
 
 TEST_F(Manifest, HasTheColumnsThisTestChecks) {
-  ASSERT_GE(rows_.size(), 18U) << manifest_;
+  ASSERT_GE(rows_.size(), 14U) << manifest_;
   for (const char* column :
        {"file", "vertices", "faces", "components", "boundary_loops", "nonmanifold_edges",
         "nonmanifold_vertices", "degenerate_faces", "duplicate_vertices", "unreferenced_vertices",

@@ -300,10 +300,10 @@ TEST(PlyReader, HugeHeadersParseInLinearTime) {
   EXPECT_LT(loaded.info.notes.back().size(), 1000u);
 }
 
-/// The columns of ../shared/data/meshes/MANIFEST.tsv by name, one map per mesh.
+/// The columns of tests/data/MANIFEST.tsv by name, one map per mesh.
 std::vector<std::map<std::string, std::string>> manifest_rows() {
-  std::ifstream in(shared_mesh("MANIFEST.tsv"));
-  EXPECT_TRUE(in) << "cannot open " << shared_mesh("MANIFEST.tsv");
+  std::ifstream in(test_mesh("MANIFEST.tsv"));
+  EXPECT_TRUE(in) << "cannot open " << test_mesh("MANIFEST.tsv");
   const auto split = [](const std::string& line) {
     std::vector<std::string> fields;
     std::stringstream stream(line);
@@ -336,7 +336,7 @@ TEST(PlyReader, RealScansLoadWithTheManifestCounts) {
   ASSERT_GE(rows.size(), 10u);
   for (const auto& row : rows) {
     SCOPED_TRACE(row.at("file"));
-    const io::LoadedMesh loaded = read_mesh(shared_mesh(row.at("file")));
+    const io::LoadedMesh loaded = read_mesh(test_mesh(row.at("file")));
     EXPECT_EQ(loaded.mesh.num_vertices(), std::stoll(row.at("vertices")));
     EXPECT_EQ(loaded.mesh.num_faces(), std::stoll(row.at("faces")));
     EXPECT_EQ(loaded.info.encoding, "binary_little_endian " + row.at("coord_type"));
@@ -384,8 +384,8 @@ TEST(PlyReader, BigEndianCopyOfRealScansReadsIdentically) {
   TempDir dir;
   for (const char* name : {"bunny.ply", "woody.ply"}) {  // float32 and float64 coordinates
     SCOPED_TRACE(name);
-    const io::LoadedMesh little = read_mesh(shared_mesh(name));
-    const io::LoadedMesh big = read_text(dir, name, to_big_endian(read_file(shared_mesh(name))));
+    const io::LoadedMesh little = read_mesh(test_mesh(name));
+    const io::LoadedMesh big = read_text(dir, name, to_big_endian(read_file(test_mesh(name))));
     EXPECT_TRUE(big.info.encoding.starts_with("binary_big_endian")) << big.info.encoding;
     EXPECT_EQ(vertex_list(big.mesh), vertex_list(little.mesh));
     EXPECT_EQ(face_list(big.mesh), face_list(little.mesh));

@@ -411,7 +411,7 @@ TEST(Preview, DegenerateFacesAndUnreferencedVerticesChangeNothing) {
 }
 
 TEST(Preview, BunnyIsFramedAndDeterministic) {
-  const io::LoadedMesh bunny = io::read_mesh(shared_mesh("bunny.ply"));
+  const io::LoadedMesh bunny = io::read_mesh(test_mesh("bunny.ply"));
   PreviewScene scene;
   scene.mesh = &bunny.mesh;
   const std::vector<std::uint8_t> png = io::render_preview_png(scene);

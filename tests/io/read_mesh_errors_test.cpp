@@ -106,7 +106,7 @@ TEST(ReadMeshErrors, TruncatedBinaryPlyNamesTheElementRecord) {
 
 TEST(ReadMeshErrors, TruncatedRealScan) {
   TempDir dir;
-  const std::string bunny = read_file(shared_mesh("bunny.ply"));
+  const std::string bunny = read_file(test_mesh("bunny.ply"));
   expect_read_error(dir, "bunny.ply", bunny.substr(0, bunny.size() / 2),
                     {"truncated binary data: face ", " of 69451 ends past the end of the file"});
   expect_read_error(dir, "bunny_header.ply", bunny.substr(0, header_size(bunny) + 100),

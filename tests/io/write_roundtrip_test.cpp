@@ -105,7 +105,7 @@ TEST(WriteRoundTrip, RealScansThroughPlyAndObj) {
   TempDir dir;
   for (const char* name : {"nefertiti_100k.ply", "fertility.ply"}) {  // float64 and float32 sources
     SCOPED_TRACE(name);
-    const io::LoadedMesh original = read_mesh(shared_mesh(name));
+    const io::LoadedMesh original = read_mesh(test_mesh(name));
     io::write_ply(dir / "scan.ply", original.mesh);
     expect_same_bits(read_mesh(dir / "scan.ply").mesh, original.mesh);
     io::write_obj(dir / "scan.obj", original.mesh);

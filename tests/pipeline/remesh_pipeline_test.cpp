@@ -12,7 +12,7 @@
 namespace geodual {
 namespace {
 
-constexpr const char* genus_four = "../shared/data/meshes/fertility.ply";
+constexpr const char* genus_four = "tests/data/fertility.ply";
 
 pipeline::RemeshPipelineOptions small_options() {
   pipeline::RemeshPipelineOptions options;

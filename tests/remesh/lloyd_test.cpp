@@ -24,7 +24,7 @@
 namespace geodual {
 namespace {
 
-TriangleMesh scan(const std::string& name) { return io::read_mesh("../shared/data/meshes/" + name).mesh; }
+TriangleMesh scan(const std::string& name) { return io::read_mesh("tests/data/" + name).mesh; }
 
 TEST(Lloyd, EnergyNeverRisesAndQualityImprovesOnAScan) {
   const TriangleMesh mesh = scan("bunny.ply");

@@ -490,7 +490,7 @@ TEST(CompareMeshes, BadRequestsAreErrors) {
 }
 
 TEST(CompareMeshes, BunnyScanAgainstItself) {
-  const TriangleMesh bunny = io::read_mesh("../shared/data/meshes/bunny.ply").mesh;
+  const TriangleMesh bunny = io::read_mesh("tests/data/bunny.ply").mesh;
   const QualityReport report = compare_meshes(bunny, bunny, samples(20000));
   const TriangleQuality& q = report.candidate;
   // MANIFEST.tsv: min angle 0.4949 degrees, chi = -3, 5 boundary loops, genus 0.

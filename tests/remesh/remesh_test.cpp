@@ -58,7 +58,7 @@ void expect_faithful_remesh(const TriangleMesh& input, std::int64_t count, const
   EXPECT_LE(result.sites_added, count / 10 + 10);
 }
 
-TriangleMesh scan(const std::string& name) { return io::read_mesh("../shared/data/meshes/" + name).mesh; }
+TriangleMesh scan(const std::string& name) { return io::read_mesh("tests/data/" + name).mesh; }
 
 TEST(Remesh, SphereTorusDoubleTorusAndDisk) {
   const TriangleMesh sphere = test::icosphere(5);

@@ -95,7 +95,7 @@ TEST(RestrictedVoronoi, OfTwoSitesAtOnePlaceTheFirstTakesTheCell) {
 }
 
 TEST(RestrictedVoronoi, OneOrTwoThreadsGiveTheSameCells) {
-  const TriangleMesh mesh = io::read_mesh("../shared/data/meshes/bunny.ply").mesh;
+  const TriangleMesh mesh = io::read_mesh("tests/data/bunny.ply").mesh;
   const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 2000);
   const voronoi::GeodesicField topology = voronoi::compute_geodesic_field(mesh, std::span(sites).first(1));
   remesh::detail::RestrictedCells one, two;

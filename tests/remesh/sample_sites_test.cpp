@@ -97,7 +97,7 @@ TriangleMesh two_triangles() {
   return mesh;
 }
 
-TriangleMesh read(const std::string& name) { return io::read_mesh("../shared/data/meshes/" + name).mesh; }
+TriangleMesh read(const std::string& name) { return io::read_mesh("tests/data/" + name).mesh; }
 
 // ---------------------------------------------------------------- oracles
 

@@ -25,7 +25,7 @@ TEST(SurfaceWalk, NeverEndsInAZeroAreaFace) {
   // ogre has zero-area faces joined to their neighbours. Walks from each
   // neighbour's centre towards the flat face's corners and points along it,
   // of lengths that end short of, inside and past the flat face.
-  const TriangleMesh mesh = remesh::cut_to_manifold(io::read_mesh("../shared/data/meshes/ogre.ply").mesh).mesh;
+  const TriangleMesh mesh = remesh::cut_to_manifold(io::read_mesh("tests/data/ogre.ply").mesh).mesh;
   const voronoi::GeodesicField field =
       voronoi::compute_geodesic_field(mesh, std::vector<SurfacePoint>{SurfacePoint::in_face(0, 1.0 / 3, 1.0 / 3, 1.0 / 3)});
   int flat_faces = 0, walks = 0, through_flat = 0;

@@ -22,7 +22,7 @@
 namespace geodual {
 namespace {
 
-TriangleMesh scan(const std::string& name) { return io::read_mesh("../shared/data/meshes/" + name).mesh; }
+TriangleMesh scan(const std::string& name) { return io::read_mesh("tests/data/" + name).mesh; }
 
 /// The unit disk with a Gaussian bump of height `height` and width 0.25 at
 /// its centre: curved there, flat towards the rim.

@@ -242,7 +242,7 @@ TEST(GeodesicOracle, CgalMatchesClosedForms) {
 }
 
 void run_mesh(const std::string& file, const std::vector<OracleCase>& cases) {
-  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path(file));
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path(file));
   for (const OracleCase& c : cases) run_case(file, mesh, c);
 }
 
@@ -272,10 +272,6 @@ TEST(GeodesicOracle, BunnyWithHoles) {
 
 // Heavier runs, not part of the default suite (several CGAL minutes each on
 // two cores): run with --gtest_also_run_disabled_tests.
-TEST(GeodesicOracle, DISABLED_Lucy100kAllKinds) {
-  run_mesh("lucy_100k.ply", {{1, 0, 401}, {0, 1, 402}, {30, 0, 403}, {0, 30, 404}, {300, 0, 405}, {0, 300, 406}});
-}
-
 TEST(GeodesicOracle, DISABLED_HorseAllKinds) {
   run_mesh("horse.ply", {{1, 0, 201}, {0, 1, 502}, {30, 0, 503}, {0, 300, 506}});
 }
@@ -283,8 +279,6 @@ TEST(GeodesicOracle, DISABLED_HorseAllKinds) {
 TEST(GeodesicOracle, DISABLED_Nefertiti100kAllKinds) {
   run_mesh("nefertiti_100k.ply", {{0, 1, 302}, {1, 0, 601}, {0, 30, 604}, {300, 0, 605}});
 }
-
-TEST(GeodesicOracle, DISABLED_Igea) { run_mesh("igea.ply", {{15, 15, 703}, {150, 150, 704}}); }
 
 }  // namespace
 }  // namespace geodual::voronoi

@@ -84,22 +84,22 @@ void add_page_faces(const std::vector<Index>& id, int n, int m, Index k, std::ve
 }  // namespace
 
 // ---------------------------------------------------------------------------
-// Shared data
+// Test meshes
 
-std::filesystem::path shared_mesh_dir() { return std::filesystem::path("..") / "shared" / "data" / "meshes"; }
+std::filesystem::path test_mesh_dir() { return std::filesystem::path("tests") / "data"; }
 
-std::filesystem::path shared_mesh_path(const std::string& file) { return shared_mesh_dir() / file; }
+std::filesystem::path test_mesh_path(const std::string& file) { return test_mesh_dir() / file; }
 
-std::vector<std::string> shared_mesh_files() {
+std::vector<std::string> test_mesh_files() {
   std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(shared_mesh_dir())) {
+  for (const auto& entry : std::filesystem::directory_iterator(test_mesh_dir())) {
     if (entry.is_regular_file() && entry.path().extension() == ".ply") files.push_back(entry.path().filename().string());
   }
   std::sort(files.begin(), files.end());
   return files;
 }
 
-TriangleMesh read_shared_ply(const std::filesystem::path& path) {
+TriangleMesh read_test_ply(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open " + path.string());
   auto fail = [&](const std::string& what) { throw std::runtime_error(path.string() + ": " + what); };

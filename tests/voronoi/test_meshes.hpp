@@ -19,20 +19,20 @@
 namespace geodual::test {
 
 // ---------------------------------------------------------------------------
-// Shared data
+// Test meshes
 
-/// ../shared/data/meshes relative to the repository root (tests run there).
-std::filesystem::path shared_mesh_dir();
-/// shared_mesh_dir() / file.
-std::filesystem::path shared_mesh_path(const std::string& file);
-/// The *.ply files of shared_mesh_dir(), sorted by name.
-std::vector<std::string> shared_mesh_files();
+/// tests/data relative to the repository root (tests run there).
+std::filesystem::path test_mesh_dir();
+/// test_mesh_dir() / file.
+std::filesystem::path test_mesh_path(const std::string& file);
+/// The *.ply files of test_mesh_dir(), sorted by name.
+std::vector<std::string> test_mesh_files();
 
-/// Reads the shared set's fixed PLY layout (binary little endian, x y z as
+/// Reads the test meshes' fixed PLY layout (binary little endian, x y z as
 /// float or double, faces as `list uchar int`) without geodual_io, so that the
 /// oracle tests do not depend on the reader under test. Throws
 /// std::runtime_error on anything else.
-TriangleMesh read_shared_ply(const std::filesystem::path& path);
+TriangleMesh read_test_ply(const std::filesystem::path& path);
 
 // ---------------------------------------------------------------------------
 // Deterministic random numbers (the same sequence on every standard library)

@@ -202,7 +202,7 @@ TEST(VoronoiDiagram, CoCircularSitesMeetAtOnePoint) {
 /// geodesics from each site separately.
 void expect_matches_cgal(const std::string& file, int face_sites, int vertex_sites, std::uint64_t seed,
                          int arc_point_stride) {
-  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path(file));
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path(file));
   std::vector<SurfacePoint> sites = test::random_face_sites(mesh, face_sites, seed);
   for (const SurfacePoint& s : test::random_vertex_sites(mesh, vertex_sites, seed + 1)) sites.push_back(s);
   const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
@@ -279,7 +279,7 @@ TEST(VoronoiDiagram, DISABLED_BunnyMatchesCgal) { expect_matches_cgal("bunny.ply
 
 TEST(VoronoiDiagram, DenseSitesOnASmallMeshStayConsistent) {
   // More sites than faces on parts of the mesh: cells inside single faces.
-  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path("fertility.ply"));
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path("fertility.ply"));
   const std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 3000, 51);
   const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
   expect_consistent(mesh, diagram);
@@ -302,7 +302,7 @@ bool same_points(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen:
 }
 
 TEST(VoronoiDiagram, ExtractionIsTheSameForAnyThreadCount) {
-  const TriangleMesh mesh = test::read_shared_ply(test::shared_mesh_path("fertility.ply"));
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path("fertility.ply"));
   const std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 2000, 77);
   auto diagram_with = [&](std::size_t threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
