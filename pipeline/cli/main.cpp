@@ -60,7 +60,7 @@ int run(int argc, char** argv) {
   CLI::App app{"geodual: remeshing of dense triangle-mesh scans through exact geodesic "
                "Voronoi diagrams",
                "geodual"};
-  app.set_version_flag("--version", "geodual " + std::string(version()), "Print the version and exit");
+  app.set_version_flag("--version", "geodual " + std::string(build_version()), "Print the version and exit");
   app.require_subcommand(1);
   app.fallthrough();  // --threads may come after the subcommand too
   int threads = 0;

@@ -15,6 +15,7 @@
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
+#include "geodual/pipeline/version.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 
@@ -216,6 +217,7 @@ class RemeshCommand final : public Command {
   /// --report: everything a comparison needs, in one JSON file.
   void write_report(const pipeline::RemeshPipelineResult& run, const nlohmann::ordered_json& figures) const {
     nlohmann::ordered_json report;
+    report["geodual_version"] = build_version();
     nlohmann::ordered_json options;
     options["sites"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.count()) : nlohmann::ordered_json(nullptr);
     options["site_file"] = sites_.file().empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sites_.file());
