@@ -201,8 +201,8 @@ RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
   run.peak_rss = peak_rss_bytes().value_or(0);
   run.vertices = result.remesh.mesh.num_vertices();
   run.sites_added = result.remesh.sites_added;
-  run.lloyd_iterations = result.remesh.lloyd_iterations;
-  run.warm_start_iterations = result.remesh.warm_start_iterations;
+  run.lloyd_iterations = result.relaxation.iterations;
+  run.warm_start_iterations = result.relaxation.warm_start_iterations;
   add_figures(run, input.mesh, result.remesh.mesh, options);
   return run;
 }

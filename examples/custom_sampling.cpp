@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
 
     const auto& stats = *result.statistics;
     std::cout << "sites     " << result.initial_sites.size() << " farthest-point, " << result.remesh.sites_added
-              << " added by repair, " << result.remesh.lloyd_iterations << " Lloyd iterations\n"
+              << " added by repair, " << result.relaxation.iterations << " Lloyd iterations\n"
               << "output    " << argv[2] << " (" << result.remesh.mesh.num_vertices() << " vertices, "
               << result.remesh.mesh.num_faces() << " faces)\n"
               << "quality   Qmin " << stats.candidate.q_min << ", Qavg " << stats.candidate.q_avg << ", "

@@ -94,6 +94,12 @@ void require_output_path(const fs::path& path, std::initializer_list<std::string
   std::error_code error;
   if (!fs::is_directory(folder, error)) throw Error(path.string() + ": folder " + folder.string() + " does not exist");
   if (fs::is_directory(path, error)) throw Error(path.string() + ": is a directory");
+  // The folder must take a new file now, not only after the work is done.
+  const fs::path probe = temporary_sibling(path);
+  if (!std::ofstream(probe, std::ios::binary)) {
+    throw Error(path.string() + ": cannot create a file in '" + folder.string() + "' (permission denied or read-only?)");
+  }
+  fs::remove(probe, error);
 }
 
 }  // namespace geodual::io

@@ -1,9 +1,11 @@
-// geodual geodesic MESH (--sites N [--seed S] | --site-file F) [-o OUT]
+// geodual geodesic MESH (--sites N [--sampling S] [--seed S] | --site-file F) [-o OUT]
 //                        [--no-rwr] [--window-memory MIB] [--json]
 // Exact geodesic distance from the nearest of several sites, at every vertex.
 
 #include "command.hpp"
+#include "geodesic_flags.hpp"
 #include "progress_bar.hpp"
+#include "site_source.hpp"
 #include "text_table.hpp"
 
 #include "geodual/error.hpp"
@@ -35,39 +37,27 @@ class GeodesicCommand final : public Command {
         "Site file: one site per line, a vertex index, or 'f FACE U V W' (face and barycentric "
         "coordinates).");
     command.add_option("MESH", mesh_path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
-    CLI::Option* sites = command.add_option("--sites", site_count_, "Number of random vertex sites");
-    CLI::Option* site_file = command.add_option("--site-file", site_file_, "Read the sites from this file");
-    sites->excludes(site_file);
-    site_file->excludes(sites);
-    command.add_option("--seed", seed_, "Seed for the random sites")->capture_default_str();
+    sites_.add_to(command);
     command.add_option("-o,--output", output_path_,
                        "Write the mesh with the distance field: .ply (properties distance, site) or "
                        ".glb/.gltf (colour by site, _DISTANCE attribute)");
-    command.add_flag("--no-rwr", no_rwr_, "Keep every window (no Redundant Window Removal), as MMP does");
-    command.add_option("--window-memory", window_memory_mib_, "Stop with an error beyond this many MiB of windows")
-        ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+    geodesic_.add_to(command);
     command.add_flag("--json", json_, "Print the statistics as one JSON object");
     command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
 
   int run() override {
-    if (site_file_.empty() && site_count_ <= 0) {
-      throw UsageError("geodesic: give --sites N (N >= 1) or --site-file FILE");
-    }
+    sites_.validate("geodesic");
     if (!output_path_.empty()) {
       io::require_output_path(output_path_, {".ply", ".glb", ".gltf"}, "a distance field");
-      io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, site_file_});
+      io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
     }
     const io::LoadedMesh loaded = io::read_mesh(mesh_path_);
     const TriangleMesh& mesh = loaded.mesh;
-    const std::vector<SurfacePoint> sites = site_file_.empty()
-                                                ? random_vertex_sites(mesh, site_count_, seed_)
-                                                : read_site_file(site_file_, mesh);
+    const std::vector<SurfacePoint> sites = sites_.sites(mesh);
     voronoi::GeodesicOptions options;
-    options.remove_redundant_windows = !no_rwr_;
-    options.window_memory_limit_bytes = static_cast<std::size_t>(window_memory_mib_) << 20;
+    geodesic_.apply(options);
     ProgressBar bar(quiet_);
     options.progress = [&](double fraction) { return bar.update("geodesics", fraction); };
     const voronoi::GeodesicField field = voronoi::compute_geodesic_field(mesh, sites, options);
@@ -89,7 +79,7 @@ class GeodesicCommand final : public Command {
       json["vertices"] = mesh.num_vertices();
       json["faces"] = mesh.num_faces();
       json["sites"] = sites.size();
-      json["remove_redundant_windows"] = !no_rwr_;
+      json["remove_redundant_windows"] = geodesic_.remove_redundant_windows();
       json["reached_vertices"] = reached;
       json["max_distance"] = max_distance;
       json["windows_created"] = s.windows_created;
@@ -110,7 +100,7 @@ class GeodesicCommand final : public Command {
     table.add("mesh", mesh_path_ + " (" + with_thousands(mesh.num_vertices()) + " vertices, " +
                           with_thousands(mesh.num_faces()) + " faces)");
     table.add("sites", with_thousands(static_cast<std::int64_t>(sites.size())));
-    table.add("redundant window removal", no_rwr_ ? "off" : "on");
+    table.add("redundant window removal", geodesic_.remove_redundant_windows() ? "on" : "off");
     table.add("reached vertices", with_thousands(reached));
     table.add("max distance", significant(max_distance));
     table.add("windows created", with_thousands(s.windows_created));
@@ -128,12 +118,9 @@ class GeodesicCommand final : public Command {
 
  private:
   std::string mesh_path_;
-  std::int64_t site_count_ = 0;
-  std::string site_file_;
-  std::uint64_t seed_ = 1;
+  SiteSource sites_{"random"};
   std::string output_path_;
-  bool no_rwr_ = false;
-  std::int64_t window_memory_mib_ = 8192;
+  GeodesicFlags geodesic_;
   bool json_ = false;
   bool quiet_ = false;
 };

@@ -6,6 +6,8 @@
 // through the dual of the exact geodesic Voronoi diagram.
 
 #include "command.hpp"
+#include "geodesic_flags.hpp"
+#include "option_checks.hpp"
 #include "progress_bar.hpp"
 #include "site_source.hpp"
 #include "text_table.hpp"
@@ -41,36 +43,46 @@ class RemeshCommand final : public Command {
     command.add_option("MESH", mesh_path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
     command.add_option("-o,--output", output_path_, "The remeshed surface: .glb, .gltf, .ply or .obj")->required();
     sites_.add_to(command);
-    command.add_option("--lloyd", options_.lloyd.iterations,
+    // Flags are named after the option fields (RemeshOptions, LloydOptions,
+    // GeodesicOptions, QualityOptions); the second name of a flag is its old
+    // one, kept for one release.
+    command.add_option("--lloyd-iterations,--lloyd", options_.lloyd.iterations,
                        "Lloyd iterations towards the geodesic centroids (0: the dual of the sampled sites)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    command.add_option("--lloyd-tol", options_.lloyd.tolerance,
+        ->check(integer_between(0, 100000));
+    command.add_option("--lloyd-tolerance,--lloyd-tol", options_.lloyd.tolerance,
                        "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    command.add_option("--warm-start", options_.lloyd.warm_start_iterations,
+        ->check(finite_non_negative());
+    command.add_option("--warm-start-iterations,--warm-start", options_.lloyd.warm_start_iterations,
                        "Steps on the restricted (Euclidean) Voronoi diagram before the geodesic Lloyd iterations: "
                        "a cheap start close to a CVT (0: none)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_between(0, 100000));
     command.add_flag_callback(
-        "--plain-lloyd", [this] { options_.lloyd.newton = false; },
+        "--no-newton,--plain-lloyd", [this] { options_.lloyd.newton = false; },
         "Plain (over-relaxed) Lloyd steps instead of the default Newton-accelerated ones");
     command.add_option("--curvature-adaptation", options_.curvature_adaptation,
                        "Smaller cells where the surface bends sharply at the remesh's scale: Lloyd towards a "
                        "curvature-weighted CVT of this strength (0: uniform; 1 lowers the Hausdorff distance "
                        "at some cost in the worst triangles)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(finite_non_negative());
     command.add_option("--max-repair-rounds", options_.max_repair_rounds,
                        "Rounds of adding sites where the dual fails before giving up")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_between(0, 1000));
+    geodesic_.add_to(command);
     command.add_option("--preview", preview_path_, "Also render a picture of the result: .png");
-    command.add_option("--samples", samples_,
+    command.add_option("--samples-per-side,--samples", samples_,
                        "Points per side for the Hausdorff and RMS distance to the input (-1: no comparison)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(integer_between(-1, remesh::max_samples_per_side));
+    command.add_flag_callback(
+        "--no-statistics", [this] { samples_ = -1; }, "No comparison with the input (the same as --samples-per-side -1)");
+    command.add_flag("--strict", strict_,
+                     "Fail when more than 0.1 % of the input's area would be left out (scraps and flaps of "
+                     "non-manifold pieces); without it, a warning");
     command.add_flag("--json", json_, "Print the statistics as one JSON object");
     command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     command.add_option("--report", report_path_,
@@ -101,6 +113,8 @@ class RemeshCommand final : public Command {
     options.sites = sites_.count();
     options.sampling = sites_.sampling_options();
     options.remesh = options_;
+    geodesic_.apply(options.remesh.lloyd.voronoi.geodesic);
+    options.strict = strict_;
     options.statistics = samples_ >= 0;
     options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
     options.progress = [&](pipeline::Stage stage, double fraction) {
@@ -109,54 +123,69 @@ class RemeshCommand final : public Command {
     io::LoadedMesh loaded = io::read_mesh(mesh_path_);
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
-    const remesh::RemeshResult& result = run.remesh;
+    const remesh::RepairedDual& result = run.remesh;
+    const remesh::LloydResult& relaxation = run.relaxation;
     const remesh::TriangleQuality quality =
         run.statistics ? run.statistics->candidate : remesh::triangle_quality(result.mesh);
+    if (run.dropped.area_pct > options.max_dropped_area_pct) {
+      std::cerr << "geodual remesh: warning: " << mesh_path_ << ": " << run.dropped.faces << " faces ("
+                << significant(run.dropped.area_pct, 3)
+                << " % of the area) left out as scraps or flaps of non-manifold pieces; --strict makes this an "
+                   "error\n";
+    }
+
+    // The figures: what the remesh is, the same bytes for the same input,
+    // options and seed (they go into the output's extras); then the paths,
+    // times and memory for --json and --report.
+    nlohmann::ordered_json figures;
+    figures["geodual_version"] = build_version();
+    figures["input_vertices"] = run.input.mesh.num_vertices();
+    figures["input_faces"] = run.input.mesh.num_faces();
+    figures["vertices_split"] = run.surface.vertices_split;
+    figures["dropped_faces"] = run.dropped.faces;
+    figures["dropped_area_pct"] = run.dropped.area_pct;
+    figures["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
+    figures["seed"] = sites_.seed();
+    figures["sites"] = run.initial_sites.size();
+    figures["lloyd_iterations"] = relaxation.iterations;
+    figures["warm_start_iterations"] = relaxation.warm_start_iterations;
+    figures["lloyd_diagrams"] = relaxation.diagrams;
+    figures["energy_history"] = relaxation.energy;
+    figures["sites_added"] = result.sites_added;
+    figures["repair_rounds"] = result.repair_rounds;
+    figures["vertices"] = result.mesh.num_vertices();
+    figures["faces"] = result.mesh.num_faces();
+    figures["euler_characteristic"] = quality.euler_characteristic;
+    figures["boundary_loops"] = quality.boundary_loops;
+    figures["q_min"] = quality.q_min;
+    figures["q_avg"] = quality.q_avg;
+    figures["theta_min_deg"] = quality.theta_min_deg;
+    figures["theta_min_avg_deg"] = quality.theta_min_avg_deg;
+    figures["pct_angles_lt30"] = quality.pct_angles_lt30;
+    figures["p30"] = quality.p30;
+    figures["pct_valence6"] = quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
+    if (run.statistics) {
+      figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
+      figures["rms_pct"] = run.statistics->rms_pct;
+      figures["area_change_pct"] = run.statistics->area_change_pct;
+    }
 
     nlohmann::ordered_json json;
     json["mesh"] = mesh_path_;
     json["output"] = output_path_;
-    json["input_vertices"] = run.input.mesh.num_vertices();
-    json["input_faces"] = run.input.mesh.num_faces();
-    json["vertices_split"] = run.surface.vertices_split;
-    json["faces_disabled"] = run.surface.faces_disabled;
-    json["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
-    json["seed"] = sites_.seed();
-    json["sites"] = run.initial_sites.size();
-    json["lloyd_iterations"] = result.lloyd_iterations;
-    json["warm_start_iterations"] = result.warm_start_iterations;
-    json["lloyd_diagrams"] = result.lloyd_diagrams;
-    json["energy_history"] = result.energy;
-    json["sites_added"] = result.sites_added;
-    json["repair_rounds"] = result.repair_rounds;
-    json["vertices"] = result.mesh.num_vertices();
-    json["faces"] = result.mesh.num_faces();
-    json["euler_characteristic"] = quality.euler_characteristic;
-    json["boundary_loops"] = quality.boundary_loops;
-    json["q_min"] = quality.q_min;
-    json["q_avg"] = quality.q_avg;
-    json["theta_min_deg"] = quality.theta_min_deg;
-    json["theta_min_avg_deg"] = quality.theta_min_avg_deg;
-    json["pct_angles_lt30"] = quality.pct_angles_lt30;
-    json["p30"] = quality.p30;
-    json["pct_valence6"] = quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
-    if (run.statistics) {
-      json["hausdorff_pct"] = run.statistics->hausdorff_pct;
-      json["rms_pct"] = run.statistics->rms_pct;
-      json["area_change_pct"] = run.statistics->area_change_pct;
-    }
+    json.update(figures);
     for (const pipeline::StageTiming& timing : run.timings) {
       json[std::string(pipeline::stage_name(timing.stage)) + "_s"] = timing.seconds;
     }
-    json["geodesic_s"] = result.geodesic_seconds;
-    json["diagram_s"] = result.diagram_seconds;
-    json["lloyd_move_s"] = result.lloyd_seconds;
-    json["warm_start_s"] = result.warm_start_seconds;
+    json["geodesic_s"] = relaxation.geodesic_seconds + result.geodesic_seconds;
+    json["diagram_s"] = relaxation.diagram_seconds + result.diagram_seconds;
+    json["lloyd_move_s"] = relaxation.move_seconds;
+    json["warm_start_s"] = relaxation.warm_start_seconds;
     json["dual_s"] = result.dual_seconds;
     const auto write_start = std::chrono::steady_clock::now();
     const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
         color_ == "quality" ? quality_colors(result.mesh) : Eigen::Matrix<float, Eigen::Dynamic, 3>();
-    write_remesh(output_path_, result.mesh, json.dump(), colors);
+    write_remesh(output_path_, result.mesh, figures.dump(), colors);
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, colors);
     const double write_seconds = seconds_since(write_start);
     bar.finish();
@@ -175,21 +204,21 @@ class RemeshCommand final : public Command {
                            (run.surface.vertices_split > 0 ? ", " + with_thousands(run.surface.vertices_split) +
                                                                  " non-manifold vertices cut apart"
                                                            : std::string()) +
-                           (run.surface.faces_disabled > 0 ? ", " + with_thousands(run.surface.faces_disabled) +
-                                                                 " faces of scraps left out"
-                                                           : std::string()) +
+                           (run.dropped.faces > 0 ? ", " + with_thousands(run.dropped.faces) + " faces (" +
+                                                        significant(run.dropped.area_pct, 3) + " % of the area) left out"
+                                                  : std::string()) +
                            ")");
     table.add("sites", with_thousands(static_cast<std::int64_t>(run.initial_sites.size())) +
                            (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                                   : " (" + sites_.file() + ")") +
                            (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
-    if (!result.energy.empty()) {
-      table.add("lloyd", std::to_string(result.lloyd_iterations) + " iterations" +
-                             (result.warm_start_iterations > 0
-                                  ? " after " + std::to_string(result.warm_start_iterations) + " warm-start steps"
+    if (!relaxation.energy.empty()) {
+      table.add("lloyd", std::to_string(relaxation.iterations) + " iterations" +
+                             (relaxation.warm_start_iterations > 0
+                                  ? " after " + std::to_string(relaxation.warm_start_iterations) + " warm-start steps"
                                   : std::string()) +
                              ", CVT energy " +
-                             significant(result.energy.front(), 4) + " -> " + significant(result.energy.back(), 4));
+                             significant(relaxation.energy.front(), 4) + " -> " + significant(relaxation.energy.back(), 4));
     }
     table.add("output", output_path_ + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
@@ -223,13 +252,17 @@ class RemeshCommand final : public Command {
     options["site_file"] = sites_.file().empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sites_.file());
     options["sampling"] = sites_.sampling();
     options["seed"] = sites_.seed();
-    options["lloyd"] = options_.lloyd.iterations;
-    options["lloyd_tol"] = options_.lloyd.tolerance;
-    options["warm_start"] = options_.lloyd.warm_start_iterations;
-    options["lloyd_newton"] = options_.lloyd.newton;
+    options["lloyd_iterations"] = options_.lloyd.iterations;
+    options["lloyd_tolerance"] = options_.lloyd.tolerance;
+    options["warm_start_iterations"] = options_.lloyd.warm_start_iterations;
+    options["newton"] = options_.lloyd.newton;
     options["curvature_adaptation"] = options_.curvature_adaptation;
     options["max_repair_rounds"] = options_.max_repair_rounds;
-    options["samples"] = samples_;
+    options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();
+    options["window_memory"] = geodesic_.window_memory_mib();
+    options["statistics"] = samples_ >= 0;
+    options["samples_per_side"] = std::max<std::int64_t>(samples_, 0);
+    options["strict"] = strict_;
     report["options"] = options;
     report["input"] = pipeline::mesh_report_json(run.input_report);
     report["input"]["file"] = mesh_path_;
@@ -240,7 +273,7 @@ class RemeshCommand final : public Command {
                         {"peak_memory_bytes", timing.peak_memory_bytes}});
     }
     report["stages"] = stages;
-    report["energy_history"] = run.remesh.energy;
+    report["energy_history"] = run.relaxation.energy;
     report["sites_added"] = run.remesh.sites_added;
     report["repair_rounds"] = run.remesh.repair_rounds;
     report["result"] = figures;
@@ -254,7 +287,9 @@ class RemeshCommand final : public Command {
   SiteSource sites_{"poisson"};  // blue noise: Lloyd converges from it in fewer steps
   std::string preview_path_;
   remesh::RemeshOptions options_;
+  GeodesicFlags geodesic_;
   std::int64_t samples_ = 1'000'000;
+  bool strict_ = false;
   bool json_ = false;
   bool quiet_ = false;
   std::string report_path_;

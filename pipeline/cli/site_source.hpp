@@ -1,6 +1,7 @@
 #pragma once
-// Where the voronoi and remesh commands take their sites from:
+// Where the geodesic, voronoi and remesh commands take their sites from:
 // --sites N [--sampling random|poisson|fps] [--seed S], or --site-file F.
+// --sites N samples the surface the same way in every command.
 
 #include "geodual/remesh/sample_sites.hpp"
 #include "geodual/triangle_mesh.hpp"
@@ -19,6 +20,9 @@ namespace geodual::cli {
 
 class SiteSource {
  public:
+  /// The most sites --sites accepts (each costs memory in every stage).
+  static constexpr std::int64_t max_sites = 100'000'000;
+
   /// `default_sampling`: what --sampling is when not given.
   explicit SiteSource(std::string default_sampling = "random") : sampling_(std::move(default_sampling)) {}
   /// Adds --sites, --site-file, --sampling and --seed to `command`.

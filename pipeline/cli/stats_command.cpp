@@ -4,6 +4,7 @@
 // definitions), for any two meshes, ours or another tool's.
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "text_table.hpp"
 
 #include "geodual/error.hpp"
@@ -82,11 +83,11 @@ class StatsCommand final : public Command {
     command.add_option("CANDIDATE", candidate_path_, "The mesh to assess, e.g. a remesh of REFERENCE")
         ->required();
     command.add_flag("--json", json_, "Print one JSON object instead of a table");
-    command.add_option("--samples", options_.samples_per_side,
+    command.add_option("--samples-per-side,--samples", options_.samples_per_side,
                        "Area-uniform samples per mesh for the distances, besides the vertices")
         ->capture_default_str()
-        ->check(CLI::Range(std::int64_t{0}, remesh::max_samples_per_side));
-    command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str();
+        ->check(integer_between(0, remesh::max_samples_per_side));
+    command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str()->check(unsigned_integer());
     return command;
   }
 

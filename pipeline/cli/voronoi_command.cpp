@@ -3,6 +3,8 @@
 // The exact geodesic Voronoi diagram of sites on a mesh.
 
 #include "command.hpp"
+#include "geodesic_flags.hpp"
+#include "option_checks.hpp"
 #include "progress_bar.hpp"
 #include "site_source.hpp"
 #include "text_table.hpp"
@@ -35,11 +37,12 @@ class VoronoiCommand final : public Command {
     sites_.add_to(command);
     command.add_option("-o,--output", output_path_, "Write the diagram: .glb or .gltf")->required();
     command.add_option("--preview", preview_path_, "Also render a picture of the diagram: .png");
-    command.add_option("--tolerance", options_.boundary_tolerance,
+    command.add_option("--boundary-tolerance,--tolerance", options_.boundary_tolerance,
                        "Largest distance between a traced boundary and the exact one, as a fraction of the "
-                       "bounding-box diagonal")
+                       "bounding-box diagonal (--tolerance: the old name, kept for one release)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(finite_positive());
+    geodesic_.add_to(command);
     command.add_flag("--json", json_, "Print cells, Voronoi vertices and timings as one JSON object");
     command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
@@ -62,6 +65,7 @@ class VoronoiCommand final : public Command {
     const double sample_seconds = seconds_since(sample_start);
     ProgressBar bar(quiet_);
     voronoi::VoronoiOptions options = options_;
+    geodesic_.apply(options.geodesic);
     options.geodesic.progress = [&](double fraction) { return bar.update("geodesics", fraction); };
     const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites, options);
     bar.finish();
@@ -146,6 +150,7 @@ class VoronoiCommand final : public Command {
   std::string output_path_;
   std::string preview_path_;
   voronoi::VoronoiOptions options_;
+  GeodesicFlags geodesic_;
   bool json_ = false;
   bool quiet_ = false;
 };

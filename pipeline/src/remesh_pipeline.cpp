@@ -3,8 +3,11 @@
 #include "geodual/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <utility>
 
 namespace geodual::pipeline {
@@ -43,6 +46,25 @@ std::string_view stage_name(Stage stage) {
   return "?";
 }
 
+DroppedSurface dropped_surface(const TriangleMesh& input, const remesh::ManifoldCut& cut) {
+  DroppedSurface dropped;
+  double total = 0;
+  for (Index f = 0; f < input.num_faces(); ++f) {
+    const Eigen::Vector3d a = input.vertices.row(input.faces(f, 0));
+    const Eigen::Vector3d b = input.vertices.row(input.faces(f, 1));
+    const Eigen::Vector3d c = input.vertices.row(input.faces(f, 2));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    total += area;
+    const auto kept = cut.mesh.faces.row(f);
+    if (kept[0] == kept[1] || kept[1] == kept[2] || kept[2] == kept[0]) {
+      ++dropped.faces;
+      dropped.area += area;
+    }
+  }
+  dropped.area_pct = total > 0 ? 100 * dropped.area / total : 0;
+  return dropped;
+}
+
 RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, const RemeshPipelineOptions& options) {
   std::vector<StageTiming> timings;
   report(options.progress, Stage::load, 0.0);
@@ -63,26 +85,29 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
+  result.dropped = dropped_surface(result.input.mesh, result.surface);
+  if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
+    throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
+                std::to_string(result.dropped.area_pct) + " % of the area (scraps and flaps cut off as "
+                "non-manifold pieces); more than the " + std::to_string(options.max_dropped_area_pct) +
+                " % allowed with strict");
+  }
   result.initial_sites = options.given_sites ? *options.given_sites
                                              : remesh::sample_sites(result.surface.mesh, options.sites, options.sampling);
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
 
-  // Relaxation and dual: the geodesic engine reports the fraction of faces
-  // reached in each diagram; Lloyd's accepted iterations split the relax
-  // stage, and the diagrams after the relaxation are the dual's repair rounds.
-  remesh::RemeshOptions remesh_options = options.remesh;
-  const int diagrams = remesh_options.lloyd.iterations + 1;
+  // Relaxation: the geodesic engine reports the fraction of faces reached in
+  // each diagram; Lloyd's accepted iterations split the stage.
+  const TriangleMesh& surface = result.surface.mesh;
+  remesh::LloydOptions lloyd = remesh::relaxation_options(
+      surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
+  const int diagrams = lloyd.iterations + 1;
   int diagrams_done = 0;  // the first diagram, then one per accepted iteration
-  bool relaxing = true;
-  double relaxed = 0;     // the relax stage's fraction reported last
+  double relaxed = 0;     // the fraction reported last
   if (options.progress) {
-    remesh_options.lloyd.on_iteration = [&](int iterations_done, bool finished) {
-      diagrams_done = iterations_done + 1;
-      relaxing = !finished;
-    };
-    remesh_options.lloyd.voronoi.geodesic.progress = [&](double fraction) {
-      if (!relaxing) return options.progress(Stage::dual, 0.5);
+    lloyd.on_iteration = [&](int iterations_done, bool) { diagrams_done = iterations_done + 1; };
+    lloyd.voronoi.geodesic.progress = [&](double fraction) {
       // Never backwards: a rejected step's diagram holds the fraction where it is.
       relaxed = std::max(relaxed, std::min(1.0, (diagrams_done + std::min(fraction, 1.0)) / diagrams));
       return options.progress(Stage::relax, relaxed);
@@ -90,15 +115,21 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   }
   report(options.progress, Stage::relax, 0.0);
   StageClock relax_clock(result.timings, Stage::relax);
-  result.remesh = remesh::remesh_from_sites(result.surface.mesh, result.initial_sites, remesh_options);
+  result.relaxation = remesh::lloyd_relax(surface, result.initial_sites, lloyd);
   relax_clock.stop();
+  report(options.progress, Stage::relax, 1.0);
+
+  // Dual with repair; each repair round's diagram reports its progress.
+  remesh::RepairOptions repair{.max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi};
+  if (options.progress) {
+    repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
+  }
+  report(options.progress, Stage::dual, 0.0);
+  StageClock dual_clock(result.timings, Stage::dual);
+  // The relaxed diagram moves on to the dual (its first round's diagram).
+  result.remesh = remesh::dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram), repair);
+  dual_clock.stop();
   report(options.progress, Stage::dual, 1.0);
-  // remesh_from_sites runs the relaxation and the dual together; split the
-  // measured time between the two stages by its own accounting.
-  StageTiming& combined = result.timings.back();
-  const double dual_seconds = std::min(combined.seconds, result.remesh.dual_seconds);
-  combined.seconds -= dual_seconds;
-  result.timings.push_back({Stage::dual, dual_seconds, combined.peak_memory_bytes});
 
   if (options.statistics) {
     report(options.progress, Stage::statistics, 0.0);

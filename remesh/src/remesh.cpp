@@ -12,6 +12,48 @@
 
 namespace geodual::remesh {
 
+RepairedDual dual_with_repair(const TriangleMesh& surface, std::vector<SurfacePoint> sites,
+                              voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
+  RepairedDual result;
+  result.sites = std::move(sites);
+  result.diagram = std::move(diagram);
+  for (int round = 0;; ++round) {
+    if (round > 0) {
+      result.diagram = voronoi::compute_voronoi(surface, result.sites, options.voronoi);
+      result.geodesic_seconds += result.diagram.stats.geodesic_seconds;
+      result.diagram_seconds += result.diagram.stats.extraction_seconds;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    DualMesh dual = dual_delaunay(surface, result.diagram);
+    result.dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.repair_rounds = round;
+    if (dual.check.valid) {
+      result.mesh = std::move(dual.mesh);
+      result.check = std::move(dual.check);
+      return result;
+    }
+    std::string problems;
+    for (const std::string& problem : dual.check.problems) problems += (problems.empty() ? "" : "; ") + problem;
+    if (round >= options.max_rounds || dual.check.repair_sites.empty()) {
+      throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
+                  " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +
+                  "; try more sites");
+    }
+    result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
+    result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());
+  }
+}
+
+LloydOptions relaxation_options(const TriangleMesh& surface, std::int64_t site_count, const RemeshOptions& options) {
+  LloydOptions lloyd = options.lloyd;
+  if (options.curvature_adaptation > 0 && lloyd.density.empty() && lloyd.iterations > 0 && site_count > 0) {
+    lloyd.density = curvature_density(surface, {.strength = options.curvature_adaptation,
+                                                .spacing = uniform_spacing(surface, site_count),
+                                                .max_ratio = options.curvature_max_ratio});
+  }
+  return lloyd;
+}
+
 RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoint> sites,
                                const RemeshOptions& options) {
   RemeshResult result;
@@ -38,49 +80,13 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   }
   if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
   trim_heap();  // the cut's scratch (a sorted list of all half-edges)
-  const TriangleMesh& input = changed ? cut.mesh : mesh;
-  LloydOptions lloyd = options.lloyd;
-  if (options.curvature_adaptation > 0 && lloyd.density.empty() && lloyd.iterations > 0 && !sites.empty()) {
-    lloyd.density = curvature_density(input, {.strength = options.curvature_adaptation,
-                                              .spacing = uniform_spacing(input, static_cast<std::int64_t>(sites.size())),
-                                              .max_ratio = options.curvature_max_ratio});
-  }
-  LloydResult relaxed = lloyd_relax(input, std::move(sites), lloyd);
-  result.lloyd_seconds = relaxed.move_seconds;
-  result.geodesic_seconds = relaxed.geodesic_seconds;
-  result.diagram_seconds = relaxed.diagram_seconds;
-  result.sites = std::move(relaxed.sites);
-  result.energy = std::move(relaxed.energy);
-  result.lloyd_iterations = relaxed.iterations;
-  result.lloyd_diagrams = relaxed.diagrams;
-  result.warm_start_iterations = relaxed.warm_start_iterations;
-  result.warm_start_seconds = relaxed.warm_start_seconds;
-  result.diagram = std::move(relaxed.diagram);
-  for (int round = 0;; ++round) {
-    if (round > 0) {
-      result.diagram = voronoi::compute_voronoi(input, result.sites, options.lloyd.voronoi);
-      result.geodesic_seconds += result.diagram.stats.geodesic_seconds;
-      result.diagram_seconds += result.diagram.stats.extraction_seconds;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    DualMesh dual = dual_delaunay(input, result.diagram);
-    result.dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.repair_rounds = round;
-    if (dual.check.valid) {
-      result.mesh = std::move(dual.mesh);
-      result.check = std::move(dual.check);
-      return result;
-    }
-    std::string problems;
-    for (const std::string& problem : dual.check.problems) problems += (problems.empty() ? "" : "; ") + problem;
-    if (round >= options.max_repair_rounds || dual.check.repair_sites.empty()) {
-      throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
-                  " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +
-                  "; try more sites");
-    }
-    result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
-    result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());
-  }
+  const TriangleMesh& surface = changed ? cut.mesh : mesh;
+  const LloydOptions lloyd = relaxation_options(surface, static_cast<std::int64_t>(sites.size()), options);
+  result.relaxation = lloyd_relax(surface, std::move(sites), lloyd);
+  // The relaxed diagram moves on to the dual (its first round's diagram).
+  result.dual = dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram),
+                                 {.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi});
+  return result;
 }
 
 }  // namespace geodual::remesh

@@ -5,12 +5,14 @@
 #include "scratch_folder.hpp"
 
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/io/write_mesh.hpp"
 #include "geodual/mesh_report.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -69,6 +71,64 @@ TEST(RemeshCommand, SameInputSameBytesForEverySampling) {
   }
 }
 
+TEST(RemeshCommand, SameInputSameBytesInEveryFormat) {
+  // Outputs named differently, so that nothing of the path or the run (times,
+  // memory) may leak into the bytes (glTF extras included).
+  ScratchFolder folder;
+  for (const char* extension : {".glb", ".gltf", ".ply", ".obj"}) {
+    const auto a = folder.path() / (std::string("a") + extension), b = folder.path() / (std::string("other-b") + extension);
+    for (const auto& out : {a, b}) {
+      const CliRun run = run_cli({"remesh", genus_four, "--sites", "500", "--lloyd", "1", "--samples", "2000", "-o", out.string()});
+      ASSERT_EQ(run.exit_status, 0) << run.err;
+    }
+    EXPECT_EQ(slurp(a), slurp(b)) << extension;
+  }
+}
+
+TEST(RemeshCommand, LeftOutAreaIsReportedAndStrictRefusesIt) {
+  // A 20 x 20 grid on the unit square, plus a flap of two triangles glued back
+  // to back (a closed two-face piece no remesh can keep) of area 0.02 each.
+  ScratchFolder folder;
+  TriangleMesh mesh;
+  const int n = 20;
+  mesh.vertices.resize((n + 1) * (n + 1) + 3, 3);
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) mesh.vertices.row(j * (n + 1) + i) << double(i) / n, double(j) / n, 0;
+  }
+  const Index p = (n + 1) * (n + 1);
+  mesh.vertices.row(p) << 2, 0, 0;
+  mesh.vertices.row(p + 1) << 2.2, 0, 0;
+  mesh.vertices.row(p + 2) << 2, 0.2, 0;
+  mesh.faces.resize(2 * n * n + 2, 3);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const Index v = j * (n + 1) + i;
+      mesh.faces.row(2 * (j * n + i)) << v, v + 1, v + n + 2;
+      mesh.faces.row(2 * (j * n + i) + 1) << v, v + n + 2, v + n + 1;
+    }
+  }
+  mesh.faces.row(2 * n * n) << p, p + 1, p + 2;
+  mesh.faces.row(2 * n * n + 1) << p, p + 2, p + 1;
+  const auto input = folder.path() / "grid-and-flap.ply";
+  io::write_ply(input, mesh);
+  const double flap_pct = 100 * 0.04 / 1.04;
+
+  const auto out = folder.path() / "out.glb";
+  const CliRun run = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["dropped_faces"].get<int>(), 2);
+  EXPECT_NEAR(json["dropped_area_pct"].get<double>(), flap_pct, 1e-9);
+  EXPECT_NE(run.err.find("warning"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("grid-and-flap.ply"), std::string::npos) << run.err;
+
+  const auto strict_out = folder.path() / "strict.glb";
+  const CliRun strict = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "--strict", "-o", strict_out.string()});
+  EXPECT_NE(strict.exit_status, 0);
+  EXPECT_NE(strict.err.find("strict"), std::string::npos) << strict.err;
+  EXPECT_FALSE(std::filesystem::exists(strict_out));
+}
+
 TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
   ScratchFolder folder;
   auto remesh = [&](std::vector<std::string> extra) {
@@ -84,9 +144,9 @@ TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
   const auto [newton, newton_report] = remesh({});
   const auto [plain, plain_report] = remesh({"--plain-lloyd"});
   EXPECT_EQ(newton["sampling"], "poisson");  // remesh starts from blue noise
-  EXPECT_EQ(newton_report["options"]["lloyd_newton"], true);
+  EXPECT_EQ(newton_report["options"]["newton"], true);
   EXPECT_EQ(newton_report["geodual_version"].get<std::string>().rfind(GEODUAL_PROJECT_VERSION, 0), 0U);
-  EXPECT_EQ(plain_report["options"]["lloyd_newton"], false);
+  EXPECT_EQ(plain_report["options"]["newton"], false);
   EXPECT_EQ(newton["lloyd_iterations"], 4);
   EXPECT_EQ(plain["lloyd_iterations"], 4);
   EXPECT_GE(newton["lloyd_diagrams"].get<int>(), 5);  // the first diagram, then one per iteration at least
@@ -117,6 +177,64 @@ TEST(RemeshCommand, CurvatureAdaptationOnRequest) {
                                    (folder.path() / "bad.ply").string()});
   EXPECT_EQ(negative.exit_status, 2);
   EXPECT_FALSE(std::filesystem::exists(folder.path() / "bad.ply"));
+}
+
+TEST(RemeshCommand, FlagsAreNamedAfterTheOptionFieldsAndTheOldNamesStillWork) {
+  ScratchFolder folder;
+  auto report_of = [&](std::vector<std::string> flags) {
+    const auto out = folder.path() / "out.ply", report = folder.path() / "report.json";
+    std::vector<std::string> arguments = {"remesh", genus_four, "--sites", "300", "-o", out.string(), "--report",
+                                          report.string()};
+    arguments.insert(arguments.end(), flags.begin(), flags.end());
+    const CliRun run = run_cli(arguments);
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    return nlohmann::json::parse(slurp(report))["options"];
+  };
+  const nlohmann::json now = report_of({"--lloyd-iterations", "1", "--lloyd-tolerance", "0.5", "--warm-start-iterations",
+                                        "3", "--no-newton", "--no-statistics", "--no-rwr", "--window-memory", "512"});
+  const nlohmann::json old = report_of({"--lloyd", "1", "--lloyd-tol", "0.5", "--warm-start", "3", "--plain-lloyd",
+                                        "--samples", "-1", "--no-rwr", "--window-memory", "512"});
+  EXPECT_EQ(now, old);
+  EXPECT_EQ(now["lloyd_iterations"], 1);
+  EXPECT_EQ(now["lloyd_tolerance"], 0.5);
+  EXPECT_EQ(now["warm_start_iterations"], 3);
+  EXPECT_EQ(now["newton"], false);
+  EXPECT_EQ(now["statistics"], false);
+  EXPECT_EQ(now["remove_redundant_windows"], false);
+  EXPECT_EQ(now["window_memory"], 512);
+}
+
+TEST(RemeshCommand, OutOfRangeValuesAreShortUsageErrors) {
+  ScratchFolder folder;
+  const std::string out = (folder.path() / "out.ply").string();
+  for (const std::vector<std::string>& flags :
+       std::vector<std::vector<std::string>>{{"--seed", "-1"},
+                                             {"--curvature-adaptation", "nan"},
+                                             {"--curvature-adaptation", "inf"},
+                                             {"--lloyd-tolerance", "-1"},
+                                             {"--lloyd-iterations", "-2"},
+                                             {"--window-memory", "0"},
+                                             {"--sites", "0"},
+                                             {"--sites", "2000000000"}}) {
+    std::vector<std::string> arguments = {"remesh", genus_four, "-o", out};
+    if (flags[0] != "--sites") arguments.insert(arguments.end(), {"--sites", "100"});
+    arguments.insert(arguments.end(), flags.begin(), flags.end());
+    const CliRun run = run_cli(arguments);
+    EXPECT_EQ(run.exit_status, 2) << flags[0] << " " << flags[1] << ": " << run.err;
+    EXPECT_NE(run.err.find(flags[0]), std::string::npos) << run.err;
+    EXPECT_LT(run.err.size(), 300u) << run.err;  // no limit printed as a 309-digit number
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
+TEST(RemeshCommand, AnOutputFolderThatTakesNoFileFailsBeforeTheWork) {
+  // /proc takes no new files, even for root. 20,000 sites with Lloyd would take
+  // minutes; the failure must come at once.
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun run = run_cli({"remesh", genus_four, "--sites", "20000", "-o", "/proc/geodual-out.glb"});
+  EXPECT_EQ(run.exit_status, 1);
+  EXPECT_NE(run.err.find("cannot create a file"), std::string::npos) << run.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
 }
 
 TEST(RemeshCommand, BadRequestsFailCleanly) {
@@ -198,7 +316,7 @@ TEST(RemeshCommand, ReportAndQualityColours) {
   for (const char* key : {"options", "input", "stages", "energy_history", "sites_added", "result"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
-  EXPECT_EQ(json["options"]["lloyd"].get<int>(), 2);
+  EXPECT_EQ(json["options"]["lloyd_iterations"].get<int>(), 2);
   EXPECT_EQ(json["input"]["euler_characteristic"].get<int>(), -6);
   ASSERT_GE(json["stages"].size(), 4u);
   for (const auto& stage : json["stages"]) EXPECT_GT(stage["peak_memory_bytes"].get<std::int64_t>(), 0);

@@ -36,8 +36,8 @@ TEST(RemeshPipeline, RunsEveryStageAndKeepsEveryIntermediate) {
   EXPECT_EQ(result.initial_sites.size(), 400u);
   EXPECT_EQ(result.remesh.mesh.vertices.rows(), 400 + result.remesh.sites_added);
   // The given sites, the warm start's, then each iteration's.
-  EXPECT_GT(result.remesh.warm_start_iterations, 0);
-  EXPECT_EQ(result.remesh.energy.size(), static_cast<std::size_t>(result.remesh.lloyd_iterations) + 2);
+  EXPECT_GT(result.relaxation.warm_start_iterations, 0);
+  EXPECT_EQ(result.relaxation.energy.size(), static_cast<std::size_t>(result.relaxation.iterations) + 2);
   ASSERT_TRUE(result.statistics.has_value());
   EXPECT_EQ(result.statistics->candidate.euler_characteristic, -6);
   EXPECT_GT(result.statistics->hausdorff_pct, 0);
@@ -73,7 +73,7 @@ TEST(RemeshPipeline, RelaxProgressRisesAndEndsWithTheRelaxationEvenWhenStepsAreR
     return true;
   };
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(genus_four, options);
-  ASSERT_GT(result.remesh.lloyd_diagrams, result.remesh.lloyd_iterations + 1);  // the case this test is about
+  ASSERT_GT(result.relaxation.diagrams, result.relaxation.iterations + 1);  // the case this test is about
   const std::vector<pipeline::Stage> expected = {pipeline::Stage::load, pipeline::Stage::sample, pipeline::Stage::relax,
                                                  pipeline::Stage::dual, pipeline::Stage::statistics};
   EXPECT_EQ(seen, expected);

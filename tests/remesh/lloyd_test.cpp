@@ -34,16 +34,16 @@ TEST(Lloyd, EnergyNeverRisesAndQualityImprovesOnAScan) {
   some.lloyd.iterations = 6;
   const remesh::RemeshResult before = remesh::remesh_from_sites(mesh, sites, none);
   const remesh::RemeshResult after = remesh::remesh_from_sites(mesh, sites, some);
-  ASSERT_GE(after.energy.size(), 3u);
-  for (std::size_t i = 1; i < after.energy.size(); ++i) EXPECT_LE(after.energy[i], after.energy[i - 1]);
-  EXPECT_LT(after.energy.back(), 0.8 * after.energy.front());
-  EXPECT_DOUBLE_EQ(after.energy.front(), before.energy.front());
-  const remesh::TriangleQuality q0 = remesh::triangle_quality(before.mesh), q1 = remesh::triangle_quality(after.mesh);
+  ASSERT_GE(after.relaxation.energy.size(), 3u);
+  for (std::size_t i = 1; i < after.relaxation.energy.size(); ++i) EXPECT_LE(after.relaxation.energy[i], after.relaxation.energy[i - 1]);
+  EXPECT_LT(after.relaxation.energy.back(), 0.8 * after.relaxation.energy.front());
+  EXPECT_DOUBLE_EQ(after.relaxation.energy.front(), before.relaxation.energy.front());
+  const remesh::TriangleQuality q0 = remesh::triangle_quality(before.dual.mesh), q1 = remesh::triangle_quality(after.dual.mesh);
   EXPECT_GT(q1.q_avg, q0.q_avg + 0.1);
   EXPECT_GT(q1.theta_min_deg, q0.theta_min_deg);
   EXPECT_LT(q1.pct_angles_lt30, q0.pct_angles_lt30);
   // Still a faithful remesh: bunny's topology.
-  const MeshReport in = analyze_mesh(mesh), out = analyze_mesh(after.mesh);
+  const MeshReport in = analyze_mesh(mesh), out = analyze_mesh(after.dual.mesh);
   EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
   EXPECT_EQ(out.boundary_loops, in.boundary_loops);
   EXPECT_EQ(out.nonmanifold_edges, 0);
@@ -143,12 +143,12 @@ TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   lloyd.lloyd.newton = false;
   const remesh::RemeshResult by_newton = remesh::remesh_from_sites(mesh, sites, newton);
   const remesh::RemeshResult by_lloyd = remesh::remesh_from_sites(mesh, sites, lloyd);
-  EXPECT_EQ(by_newton.lloyd_iterations, 6);
-  for (std::size_t i = 1; i < by_newton.energy.size(); ++i) EXPECT_LT(by_newton.energy[i], by_newton.energy[i - 1]);
+  EXPECT_EQ(by_newton.relaxation.iterations, 6);
+  for (std::size_t i = 1; i < by_newton.relaxation.energy.size(); ++i) EXPECT_LT(by_newton.relaxation.energy[i], by_newton.relaxation.energy[i - 1]);
   // Lloyd's energy above the CVT's decays slowly; Newton's steps go further
   // down in as many iterations.
-  EXPECT_LT(by_newton.energy.back(), by_lloyd.energy.back());
-  EXPECT_GT(remesh::triangle_quality(by_newton.mesh).q_avg, remesh::triangle_quality(by_lloyd.mesh).q_avg);
+  EXPECT_LT(by_newton.relaxation.energy.back(), by_lloyd.relaxation.energy.back());
+  EXPECT_GT(remesh::triangle_quality(by_newton.dual.mesh).q_avg, remesh::triangle_quality(by_lloyd.dual.mesh).q_avg);
 }
 
 TEST(Lloyd, OptionsOutOfRangeAreRefusedByName) {
@@ -270,13 +270,13 @@ TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
   warm.lloyd.warm_start_iterations = 15;
   const remesh::RemeshResult from_cold = remesh::remesh_from_sites(mesh, sites, cold);
   const remesh::RemeshResult from_warm = remesh::remesh_from_sites(mesh, sites, warm);
-  EXPECT_EQ(from_warm.warm_start_iterations, 15);
-  ASSERT_EQ(from_warm.energy.size(), 5u);  // the given sites, the warm start, three iterations
-  EXPECT_EQ(from_warm.energy[0], from_cold.energy[0]);
-  for (std::size_t i = 1; i < from_warm.energy.size(); ++i) EXPECT_LT(from_warm.energy[i], from_warm.energy[i - 1]);
-  EXPECT_LT(from_warm.energy[1], from_cold.energy.back());  // the warm start alone beats three geodesic iterations
-  EXPECT_LT(from_warm.energy.back(), from_cold.energy.back());
-  EXPECT_GT(remesh::triangle_quality(from_warm.mesh).q_avg, remesh::triangle_quality(from_cold.mesh).q_avg + 0.01);
+  EXPECT_EQ(from_warm.relaxation.warm_start_iterations, 15);
+  ASSERT_EQ(from_warm.relaxation.energy.size(), 5u);  // the given sites, the warm start, three iterations
+  EXPECT_EQ(from_warm.relaxation.energy[0], from_cold.relaxation.energy[0]);
+  for (std::size_t i = 1; i < from_warm.relaxation.energy.size(); ++i) EXPECT_LT(from_warm.relaxation.energy[i], from_warm.relaxation.energy[i - 1]);
+  EXPECT_LT(from_warm.relaxation.energy[1], from_cold.relaxation.energy.back());  // the warm start alone beats three geodesic iterations
+  EXPECT_LT(from_warm.relaxation.energy.back(), from_cold.relaxation.energy.back());
+  EXPECT_GT(remesh::triangle_quality(from_warm.dual.mesh).q_avg, remesh::triangle_quality(from_cold.dual.mesh).q_avg + 0.01);
 }
 
 }  // namespace

@@ -40,22 +40,22 @@ void expect_faithful_remesh(const TriangleMesh& input, std::int64_t count, const
   options.lloyd.iterations = 0;  // the dual of the sampled sites themselves
   const remesh::RemeshResult result = remesh::remesh_from_sites(input, sites, options);
   const MeshReport in = analyze_mesh(input);
-  const MeshReport out = analyze_mesh(result.mesh);
+  const MeshReport out = analyze_mesh(result.dual.mesh);
 
   // Every site is a vertex, the given ones first.
-  ASSERT_EQ(result.mesh.vertices.rows(), static_cast<Index>(result.sites.size()));
-  EXPECT_EQ(static_cast<std::int64_t>(result.sites.size()), count + result.sites_added);
+  ASSERT_EQ(result.dual.mesh.vertices.rows(), static_cast<Index>(result.dual.sites.size()));
+  EXPECT_EQ(static_cast<std::int64_t>(result.dual.sites.size()), count + result.dual.sites_added);
   for (std::int64_t i = 0; i < count; ++i) {
-    EXPECT_EQ(result.mesh.vertices.row(static_cast<Index>(i)).transpose(), sites[i].position(input));
+    EXPECT_EQ(result.dual.mesh.vertices.row(static_cast<Index>(i)).transpose(), sites[i].position(input));
   }
   EXPECT_EQ(out.unreferenced_vertices, 0);
   // A clean 2-manifold, oriented, with the input's topology.
   expect_oriented_manifold_like(out, in);
   EXPECT_EQ(out.duplicate_faces, 0);
   EXPECT_EQ(out.degenerate_faces, 0);
-  EXPECT_TRUE(result.check.valid);
+  EXPECT_TRUE(result.dual.check.valid);
   // Repair stays local.
-  EXPECT_LE(result.sites_added, count / 10 + 10);
+  EXPECT_LE(result.dual.sites_added, count / 10 + 10);
 }
 
 TriangleMesh scan(const std::string& name) { return io::read_mesh("tests/data/" + name).mesh; }
@@ -93,11 +93,11 @@ TEST(Remesh, ASlitKeepsItsEnd) {
   for (const std::int64_t count : {100, 300}) {
     SCOPED_TRACE(count);
     const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, remesh::sample_sites(mesh, count));
-    expect_oriented_manifold_like(analyze_mesh(result.mesh), analyze_mesh(mesh));
-    EXPECT_GT(remesh::triangle_quality(result.mesh).q_min, 0.3);
+    expect_oriented_manifold_like(analyze_mesh(result.dual.mesh), analyze_mesh(mesh));
+    EXPECT_GT(remesh::triangle_quality(result.dual.mesh).q_min, 0.3);
     bool end_kept = false;
-    for (Index v = 0; v < result.mesh.num_vertices(); ++v) {
-      end_kept = end_kept || (result.mesh.vertices.row(v) - Eigen::RowVector3d(0.5, 0.5, 0)).norm() < 1e-6;
+    for (Index v = 0; v < result.dual.mesh.num_vertices(); ++v) {
+      end_kept = end_kept || (result.dual.mesh.vertices.row(v) - Eigen::RowVector3d(0.5, 0.5, 0)).norm() < 1e-6;
     }
     EXPECT_TRUE(end_kept);
   }
@@ -114,7 +114,7 @@ TEST(Remesh, OgresSlitsGetNoZeroAreaTriangle) {
   remesh::RemeshOptions options;
   options.lloyd.iterations = 0;
   const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, remesh::sample_sites(mesh, 2000), options);
-  EXPECT_GT(remesh::triangle_quality(result.mesh).q_min, 1e-3);
+  EXPECT_GT(remesh::triangle_quality(result.dual.mesh).q_min, 1e-3);
 }
 
 TEST(Remesh, SameSitesGiveTheSameMesh) {
@@ -124,8 +124,8 @@ TEST(Remesh, SameSitesGiveTheSameMesh) {
   options.lloyd.iterations = 3;
   const remesh::RemeshResult a = remesh::remesh_from_sites(mesh, sites, options);
   const remesh::RemeshResult b = remesh::remesh_from_sites(mesh, sites, options);
-  EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
-  EXPECT_EQ(a.mesh.faces, b.mesh.faces);
+  EXPECT_EQ(a.dual.mesh.vertices, b.dual.mesh.vertices);
+  EXPECT_EQ(a.dual.mesh.faces, b.dual.mesh.faces);
 }
 
 TEST(DualDelaunay, CoCircularSitesGiveTwoTrianglesWithoutOverlap) {
@@ -191,9 +191,9 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
   remesh::RemeshOptions repair;
   repair.lloyd.iterations = 0;
   const remesh::RemeshResult repaired = remesh::remesh_from_sites(torus, sites, repair);
-  EXPECT_GT(repaired.sites_added, 0);
-  EXPECT_EQ(analyze_mesh(repaired.mesh).euler_characteristic, 0);
-  EXPECT_EQ(analyze_mesh(repaired.mesh).nonmanifold_edges, 0);
+  EXPECT_GT(repaired.dual.sites_added, 0);
+  EXPECT_EQ(analyze_mesh(repaired.dual.mesh).euler_characteristic, 0);
+  EXPECT_EQ(analyze_mesh(repaired.dual.mesh).nonmanifold_edges, 0);
 }
 
 }  // namespace
@@ -252,7 +252,7 @@ TEST(ManifoldCut, PinchVerticesAreCutApartAndRemeshed) {
   const remesh::RemeshResult result =
       remesh::remesh_from_sites(mesh, remesh::sample_sites(cut.mesh, 200), options);
   EXPECT_EQ(result.vertices_split, 1);
-  const MeshReport out = analyze_mesh(result.mesh);
+  const MeshReport out = analyze_mesh(result.dual.mesh);
   EXPECT_EQ(out.components, 2);
   EXPECT_EQ(out.euler_characteristic, 2);
   EXPECT_EQ(out.boundary_loops, 2);
@@ -283,7 +283,7 @@ void expect_remesh_with_the_topology_of(const TriangleMesh& cut, const MeshRepor
   remesh::RemeshOptions options;
   options.lloyd.iterations = 0;
   const remesh::RemeshResult result = remesh::remesh_from_sites(cut, remesh::sample_sites(cut, 2000), options);
-  expect_oriented_manifold_like(analyze_mesh(result.mesh), surface);
+  expect_oriented_manifold_like(analyze_mesh(result.dual.mesh), surface);
 }
 
 TEST(ManifoldCut, ScansWithNonManifoldEdgesAreRemeshed) {
@@ -312,8 +312,8 @@ TEST(ManifoldCut, BunnyRes2RemeshesWithTheDefaultRelaxation) {
     const std::vector<SurfacePoint> sites =
         remesh::sample_sites(cut, count, {.strategy = remesh::SamplingStrategy::poisson});
     const remesh::RemeshResult result = remesh::remesh_from_sites(cut, sites);
-    EXPECT_TRUE(result.check.valid);
-    expect_oriented_manifold_like(analyze_mesh(result.mesh), surface);
+    EXPECT_TRUE(result.dual.check.valid);
+    expect_oriented_manifold_like(analyze_mesh(result.dual.mesh), surface);
   }
 }
 

@@ -156,26 +156,26 @@ TEST(WeightedLloyd, CurvatureAdaptedRemeshKeepsCountTopologyAndShrinksEdgesWhere
   options.lloyd.iterations = 8;
   options.curvature_adaptation = 1;
   const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, sites, options);
-  EXPECT_EQ(result.mesh.num_vertices(), count + result.sites_added);
-  for (std::size_t i = 1; i < result.energy.size(); ++i) EXPECT_LE(result.energy[i], result.energy[i - 1]);
-  const MeshReport in = analyze_mesh(mesh), out = analyze_mesh(result.mesh);
+  EXPECT_EQ(result.dual.mesh.num_vertices(), count + result.dual.sites_added);
+  for (std::size_t i = 1; i < result.relaxation.energy.size(); ++i) EXPECT_LE(result.relaxation.energy[i], result.relaxation.energy[i - 1]);
+  const MeshReport in = analyze_mesh(mesh), out = analyze_mesh(result.dual.mesh);
   EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
   EXPECT_EQ(out.boundary_loops, in.boundary_loops);
 
   // Mean edge length around the remesh's vertices where the density is in
   // its top and bottom quarters (rho at the site's face, mean of its corners).
   const std::vector<double> rho = remesh::curvature_density(mesh, {.spacing = remesh::uniform_spacing(mesh, count)});
-  std::vector<double> at(result.sites.size()), length(result.sites.size(), 0), edges(result.sites.size(), 0);
-  for (std::size_t i = 0; i < result.sites.size(); ++i) {
-    const SurfacePoint& s = result.sites[i];
+  std::vector<double> at(result.dual.sites.size()), length(result.dual.sites.size(), 0), edges(result.dual.sites.size(), 0);
+  for (std::size_t i = 0; i < result.dual.sites.size(); ++i) {
+    const SurfacePoint& s = result.dual.sites[i];
     at[i] = s.kind == SurfacePoint::Kind::vertex
                 ? rho[s.element]
                 : (rho[mesh.faces(s.element, 0)] + rho[mesh.faces(s.element, 1)] + rho[mesh.faces(s.element, 2)]) / 3;
   }
-  for (Index f = 0; f < result.mesh.num_faces(); ++f) {
+  for (Index f = 0; f < result.dual.mesh.num_faces(); ++f) {
     for (int c = 0; c < 3; ++c) {
-      const Index a = result.mesh.faces(f, c), b = result.mesh.faces(f, (c + 1) % 3);
-      const double l = (result.mesh.vertices.row(a) - result.mesh.vertices.row(b)).norm();
+      const Index a = result.dual.mesh.faces(f, c), b = result.dual.mesh.faces(f, (c + 1) % 3);
+      const double l = (result.dual.mesh.vertices.row(a) - result.dual.mesh.vertices.row(b)).norm();
       length[a] += l, edges[a] += 1, length[b] += l, edges[b] += 1;
     }
   }

@@ -119,13 +119,13 @@ void run_checks() {
   const geodual::TriangleMesh ball = sphere(16, 32);
   const auto sites = geodual::remesh::sample_sites(ball, 60);
   const auto remeshed = geodual::remesh::remesh_from_sites(ball, sites);
-  const auto remeshed_quality = geodual::remesh::triangle_quality(remeshed.mesh);
-  check(remeshed.mesh.num_vertices() == static_cast<geodual::Index>(remeshed.sites.size()) &&
+  const auto remeshed_quality = geodual::remesh::triangle_quality(remeshed.dual.mesh);
+  check(remeshed.dual.mesh.num_vertices() == static_cast<geodual::Index>(remeshed.dual.sites.size()) &&
             remeshed_quality.euler_characteristic == 2 && remeshed_quality.boundary_loops == 0 &&
             remeshed_quality.nonmanifold_edges == 0 && remeshed_quality.components == 1,
         "remesh: remesh_from_sites of a sphere is a closed genus-0 surface (" +
-            std::to_string(remeshed.mesh.num_vertices()) + " vertices, " +
-            std::to_string(remeshed.mesh.num_faces()) + " faces)");
+            std::to_string(remeshed.dual.mesh.num_vertices()) + " vertices, " +
+            std::to_string(remeshed.dual.mesh.num_faces()) + " faces)");
 }
 
 }  // namespace

@@ -16,8 +16,8 @@ std::string lowercase_extension(const std::filesystem::path& path);
 
 /// Checks an output before any work is done: throws geodual::Error, naming
 /// the path, unless it ends in one of `extensions` (lower case, with the dot)
-/// and names a file in an existing folder. `what` says what it is for, e.g.
-/// "a remesh".
+/// and names a file in an existing folder where a file can be created now.
+/// `what` says what it is for, e.g. "a remesh".
 void require_output_path(const std::filesystem::path& path, std::initializer_list<std::string_view> extensions,
                          std::string_view what);
 

@@ -8,11 +8,13 @@
 //   auto result = geodual::pipeline::run_remesh_pipeline("scan.ply", options);
 //   geodual::io::write_mesh("remeshed.ply", result.remesh.mesh);
 //
-// Stage by stage (each takes plain data and returns plain data):
+// Stage by stage (each takes plain data and returns plain data; these are
+// the calls the pipeline makes):
 //   auto loaded = geodual::io::read_mesh("scan.ply");
 //   auto surface = geodual::remesh::cut_to_manifold(loaded.mesh).mesh;
 //   auto sites = geodual::remesh::sample_sites(surface, 2000);
-//   auto remeshed = geodual::remesh::remesh_from_sites(surface, sites);
+//   auto relaxed = geodual::remesh::lloyd_relax(surface, sites);
+//   auto remeshed = geodual::remesh::dual_with_repair(surface, relaxed.sites, std::move(relaxed.diagram));
 //   auto report = geodual::remesh::compare_meshes(loaded.mesh, remeshed.mesh);
 
 #include "geodual/io/read_mesh.hpp"
@@ -49,6 +51,10 @@ struct RemeshPipelineOptions {
   /// converges from evenly spread sites in fewer steps than from random ones.
   remesh::SamplingOptions sampling{.strategy = remesh::SamplingStrategy::poisson};
   remesh::RemeshOptions remesh;         ///< 10 Lloyd iterations, up to 10 repair rounds
+  /// Fail (geodual::Error, before the relaxation) when more than
+  /// `max_dropped_area_pct` of the input's area is left out; false: report it only.
+  bool strict = false;
+  double max_dropped_area_pct = 0.1;
   bool statistics = true;               ///< compare the remesh with the input (quality, Hausdorff)
   remesh::QualityOptions quality;       ///< 10^6 samples per side
   ProgressCallback progress;
@@ -60,13 +66,26 @@ struct StageTiming {
   std::int64_t peak_memory_bytes = 0;  ///< the process's peak resident memory at the stage's end
 };
 
+/// The input's faces the remesh leaves out: scraps and flaps the cut to a
+/// manifold disabled (manifold_cut.hpp), and faces with a repeated corner.
+struct DroppedSurface {
+  std::int64_t faces = 0;
+  double area = 0;
+  double area_pct = 0;  ///< of the input's total area
+};
+
+/// The faces of `input` that `cut` (its cut to a manifold) leaves out.
+DroppedSurface dropped_surface(const TriangleMesh& input, const remesh::ManifoldCut& cut);
+
 struct RemeshPipelineResult {
   io::LoadedMesh input;
   MeshReport input_report;
   /// The surface remeshed: the input cut apart at non-manifold vertices.
   remesh::ManifoldCut surface;
+  DroppedSurface dropped;  ///< what the cut left out
   std::vector<SurfacePoint> initial_sites;
-  remesh::RemeshResult remesh;  ///< the remeshed mesh, final sites, diagram, energy history
+  remesh::LloydResult relaxation;  ///< the relax stage: relaxed sites, energy history (its diagram moved on to `remesh`)
+  remesh::RepairedDual remesh;     ///< the dual stage: the remeshed mesh, final sites and diagram
   std::optional<remesh::QualityReport> statistics;
   std::vector<StageTiming> timings;
 };
