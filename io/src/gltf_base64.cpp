@@ -24,31 +24,6 @@ constexpr std::array<std::uint8_t, 256> digit_value = make_digit_table();
 
 }  // namespace
 
-std::string encode_base64(std::span<const std::byte> data) {
-  std::string out;
-  out.reserve((data.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 3 <= data.size(); i += 3) {
-    const auto group = (std::to_integer<std::uint32_t>(data[i]) << 16) |
-                       (std::to_integer<std::uint32_t>(data[i + 1]) << 8) |
-                       std::to_integer<std::uint32_t>(data[i + 2]);
-    out += alphabet[(group >> 18) & 63];
-    out += alphabet[(group >> 12) & 63];
-    out += alphabet[(group >> 6) & 63];
-    out += alphabet[group & 63];
-  }
-  const std::size_t rest = data.size() - i;
-  if (rest > 0) {
-    std::uint32_t group = std::to_integer<std::uint32_t>(data[i]) << 16;
-    if (rest == 2) group |= std::to_integer<std::uint32_t>(data[i + 1]) << 8;
-    out += alphabet[(group >> 18) & 63];
-    out += alphabet[(group >> 12) & 63];
-    out += rest == 2 ? alphabet[(group >> 6) & 63] : '=';
-    out += '=';
-  }
-  return out;
-}
-
 std::optional<std::vector<std::byte>> decode_base64(std::string_view text) {
   // Up to two '=' at the end, and only where they complete a group of four.
   std::size_t padding = 0;

@@ -2,6 +2,7 @@
 
 #include "gltf_base64.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <system_error>
 #include <utility>
@@ -119,7 +120,17 @@ fs::path resolve_relative_uri(std::string_view uri, const fs::path& file, std::s
     fail(where, "external buffer '" + shortened(uri) +
                     "' cannot be resolved: the glTF data was read from memory without a file name");
   }
-  return file.parent_path() / relative;
+  // Symbolic links can still lead out: compare the resolved paths.
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(file.parent_path().empty() ? fs::path(".") : file.parent_path(), ec);
+  const fs::path target = ec ? fs::path() : fs::weakly_canonical(folder / relative, ec);
+  if (ec) fail(where, "cannot resolve URI '" + shortened(uri) + "': " + ec.message());
+  const auto [folder_end, target_end] = std::mismatch(folder.begin(), folder.end(), target.begin(), target.end());
+  if (folder_end != folder.end()) {
+    fail(where, "URI '" + shortened(uri) + "' resolves through a symbolic link to '" + target.string() +
+                    "', outside the glTF file's folder; refusing to read it");
+  }
+  return target;
 }
 
 BufferStore::BufferStore(const Json& root, std::optional<std::span<const std::byte>> glb_bin,

@@ -7,8 +7,9 @@
 //  - a base64 data URI ("data:<media type>;base64,<data>");
 //  - an external file named by a relative URI, resolved against the folder of
 //    the .gltf/.glb file. Absolute paths, URIs with a scheme (file:, http:),
-//    and paths that leave that folder through ".." are refused, so a file can
-//    only make geodual read files inside its own folder (or below it). Data
+//    and paths that leave that folder through ".." or, once resolved, through
+//    a symbolic link are refused, so a file can only make geodual read files
+//    inside its own folder (or below it). Data
 //    read from memory without a file name may not have external buffers.
 // Each buffer must hold at least its declared byteLength bytes; exactly
 // byteLength bytes are kept.
@@ -50,8 +51,8 @@ class BufferStore {
 };
 
 /// The file an external buffer URI names: percent-decoded and resolved against
-/// the folder of `file`; throws when the URI is absolute, has a scheme or
-/// leaves that folder.
+/// the folder of `file`, symbolic links resolved; throws when the URI is
+/// absolute, has a scheme or leads out of that folder.
 std::filesystem::path resolve_relative_uri(std::string_view uri, const std::filesystem::path& file,
                                            std::string_view where);
 

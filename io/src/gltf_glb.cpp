@@ -6,24 +6,18 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
-#include <limits>
 #include <string>
 
 namespace geodual::io::detail {
 namespace {
 
 static_assert(std::endian::native == std::endian::little,
-              "GLB is little-endian; this code reads and writes it in native order");
+              "GLB is little-endian; this code reads it in native order");
 
 std::uint32_t load_u32(std::span<const std::byte> data, std::size_t offset) {
   std::uint32_t value = 0;
   std::memcpy(&value, data.data() + offset, sizeof value);
   return value;
-}
-
-void store_u32(std::vector<std::byte>& out, std::uint32_t value) {
-  const auto* bytes = reinterpret_cast<const std::byte*>(&value);
-  out.insert(out.end(), bytes, bytes + sizeof value);
 }
 
 std::string chunk_type_name(std::uint32_t type) {
@@ -102,39 +96,6 @@ GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where) {
   }
   if (!have_json) fail(where, "GLB has no JSON chunk");
   return chunks;
-}
-
-std::vector<std::byte> assemble_glb(std::string_view json, std::span<const std::byte> bin) {
-  using namespace gltf;
-  const auto padded = [](std::size_t n) { return (n + 3) / 4 * 4; };
-  const std::size_t json_padded = padded(json.size());
-  const std::size_t bin_padded = padded(bin.size());
-  const std::size_t total = glb_header_size + glb_chunk_header_size + json_padded +
-                            (bin.empty() ? 0 : glb_chunk_header_size + bin_padded);
-  if (total > std::numeric_limits<std::uint32_t>::max()) {
-    throw Error("glTF output: " + std::to_string(total) +
-                " bytes do not fit a GLB file (at most 4 GiB); write fewer or smaller meshes");
-  }
-
-  std::vector<std::byte> out;
-  out.reserve(total);
-  store_u32(out, glb_magic);
-  store_u32(out, glb_version);
-  store_u32(out, static_cast<std::uint32_t>(total));
-
-  store_u32(out, static_cast<std::uint32_t>(json_padded));
-  store_u32(out, glb_chunk_json);
-  const auto* json_bytes = reinterpret_cast<const std::byte*>(json.data());
-  out.insert(out.end(), json_bytes, json_bytes + json.size());
-  out.resize(out.size() + json_padded - json.size(), std::byte{' '});
-
-  if (!bin.empty()) {
-    store_u32(out, static_cast<std::uint32_t>(bin_padded));
-    store_u32(out, glb_chunk_bin);
-    out.insert(out.end(), bin.begin(), bin.end());
-    out.resize(out.size() + bin_padded - bin.size(), std::byte{0});
-  }
-  return out;
 }
 
 }  // namespace geodual::io::detail

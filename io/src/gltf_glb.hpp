@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the GLB container (glTF 2.0 binary): a 12-byte header, a JSON
+// Internal: reading the GLB container (glTF 2.0 binary): a 12-byte header, a JSON
 // chunk, an optional BIN chunk, and possibly chunks of unknown types, which
 // readers must skip.
 
@@ -7,7 +7,6 @@
 #include <optional>
 #include <span>
 #include <string_view>
-#include <vector>
 
 namespace geodual::io::detail {
 
@@ -19,10 +18,5 @@ struct GlbChunks {
 /// Splits a GLB file into its chunks; the spans point into `data`. Any
 /// structural problem throws geodual::Error("<where>: ...").
 GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where);
-
-/// A GLB file: the JSON chunk padded with spaces, then (if `bin` is not empty)
-/// the BIN chunk padded with zeros, both to 4 bytes. Throws geodual::Error if
-/// the result would not fit the container's 32-bit length field.
-std::vector<std::byte> assemble_glb(std::string_view json, std::span<const std::byte> bin);
 
 }  // namespace geodual::io::detail

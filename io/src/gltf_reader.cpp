@@ -4,11 +4,14 @@
 // every triangle primitive of every mesh the chosen scene shows, with its
 // node's world transform applied; a mesh shown by two nodes appears twice.
 //
-// The JSON is parsed here with nlohmann::json rather than by tinygltf: the
-// Debian tinygltf 2.7 lets a GLB BIN chunk run 8 bytes past the end of its
-// input, looks up external files in the current directory when they are not
-// next to the glTF, and reads external images; this reader loads nothing but
-// the buffers that the triangle primitives use (see gltf_buffers.hpp).
+// The JSON is parsed here with nlohmann::json rather than by tinygltf, which
+// writes geodual's glTF: Debian's tinygltf 2.7 lets a GLB BIN chunk run 8 bytes
+// past the end of its input and overflows the stack on deeply nested extras
+// (both shown by tests/io/gltf_tinygltf_defects_test.cpp); it also looks for
+// external files in the current directory, requires an external buffer to be
+// exactly byteLength long, decodes every image, and names no element in its
+// errors. This reader loads nothing but the buffers that the triangle
+// primitives use (see gltf_buffers.hpp).
 
 #include "format_readers.hpp"
 

@@ -1,29 +1,53 @@
-// glTF 2.0 writing: the public entry points of geodual/io/gltf.hpp. The
-// format work is in gltf_encoder.cpp; this file picks the container and
-// writes atomically.
+// glTF 2.0 writing: the public entry points of geodual/io/gltf.hpp. The scene
+// becomes a tinygltf::Model (gltf_model_builder.hpp), which tinygltf writes;
+// this file picks the container and writes atomically.
 
 #include "geodual/io/gltf.hpp"
 
 #include "geodual/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/mesh_format.hpp"
-#include "gltf_encoder.hpp"
+#include "gltf_asset_extras.hpp"
+#include "gltf_model_builder.hpp"
 
+#include <cstdint>
+#include <limits>
 #include <ostream>
+#include <sstream>
 
 namespace geodual::io {
 namespace {
 
 constexpr std::string_view unnamed_output = "glTF output";
 
-std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer container, std::string where) {
-  detail::gltf::Encoder encoder(std::move(where));
-  for (const GltfTriangleMesh& entry : scene.triangle_meshes) {
-    encoder.add_triangles(entry.name, entry.mesh, entry.colors, entry.scalars);
+std::vector<std::byte> write_model(tinygltf::Model model, const detail::gltf::AssetExtras& extras,
+                                   GltfContainer container, const std::string& where) {
+  model.asset.extras = extras.placeholder();
+  const bool glb = container == GltfContainer::glb;
+  std::ostringstream stream;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/false, /*writeBinary=*/glb) || !stream) {
+    throw Error(where + ": tinygltf could not write the glTF file");
   }
-  for (const GltfLineSet& entry : scene.line_sets) encoder.add_lines(entry);
-  for (const GltfPointSet& entry : scene.point_sets) encoder.add_points(entry);
-  return encoder.finish(container, scene.extras_json);
+  std::string file = std::move(stream).str();
+  if (glb && file.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error(where + ": " + std::to_string(file.size()) +
+                " bytes do not fit a GLB file (at most 4 GiB); write fewer or smaller meshes");
+  }
+  extras.fill_in(file);
+  const auto* begin = reinterpret_cast<const std::byte*>(file.data());
+  return {begin, begin + file.size()};
+}
+
+std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer container, const std::string& where) {
+  detail::gltf::ModelBuilder builder(where);
+  for (const GltfTriangleMesh& entry : scene.triangle_meshes) {
+    builder.add_triangles(entry.name, entry.mesh, entry.colors, entry.scalars);
+  }
+  for (const GltfLineSet& entry : scene.line_sets) builder.add_lines(entry);
+  for (const GltfPointSet& entry : scene.point_sets) builder.add_points(entry);
+  tinygltf::Model model = builder.finish();
+  return write_model(std::move(model), detail::gltf::AssetExtras(scene.extras_json, where), container, where);
 }
 
 GltfContainer container_for(const std::filesystem::path& path) {
@@ -53,9 +77,10 @@ void write_gltf(const std::filesystem::path& path, const GltfScene& scene) {
 
 void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh) {
   const GltfContainer container = container_for(path);
-  detail::gltf::Encoder encoder(path.string());
-  encoder.add_triangles({}, mesh, ColorMatrix{}, {});  // no copy of the mesh
-  write_bytes(path, encoder.finish(container, {}));
+  detail::gltf::ModelBuilder builder(path.string());
+  builder.add_triangles({}, mesh, ColorMatrix{}, {});  // no copy of the mesh
+  write_bytes(path, write_model(builder.finish(), detail::gltf::AssetExtras({}, path.string()), container,
+                                path.string()));
 }
 
 }  // namespace geodual::io

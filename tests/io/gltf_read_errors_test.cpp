@@ -5,8 +5,6 @@
 #include "geodual/io/gltf.hpp"
 #include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
-#include "../../io/src/gltf_base64.hpp"
-#include "../../io/src/gltf_glb.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,6 +23,8 @@ namespace fs = std::filesystem;
 
 using gltf_test::as_span;
 using gltf_test::bytes_of;
+using gltf_test::data_uri;
+using gltf_test::glb_of;
 
 // Reads `data` and expects a geodual::Error whose message starts with `name`
 // and contains every string in `fragments`.
@@ -55,10 +55,6 @@ std::vector<std::byte> square_buffer() {
   std::vector<std::byte> out = square_positions;
   out.insert(out.end(), square_indices.begin(), square_indices.end());
   return out;
-}
-
-std::string data_uri(const std::vector<std::byte>& bytes) {
-  return "data:application/octet-stream;base64," + detail::encode_base64(bytes);
 }
 
 // The square of gltf_read_test.cpp with parts replaceable: the accessors, the
@@ -156,12 +152,12 @@ TEST(GltfReadErrors, GlbLengthFieldDisagreesWithTheData) {
 
 TEST(GltfReadErrors, GlbWithoutBinChunkButBufferWithoutUri) {
   const std::string json = square_json({{&SquareFile::buffer, R"({"byteLength":60})"}});
-  expect_read_error(detail::assemble_glb(json, {}), true, "nobin.glb", {"buffer 0", "no GLB BIN chunk"});
+  expect_read_error(glb_of(json, {}), true, "nobin.glb", {"buffer 0", "no GLB BIN chunk"});
 }
 
 TEST(GltfReadErrors, GlbBufferLongerThanBinChunk) {
   const std::string json = square_json({{&SquareFile::buffer, R"({"byteLength":64})"}});
-  expect_read_error(detail::assemble_glb(json, square_buffer()), true, "short.glb", {"buffer 0", "exceeds the GLB BIN chunk"});
+  expect_read_error(glb_of(json, square_buffer()), true, "short.glb", {"buffer 0", "exceeds the GLB BIN chunk"});
 }
 
 TEST(GltfReadErrors, IndexOutOfRange) {
@@ -318,6 +314,17 @@ TEST_F(GltfReadErrorFiles, ExternalUrisMayNotLeaveTheFolder) {
   expect_json_error(with_uri("https://example.com/secret.bin"), {"not a relative file reference"}, gltf);
   expect_json_error(with_uri("secret.bin%00.png"), {"does not name a file"}, gltf);
   expect_json_error(with_uri("bad%zzescape.bin"), {"invalid %-escape"}, gltf);
+}
+
+TEST_F(GltfReadErrorFiles, ExternalUrisMayNotLeaveTheFolderThroughASymlink) {
+  // Issue 19, finding 8: a same-folder name that links to a file outside.
+  fs::create_symlink(dir_ / "secret.bin", dir_ / "inner" / "link.bin");
+  expect_json_error(with_uri("link.bin"), {"buffer 0", "symbolic link", "outside the glTF file's folder"},
+                    dir_ / "inner" / "mesh.gltf");
+  // A link that stays inside the folder is read.
+  fs::copy_file(dir_ / "secret.bin", dir_ / "inner" / "real.bin");
+  fs::create_symlink("real.bin", dir_ / "inner" / "alias.bin");
+  EXPECT_EQ(detail::read_gltf(as_span(with_uri("alias.bin")), false, dir_ / "inner" / "mesh.gltf").mesh.num_faces(), 2);
 }
 
 TEST_F(GltfReadErrorFiles, ExternalBufferIsNotARegularFile) {

@@ -3,8 +3,6 @@
 
 #include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
-#include "../../io/src/gltf_base64.hpp"
-#include "../../io/src/gltf_glb.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,15 +23,13 @@ namespace fs = std::filesystem;
 
 using gltf_test::as_span;
 using gltf_test::bytes_of;
+using gltf_test::data_uri;
+using gltf_test::glb_of;
 
 std::vector<std::byte> concat(std::initializer_list<std::vector<std::byte>> parts) {
   std::vector<std::byte> out;
   for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
   return out;
-}
-
-std::string data_uri(const std::vector<std::byte>& bytes) {
-  return "data:application/octet-stream;base64," + detail::encode_base64(bytes);
 }
 
 LoadedMesh read_json(const std::string& json, const fs::path& name = "hand.gltf") {
@@ -113,14 +109,14 @@ TEST(GltfRead, DataUriBuffer) {
 
 TEST(GltfRead, DataUriWithGltfBufferMediaTypeAndNoPadding) {
   std::string uri = "data:application/gltf-buffer;base64," +
-                    detail::encode_base64(concat({square_positions, square_indices_u16}));
+                    gltf_test::base64(concat({square_positions, square_indices_u16}));
   while (uri.back() == '=') uri.pop_back();
   expect_square(read_json(square_gltf(R"(,"uri":")" + uri + "\"")).mesh);
 }
 
 TEST(GltfRead, GlbWithBinChunk) {
   const std::vector<std::byte> bin = concat({square_positions, square_indices_u16});
-  const std::vector<std::byte> glb = detail::assemble_glb(square_gltf(""), bin);
+  const std::vector<std::byte> glb = glb_of(square_gltf(""), bin);
   const LoadedMesh loaded = detail::read_gltf(glb, true, "square.glb");
   expect_square(loaded.mesh);
   EXPECT_EQ(loaded.info.format, MeshFormat::glb);
@@ -129,7 +125,7 @@ TEST(GltfRead, GlbWithBinChunk) {
 
 TEST(GltfRead, ContentDecidesBetweenGlbAndJson) {
   const std::vector<std::byte> glb =
-      detail::assemble_glb(square_gltf(""), concat({square_positions, square_indices_u16}));
+      glb_of(square_gltf(""), concat({square_positions, square_indices_u16}));
   const LoadedMesh glb_named_gltf = detail::read_gltf(glb, false, "misnamed.gltf");
   expect_square(glb_named_gltf.mesh);
   EXPECT_EQ(glb_named_gltf.info.format, MeshFormat::glb);

@@ -84,7 +84,7 @@ std::vector<float> floats_of(const Glb& glb, int accessor_index) {
   const json& view = glb.document["bufferViews"][accessor["bufferView"].get<int>()];
   EXPECT_EQ(accessor["componentType"], 5126);
   std::vector<float> values(view["byteLength"].get<std::size_t>() / 4);
-  std::memcpy(values.data(), glb.bin.data() + view["byteOffset"].get<std::size_t>(), values.size() * 4);
+  std::memcpy(values.data(), glb.bin.data() + view.value("byteOffset", std::size_t{0}), values.size() * 4);
   return values;
 }
 
@@ -130,8 +130,9 @@ TEST(GltfWrite, JsonFollowsTheSpec) {
   for (std::size_t v = 0; v < doc["bufferViews"].size(); ++v) {
     const json& view = doc["bufferViews"][v];
     EXPECT_EQ(uses[v], 1);
-    EXPECT_EQ(view["byteOffset"].get<std::size_t>() % 4, 0u);
-    EXPECT_LE(view["byteOffset"].get<std::size_t>() + view["byteLength"].get<std::size_t>(), byte_length);
+    const std::size_t offset = view.value("byteOffset", std::size_t{0});  // optional, 0 by default
+    EXPECT_EQ(offset % 4, 0u);
+    EXPECT_LE(offset + view["byteLength"].get<std::size_t>(), byte_length);
     EXPECT_FALSE(view.contains("byteStride"));
   }
   EXPECT_EQ(doc["bufferViews"][indices["bufferView"].get<int>()]["target"], 34963);
@@ -256,6 +257,26 @@ TEST(GltfWrite, EmbeddedGltfHoldsTheSameJsonAndADataUri) {
   EXPECT_EQ(uri.rfind("data:application/octet-stream;base64,", 0), 0u);
   doc["buffers"][0].erase("uri");
   EXPECT_EQ(doc, glb.document);
+}
+
+TEST(GltfWrite, ExtrasAreWrittenVerbatim) {
+  // Nulls, empty arrays and objects, integers beyond 32 bits, member order and
+  // escapes survive; so do extras shorter than tinygltf's placeholder.
+  for (const std::string& extras : {std::string(R"({"sampling": null, "energy": [], "o": {}, "bytes": 3000000000, "q": 0.1, "s": "a\"b"})"),
+                                   std::string("{}"), std::string(R"({"a":1})")}) {
+    for (const GltfContainer container : {GltfContainer::glb, GltfContainer::gltf_embedded}) {
+      SCOPED_TRACE(extras);
+      GltfScene scene = one_mesh_scene(tetrahedron_and_lone_vertex());
+      scene.triangle_meshes[0].name = R"({"":""})";  // the shape of a placeholder, as a name
+      scene.extras_json = extras;
+      const std::vector<std::byte> file = encode_gltf(scene, container);
+      const std::string text(reinterpret_cast<const char*>(file.data()), file.size());
+      EXPECT_NE(text.find("\"extras\":" + nlohmann::ordered_json::parse(extras).dump()), std::string::npos);
+      const json doc = container == GltfContainer::glb ? split_glb(file).document : json::parse(text);
+      EXPECT_EQ(doc["asset"]["extras"], json::parse(extras));
+      EXPECT_EQ(doc["nodes"][0]["name"], R"({"":""})");
+    }
+  }
 }
 
 TEST(GltfWrite, SameSceneSameBytes) {

@@ -1,0 +1,223 @@
+#include "gltf_model_builder.hpp"
+
+#include "geodual/error.hpp"
+#include "gltf_vertex_normals.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace geodual::io::detail::gltf {
+namespace {
+
+// uint16 indices may use 0..65534: 65535 is the primitive restart value, which glTF forbids.
+constexpr Index max_vertices_for_uint16 = 65535;
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) { throw Error(where + ": " + what); }
+
+std::string entry_name(std::string_view kind, std::size_t index, std::string_view name) {
+  std::string text = std::string(kind) + " " + std::to_string(index);
+  if (!name.empty()) text += " '" + std::string(name) + "'";
+  return text;
+}
+
+// tinygltf's JSON writer throws on invalid UTF-8: such bytes become U+FFFD instead.
+std::string valid_utf8(std::string_view text) {
+  using Json = nlohmann::json;
+  const std::string quoted = Json(std::string(text)).dump(-1, ' ', false, Json::error_handler_t::replace);
+  return Json::parse(quoted).get<std::string>();
+}
+
+void check_indices(std::span<const Index> indices, Index vertex_count, std::string_view element,
+                   std::size_t corners_per_element, const std::string& where) {
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] < 0 || indices[i] >= vertex_count) {
+      fail(where, std::string(element) + " " + std::to_string(i / corners_per_element) + " refers to vertex " +
+                      std::to_string(indices[i]) + ", but there are " + std::to_string(vertex_count) + " vertices");
+    }
+  }
+}
+
+template <class T>
+std::span<const std::byte> bytes_of(const std::vector<T>& values) {
+  return std::as_bytes(std::span(values));
+}
+
+}  // namespace
+
+ModelBuilder::ModelBuilder(std::string where) : where_(std::move(where)) {
+  model_.asset.version = "2.0";
+  model_.asset.generator = "geodual";
+  model_.buffers.emplace_back();
+}
+
+void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh, const ColorMatrix& colors,
+                                 std::span<const GltfVertexScalar> scalars) {
+  const std::string where = where_ + ": " + entry_name("triangle mesh", triangle_meshes_++, name);
+  if (mesh.num_faces() == 0) fail(where, "has no triangles");
+  const std::span<const Index> corners(mesh.faces.data(), static_cast<std::size_t>(mesh.faces.size()));
+  check_indices(corners, mesh.num_vertices(), "face", 3, where);
+
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.attributes["POSITION"] = add_positions(mesh.vertices, where);
+  const std::vector<float> normals = area_weighted_vertex_normals(mesh.vertices, mesh.faces);
+  primitive.attributes["NORMAL"] = add_accessor(bytes_of(normals), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                                TINYGLTF_TYPE_VEC3, normals.size() / 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+  if (const auto color = add_colors(colors, mesh.vertices.rows(), where)) primitive.attributes["COLOR_0"] = *color;
+
+  std::set<std::string, std::less<>> names;
+  for (const GltfVertexScalar& scalar : scalars) {
+    const std::string scalar_where = where + ": scalar attribute '" + scalar.name + "'";
+    if (scalar.name.size() < 2 || scalar.name[0] != '_') {
+      fail(scalar_where, "name must start with '_' (glTF's rule for application-specific attributes), e.g. '_DISTANCE'");
+    }
+    if (!names.insert(scalar.name).second) fail(scalar_where, "is given twice");
+    if (scalar.values.size() != static_cast<std::size_t>(mesh.num_vertices())) {
+      fail(scalar_where, "has " + std::to_string(scalar.values.size()) + " values for " +
+                             std::to_string(mesh.num_vertices()) + " vertices");
+    }
+    for (std::size_t v = 0; v < scalar.values.size(); ++v) {
+      if (!std::isfinite(scalar.values[v])) {
+        fail(scalar_where, "value of vertex " + std::to_string(v) + " is not finite; glTF allows no NaN or infinity");
+      }
+    }
+    primitive.attributes[valid_utf8(scalar.name)] =
+        add_accessor(bytes_of(scalar.values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
+                     scalar.values.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+  primitive.indices = add_indices(corners, mesh.num_vertices());
+  add_node(name, std::move(primitive));
+}
+
+void ModelBuilder::add_lines(const GltfLineSet& lines) {
+  const std::string where = where_ + ": " + entry_name("line set", line_sets_++, lines.name);
+  if (lines.segments.rows() == 0) fail(where, "has no segments");
+  const auto point_count = static_cast<Index>(lines.points.rows());
+  const std::span<const Index> ends(lines.segments.data(), static_cast<std::size_t>(lines.segments.size()));
+  check_indices(ends, point_count, "segment", 2, where);
+
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_LINE;
+  primitive.attributes["POSITION"] = add_positions(lines.points, where);
+  if (const auto color = add_colors(lines.colors, lines.points.rows(), where)) primitive.attributes["COLOR_0"] = *color;
+  primitive.indices = add_indices(ends, point_count);
+  add_node(lines.name, std::move(primitive));
+}
+
+void ModelBuilder::add_points(const GltfPointSet& points) {
+  const std::string where = where_ + ": " + entry_name("point set", point_sets_++, points.name);
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_POINTS;
+  primitive.attributes["POSITION"] = add_positions(points.points, where);
+  if (const auto color = add_colors(points.colors, points.points.rows(), where)) primitive.attributes["COLOR_0"] = *color;
+  add_node(points.name, std::move(primitive));
+}
+
+int ModelBuilder::add_positions(const VertexMatrix& points, const std::string& where) {
+  if (points.rows() == 0) fail(where, "has no vertices");
+  if (points.rows() > std::numeric_limits<Index>::max()) fail(where, "has too many vertices");
+  std::vector<float> xyz(static_cast<std::size_t>(points.size()));
+  std::vector<double> low(3, std::numeric_limits<double>::infinity());
+  std::vector<double> high(3, -std::numeric_limits<double>::infinity());
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      const double coordinate = points(v, k);
+      // Checked before the cast: converting a double beyond the float range is undefined.
+      if (!std::isfinite(coordinate) || std::abs(coordinate) > std::numeric_limits<float>::max()) {
+        fail(where, "vertex " + std::to_string(v) + " has coordinate " + std::to_string(coordinate) +
+                        ", which is not a finite float32 value");
+      }
+      const auto value = static_cast<float>(coordinate);
+      xyz[static_cast<std::size_t>(3 * v + k)] = value;
+      low[static_cast<std::size_t>(k)] = std::min(low[static_cast<std::size_t>(k)], static_cast<double>(value));
+      high[static_cast<std::size_t>(k)] = std::max(high[static_cast<std::size_t>(k)], static_cast<double>(value));
+    }
+  }
+  const int accessor = add_accessor(bytes_of(xyz), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                    static_cast<std::size_t>(points.rows()), TINYGLTF_TARGET_ARRAY_BUFFER);
+  // The spec requires min and max for POSITION; they are the float32 values themselves.
+  model_.accessors.back().minValues = std::move(low);
+  model_.accessors.back().maxValues = std::move(high);
+  return accessor;
+}
+
+std::optional<int> ModelBuilder::add_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where) {
+  if (colors.size() == 0) return std::nullopt;
+  if (colors.rows() != rows || (colors.cols() != 3 && colors.cols() != 4)) {
+    fail(where, "colours are " + std::to_string(colors.rows()) + " x " + std::to_string(colors.cols()) +
+                    "; expected " + std::to_string(rows) + " x 3 (RGB) or x 4 (RGBA)");
+  }
+  for (Eigen::Index v = 0; v < colors.rows(); ++v) {
+    for (Eigen::Index k = 0; k < colors.cols(); ++k) {
+      const float c = colors(v, k);
+      if (!(c >= 0.0F && c <= 1.0F)) {
+        fail(where, "colour of vertex " + std::to_string(v) + " has component " + std::to_string(c) +
+                        ", outside [0, 1]");
+      }
+    }
+  }
+  const std::span<const float> values(colors.data(), static_cast<std::size_t>(colors.size()));
+  return add_accessor(std::as_bytes(values), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                      colors.cols() == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4,
+                      static_cast<std::size_t>(rows), TINYGLTF_TARGET_ARRAY_BUFFER);
+}
+
+int ModelBuilder::add_indices(std::span<const Index> indices, Index vertex_count) {
+  if (vertex_count <= max_vertices_for_uint16) {
+    const std::vector<std::uint16_t> narrow(indices.begin(), indices.end());
+    return add_accessor(bytes_of(narrow), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR,
+                        indices.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  }
+  const std::vector<std::uint32_t> wide(indices.begin(), indices.end());
+  return add_accessor(bytes_of(wide), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size(),
+                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+}
+
+int ModelBuilder::add_accessor(std::span<const std::byte> data, int component_type, int type, std::size_t count,
+                               int target) {
+  std::vector<unsigned char>& bin = model_.buffers[0].data;
+  bin.resize((bin.size() + 3) / 4 * 4, 0);  // every view starts on a 4-byte boundary
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = bin.size();
+  view.byteLength = data.size();
+  view.target = target;
+  const auto* first = reinterpret_cast<const unsigned char*>(data.data());
+  bin.insert(bin.end(), first, first + data.size());
+  model_.bufferViews.push_back(std::move(view));
+
+  tinygltf::Accessor accessor;
+  accessor.bufferView = static_cast<int>(model_.bufferViews.size() - 1);
+  accessor.componentType = component_type;
+  accessor.type = type;
+  accessor.count = count;
+  model_.accessors.push_back(std::move(accessor));
+  return static_cast<int>(model_.accessors.size() - 1);
+}
+
+void ModelBuilder::add_node(std::string_view name, tinygltf::Primitive primitive) {
+  tinygltf::Mesh mesh;
+  tinygltf::Node node;
+  mesh.name = node.name = valid_utf8(name);
+  mesh.primitives.push_back(std::move(primitive));
+  model_.meshes.push_back(std::move(mesh));
+  node.mesh = static_cast<int>(model_.meshes.size() - 1);
+  model_.nodes.push_back(std::move(node));
+}
+
+tinygltf::Model ModelBuilder::finish() {
+  if (model_.nodes.empty()) fail(where_, "nothing to write: the scene has no meshes, lines or points");
+  tinygltf::Scene scene;
+  for (std::size_t n = 0; n < model_.nodes.size(); ++n) scene.nodes.push_back(static_cast<int>(n));
+  model_.scenes.push_back(std::move(scene));
+  model_.defaultScene = 0;
+  return std::move(model_);
+}
+
+}  // namespace geodual::io::detail::gltf

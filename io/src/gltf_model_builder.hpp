@@ -1,0 +1,46 @@
+#pragma once
+// Internal: a GltfScene as a tinygltf::Model, entry by entry, each entry
+// checked first. One node and one single-primitive mesh per entry; one buffer
+// holding every accessor's data, one buffer view per accessor, each starting
+// on a 4-byte boundary, with ARRAY_BUFFER / ELEMENT_ARRAY_BUFFER targets.
+
+#include "geodual/io/gltf.hpp"
+
+#include <tiny_gltf.h>
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace geodual::io::detail::gltf {
+
+class ModelBuilder {
+ public:
+  /// `where` starts every error message (the output path, or "glTF output").
+  explicit ModelBuilder(std::string where);
+
+  void add_triangles(std::string_view name, const TriangleMesh& mesh, const ColorMatrix& colors,
+                     std::span<const GltfVertexScalar> scalars);
+  void add_lines(const GltfLineSet& lines);
+  void add_points(const GltfPointSet& points);
+
+  /// The model with its default scene listing every node; throws when there is none.
+  tinygltf::Model finish();
+
+ private:
+  int add_positions(const VertexMatrix& points, const std::string& where);
+  std::optional<int> add_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where);
+  int add_indices(std::span<const Index> indices, Index vertex_count);
+  int add_accessor(std::span<const std::byte> data, int component_type, int type, std::size_t count, int target);
+  void add_node(std::string_view name, tinygltf::Primitive primitive);
+
+  std::string where_;
+  tinygltf::Model model_;
+  std::size_t triangle_meshes_ = 0;
+  std::size_t line_sets_ = 0;
+  std::size_t point_sets_ = 0;
+};
+
+}  // namespace geodual::io::detail::gltf
