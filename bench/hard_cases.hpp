@@ -226,6 +226,18 @@ inline TriangleMesh closed_cone(const Eigen::Vector3d& apex, const Eigen::Vector
   return builder.build();
 }
 
+/// Whether cell (i, j) of an n x n grid on the unit square has its centre in
+/// one of the plates' five round holes. Cutting such cells out never leaves
+/// two cells meeting at a corner only (a disc never holds two opposite cells
+/// of a 2 x 2 block without a third).
+inline bool in_plate_hole(int i, int j, int n) {
+  constexpr std::array<std::array<double, 3>, 5> holes = {
+      {{0.25, 0.25, 0.15}, {0.72, 0.3, 0.1}, {0.3, 0.72, 0.06}, {0.7, 0.72, 0.03}, {0.5, 0.5, 0.015}}};  // x, y, radius
+  const double x = (i + 0.5) / n, y = (j + 0.5) / n;
+  return std::any_of(holes.begin(), holes.end(),
+                     [&](const std::array<double, 3>& h) { return std::hypot(x - h[0], y - h[1]) < h[2]; });
+}
+
 }  // namespace hard_case_detail
 
 /// A flat unit square of 100 x 100 cells with five round holes of different
@@ -233,20 +245,10 @@ inline TriangleMesh closed_cone(const Eigen::Vector3d& apex, const Eigen::Vector
 inline TriangleMesh plate_with_holes() {
   using namespace hard_case_detail;
   constexpr int n = 100;
-  const std::array<Eigen::Vector3d, 5> holes = {Eigen::Vector3d(0.25, 0.25, 0.15), Eigen::Vector3d(0.72, 0.3, 0.1),
-                                                Eigen::Vector3d(0.3, 0.72, 0.06), Eigen::Vector3d(0.7, 0.72, 0.03),
-                                                Eigen::Vector3d(0.5, 0.5, 0.015)};  // x, y, radius
   MeshBuilder builder;
-  // A cell is removed where its centre lies in a hole: no two kept cells then
-  // meet at a corner only (a disc never holds two opposite cells of a 2 x 2
-  // block without a third).
   add_grid(
       builder, n, 1.0,
-      [&](int i, int j) {
-        const Eigen::Vector2d centre((i + 0.5) / n, (j + 0.5) / n);
-        return std::none_of(holes.begin(), holes.end(),
-                            [&](const Eigen::Vector3d& h) { return (centre - h.head<2>()).norm() < h.z(); });
-      },
+      [&](int i, int j) { return !in_plate_hole(i, j, n); },
       [&](int, int, int ci, int cj) { return static_cast<Index>(ci + (n + 1) * cj); });
   TriangleMesh mesh = builder.build();
   // Drop the vertices of removed cells that no kept cell uses: keep the mesh
@@ -269,6 +271,16 @@ inline TriangleMesh plate_with_holes() {
     for (int c = 0; c < 3; ++c) compact.faces(f, c) = new_index[static_cast<std::size_t>(mesh.faces(f, c))];
   }
   return compact;
+}
+
+/// The same five holes through a plate 2 % as thick as it is wide, made of
+/// 60 x 60 boxes: one closed surface of genus 5 with staircase rims whose
+/// walls are 0.02 high. About 13K faces.
+inline TriangleMesh thick_plate_with_holes() {
+  using namespace hard_case_detail;
+  constexpr int n = 60;
+  const std::vector<double> across = even_steps(0.0, 1.0, n + 1);
+  return voxel_surface({across, across, {0.0, 0.02}}, [&](int i, int j, int) { return !in_plate_hole(i, j, n); });
 }
 
 /// A closed unit box with an open top whose walls are solid and 0.01 thick:
@@ -415,6 +427,7 @@ struct HardCase {
 inline std::vector<HardCase> hard_cases() {
   return {
       {"plate_holes", "flat square, 5 round holes (6 boundary loops)", plate_with_holes},
+      {"thick_plate_holes", "closed plate 2 % thick with the same 5 holes (genus 5)", thick_plate_with_holes},
       {"thin_box", "open box with solid walls 1 % thick (closed, two sheets close together)", thin_walled_box},
       {"assembly_47", "47 closed spheres and boxes of varied size", assembly_47},
       {"pinch_cones", "closed cones sharing apexes: 4 pinches of 2 fans, 1 of 3", pinched_cones},

@@ -19,12 +19,12 @@
 // same file as tests/data/bunny.ply), the hard cases, then MESH....
 // Columns: result (ok, the signal, or the error's first 60 characters; the
 // full messages follow the table), wall time of the child, its peak memory,
-// Qmin, Qavg, two-sided Hausdorff in % of the input's bounding-box diagonal,
-// Euler characteristic and boundary loops of the surface remeshed (the input
-// cut to a manifold, less its disabled scrap faces) and of the remesh,
-// topology kept (every component's χ and loop count equal; a component is
-// found in the remesh through its sites), and the area dropped (faces
-// disabled by the manifold cut, in % of the input's area).
+// Qmin, Qavg, two-sided Hausdorff in % of the input's bounding-box diagonal;
+// connected pieces, Euler characteristic and boundary loops of the surface
+// remeshed (the input cut to a manifold, less its disabled scrap faces) and
+// of the remesh ("a->b" where they differ); topology kept (every piece's χ
+// and loop count equal, the remesh's piece found through its sites); and the
+// area dropped (faces the manifold cut disabled, in % of the input's area).
 
 #include "bench_support.hpp"
 #include "hard_cases.hpp"
@@ -308,6 +308,11 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   const std::vector<Index> surface_component = vertex_components(surface, components);
   std::vector<Index> site_component;
   for (const SurfacePoint& site : result.remesh.sites) {
+    const Index elements = site.kind == SurfacePoint::Kind::vertex ? surface.num_vertices() : surface.num_faces();
+    if (site.element < 0 || site.element >= elements) {
+      site_component.push_back(-1);
+      continue;
+    }
     const Index vertex = site.kind == SurfacePoint::Kind::vertex ? site.element : surface.faces(site.element, 0);
     site_component.push_back(surface_component[static_cast<std::size_t>(vertex)]);
   }
@@ -366,7 +371,7 @@ int run_sweep(const Options& options) {
   if (meshes.empty()) throw UsageError("no meshes (run from the repository root or give --repo)");
 
   TextTable table({{"mesh", TextTable::Align::left}, {"faces"}, {"sites"}, {"added"}, {"result", TextTable::Align::left},
-                   {"time s"}, {"peak MiB"}, {"Qmin"}, {"Qavg"}, {"H %"}, {"chi"}, {"loops"}, {"topology", TextTable::Align::left},
+                   {"time s"}, {"peak MiB"}, {"Qmin"}, {"Qavg"}, {"H %"}, {"pieces"}, {"chi"}, {"loops"}, {"topology", TextTable::Align::left},
                    {"dropped %"}});
   std::vector<std::string> failures;
   std::cout << "machine: " << cpu_model() << ", load " << load_average() << "\n\n";
@@ -386,7 +391,7 @@ int run_sweep(const Options& options) {
       if (outcome.status != ChildOutcome::Status::ok) {
         failures.push_back(mesh.name + " at " + std::to_string(sites) + " sites: " + outcome.message);
         table.add_row({mesh.name, "-", grouped(sites), "-", first_characters(outcome.message, 60), seconds,
-                       mebibytes(outcome.child_max_rss_bytes), "-", "-", "-", "-", "-", "-", "-"});
+                       mebibytes(outcome.child_max_rss_bytes), "-", "-", "-", "-", "-", "-", "-", "-"});
         continue;
       }
       ByteReader in(outcome.payload);
@@ -397,7 +402,7 @@ int run_sweep(const Options& options) {
       }
       table.add_row({mesh.name, grouped(r.input_faces), grouped(sites), grouped(r.sites_added), "ok", seconds,
                      mebibytes(r.peak_rss), fixed(r.q_min, 3), fixed(r.q_avg, 3), fixed(r.hausdorff_pct, 3),
-                     arrow(r.surface.euler_characteristic, r.remesh.euler_characteristic),
+                     arrow(r.surface.components, r.remesh.components), arrow(r.surface.euler_characteristic, r.remesh.euler_characteristic),
                      arrow(r.surface.boundary_loops, r.remesh.boundary_loops), topology,
                      fixed(r.dropped_area_pct, 2) + (r.dropped_faces > 0 ? " (" + grouped(r.dropped_faces) + " f)" : "")});
     }
