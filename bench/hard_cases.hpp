@@ -401,6 +401,8 @@ inline TriangleMesh slit_square() {
 
 /// A closed torus (genus 1, 9,600 faces) followed by a copy of every tenth
 /// face, every other copy flipped: the duplicate triangles of a CAD soup.
+/// The copies lie along eight rings around the tube, so that a cut along
+/// their edges leaves eight annuli.
 inline TriangleMesh duplicate_soup() {
   using namespace hard_case_detail;
   const TriangleMesh ring = torus(1.0, 0.35, 120, 40);
