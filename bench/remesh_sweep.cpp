@@ -188,13 +188,6 @@ std::vector<SweepMesh> sweep_meshes(const Options& options) {
   return chosen;
 }
 
-double face_area(const TriangleMesh& mesh, Index f) {
-  const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)).transpose();
-  const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1)).transpose();
-  const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2)).transpose();
-  return 0.5 * (b - a).cross(c - a).norm();
-}
-
 /// Per vertex, a component id (union of the corners of faces with three
 /// distinct corners); -1 for a vertex no such face uses. Ids are 0..count-1.
 std::vector<Index> vertex_components(const TriangleMesh& mesh, Index& count) {
@@ -292,17 +285,8 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
     figures.hausdorff_pct = result.statistics->hausdorff_pct;
   }
 
-  // Dropped: faces the cut disabled (all three corners equal).
-  double input_area = 0, dropped_area = 0;
-  for (Index f = 0; f < input.num_faces(); ++f) {
-    const double area = face_area(input, f);
-    input_area += area;
-    if (surface.faces(f, 0) == surface.faces(f, 1) && surface.faces(f, 1) == surface.faces(f, 2)) {
-      ++figures.dropped_faces;
-      dropped_area += area;
-    }
-  }
-  figures.dropped_area_pct = input_area > 0 ? 100 * dropped_area / input_area : 0;
+  figures.dropped_faces = result.dropped.faces;
+  figures.dropped_area_pct = result.dropped.area_pct;
 
   Index components = 0;
   const std::vector<Index> surface_component = vertex_components(surface, components);

@@ -47,6 +47,7 @@ std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer contai
   for (const GltfLineSet& entry : scene.line_sets) builder.add_lines(entry);
   for (const GltfPointSet& entry : scene.point_sets) builder.add_points(entry);
   tinygltf::Model model = builder.finish();
+  model.asset.generator = scene.generator;
   return write_model(std::move(model), detail::gltf::AssetExtras(scene.extras_json, where), container, where);
 }
 

@@ -7,6 +7,7 @@
 #include "geodual/io/preview.hpp"
 #include "geodual/io/write_mesh.hpp"
 #include "geodual/pipeline/field_output.hpp"
+#include "geodual/pipeline/version.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 
 #include <sys/resource.h>
@@ -23,6 +24,7 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
   }
   const voronoi::GeodesicField& field = diagram.field;
   io::GltfScene scene;
+  scene.generator = "geodual " + std::string(build_version());
   scene.extras_json = extras_json;
 
   io::GltfTriangleMesh surface;
@@ -76,6 +78,7 @@ void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, c
   const std::string extension = io::lowercase_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
     io::GltfScene scene;
+    scene.generator = "geodual " + std::string(build_version());
     scene.extras_json = extras_json;
     io::ColorMatrix colors;
     if (vertex_colors.rows() == mesh.vertices.rows()) colors = vertex_colors;

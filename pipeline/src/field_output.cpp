@@ -4,6 +4,7 @@
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/io/write_mesh.hpp"
+#include "geodual/pipeline/version.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -53,6 +54,7 @@ void write_geodesic_field(const std::filesystem::path& path, const TriangleMesh&
     }
     entry.scalars.push_back(std::move(distance));
     io::GltfScene scene;
+    scene.generator = "geodual " + std::string(build_version());
     scene.triangle_meshes.push_back(std::move(entry));
     io::write_gltf(path, scene);
     return;

@@ -82,6 +82,11 @@ TEST(RemeshCommand, SameInputSameBytesInEveryFormat) {
       ASSERT_EQ(run.exit_status, 0) << run.err;
     }
     EXPECT_EQ(slurp(a), slurp(b)) << extension;
+    if (std::string(extension) == ".gltf") {
+      const nlohmann::json gltf = nlohmann::json::parse(slurp(a));
+      EXPECT_EQ(gltf["asset"]["generator"].get<std::string>().rfind("geodual " GEODUAL_PROJECT_VERSION, 0), 0U);
+      EXPECT_FALSE(gltf["asset"]["extras"].contains("time_s"));
+    }
   }
 }
 

@@ -74,6 +74,8 @@ struct GltfScene {
   std::vector<GltfPointSet> point_sets{};
   /// asset.extras: the text of a JSON object (e.g. statistics, options), or empty for none.
   std::string extras_json{};
+  /// asset.generator: the program that wrote the file, with its version.
+  std::string generator = "geodual";
 };
 
 enum class GltfContainer {
