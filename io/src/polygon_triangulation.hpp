@@ -1,0 +1,104 @@
+#pragma once
+// Internal: triangulating the polygons readers meet (OBJ, OFF and PLY faces,
+// ASCII STL facets with more than three corners). A polygon is projected onto
+// its best-fit plane (Newell's normal) and triangulated there by ear clipping,
+// each triangle in the polygon's own orientation. Convex polygons get the fan
+// (c0, c1, c2), (c0, c2, c3), ..., which ear clipping from c1 also gives them.
+
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/triangle_mesh.hpp"
+
+#include "triangle_buffer.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace geodual::io::detail {
+
+struct PolygonTriangulationOptions {
+  /// Non-convex polygons with more corners keep the fan (and ReadInfo says so):
+  /// ear clipping costs up to the cube of the corner count.
+  std::size_t max_ear_clipping_corners = 2000;
+};
+
+/// How a polygon was triangulated.
+enum class PolygonShape : std::uint8_t {
+  convex,      ///< strictly convex: the fan
+  simple,      ///< not convex (or with collinear corners): ear clipping, every triangle inside the polygon
+  non_simple,  ///< edges cross, or it has no area in its plane: ear clipping as well as it goes
+  too_large,   ///< not convex and over max_ear_clipping_corners: the fan, whose triangles may overlap
+};
+
+/// Triangulates polygons one after another, reusing its scratch memory.
+class PolygonTriangulator {
+ public:
+  explicit PolygonTriangulator(PolygonTriangulationOptions options = {}) : options_(options) {}
+
+  /// Writes the polygon's corners.size() - 2 triangles, three vertex indices
+  /// each, to `triangles`. `corners` (at least 3) are rows of `vertices`.
+  PolygonShape triangulate(std::span<const Index> corners, const VertexMatrix& vertices,
+                           std::span<Index> triangles);
+
+ private:
+  using Point = std::array<double, 2>;
+
+  /// Fills points_ with the corners in the plane of the Newell normal; false
+  /// when the polygon has no usable normal (no area, or non-finite coordinates).
+  bool project(std::span<const Index> corners, const VertexMatrix& vertices);
+  bool is_convex() const;
+  /// Ear clipping over points_; false when it had to clip a corner that is no
+  /// ear, or the last triangle is flipped.
+  bool clip_ears(std::span<const Index> corners, std::span<Index> triangles);
+  bool is_ear(std::size_t tip) const;
+  /// The corner to clip when no corner is an ear.
+  std::size_t least_bad_tip(std::size_t start, std::size_t remaining) const;
+  bool has_crossing_edges() const;
+  /// The tolerance for a cross product of edge vectors u and v: rounding, not geometry.
+  double tolerance(const Point& u, const Point& v) const;
+
+  PolygonTriangulationOptions options_;
+  std::vector<Point> points_;
+  std::vector<std::size_t> previous_;  // the ring of corners not yet clipped
+  std::vector<std::size_t> next_;
+  double extent_ = 0;  // the largest distance of a corner from the first, in the plane
+};
+
+/// Collects a reader's faces: triangles as given, polygons fan-triangulated
+/// and remembered until take() replaces each fan by the polygon's
+/// triangulation, once every vertex is known.
+class FaceBuffer {
+ public:
+  explicit FaceBuffer(std::size_t expected_triangles = 0, PolygonTriangulationOptions options = {})
+      : triangles_(expected_triangles), options_(options) {}
+
+  [[gnu::always_inline]] void add(Index a, Index b, Index c) { triangles_.add(a, b, c); }
+
+  /// A face of `corners` (at least 3) corners; `corner(i)` returns the i-th corner's vertex index.
+  template <class CornerAt>
+  void add_polygon(std::size_t corners, CornerAt&& corner) {
+    if (corners > 3) {
+      polygons_.push_back(PendingPolygon{.first_triangle = triangles_.size(), .corners = corners});
+    }
+    triangles_.add_polygon(corners, corner);
+  }
+
+  /// The triangles, in the order their faces were added. Every index must be
+  /// a row of `vertices`. Sets info.polygons_split and notes how polygons
+  /// that are not convex were triangulated.
+  FaceMatrix take(const VertexMatrix& vertices, ReadInfo& info);
+
+ private:
+  struct PendingPolygon {
+    Eigen::Index first_triangle = 0;
+    std::size_t corners = 0;
+  };
+
+  TriangleBuffer triangles_;
+  std::vector<PendingPolygon> polygons_;
+  PolygonTriangulationOptions options_;
+};
+
+}  // namespace geodual::io::detail
