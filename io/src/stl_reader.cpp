@@ -50,9 +50,10 @@ bool starts_with_solid(std::string_view text) {
 
 void describe_welding(const PositionWelder& welder, LoadedMesh& loaded) {
   loaded.info.welded_corners = welder.welded_corners();
-  loaded.info.notes.push_back(str_cat("STL stores every triangle corner separately: ", welder.welded_corners(),
+  loaded.info.notes.push_back(str_cat("STL stores every triangle corner separately: ", welder.corner_count(),
                                       " corners were welded into ", welder.vertex_count(),
-                                      " vertices by exact position (first occurrence order)"));
+                                      " vertices by exact position (first occurrence order; ",
+                                      welder.welded_corners(), " corners repeated an earlier position)"));
 }
 
 LoadedMesh read_binary_stl(std::span<const std::byte> data, std::uint64_t triangle_count, const fs::path& file) {
