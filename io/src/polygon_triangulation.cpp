@@ -93,7 +93,16 @@ bool PolygonTriangulator::is_convex() const {
   return laps == 1;
 }
 
+bool PolygonTriangulator::turns_left(std::size_t corner) const {
+  const Point ab = minus(points_[corner], points_[previous_[corner]]);
+  const Point bc = minus(points_[next_[corner]], points_[corner]);
+  return cross(ab, bc) > tolerance(ab, bc);
+}
+
 bool PolygonTriangulator::is_ear(std::size_t tip) const {
+  if (!turns_left_[tip]) {
+    return false;  // not a strictly convex corner
+  }
   const std::size_t a = previous_[tip];
   const std::size_t c = next_[tip];
   const Point& pa = points_[a];
@@ -102,9 +111,6 @@ bool PolygonTriangulator::is_ear(std::size_t tip) const {
   const Point ab = minus(pb, pa);
   const Point bc = minus(pc, pb);
   const Point ca = minus(pa, pc);
-  if (!(cross(ab, bc) > tolerance(ab, bc))) {
-    return false;  // not a strictly convex corner
-  }
   // Does an edge from corner j, at the triangle corner `at`, enter the
   // triangle? Only if its direction lies strictly between the triangle's two
   // edges there, `along` (counter-clockwise) and `back`.
@@ -127,12 +133,14 @@ bool PolygonTriangulator::is_ear(std::size_t tip) const {
   for (std::size_t j = next_[c]; j != a; j = next_[j]) {
     // A corner repeated at a triangle corner (a polygon joined to its hole by
     // a bridge, or a vertex visited twice) blocks the ear only if one of its
-    // edges enters the triangle.
+    // edges enters the triangle. Otherwise, if a corner lies in the triangle,
+    // so does one that does not turn left (the one farthest from the line
+    // a c): testing those suffices.
     const Point& p = points_[j];
     const bool blocks = p == pa   ? edge_enters(pa, ab, minus(pc, pa), j)
                         : p == pb ? edge_enters(pb, bc, minus(pa, pb), j)
                         : p == pc ? edge_enters(pc, ca, minus(pb, pc), j)
-                                  : in_closed_triangle(p);
+                                  : !turns_left_[j] && in_closed_triangle(p);
     if (blocks) {
       return false;
     }
@@ -169,6 +177,10 @@ bool PolygonTriangulator::clip_ears(std::span<const Index> corners, std::span<In
     previous_[i] = (i + n - 1) % n;
     next_[i] = (i + 1) % n;
   }
+  turns_left_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    turns_left_[i] = turns_left(i);
+  }
   std::size_t written = 0;
   const auto clip = [&](std::size_t tip) {
     triangles[3 * written] = corners[previous_[tip]];
@@ -177,19 +189,26 @@ bool PolygonTriangulator::clip_ears(std::span<const Index> corners, std::span<In
     ++written;
     next_[previous_[tip]] = next_[tip];
     previous_[next_[tip]] = previous_[tip];
+    turns_left_[previous_[tip]] = turns_left(previous_[tip]);
+    turns_left_[next_[tip]] = turns_left(next_[tip]);
   };
   bool every_clip_an_ear = true;
   // Starting at corner 1 and moving on to the next corner after each clip
   // gives a convex polygon its fan: (c0, c1, c2), (c0, c2, c3), ...
   std::size_t cursor = 1;
   for (std::size_t remaining = n; remaining > 3; --remaining) {
+    // Once a whole lap had no ear the polygon is not simple, and ears are
+    // looked for among a few corners only: a full lap each time would cost
+    // the cube of the corner count.
+    constexpr std::size_t corners_tried_once_not_simple = 32;
+    const std::size_t limit = every_clip_an_ear ? remaining : std::min(remaining, corners_tried_once_not_simple);
     std::size_t tip = cursor;
     std::size_t tried = 0;
-    while (tried < remaining && !is_ear(tip)) {
+    while (tried < limit && !is_ear(tip)) {
       tip = next_[tip];
       ++tried;
     }
-    if (tried == remaining) {
+    if (tried == limit) {
       every_clip_an_ear = false;
       tip = least_bad_tip(cursor, remaining);
     }

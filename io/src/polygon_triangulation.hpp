@@ -52,6 +52,8 @@ class PolygonTriangulator {
   /// Ear clipping over points_; false when it had to clip a corner that is no
   /// ear, or the last triangle is flipped.
   bool clip_ears(std::span<const Index> corners, std::span<Index> triangles);
+  /// Whether the corner turns strictly left in the ring of corners not yet clipped.
+  bool turns_left(std::size_t corner) const;
   bool is_ear(std::size_t tip) const;
   /// The corner to clip when no corner is an ear.
   std::size_t least_bad_tip(std::size_t start, std::size_t remaining) const;
@@ -63,6 +65,7 @@ class PolygonTriangulator {
   std::vector<Point> points_;
   std::vector<std::size_t> previous_;  // the ring of corners not yet clipped
   std::vector<std::size_t> next_;
+  std::vector<std::uint8_t> turns_left_;  // turns_left() of each corner in the ring
   double extent_ = 0;  // the largest distance of a corner from the first, in the plane
 };
 
