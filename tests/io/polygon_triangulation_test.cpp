@@ -361,5 +361,22 @@ TEST(PolygonTriangulation, LargePolygons) {
       << ::testing::PrintToString(teeth.info.notes);
 }
 
+TEST(PolygonTriangulation, NonFiniteOrHugeCoordinatesNeitherHangNorCrash) {
+  TempDir dir;
+  // The reader triangulates before read_mesh checks the coordinates: that
+  // check must still be the one to answer.
+  const std::string message = error_message(
+      [&] { read_text(dir, "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 3 4 5\n"); });
+  EXPECT_NE(message.find("nan.obj"), std::string::npos) << message;
+  EXPECT_NE(message.find("non-finite coordinate"), std::string::npos) << message;
+  // Products of coordinates near 1e300 overflow: the polygon has no usable
+  // plane, keeps the fan and is counted.
+  const io::LoadedMesh huge = read_text(dir, "huge.obj",
+                                        "v 0 0 0\nv 3e300 0 0\nv 3e300 1e300 0\nv 1e300 1e300 0\n"
+                                        "v 1e300 2e300 0\nv 0 2e300 0\nf 1 2 3 4 5 6\n");
+  EXPECT_EQ(face_list(huge.mesh), fan(6));
+  EXPECT_TRUE(has_note(huge, "1 polygon not simple"));
+}
+
 }  // namespace
 }  // namespace geodual::test
