@@ -1,9 +1,9 @@
 // Wavefront OBJ reader: `v` lines give vertices, `f` lines faces (any of the
 // forms v, v/vt, v//vn, v/vt/vn; negative indices count back from the latest
 // vertex), polygons are triangulated in their plane (polygon_triangulation.hpp).
-// Everything else -- texture
-// coordinates, normals, groups, objects, materials, smoothing, lines, points
-// -- is ignored, as are comments. Lines end in "\n" or "\r\n".
+// Everything else -- texture coordinates, normals, groups, objects, materials,
+// smoothing, lines, points -- is ignored, as are comments. Lines end in "\n"
+// or "\r\n".
 
 #include "format_readers.hpp"
 
@@ -92,6 +92,7 @@ class ObjParser {
       throw_line_error(file_, lines_.line_number(), "face ", face_count_, " has ", corners_.size(),
                        " corners; a face needs at least 3");
     }
+    faces_.know_vertices(coordinates_);
     faces_.add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
   }
 

@@ -1,7 +1,8 @@
 // OFF reader (Object File Format): a header keyword (OFF, or COFF / NOFF /
 // STOFF / CNOFF ... whose extra per-vertex values are ignored), a counts line
 // "V F E", V vertex lines, F face lines "n i0 ... i(n-1) [colour]".
-// Polygons are triangulated in their plane (polygon_triangulation.hpp); '#' starts a comment; blank lines are skipped.
+// Polygons are triangulated in their plane (polygon_triangulation.hpp); '#'
+// starts a comment; blank lines are skipped.
 // Each vertex and face is read from its own line, as every writer emits them.
 
 #include "format_readers.hpp"
@@ -60,6 +61,7 @@ class OffParser {
     loaded.info.encoding = "ascii";
     read_vertices(&loaded.mesh.vertices);
     FaceBuffer faces(static_cast<std::size_t>(face_count_));
+    faces.know_vertices(loaded.mesh.vertices);
     read_faces(&faces);
     loaded.mesh.faces = faces.take(loaded.mesh.vertices, loaded.info);
     return loaded;

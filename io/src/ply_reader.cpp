@@ -406,6 +406,7 @@ std::size_t read_binary_body(std::span<const std::byte> data, const PlyHeader& h
   for (const PlyElement& element : header.elements) {
     if (&element == layout.vertex) {
       body.read_vertices(element, layout.xyz, mesh.vertices);
+      triangles.know_vertices(mesh.vertices);
     } else if (&element == layout.face) {
       body.read_faces(element, layout.corner_list, CornerCheck(element, vertex_count, file), triangles);
     } else {
@@ -575,6 +576,9 @@ bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, c
             }
           },
           std::nullopt, nullptr, nullptr);
+      if (triangles != nullptr) {
+        triangles->know_vertices(mesh->vertices);
+      }
     } else if (&element == layout.face) {
       const CornerCheck check(element, vertex_count, file);
       body.read(element, ignore, layout.corner_list, &check, triangles);

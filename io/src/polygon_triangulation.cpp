@@ -17,6 +17,11 @@ Point minus(const Point& a, const Point& b) { return {a[0] - b[0], a[1] - b[1]};
 double cross(const Point& u, const Point& v) { return u[0] * v[1] - u[1] * v[0]; }
 double length(const Point& u) { return std::sqrt(u[0] * u[0] + u[1] * u[1]); }
 
+// A turn of less than 1e-12 radians is straight; projected coordinates carry
+// a few units of rounding in the last place of the polygon's extent.
+constexpr double turn_angle_tolerance = 1e-12;
+constexpr double rounding_tolerance = 16 * std::numeric_limits<double>::epsilon();
+
 /// Directions in [0, pi): above the x axis, or along it to the right.
 bool upper_half(const Point& d) { return d[1] > 0 || (d[1] == 0 && d[0] > 0); }
 
@@ -31,24 +36,23 @@ void write_fan(std::span<const Index> corners, std::span<Index> triangles) {
 }  // namespace
 
 double PolygonTriangulator::tolerance(const Point& u, const Point& v) const {
-  // A turn of less than 1e-12 radians is straight; projected coordinates
-  // carry a few units of rounding in the last place of the polygon's extent.
-  constexpr double angle = 1e-12;
-  constexpr double rounding = 16 * std::numeric_limits<double>::epsilon();
   const double lu = length(u);
   const double lv = length(v);
-  return angle * lu * lv + rounding * extent_ * (lu + lv);
+  return turn_angle_tolerance * lu * lv + rounding_tolerance * extent_ * (lu + lv);
 }
 
-bool PolygonTriangulator::project(std::span<const Index> corners, const VertexMatrix& vertices) {
+bool PolygonTriangulator::project(std::span<const Index> corners, std::span<const double> xyz) {
   const std::size_t n = corners.size();
-  const Eigen::Vector3d origin = vertices.row(corners[0]).transpose();
+  const auto position = [&](std::size_t corner) {
+    return Eigen::Map<const Eigen::Vector3d>(xyz.data() + 3 * static_cast<std::size_t>(corners[corner]));
+  };
+  const Eigen::Vector3d origin = position(0);
   // Newell's normal: twice the polygon's vector area, whatever its shape.
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   double extent_squared = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d a = vertices.row(corners[i]).transpose() - origin;
-    const Eigen::Vector3d b = vertices.row(corners[(i + 1) % n]).transpose() - origin;
+    const Eigen::Vector3d a = position(i) - origin;
+    const Eigen::Vector3d b = position((i + 1) % n) - origin;
     normal += a.cross(b);
     extent_squared = std::max(extent_squared, a.squaredNorm());
   }
@@ -66,10 +70,41 @@ bool PolygonTriangulator::project(std::span<const Index> corners, const VertexMa
   const Eigen::Vector3d v = w.cross(u);
   points_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p = vertices.row(corners[i]).transpose() - origin;
+    const Eigen::Vector3d p = position(i) - origin;
     points_[i] = {p.dot(u), p.dot(v)};
   }
   extent_ = std::sqrt(extent_squared);
+  return true;
+}
+
+bool PolygonTriangulator::is_convex_quad(std::span<const Index> corners, std::span<const double> xyz) {
+  std::array<Eigen::Vector3d, 4> p;
+  for (std::size_t i = 0; i < 4; ++i) {
+    p[i] = Eigen::Map<const Eigen::Vector3d>(xyz.data() + 3 * static_cast<std::size_t>(corners[i]));
+  }
+  // A quad's Newell normal is the cross product of its diagonals. A turn in
+  // the plane along it is the triple product (e_before x e_after) . normal;
+  // four left turns make one lap (each is less than half a lap).
+  const Eigen::Vector3d normal = (p[2] - p[0]).cross(p[3] - p[1]);
+  const double normal_length = normal.norm();
+  double extent = 0;
+  for (std::size_t i = 1; i < 4; ++i) {
+    extent = std::max(extent, (p[i] - p[0]).norm());
+  }
+  if (!(normal_length > 1e-14 * extent * extent) || !std::isfinite(normal_length)) {
+    return false;
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d before = p[i] - p[(i + 3) % 4];
+    const Eigen::Vector3d after = p[(i + 1) % 4] - p[i];
+    const double lb = before.norm();
+    const double la = after.norm();
+    // tolerance() in 3D: edge lengths are at least their projections.
+    const double tolerance = (turn_angle_tolerance * lb * la + rounding_tolerance * extent * (lb + la)) * normal_length;
+    if (!(before.cross(after).dot(normal) > tolerance)) {
+      return false;
+    }
+  }
   return true;
 }
 
@@ -251,13 +286,17 @@ bool PolygonTriangulator::has_crossing_edges() const {
   return false;
 }
 
-PolygonShape PolygonTriangulator::triangulate(std::span<const Index> corners, const VertexMatrix& vertices,
+PolygonShape PolygonTriangulator::triangulate(std::span<const Index> corners, std::span<const double> xyz,
                                               std::span<Index> triangles) {
   if (corners.size() == 3) {
     write_fan(corners, triangles);
     return PolygonShape::convex;
   }
-  if (!project(corners, vertices)) {
+  if (corners.size() == 4 && is_convex_quad(corners, xyz)) {
+    write_fan(corners, triangles);
+    return PolygonShape::convex;
+  }
+  if (!project(corners, xyz)) {
     write_fan(corners, triangles);
     return PolygonShape::non_simple;
   }
@@ -273,23 +312,29 @@ PolygonShape PolygonTriangulator::triangulate(std::span<const Index> corners, co
   return clean && !has_crossing_edges() ? PolygonShape::simple : PolygonShape::non_simple;
 }
 
+void FaceBuffer::add_triangulated() {
+  scratch_triangles_.resize(3 * (corners_.size() - 2));
+  ++shapes_[static_cast<std::size_t>(triangulator_.triangulate(corners_, known_xyz_, scratch_triangles_))];
+  for (std::size_t t = 0; t < scratch_triangles_.size(); t += 3) {
+    triangles_.add(scratch_triangles_[t], scratch_triangles_[t + 1], scratch_triangles_[t + 2]);
+  }
+}
+
 FaceMatrix FaceBuffer::take(const VertexMatrix& vertices, ReadInfo& info) {
-  info.polygons_split = triangles_.polygons_split();
+  info.polygons_split = polygons_split_;
   FaceMatrix faces = triangles_.take();
-  PolygonTriangulator triangulator(options_);
-  std::vector<Index> corners;
-  std::array<std::int64_t, 4> shapes{};
+  const std::span<const double> xyz(vertices.data(), static_cast<std::size_t>(vertices.size()));
   for (const PendingPolygon& polygon : polygons_) {
     const std::span<Index> fan(faces.data() + 3 * polygon.first_triangle, 3 * (polygon.corners - 2));
     // The fan holds every corner: c0 and c1 in its first triangle, then each triangle's third.
-    corners.assign({fan[0], fan[1]});
+    corners_.assign({fan[0], fan[1]});
     for (std::size_t t = 0; t + 2 < polygon.corners; ++t) {
-      corners.push_back(fan[3 * t + 2]);
+      corners_.push_back(fan[3 * t + 2]);
     }
-    ++shapes[static_cast<std::size_t>(triangulator.triangulate(corners, vertices, fan))];
+    ++shapes_[static_cast<std::size_t>(triangulator_.triangulate(corners_, xyz, fan))];
   }
   polygons_ = {};
-  const auto count = [&](PolygonShape shape) { return shapes[static_cast<std::size_t>(shape)]; };
+  const auto count = [&](PolygonShape shape) { return shapes_[static_cast<std::size_t>(shape)]; };
   const auto polygons = [](std::int64_t n) { return n == 1 ? " polygon" : " polygons"; };
   if (const std::int64_t n = count(PolygonShape::simple); n > 0) {
     info.notes.push_back(str_cat(n, polygons(n), " not convex, triangulated by ear clipping in ",

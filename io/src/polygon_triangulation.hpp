@@ -38,8 +38,9 @@ class PolygonTriangulator {
   explicit PolygonTriangulator(PolygonTriangulationOptions options = {}) : options_(options) {}
 
   /// Writes the polygon's corners.size() - 2 triangles, three vertex indices
-  /// each, to `triangles`. `corners` (at least 3) are rows of `vertices`.
-  PolygonShape triangulate(std::span<const Index> corners, const VertexMatrix& vertices,
+  /// each, to `triangles`. `xyz` holds x, y, z of each vertex in turn;
+  /// `corners` (at least 3) index vertices in it.
+  PolygonShape triangulate(std::span<const Index> corners, std::span<const double> xyz,
                            std::span<Index> triangles);
 
  private:
@@ -47,7 +48,9 @@ class PolygonTriangulator {
 
   /// Fills points_ with the corners in the plane of the Newell normal; false
   /// when the polygon has no usable normal (no area, or non-finite coordinates).
-  bool project(std::span<const Index> corners, const VertexMatrix& vertices);
+  bool project(std::span<const Index> corners, std::span<const double> xyz);
+  /// is_convex() for a quad, without projecting it (most polygons are quads).
+  static bool is_convex_quad(std::span<const Index> corners, std::span<const double> xyz);
   bool is_convex() const;
   /// Ear clipping over points_; false when it had to clip a corner that is no
   /// ear, or the last triangle is flipped.
@@ -69,23 +72,45 @@ class PolygonTriangulator {
   double extent_ = 0;  // the largest distance of a corner from the first, in the plane
 };
 
-/// Collects a reader's faces: triangles as given, polygons fan-triangulated
-/// and remembered until take() replaces each fan by the polygon's
-/// triangulation, once every vertex is known.
+/// Collects a reader's faces: triangles as given, polygons triangulated at
+/// once when their vertices are known (know_vertices), else fan-triangulated
+/// and remembered until take() replaces each fan, once every vertex is known.
 class FaceBuffer {
  public:
   explicit FaceBuffer(std::size_t expected_triangles = 0, PolygonTriangulationOptions options = {})
-      : triangles_(expected_triangles), options_(options) {}
+      : triangles_(expected_triangles), triangulator_(options), options_(options) {}
 
   [[gnu::always_inline]] void add(Index a, Index b, Index c) { triangles_.add(a, b, c); }
 
-  /// A face of `corners` (at least 3) corners; `corner(i)` returns the i-th corner's vertex index.
+  /// The vertices read so far, x, y, z each in turn; the storage must stay
+  /// put until the next add_polygon.
+  void know_vertices(std::span<const double> xyz) { known_xyz_ = xyz; }
+  void know_vertices(const VertexMatrix& vertices) { known_xyz_ = {vertices.data(), static_cast<std::size_t>(vertices.size())}; }
+
+  /// A face of `corners` (at least 3) corners; `corner(i)` returns the i-th
+  /// corner's vertex index (not negative), and is called once for each.
   template <class CornerAt>
   void add_polygon(std::size_t corners, CornerAt&& corner) {
-    if (corners > 3) {
-      polygons_.push_back(PendingPolygon{.first_triangle = triangles_.size(), .corners = corners});
+    if (corners == 3) {
+      const Index a = corner(0);
+      const Index b = corner(1);
+      triangles_.add(a, b, corner(2));
+      return;
     }
-    triangles_.add_polygon(corners, corner);
+    ++polygons_split_;
+    corners_.clear();
+    bool known = true;
+    const std::size_t known_count = known_xyz_.size() / 3;
+    for (std::size_t i = 0; i < corners; ++i) {
+      corners_.push_back(corner(i));
+      known = known && static_cast<std::size_t>(corners_.back()) < known_count;
+    }
+    if (known) {
+      add_triangulated();
+    } else {
+      polygons_.push_back(PendingPolygon{.first_triangle = triangles_.size(), .corners = corners});
+      triangles_.add_polygon(corners, [this](std::size_t i) { return corners_[i]; });
+    }
   }
 
   /// The triangles, in the order their faces were added. Every index must be
@@ -99,9 +124,18 @@ class FaceBuffer {
     std::size_t corners = 0;
   };
 
+  /// Triangulates corners_ over the known vertices and adds the triangles.
+  void add_triangulated();
+
   TriangleBuffer triangles_;
-  std::vector<PendingPolygon> polygons_;
+  PolygonTriangulator triangulator_;
   PolygonTriangulationOptions options_;
+  std::span<const double> known_xyz_;
+  std::vector<PendingPolygon> polygons_;  // fan-triangulated until take()
+  std::vector<Index> corners_;            // reused for every polygon: no allocation per face
+  std::vector<Index> scratch_triangles_;
+  std::int64_t polygons_split_ = 0;
+  std::array<std::int64_t, 4> shapes_{};  // polygons of each PolygonShape
 };
 
 }  // namespace geodual::io::detail

@@ -327,6 +327,35 @@ TEST(PolygonTriangulation, OffPlyAndAsciiStlSplitPolygonsTheSameWay) {
   expect_exact_triangulation(facet, in_plane_z0(corners));
 }
 
+TEST(PolygonTriangulation, FacesBeforeTheirVerticesAreTriangulatedTheSame) {
+  // Readers triangulate a polygon at once when its vertices are known, else
+  // at the end of the file: both give the same triangles.
+  TempDir dir;
+  const auto corners = in_plane_z0(c_shape);
+  const std::string text = obj_polygon(corners);
+  const std::size_t face_line = text.rfind("f ");
+  const io::LoadedMesh in_order = read_text(dir, "in_order.obj", text);
+  const io::LoadedMesh face_first =
+      read_text(dir, "face_first.obj", text.substr(face_line) + text.substr(0, face_line));
+  EXPECT_EQ(face_list(face_first.mesh), face_list(in_order.mesh));
+  EXPECT_EQ(face_first.info.notes, in_order.info.notes);
+  expect_exact_triangulation(face_first, corners);
+  std::string vertices;
+  for (const Point3& p : corners) {
+    vertices += std::to_string(p.x()) + " " + std::to_string(p.y()) + " 0\n";
+  }
+  const io::LoadedMesh ply = read_text(dir, "face_first.ply",
+                                       "ply\nformat ascii 1.0\nelement face 2\n"
+                                       "property list uchar int vertex_indices\n"
+                                       "element vertex 8\nproperty double x\nproperty double y\nproperty double z\n"
+                                       "end_header\n8 0 1 2 3 4 5 6 7\n3 0 1 2\n" +
+                                           vertices);
+  std::vector<Index> expected = face_list(in_order.mesh);
+  expected.insert(expected.end(), {0, 1, 2});
+  EXPECT_EQ(face_list(ply.mesh), expected);
+  EXPECT_EQ(ply.info.polygons_split, 1);
+}
+
 TEST(PolygonTriangulation, LargePolygons) {
   TempDir dir;
   // A convex 5000-gon: the fan, without ear clipping's quadratic cost.
