@@ -28,7 +28,7 @@ struct PolygonTriangulationOptions {
 enum class PolygonShape : std::uint8_t {
   convex,      ///< strictly convex: the fan
   simple,      ///< not convex (or with collinear corners): ear clipping, every triangle inside the polygon
-  non_simple,  ///< edges cross, or it has no area in its plane: ear clipping as well as it goes
+  non_simple,  ///< edges cross (ear clipping as well as it goes), or no area in its plane (the fan)
   too_large,   ///< not convex and over max_ear_clipping_corners: the fan, whose triangles may overlap
 };
 
