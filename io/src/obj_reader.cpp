@@ -1,15 +1,16 @@
 // Wavefront OBJ reader: `v` lines give vertices, `f` lines faces (any of the
 // forms v, v/vt, v//vn, v/vt/vn; negative indices count back from the latest
-// vertex), polygons are fan-triangulated. Everything else -- texture
-// coordinates, normals, groups, objects, materials, smoothing, lines, points
-// -- is ignored, as are comments. Lines end in "\n" or "\r\n".
+// vertex), polygons are triangulated in their plane (polygon_triangulation.hpp).
+// Everything else -- texture coordinates, normals, groups, objects, materials,
+// smoothing, lines, points -- is ignored, as are comments. Lines end in "\n"
+// or "\r\n".
 
 #include "format_readers.hpp"
 
 #include "file_error.hpp"
 #include "parse_number.hpp"
+#include "polygon_triangulation.hpp"
 #include "text_lines.hpp"
-#include "triangle_buffer.hpp"
 
 #include <cstdint>
 #include <limits>
@@ -57,8 +58,7 @@ class ObjParser {
     loaded.info.format = MeshFormat::obj;
     loaded.info.encoding = "ascii";
     loaded.mesh.vertices = Eigen::Map<const VertexMatrix>(coordinates_.data(), vertex_count, 3);
-    loaded.info.polygons_split = triangles_.polygons_split();
-    loaded.mesh.faces = triangles_.take();
+    loaded.mesh.faces = faces_.take(loaded.mesh.vertices, loaded.info);
     return loaded;
   }
 
@@ -92,7 +92,8 @@ class ObjParser {
       throw_line_error(file_, lines_.line_number(), "face ", face_count_, " has ", corners_.size(),
                        " corners; a face needs at least 3");
     }
-    triangles_.add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+    faces_.know_vertices(coordinates_);
+    faces_.add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
   }
 
   /// The 0-based vertex index of a corner written "v", "v/vt", "v//vn" or "v/vt/vn".
@@ -129,7 +130,7 @@ class ObjParser {
   LineCursor lines_;
   const fs::path& file_;
   std::vector<double> coordinates_;
-  TriangleBuffer triangles_;
+  FaceBuffer faces_;
   std::vector<Index> corners_;  // reused for every face: no allocation per face
   std::size_t face_count_ = 0;
   ForwardReference forward_;

@@ -1,16 +1,17 @@
 // OFF reader (Object File Format): a header keyword (OFF, or COFF / NOFF /
 // STOFF / CNOFF ... whose extra per-vertex values are ignored), a counts line
 // "V F E", V vertex lines, F face lines "n i0 ... i(n-1) [colour]".
-// Polygons are fan-triangulated; '#' starts a comment; blank lines are skipped.
+// Polygons are triangulated in their plane (polygon_triangulation.hpp); '#'
+// starts a comment; blank lines are skipped.
 // Each vertex and face is read from its own line, as every writer emits them.
 
 #include "format_readers.hpp"
 
 #include "file_error.hpp"
 #include "parse_number.hpp"
+#include "polygon_triangulation.hpp"
 #include "saturating.hpp"
 #include "text_lines.hpp"
-#include "triangle_buffer.hpp"
 
 #include <cstdint>
 #include <limits>
@@ -59,10 +60,10 @@ class OffParser {
     loaded.info.format = MeshFormat::off;
     loaded.info.encoding = "ascii";
     read_vertices(&loaded.mesh.vertices);
-    TriangleBuffer triangles(static_cast<std::size_t>(face_count_));
-    read_faces(&triangles);
-    loaded.info.polygons_split = triangles.polygons_split();
-    loaded.mesh.faces = triangles.take();
+    FaceBuffer faces(static_cast<std::size_t>(face_count_));
+    faces.know_vertices(loaded.mesh.vertices);
+    read_faces(&faces);
+    loaded.mesh.faces = faces.take(loaded.mesh.vertices, loaded.info);
     return loaded;
   }
 
@@ -173,8 +174,8 @@ class OffParser {
     }
   }
 
-  /// Reads the face lines into `triangles`, or only checks them when it is null.
-  void read_faces(TriangleBuffer* triangles) {
+  /// Reads the face lines into `faces`, or only checks them when it is null.
+  void read_faces(FaceBuffer* faces) {
     for (Index f = 0; f < face_count_; ++f) {
       WordCursor words(std::string_view{});
       if (!next_content_line(words)) {
@@ -208,8 +209,8 @@ class OffParser {
         corners_.push_back(static_cast<Index>(*index));
       }
       // Colour values may follow the indices.
-      if (triangles != nullptr) {
-        triangles->add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+      if (faces != nullptr) {
+        faces->add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
       }
     }
   }

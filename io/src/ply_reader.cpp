@@ -13,9 +13,9 @@
 #include "file_error.hpp"
 #include "parse_number.hpp"
 #include "ply_header.hpp"
+#include "polygon_triangulation.hpp"
 #include "saturating.hpp"
 #include "text_lines.hpp"
-#include "triangle_buffer.hpp"
 
 #include <array>
 #include <bit>
@@ -246,7 +246,7 @@ class BinaryPlyBody {
   }
 
   void read_faces(const PlyElement& element, std::size_t corner_list, const CornerCheck& check,
-                  TriangleBuffer& triangles) {
+                  FaceBuffer& triangles) {
     const PlyProperty& list = element.properties[corner_list];
     if (element.properties.size() == 1) {
       visit_ply_scalar(*list.count_type, [&](auto count_tag) {
@@ -365,7 +365,7 @@ class BinaryPlyBody {
 
   /// The fast path for face records that hold nothing but the index list.
   template <class Count, class Item>
-  void read_index_lists(const PlyElement& element, const CornerCheck& check, TriangleBuffer& triangles) {
+  void read_index_lists(const PlyElement& element, const CornerCheck& check, FaceBuffer& triangles) {
     const std::byte* at = data_.data() + at_;
     const std::byte* const end = data_.data() + data_.size();
     for (std::uint64_t record = 0; record < element.count; ++record) {
@@ -400,12 +400,13 @@ class BinaryPlyBody {
 template <std::endian Order>
 std::size_t read_binary_body(std::span<const std::byte> data, const PlyHeader& header,
                              const PlyMeshLayout& layout, const fs::path& file, TriangleMesh& mesh,
-                             TriangleBuffer& triangles) {
+                             FaceBuffer& triangles) {
   BinaryPlyBody<Order> body(data, header.body_offset, file);
   const std::uint64_t vertex_count = layout.vertex ? layout.vertex->count : 0;
   for (const PlyElement& element : header.elements) {
     if (&element == layout.vertex) {
       body.read_vertices(element, layout.xyz, mesh.vertices);
+      triangles.know_vertices(mesh.vertices);
     } else if (&element == layout.face) {
       body.read_faces(element, layout.corner_list, CornerCheck(element, vertex_count, file), triangles);
     } else {
@@ -440,7 +441,7 @@ class AsciiPlyBody {
   /// `triangles` is null, becomes triangles.
   template <class OnScalar>
   void read(const PlyElement& element, OnScalar&& on_scalar, std::optional<std::size_t> corner_list,
-            const CornerCheck* check, TriangleBuffer* triangles) {
+            const CornerCheck* check, FaceBuffer* triangles) {
     for (std::uint64_t record = 0; record < element.count; ++record) {
       WordCursor words(next_record_line(element, record));
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -557,7 +558,7 @@ class AsciiPlyBody {
 /// checks every record (a dry run: nothing sized by the header's counts is
 /// allocated). Returns whether text follows the last element.
 bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, const PlyMeshLayout& layout,
-                     const fs::path& file, TriangleMesh* mesh, TriangleBuffer* triangles) {
+                     const fs::path& file, TriangleMesh* mesh, FaceBuffer* triangles) {
   const std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
   AsciiPlyBody body(text, header, file);
   const std::uint64_t vertex_count = layout.vertex ? layout.vertex->count : 0;
@@ -575,6 +576,9 @@ bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, c
             }
           },
           std::nullopt, nullptr, nullptr);
+      if (triangles != nullptr) {
+        triangles->know_vertices(mesh->vertices);
+      }
     } else if (&element == layout.face) {
       const CornerCheck check(element, vertex_count, file);
       body.read(element, ignore, layout.corner_list, &check, triangles);
@@ -644,7 +648,7 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
     loaded.info.encoding += str_cat(" ", sized_name_of(layout.vertex->properties[layout.xyz[0]].type));
   }
 
-  TriangleBuffer triangles(layout.face ? static_cast<std::size_t>(layout.face->count) : 0);
+  FaceBuffer triangles(layout.face ? static_cast<std::size_t>(layout.face->count) : 0);
   switch (header.encoding) {
     case PlyEncoding::ascii:
       if (read_ascii_body(data, header, layout, name, &loaded.mesh, &triangles)) {
@@ -663,8 +667,7 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
       break;
     }
   }
-  loaded.info.polygons_split = triangles.polygons_split();
-  loaded.mesh.faces = triangles.take();
+  loaded.mesh.faces = triangles.take(loaded.mesh.vertices, loaded.info);
   if (const std::string ignored = ignored_parts(header, layout); !ignored.empty()) {
     loaded.info.notes.push_back("ignored: " + ignored);
   }

@@ -48,6 +48,8 @@ class PositionWelder {
   }
 
   std::size_t vertex_count() const { return coordinates_.size() / 3; }
+  /// Every weld() call: the corners read.
+  std::size_t corner_count() const { return corners_; }
   /// Corners seen minus vertices made: how many corners joined an earlier vertex.
   std::int64_t welded_corners() const {
     return static_cast<std::int64_t>(corners_) - static_cast<std::int64_t>(vertex_count());

@@ -12,6 +12,7 @@
 #include "byte_order.hpp"
 #include "file_error.hpp"
 #include "parse_number.hpp"
+#include "polygon_triangulation.hpp"
 #include "position_welder.hpp"
 #include "text_lines.hpp"
 #include "triangle_buffer.hpp"
@@ -49,9 +50,10 @@ bool starts_with_solid(std::string_view text) {
 
 void describe_welding(const PositionWelder& welder, LoadedMesh& loaded) {
   loaded.info.welded_corners = welder.welded_corners();
-  loaded.info.notes.push_back(str_cat("STL stores every triangle corner separately: ", welder.welded_corners(),
+  loaded.info.notes.push_back(str_cat("STL stores every triangle corner separately: ", welder.corner_count(),
                                       " corners were welded into ", welder.vertex_count(),
-                                      " vertices by exact position (first occurrence order)"));
+                                      " vertices by exact position (first occurrence order; ",
+                                      welder.welded_corners(), " corners repeated an earlier position)"));
 }
 
 LoadedMesh read_binary_stl(std::span<const std::byte> data, std::uint64_t triangle_count, const fs::path& file) {
@@ -94,7 +96,7 @@ LoadedMesh read_binary_stl(std::span<const std::byte> data, std::uint64_t triang
 class AsciiStlParser {
  public:
   AsciiStlParser(std::string_view text, const fs::path& file)
-      : lines_(text), file_(file), welder_(text.size() / 40), triangles_(text.size() / 250) {}
+      : lines_(text), file_(file), welder_(text.size() / 40), facets_(text.size() / 250) {}
 
   LoadedMesh parse() {
     std::string_view line;
@@ -111,9 +113,8 @@ class AsciiStlParser {
     LoadedMesh loaded;
     loaded.info.format = MeshFormat::stl;
     loaded.info.encoding = "ascii";
-    loaded.info.polygons_split = triangles_.polygons_split();
     loaded.mesh.vertices = welder_.vertices();
-    loaded.mesh.faces = triangles_.take();
+    loaded.mesh.faces = facets_.take(loaded.mesh.vertices, loaded.info);
     describe_welding(welder_, loaded);
     return loaded;
   }
@@ -149,7 +150,7 @@ class AsciiStlParser {
         throw_line_error(file_, lines_.line_number(), "facet has ", corners_.size(),
                          " vertices; a facet needs at least 3");
       }
-      triangles_.add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
+      facets_.add_polygon(corners_.size(), [this](std::size_t corner) { return corners_[corner]; });
       facet_line_ = 0;
     } else {
       throw_line_error(file_, lines_.line_number(), "unexpected '", excerpt(keyword), "' in ASCII STL",
@@ -160,7 +161,7 @@ class AsciiStlParser {
   LineCursor lines_;
   const fs::path& file_;
   PositionWelder welder_;
-  TriangleBuffer triangles_;
+  FaceBuffer facets_;
   std::vector<Index> corners_;  // reused for every facet: no allocation per facet
   bool in_solid_ = false;
   std::size_t facet_line_ = 0;  // line where the open facet began; 0 outside facets

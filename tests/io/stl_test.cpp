@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geodual::test {
@@ -59,7 +60,7 @@ void expect_two_plus_one(const io::LoadedMesh& loaded) {
   EXPECT_EQ(loaded.info.welded_corners, 4);
   EXPECT_EQ(loaded.info.format, io::MeshFormat::stl);
   ASSERT_FALSE(loaded.info.notes.empty());
-  EXPECT_NE(loaded.info.notes.back().find("4 corners were welded into 5 vertices"), std::string::npos)
+  EXPECT_NE(loaded.info.notes.back().find("9 corners were welded into 5 vertices"), std::string::npos)
       << loaded.info.notes.back();
 }
 
@@ -109,6 +110,25 @@ TEST(StlReader, OnlyExactlyEqualPositionsAreWelded) {
   EXPECT_EQ(face_list(loaded.mesh), (std::vector<Index>{0, 1, 2, 0, 3, 2}));
   EXPECT_EQ(loaded.mesh.vertices(3, 0), static_cast<double>(next_after_one));
   EXPECT_EQ(loaded.info.welded_corners, 2);
+}
+
+TEST(StlReader, WeldNoteCountsEveryCorner) {
+  // A tetrahedron: 4 triangles, 12 corners at 4 positions, 8 of them repeats.
+  const std::array<std::array<float, 3>, 4> p = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  const std::vector<Triangle> tetrahedron = {
+      Triangle{{p[0], p[2], p[1]}}, Triangle{{p[0], p[1], p[3]}},
+      Triangle{{p[1], p[2], p[3]}}, Triangle{{p[2], p[0], p[3]}}};
+  TempDir dir;
+  for (const auto& [name, bytes] : {std::pair{"binary.stl", binary_stl(tetrahedron, "t")},
+                                    std::pair{"ascii.stl", ascii_stl(tetrahedron)}}) {
+    const io::LoadedMesh loaded = read_text(dir, name, bytes);
+    EXPECT_EQ(loaded.mesh.num_vertices(), 4);
+    EXPECT_EQ(loaded.info.welded_corners, 8);
+    ASSERT_EQ(loaded.info.notes.size(), 1u);
+    EXPECT_EQ(loaded.info.notes[0],
+              "STL stores every triangle corner separately: 12 corners were welded into 4 vertices by exact "
+              "position (first occurrence order; 8 corners repeated an earlier position)");
+  }
 }
 
 TEST(StlReader, DegenerateTrianglesStay) {
