@@ -1,6 +1,6 @@
 #pragma once
 // Reading meshes exactly as the file stores them: vertex order and count kept,
-// polygons fan-triangulated, nothing cleaned. Every failure is a geodual::Error
+// polygons triangulated in their best-fit plane, nothing cleaned. Every failure is a geodual::Error
 // whose message names the file and the problem.
 
 #include "geodual/io/mesh_format.hpp"
@@ -22,7 +22,7 @@ struct ReadInfo {
   /// float32", "ascii float64"; STL: "binary" or "ascii"; OBJ, OFF: "ascii".
   std::string encoding;
   std::uintmax_t file_bytes = 0;
-  std::int64_t polygons_split = 0;    ///< polygons with more than 3 corners fan-triangulated
+  std::int64_t polygons_split = 0;    ///< polygons with more than 3 corners split into triangles
   std::int64_t welded_corners = 0;    ///< STL: triangle corners merged into shared vertices
   std::vector<std::string> notes;     ///< human-readable remarks: welding, what was ignored
 };
