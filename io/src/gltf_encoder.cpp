@@ -1,6 +1,6 @@
 #include "gltf_encoder.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "gltf_base64.hpp"
 #include "gltf_constants.hpp"
 #include "gltf_glb.hpp"

@@ -3,8 +3,8 @@
 // --sites N [--sampling random|poisson|fps] [--seed S], or --site-file F.
 
 #include "geodual/remesh/sample_sites.hpp"
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/surface_point.hpp"
 
 #include <cstdint>
 #include <string>
