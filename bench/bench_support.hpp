@@ -7,9 +7,9 @@
 // Linux only (it reads /proc and forks); header-only so that every bench/*.cpp
 // stays one executable.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/sites.hpp"
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <algorithm>
 #include <array>

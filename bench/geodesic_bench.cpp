@@ -23,7 +23,7 @@
 #include "bench_support.hpp"
 #include "subdivided_inputs.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 

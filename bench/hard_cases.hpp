@@ -7,7 +7,7 @@
 //
 //   for (const auto& hard_case : geodual::bench::hard_cases()) remesh(hard_case.build());
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

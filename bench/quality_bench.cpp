@@ -65,7 +65,7 @@
 
 #include "bench_support.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/remesh/quality_stats.hpp"

@@ -14,7 +14,7 @@
 #include "bench_support.hpp"
 #include "subdivided_inputs.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/remesh/remesh.hpp"

@@ -29,9 +29,10 @@
 #include "bench_support.hpp"
 #include "hard_cases.hpp"
 
-#include "geodual/error.hpp"
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/mesh_report.hpp"
+#include "geodual/mesh/union_find.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
 #include <Eigen/Geometry>
@@ -191,30 +192,21 @@ std::vector<SweepMesh> sweep_meshes(const Options& options) {
 /// Per vertex, a component id (union of the corners of faces with three
 /// distinct corners); -1 for a vertex no such face uses. Ids are 0..count-1.
 std::vector<Index> vertex_components(const TriangleMesh& mesh, Index& count) {
-  std::vector<Index> parent(static_cast<std::size_t>(mesh.num_vertices()));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index v) {
-    while (parent[static_cast<std::size_t>(v)] != v) {
-      parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-      v = parent[static_cast<std::size_t>(v)];
-    }
-    return v;
-  };
-  std::vector<bool> used(parent.size(), false);
+  UnionFind pieces(static_cast<std::size_t>(mesh.num_vertices()));
+  std::vector<bool> used(pieces.size(), false);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     if (!is_proper_face(mesh, f)) continue;
     for (int c = 0; c < 3; ++c) {
       used[static_cast<std::size_t>(mesh.faces(f, c))] = true;
-      const Index a = find(mesh.faces(f, 0)), b = find(mesh.faces(f, c));
-      parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      pieces.unite(mesh.faces(f, 0), mesh.faces(f, c));
     }
   }
-  std::vector<Index> component(parent.size(), -1);
-  std::vector<Index> id_of_root(parent.size(), -1);
+  std::vector<Index> component(pieces.size(), -1);
+  std::vector<Index> id_of_root(pieces.size(), -1);
   count = 0;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     if (!used[static_cast<std::size_t>(v)]) continue;
-    Index& id = id_of_root[static_cast<std::size_t>(find(v))];
+    Index& id = id_of_root[static_cast<std::size_t>(pieces.find(v))];
     if (id < 0) id = count++;
     component[static_cast<std::size_t>(v)] = id;
   }

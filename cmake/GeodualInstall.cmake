@@ -7,7 +7,7 @@
 #
 # Imported targets (the same names as the build tree's ALIAS targets, so code
 # written against one works with the other):
-#   geodual::mesh      TriangleMesh, errors, mesh analysis (Eigen)
+#   geodual::mesh      TriangleMesh, SurfacePoint, errors, MeshTopology, mesh analysis (Eigen)
 #   geodual::io        readers and writers
 #   geodual::voronoi   exact geodesics and the geodesic Voronoi diagram
 #   geodual::remesh    site sampling, Lloyd, dual Delaunay, quality statistics
@@ -26,16 +26,12 @@ set(GEODUAL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/geodual CACHE STRING
     "Where the geodual CMake package files are installed, relative to the prefix")
 mark_as_advanced(GEODUAL_INSTALL_CMAKEDIR)
 
-# Library targets and their exported names; remesh is optional in the build.
-set(_geodual_components mesh io voronoi remesh pipeline)
+# Library targets and their exported names.
+set(GEODUAL_INSTALLED_COMPONENTS mesh io voronoi remesh pipeline)
 set(_geodual_installed_libraries)
-set(GEODUAL_INSTALLED_COMPONENTS)
-foreach(component IN LISTS _geodual_components)
-  if(TARGET geodual_${component})
-    set_target_properties(geodual_${component} PROPERTIES EXPORT_NAME ${component})
-    list(APPEND _geodual_installed_libraries geodual_${component})
-    list(APPEND GEODUAL_INSTALLED_COMPONENTS ${component})
-  endif()
+foreach(component IN LISTS GEODUAL_INSTALLED_COMPONENTS)
+  set_target_properties(geodual_${component} PROPERTIES EXPORT_NAME ${component})
+  list(APPEND _geodual_installed_libraries geodual_${component})
 endforeach()
 
 install(TARGETS ${_geodual_installed_libraries} geodual
@@ -45,14 +41,14 @@ install(TARGETS ${_geodual_installed_libraries} geodual
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
-# Public headers: each module's include/ folder merges into one include/geodual/.
-foreach(module io voronoi remesh pipeline)
-  if(IS_DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include)
-    install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/
-      DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-      COMPONENT development
-      FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
-  endif()
+# Public headers only: each module's include/geodual/<module>/ folder becomes
+# include/geodual/<module>/. Private headers (a module's src/, mesh/detail/)
+# stay in the source tree.
+foreach(module IN LISTS GEODUAL_INSTALLED_COMPONENTS)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/geodual/${module}
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/geodual
+    COMPONENT development
+    FILES_MATCHING PATTERN "*.hpp")
 endforeach()
 
 install(EXPORT geodual-targets
@@ -62,10 +58,7 @@ install(EXPORT geodual-targets
 
 # Which third-party packages the config file must find again: those the
 # installed targets link, publicly or (static libraries) privately.
-set(GEODUAL_NEEDS_CGAL OFF)
-if(TARGET geodual_remesh)
-  set(GEODUAL_NEEDS_CGAL ON)
-endif()
+set(GEODUAL_NEEDS_CGAL ON)
 configure_package_config_file(
   ${CMAKE_CURRENT_LIST_DIR}/geodual-config.cmake.in
   ${PROJECT_BINARY_DIR}/geodual-package/geodual-config.cmake

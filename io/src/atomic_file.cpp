@@ -1,6 +1,6 @@
 #include "geodual/io/atomic_file.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -5,7 +5,7 @@
 
 #include "str_cat.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <cstddef>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #include "gltf_asset_extras.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <nlohmann/json.hpp>
 

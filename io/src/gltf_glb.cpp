@@ -1,6 +1,6 @@
 #include "gltf_glb.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "gltf_constants.hpp"
 
 #include <bit>

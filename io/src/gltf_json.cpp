@@ -1,6 +1,6 @@
 #include "gltf_json.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <cmath>
 

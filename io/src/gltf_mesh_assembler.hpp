@@ -15,7 +15,7 @@
 // and counted; a mirroring transform (negative determinant) flips the winding
 // so that triangles stay counter-clockwise seen from outside.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "gltf_accessor.hpp"
 #include "gltf_buffers.hpp"
 #include "gltf_constants.hpp"

@@ -1,6 +1,6 @@
 #include "gltf_model_builder.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "gltf_vertex_normals.hpp"
 
 #include <nlohmann/json.hpp>

@@ -15,7 +15,7 @@
 
 #include "format_readers.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "gltf_buffers.hpp"
 #include "gltf_glb.hpp"
 #include "gltf_json.hpp"

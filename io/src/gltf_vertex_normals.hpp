@@ -1,7 +1,7 @@
 #pragma once
 // Internal: per-vertex normals for glTF output.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <vector>
 

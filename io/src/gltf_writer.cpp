@@ -4,7 +4,7 @@
 
 #include "geodual/io/gltf.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/mesh_format.hpp"
 #include "gltf_asset_extras.hpp"

@@ -5,7 +5,7 @@
 
 #include "file_error.hpp"
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <bit>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "geodual/io/mesh_format.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 
 #include <string>

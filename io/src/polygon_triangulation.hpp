@@ -6,7 +6,7 @@
 // (c0, c1, c2), (c0, c2, c3), ..., which ear clipping from c1 also gives them.
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include "triangle_buffer.hpp"
 

@@ -5,7 +5,7 @@
 // open-addressing hash table over the coordinates' bit patterns: no
 // allocation per corner, linear in the number of corners.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <bit>
 #include <cstddef>

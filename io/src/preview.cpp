@@ -9,7 +9,7 @@
 #include "preview_raster.hpp"
 #include "str_cat.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 
 #include <Eigen/Geometry>

@@ -13,7 +13,7 @@
 
 #include "preview_png.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <cstddef>
 

@@ -2,7 +2,7 @@
 // Internal: collects the triangles a reader produces straight into the
 // FaceMatrix it returns, growing geometrically, and fan-triangulates polygons.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <algorithm>
 #include <cstddef>

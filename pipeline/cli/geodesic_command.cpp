@@ -8,7 +8,7 @@
 #include "site_source.hpp"
 #include "text_table.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/field_output.hpp"

@@ -4,7 +4,7 @@
 #include "text_table.hpp"
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/report_json.hpp"

@@ -7,7 +7,7 @@
 #include "command.hpp"
 #include "progress_bar.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/version.hpp"
 
 #include <CLI/CLI.hpp>

@@ -1,6 +1,6 @@
 #include "site_source.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/sites.hpp"
 #include "option_checks.hpp"
 

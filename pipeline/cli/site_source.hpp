@@ -4,8 +4,8 @@
 // --sites N samples the surface the same way in every command.
 
 #include "geodual/remesh/sample_sites.hpp"
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/surface_point.hpp"
 
 #include <cstdint>
 #include <string>

@@ -7,7 +7,7 @@
 #include "option_checks.hpp"
 #include "text_table.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 

@@ -1,6 +1,6 @@
 #include "geodual/pipeline/diagram_output.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/mesh_format.hpp"

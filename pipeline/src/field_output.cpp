@@ -1,6 +1,6 @@
 #include "geodual/pipeline/field_output.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/io/write_mesh.hpp"

@@ -1,6 +1,6 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 
 #include <Eigen/Geometry>

@@ -1,6 +1,7 @@
 #include "geodual/pipeline/sites.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/random.hpp"
 
 #include <array>
 #include <charconv>
@@ -13,29 +14,6 @@
 
 namespace geodual {
 namespace {
-
-/// SplitMix64 (Steele, Lea & Flood 2014): tiny, and the same everywhere.
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in [0, bound), without modulo bias.
-  std::uint64_t below(std::uint64_t bound) {
-    const std::uint64_t limit = ~std::uint64_t{0} - (~std::uint64_t{0} % bound);
-    for (;;) {
-      const std::uint64_t x = next();
-      if (x < limit) return x % bound;
-    }
-  }
-
- private:
-  std::uint64_t state_;
-};
 
 template <typename T>
 bool parse(std::string_view token, T& value) {

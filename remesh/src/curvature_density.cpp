@@ -1,6 +1,6 @@
 #include "geodual/remesh/curvature_density.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <Eigen/Geometry>
 

@@ -1,47 +1,31 @@
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 
+#include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/union_find.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <array>
 #include <map>
-#include <numeric>
 #include <string>
 #include <utility>
 
 namespace geodual::remesh {
 namespace {
 
-struct UnionFind {
-  std::vector<Index> parent;
-  explicit UnionFind(Index n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
-  Index find(Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(Index a, Index b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
-
 /// Euler characteristic and boundary loops of each vertex-connected component
-/// of a triangle soup, keyed by the component's smallest vertex.
-struct ComponentTopology {
-  std::int64_t vertices = 0, edges = 0, faces = 0, boundary_loops = 0;
-  std::int64_t euler() const { return vertices - edges + faces; }
-};
-
-/// Faces with a repeated index are skipped. Boundary loops are the connected
-/// pieces of the graph of edges with one face (loops that touch at a vertex
-/// count once, as in MeshReport). `for_each_edge(visit)` calls
+/// of a triangle soup, keyed by the component's smallest vertex. Faces with a
+/// repeated index are skipped. Boundary loops are the connected pieces of the
+/// graph of edges with one face (loops that touch at a vertex count once, as
+/// in MeshReport and MeshTopology). `for_each_edge(visit)` calls
 /// visit(u, v, boundary) once for every edge of the mesh.
 template <class ForEachEdge>
-std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mesh, UnionFind& components,
+std::map<Index, ComponentCounts> topology_by_component(const TriangleMesh& mesh, UnionFind& components,
                                                          ForEachEdge for_each_edge) {
-  const Index n = static_cast<Index>(mesh.vertices.rows());
+  const Index n = mesh.num_vertices();
   std::vector<std::uint8_t> used(n, 0);
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
     const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
@@ -50,7 +34,7 @@ std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mes
     components.unite(b, c);
     used[a] = used[b] = used[c] = 1;
   }
-  std::map<Index, ComponentTopology> result;
+  std::map<Index, ComponentCounts> result;
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
     const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
     if (a == b || b == c || c == a) continue;
@@ -59,7 +43,7 @@ std::map<Index, ComponentTopology> topology_by_component(const TriangleMesh& mes
   for (Index v = 0; v < n; ++v) {
     if (used[v]) ++result[components.find(v)].vertices;
   }
-  UnionFind boundary(n);
+  UnionFind boundary(static_cast<std::size_t>(n));
   std::vector<std::uint8_t> on_boundary(n, 0);
   for_each_edge([&](Index u, Index v, bool is_boundary) {
     ++result[components.find(u)].edges;
@@ -86,28 +70,11 @@ void visit_pair_runs(std::vector<std::array<Index, 2>>& pairs, Visit&& visit) {
   }
 }
 
-/// The edges of a small mesh (the dual): its 3F half-edges sorted by vertex pair.
-std::map<Index, ComponentTopology> mesh_topology(const TriangleMesh& mesh, UnionFind& components) {
-  return topology_by_component(mesh, components, [&](auto&& visit) {
-    std::vector<std::array<Index, 2>> pairs;
-    pairs.reserve(3 * static_cast<std::size_t>(mesh.faces.rows()));
-    for (Index f = 0; f < mesh.faces.rows(); ++f) {
-      const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-      if (a == b || b == c || c == a) continue;
-      for (int k = 0; k < 3; ++k) {
-        const Index u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
-        pairs.push_back({std::min(u, v), std::max(u, v)});
-      }
-    }
-    visit_pair_runs(pairs, visit);
-  });
-}
-
 /// The edges of the surface the diagram lies on, from the field's edge table
 /// (a large input's half-edges need not be sorted again): an edge with two
 /// faces is one edge there; an edge with one face, or three or more, is one
 /// boundary edge per face, told apart here by how many share its ends.
-std::map<Index, ComponentTopology> field_topology(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
+std::map<Index, ComponentCounts> field_topology(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
                                                   UnionFind& components) {
   return topology_by_component(mesh, components, [&](auto&& visit) {
     std::vector<std::array<Index, 2>> split;
@@ -253,29 +220,29 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
 
   // Topology per component: the input's (faces with a repeated index aside)
   // against the dual's, matched through the sites.
-  UnionFind input_components(static_cast<Index>(input.vertices.rows()));
+  UnionFind input_components(static_cast<std::size_t>(input.num_vertices()));
   const auto input_topology = field_topology(input, field, input_components);
-  UnionFind dual_components(num_sites);
-  const auto dual_topology = mesh_topology(dual.mesh, dual_components);
+  const MeshTopology dual_topology = build_mesh_topology(dual.mesh);
   std::map<Index, std::vector<Index>> sites_by_component;
   std::string first_mismatch;
   for (Index s = 0; s < num_sites; ++s) {
     sites_by_component[input_components.find(vertex_of(input, field.sites[s]))].push_back(s);
   }
   for (const auto& [component, sites] : sites_by_component) {
-    const Index dual_root = dual_components.find(sites[0]);
-    bool same = std::all_of(sites.begin(), sites.end(), [&](Index s) { return dual_components.find(s) == dual_root; });
-    const auto dual_it = dual_topology.find(dual_root);
-    const ComponentTopology& expected = input_topology.at(component);
-    same = same && dual_it != dual_topology.end() && dual_it->second.euler() == expected.euler() &&
-           dual_it->second.boundary_loops == expected.boundary_loops;
+    const Index dual_component = dual_topology.vertex_component[sites[0]];
+    bool same = dual_component >= 0 && std::all_of(sites.begin(), sites.end(), [&](Index s) {
+      return dual_topology.vertex_component[s] == dual_component;
+    });
+    const ComponentCounts& expected = input_topology.at(component);
+    same = same && dual_topology.components[dual_component].euler_characteristic() == expected.euler_characteristic() &&
+           dual_topology.components[dual_component].boundary_loops == expected.boundary_loops;
     if (same) continue;
     if (check.topology_mismatches++ == 0) {
       // Named in the message: where to look (a scrap far below the sites'
       // spacing may need to go; a large piece needs more sites).
       first_mismatch = " (the first: the piece with input vertex " + std::to_string(component) + ", " +
                        std::to_string(expected.faces) + " faces, " + std::to_string(sites.size()) +
-                       " sites, Euler characteristic " + std::to_string(expected.euler()) + ", " +
+                       " sites, Euler characteristic " + std::to_string(expected.euler_characteristic()) + ", " +
                        std::to_string(expected.boundary_loops) +
                        (expected.boundary_loops == 1 ? " boundary loop)" : " boundary loops)");
     }

@@ -1,7 +1,7 @@
 #include "geodual/remesh/lloyd.hpp"
 
 #include "cvt_newton.hpp"
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "restricted_voronoi.hpp"
 #include "surface_walk.hpp"
 #include "weighted_cells.hpp"

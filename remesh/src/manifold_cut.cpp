@@ -1,6 +1,7 @@
 #include "geodual/remesh/manifold_cut.hpp"
 
-#include "geodual/vertex_pair_sort.hpp"
+#include "geodual/mesh/detail/vertex_pair_sort.hpp"
+#include "geodual/mesh/union_find.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,11 +14,6 @@ namespace {
 bool proper(const TriangleMesh& mesh, Index f) {
   const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
   return a != b && b != c && c != a;
-}
-
-Index find(std::vector<Index>& parent, Index x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
 }
 
 }  // namespace
@@ -43,18 +39,13 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   // By (low, high), then corner_low: equal pairs keep their order, by face.
   sort_by_vertex_pair(edges, num_vertices, [](const HalfEdge& e) { return e.low; },
                       [](const HalfEdge& e) { return e.high; });
-  std::vector<Index> parent(static_cast<std::size_t>(3 * num_faces));
-  std::iota(parent.begin(), parent.end(), Index{0});
-  auto unite = [&](Index a, Index b) {
-    a = find(parent, a), b = find(parent, b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  };
+  UnionFind fans(static_cast<std::size_t>(3 * num_faces));
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
     if (j - i == 2) {
-      unite(edges[i].corner_low, edges[i + 1].corner_low);
-      unite(edges[i].corner_high, edges[i + 1].corner_high);
+      fans.unite(edges[i].corner_low, edges[i + 1].corner_low);
+      fans.unite(edges[i].corner_high, edges[i + 1].corner_high);
     }
     i = j;
   }
@@ -62,13 +53,13 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   // fans get new vertices at the end, in the order of their first corner.
   ManifoldCut cut;
   cut.mesh.faces = mesh.faces;
-  std::vector<Index> vertex_of_fan(parent.size(), -1);
+  std::vector<Index> vertex_of_fan(fans.size(), -1);
   std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0), split(static_cast<std::size_t>(num_vertices), 0);
   std::vector<Index> extra;  // original vertex of each new vertex
   for (Index f = 0; f < num_faces; ++f) {
     if (!proper(mesh, f)) continue;
     for (int k = 0; k < 3; ++k) {
-      const Index corner = 3 * f + k, root = find(parent, corner);
+      const Index corner = 3 * f + k, root = fans.find(corner);
       const Index v = mesh.faces(f, k);
       if (vertex_of_fan[root] < 0) {
         if (!taken[v]) {
@@ -96,23 +87,18 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   // Scraps: pieces (faces joined through shared vertices) too small to remesh.
   if (options.min_component_faces > 0) {
     const Index n = static_cast<Index>(cut.mesh.vertices.rows());
-    std::vector<Index> piece(static_cast<std::size_t>(n));
-    std::iota(piece.begin(), piece.end(), Index{0});
-    auto join = [&](Index a, Index b) {
-      a = find(piece, a), b = find(piece, b);
-      if (a != b) piece[std::max(a, b)] = std::min(a, b);
-    };
+    UnionFind piece(static_cast<std::size_t>(n));
     for (Index f = 0; f < num_faces; ++f) {
       if (!proper(cut.mesh, f)) continue;
-      join(cut.mesh.faces(f, 0), cut.mesh.faces(f, 1));
-      join(cut.mesh.faces(f, 1), cut.mesh.faces(f, 2));
+      piece.unite(cut.mesh.faces(f, 0), cut.mesh.faces(f, 1));
+      piece.unite(cut.mesh.faces(f, 1), cut.mesh.faces(f, 2));
     }
     std::vector<Index> faces_in(static_cast<std::size_t>(n), 0);
     for (Index f = 0; f < num_faces; ++f) {
-      if (proper(cut.mesh, f)) ++faces_in[find(piece, cut.mesh.faces(f, 0))];
+      if (proper(cut.mesh, f)) ++faces_in[piece.find(cut.mesh.faces(f, 0))];
     }
     for (Index f = 0; f < num_faces; ++f) {
-      if (!proper(cut.mesh, f) || faces_in[find(piece, cut.mesh.faces(f, 0))] >= options.min_component_faces) continue;
+      if (!proper(cut.mesh, f) || faces_in[piece.find(cut.mesh.faces(f, 0))] >= options.min_component_faces) continue;
       cut.mesh.faces(f, 1) = cut.mesh.faces(f, 2) = cut.mesh.faces(f, 0);
       ++cut.faces_disabled;
     }

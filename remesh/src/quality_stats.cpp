@@ -5,8 +5,9 @@
 
 #include "geodual/remesh/quality_stats.hpp"
 
-#include "geodual/error.hpp"
-#include "geodual/morton_code.hpp"
+#include "geodual/mesh/detail/morton_code.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/random.hpp"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -36,20 +37,10 @@ using TriangleIterator = std::vector<Triangle>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-/// splitmix64's finaliser.
-std::uint64_t mix(std::uint64_t x) {
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9U;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebU;
-  return x ^ (x >> 31);
-}
-
-/// A counter-based generator: the value number `counter` of stream `stream`
-/// is splitmix64 at that position, so every sample can be drawn on its own,
-/// in any order and on any thread, and gives the same bits everywhere.
+/// Counter-based draws: value number `counter` of stream `stream`, so every
+/// sample can be drawn on its own, in any order and on any thread.
 double uniform(std::uint64_t stream, std::uint64_t counter) {
-  constexpr std::uint64_t golden_gamma = 0x9e3779b97f4a7c15U;
-  const std::uint64_t bits = mix(stream + (counter + 1) * golden_gamma);
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;  // in [0, 1)
+  return static_cast<double>(SplitMix64::nth(stream, counter) >> 11) * 0x1.0p-53;  // in [0, 1)
 }
 
 /// Squared distance from p to triangle abc: the Voronoi region of its
@@ -329,9 +320,11 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     // One scope, so that the trees are freed before returning.
     const Surface reference_surface = naming("reference mesh", [&] { return Surface(reference); });
     const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate); });
-    const std::uint64_t stream = mix(options.seed);
-    const OneSided forward = measure(reference_surface, candidate_surface, options.samples_per_side, mix(stream));
-    const OneSided backward = measure(candidate_surface, reference_surface, options.samples_per_side, mix(stream + 1));
+    const std::uint64_t stream = splitmix64_mix(options.seed);
+    const OneSided forward =
+        measure(reference_surface, candidate_surface, options.samples_per_side, splitmix64_mix(stream));
+    const OneSided backward =
+        measure(candidate_surface, reference_surface, options.samples_per_side, splitmix64_mix(stream + 1));
     report.hausdorff_reference_to_candidate = std::sqrt(forward.max_squared);
     report.hausdorff_candidate_to_reference = std::sqrt(backward.max_squared);
     report.hausdorff = std::max(report.hausdorff_reference_to_candidate, report.hausdorff_candidate_to_reference);

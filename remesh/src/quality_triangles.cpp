@@ -3,8 +3,8 @@
 
 #include "geodual/remesh/quality_stats.hpp"
 
-#include "geodual/error.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
 #include <Eigen/Geometry>
 

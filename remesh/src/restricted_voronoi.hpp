@@ -19,9 +19,9 @@
 // three-edge-midpoint rule on a fan of each clipped polygon: exact for the
 // area and the first moment, and for the energy when rho is constant.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 

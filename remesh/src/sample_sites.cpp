@@ -4,7 +4,7 @@
 
 #include "geodual/remesh/sample_sites.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "boundary_sites.hpp"
 #include "sampling_strategies.hpp"
 

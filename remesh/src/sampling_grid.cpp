@@ -1,6 +1,6 @@
 #include "sampling_grid.hpp"
 
-#include "geodual/morton_code.hpp"
+#include "geodual/mesh/detail/morton_code.hpp"
 
 #include <algorithm>
 #include <array>

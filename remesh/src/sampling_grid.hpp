@@ -6,7 +6,7 @@
 // set itself; and, with queries of any radius, by the restricted Voronoi
 // diagram for the sites near a site.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

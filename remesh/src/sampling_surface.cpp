@@ -1,7 +1,8 @@
 #include "sampling_surface.hpp"
 
-#include "geodual/error.hpp"
-#include "geodual/vertex_pair_sort.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/detail/vertex_pair_sort.hpp"
+#include "geodual/mesh/union_find.hpp"
 
 #include <Eigen/Geometry>
 
@@ -14,26 +15,9 @@
 namespace geodual::remesh::detail {
 namespace {
 
-std::uint64_t splitmix64(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-
 bool has_repeated_corner(const TriangleMesh& mesh, Index f) {
   const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
   return a == b || b == c || c == a;
-}
-
-Index find_root(std::vector<Index>& parent, Index v) {
-  while (parent[v] != v) {
-    parent[v] = parent[parent[v]];
-    v = parent[v];
-  }
-  return v;
 }
 
 /// Groups `items` (face indices) by `key` (component) into CSR arrays, keeping
@@ -164,23 +148,6 @@ void find_boundary_loops(SamplingSurface& surface) {
 
 }  // namespace
 
-Rng::Rng(std::uint64_t seed, std::uint64_t stream) {
-  std::uint64_t state = seed ^ (stream * 0xd1b54a32d192ed03ULL);
-  for (auto& word : s_) word = splitmix64(state);
-}
-
-std::uint64_t Rng::next() {
-  const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
-  const std::uint64_t t = s_[1] << 17;
-  s_[2] ^= s_[0];
-  s_[3] ^= s_[1];
-  s_[1] ^= s_[2];
-  s_[0] ^= s_[3];
-  s_[2] ^= t;
-  s_[3] = rotl(s_[3], 45);
-  return result;
-}
-
 std::uint64_t Rng::lattice_interior() {
   for (;;) {
     const std::uint64_t x = next() >> 32;
@@ -274,8 +241,7 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
   const Index num_vertices = mesh.num_vertices();
 
   // Components: union-find over the corners of faces with distinct corners.
-  std::vector<Index> parent(static_cast<std::size_t>(num_vertices));
-  std::iota(parent.begin(), parent.end(), Index{0});
+  UnionFind components(static_cast<std::size_t>(num_vertices));
   surface.face_area.assign(static_cast<std::size_t>(num_faces), 0.0);
   std::vector<Index> proper_faces;
   for (Index f = 0; f < num_faces; ++f) {
@@ -298,17 +264,13 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
     const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
     surface.face_area[f] = std::isfinite(area) ? area : 0.0;  // overflow: no site there
-    for (int k = 1; k < 3; ++k) {
-      const Index r0 = find_root(parent, mesh.faces(f, 0));
-      const Index r1 = find_root(parent, mesh.faces(f, k));
-      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
-    }
+    for (int k = 1; k < 3; ++k) components.unite(mesh.faces(f, 0), mesh.faces(f, k));
   }
   // Components numbered in the order of their first face.
   std::vector<Index> root_component(static_cast<std::size_t>(num_vertices), -1);
   surface.face_component.assign(static_cast<std::size_t>(num_faces), -1);
   for (const Index f : proper_faces) {
-    const Index root = find_root(parent, mesh.faces(f, 0));
+    const Index root = components.find(mesh.faces(f, 0));
     if (root_component[root] < 0) root_component[root] = surface.num_components++;
     surface.face_component[f] = root_component[root];
   }

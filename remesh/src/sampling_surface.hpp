@@ -4,8 +4,9 @@
 // faces by area), and the boundary loops. Plus the portable random number
 // generator and the exact barycentric lattice all sites live on.
 
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/random.hpp"
+#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 
@@ -20,20 +21,12 @@ namespace geodual::remesh::detail {
 inline constexpr std::uint64_t kLattice = std::uint64_t{1} << 32;
 inline constexpr double kLatticeUnit = 0x1p-32;
 
-/// xoshiro256** (Blackman & Vigna 2018), seeded through SplitMix64: the same
-/// stream on every platform, unlike the std:: distributions. `stream`
-/// separates independent uses of one seed (components, strategies, repairs).
-class Rng {
+/// geodual's seeded generator (xoshiro256**), with lattice draws.
+class Rng : public Xoshiro256 {
  public:
-  Rng(std::uint64_t seed, std::uint64_t stream);
-  std::uint64_t next();
-  /// Uniform in [0, 1), 53 random bits.
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1p-53; }
+  using Xoshiro256::Xoshiro256;
   /// Uniform integer in [1, 2^32 - 1].
   std::uint64_t lattice_interior();
-
- private:
-  std::uint64_t s_[4];
 };
 
 /// The point of the face for lattice coordinates (a, b) in [1, 2^32 - 1]^2

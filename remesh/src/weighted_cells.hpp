@@ -21,7 +21,7 @@
 // rho over about a cell to keep within it). With no density, the diagram's
 // integrals as they are.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <Eigen/Core>

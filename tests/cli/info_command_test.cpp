@@ -5,7 +5,7 @@
 #include "scratch_folder.hpp"
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

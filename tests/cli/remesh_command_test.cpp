@@ -6,7 +6,7 @@
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

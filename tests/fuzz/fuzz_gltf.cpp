@@ -6,7 +6,7 @@
 // The name is empty, so external buffers are refused and no input makes the
 // reader open files.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 
 #include <cstddef>

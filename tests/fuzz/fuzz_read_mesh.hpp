@@ -4,7 +4,7 @@
 // a crash, a sanitizer report, another exception type, a leak, a hang, a huge
 // allocation -- is a bug the fuzzer reports.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 
 #include <cstddef>

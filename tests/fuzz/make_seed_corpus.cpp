@@ -5,7 +5,7 @@
 //
 //   make_seed_corpus fuzz-corpus tests/data/woody.ply ...
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
 

@@ -9,7 +9,7 @@
 // a message when the writer refuses a scene (which is itself a failure: every
 // scene here is valid input).
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
 
 #include <cmath>

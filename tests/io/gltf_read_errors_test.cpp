@@ -1,7 +1,7 @@
 // glTF reading of broken and hostile input: each case must end in a
 // geodual::Error whose message names the file and the problem.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
 #include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"

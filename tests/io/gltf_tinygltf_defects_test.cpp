@@ -3,7 +3,7 @@
 // while the defect is there: when one fails, tinygltf was fixed and the
 // reader may hand that part to it.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
 #include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"

@@ -2,7 +2,7 @@
 // validator) requires, normals, colours and custom attributes, determinism,
 // input checks and atomic replacement.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // folder per test, writing and reading whole files, catching the message of a
 // geodual::Error, and the shared real-scan folder.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 
 #include <gtest/gtest.h>

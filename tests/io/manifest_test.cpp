@@ -3,7 +3,7 @@
 // The manifest is parsed here; no figure is copied into this file.
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 
 #include "io_test_files.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/preview.hpp"
 #include "geodual/io/read_mesh.hpp"
 

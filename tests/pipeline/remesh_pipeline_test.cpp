@@ -1,7 +1,7 @@
 // The C++ pipeline: every stage timed in order, the result holds every
 // intermediate, and the progress callback can cancel.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // Random and file sites for the command line.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/sites.hpp"
 
 #include <gtest/gtest.h>

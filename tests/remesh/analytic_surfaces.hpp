@@ -1,7 +1,7 @@
 #pragma once
 // Closed-form surfaces with known topology for the remesh tests.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -3,9 +3,9 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/quality_stats.hpp"

@@ -6,7 +6,7 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 

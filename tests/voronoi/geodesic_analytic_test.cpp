@@ -6,7 +6,7 @@
 // labels must name a nearest site, and query() must be exact in valid faces
 // (everywhere with RWR off) and never below the true distance elsewhere.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "voronoi/test_meshes.hpp"
 

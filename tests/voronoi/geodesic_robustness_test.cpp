@@ -6,7 +6,7 @@
 // off. Plus the error contract: bad sites, the window memory limit and
 // cancellation through the progress callback.
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "voronoi/test_meshes.hpp"

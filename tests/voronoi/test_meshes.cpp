@@ -186,20 +186,6 @@ TriangleMesh read_test_ply(const std::filesystem::path& path) {
 }
 
 // ---------------------------------------------------------------------------
-// Random numbers
-
-std::uint64_t Rng::next() {
-  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-double Rng::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-
-std::int64_t Rng::below(std::int64_t n) { return static_cast<std::int64_t>(next() % static_cast<std::uint64_t>(n)); }
-
-// ---------------------------------------------------------------------------
 // Mesh facts
 
 double bbox_diagonal(const TriangleMesh& mesh) {

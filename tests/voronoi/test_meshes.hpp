@@ -5,8 +5,9 @@
 // geodesic distances are known in closed form (flat square, L-shaped plate,
 // prism "cylinder", cube, cone with a convex or saddle apex).
 
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/random.hpp"
+#include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 
@@ -37,16 +38,16 @@ TriangleMesh read_test_ply(const std::filesystem::path& path);
 // ---------------------------------------------------------------------------
 // Deterministic random numbers (the same sequence on every standard library)
 
-class Rng {
+/// The library's SplitMix64 with the draws these tests use.
+class Rng : public SplitMix64 {
  public:
-  explicit Rng(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next();                       ///< splitmix64
-  double uniform();                           ///< [0, 1)
+  using SplitMix64::SplitMix64;
+  using SplitMix64::uniform;                  ///< [0, 1)
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-  std::int64_t below(std::int64_t n);         ///< [0, n)
-
- private:
-  std::uint64_t state_;
+  /// [0, n)
+  std::int64_t below(std::int64_t n) {
+    return static_cast<std::int64_t>(SplitMix64::below(static_cast<std::uint64_t>(n)));
+  }
 };
 
 // ---------------------------------------------------------------------------

@@ -21,7 +21,7 @@
 
 #include "face_distance.hpp"
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include <Eigen/Core>

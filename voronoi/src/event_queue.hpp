@@ -5,7 +5,7 @@
 // decrease in place, so it holds no stale duplicates: its top is always the
 // true smallest pending key, which RWR needs as its lower bound.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -12,7 +12,7 @@
 #include "cell_moments.hpp"
 #include "face_distance.hpp"
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 

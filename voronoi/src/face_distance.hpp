@@ -11,7 +11,7 @@
 // shortest path to p enters the face through some window's interval, a corner
 // or a site in the face.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include <Eigen/Core>

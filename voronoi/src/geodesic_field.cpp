@@ -1,7 +1,7 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 
-#include "geodual/error.hpp"
-#include "geodual/trim_heap.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 #include "locality_order.hpp"
 #include "propagation_mesh.hpp"
 #include "window_vtp.hpp"

@@ -1,6 +1,6 @@
 #include "locality_order.hpp"
 
-#include "geodual/morton_code.hpp"
+#include "geodual/mesh/detail/morton_code.hpp"
 
 #include <algorithm>
 #include <array>

@@ -6,7 +6,7 @@
 // centroids, vertices numbered in the order the sorted faces first use them,
 // so that neighbours on the surface are mostly neighbours in memory.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <vector>
 

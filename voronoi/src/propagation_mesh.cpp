@@ -1,7 +1,7 @@
 #include "propagation_mesh.hpp"
 
-#include "geodual/error.hpp"
-#include "geodual/vertex_pair_sort.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/detail/vertex_pair_sort.hpp"
 
 #include <algorithm>
 #include <cmath>

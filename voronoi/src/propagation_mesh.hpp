@@ -4,7 +4,7 @@
 // and which vertices are pseudo-sources. Built once per mesh; independent of
 // the sites.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
-#include "geodual/trim_heap.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 #include "face_boundary.hpp"
 
 #include <tbb/blocked_range.h>

@@ -10,7 +10,7 @@
 // the store's table of emitted sources: every window emitted at once from one
 // point shares them, and so do all windows propagated from those.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "window_store.hpp"
 
-#include "geodual/error.hpp"
-#include "geodual/trim_heap.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 #include "window_vtp.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,14 +8,14 @@
 //   pipeline the library's version is the package's version.
 // Prints one line per check; exit status 0 when all pass, 1 otherwise.
 
-#include <geodual/error.hpp>
+#include <geodual/mesh/error.hpp>
 #include <geodual/io/gltf.hpp>
 #include <geodual/io/read_mesh.hpp>
 #include <geodual/pipeline/version.hpp>
 #include <geodual/remesh/quality_stats.hpp>
 #include <geodual/remesh/remesh.hpp>
 #include <geodual/remesh/sample_sites.hpp>
-#include <geodual/triangle_mesh.hpp>
+#include <geodual/mesh/triangle_mesh.hpp>
 #include <geodual/voronoi/geodesic_field.hpp>
 
 #include <cmath>

@@ -17,7 +17,7 @@
 // The output passes the Khronos glTF-Validator without errors or warnings,
 // and the same scene always gives the same bytes.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -28,7 +28,7 @@
 // (1200 x 900 at 3 x 3: 78 MB), 24 bytes per vertex for the projection and 24
 // more for smooth normals.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

@@ -4,7 +4,7 @@
 // whose message names the file and the problem.
 
 #include "geodual/io/mesh_format.hpp"
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>

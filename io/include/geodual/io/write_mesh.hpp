@@ -4,7 +4,7 @@
 // atomic_file.hpp).
 
 #include "geodual/io/mesh_format.hpp"
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
 #include <filesystem>

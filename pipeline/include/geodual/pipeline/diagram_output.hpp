@@ -1,7 +1,7 @@
 #pragma once
 // Writing Voronoi diagrams and remeshes, and the pictures of them.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <Eigen/Core>

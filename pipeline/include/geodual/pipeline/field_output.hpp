@@ -1,7 +1,7 @@
 #pragma once
 // Writing a geodesic distance field with the mesh it lives on.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include <array>

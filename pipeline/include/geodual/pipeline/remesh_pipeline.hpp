@@ -18,7 +18,7 @@
 //   auto report = geodual::remesh::compare_meshes(loaded.mesh, remeshed.mesh);
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"

@@ -4,7 +4,7 @@
 // meaning (a genus of a non-manifold mesh) is null.
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 

@@ -28,7 +28,7 @@
 // Lloyd step assumes rho nearly linear across a cell) and the sizes grade
 // smoothly.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
 #include <vector>

@@ -27,8 +27,8 @@
 // small against the curvature the two diagrams nearly agree, so the geodesic
 // iterations start close to a CVT; they then make it the geodesic one.
 
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <functional>

@@ -7,7 +7,7 @@
 // indices and positions stay the same (so face-and-barycentric sites keep
 // their meaning); a non-manifold edge becomes a boundary of each of its faces.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
 

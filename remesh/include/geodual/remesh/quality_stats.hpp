@@ -17,7 +17,7 @@
 // segment or a point, covered by its neighbours in any sane mesh); their
 // vertices are still measured if some face uses them.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -63,7 +63,7 @@ struct TriangleQuality {
   /// there is no interior vertex.
   std::optional<double> pct_valence6;
 
-  // Topology, from analyze_mesh (see geodual/mesh_report.hpp).
+  // Topology, from analyze_mesh (see geodual/mesh/mesh_report.hpp).
   std::int64_t euler_characteristic = 0;
   std::optional<double> genus;  ///< only for an orientable 2-manifold
   std::int64_t components = 0;

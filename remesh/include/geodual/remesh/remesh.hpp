@@ -10,8 +10,8 @@
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/lloyd.hpp"
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <cstdint>

@@ -16,8 +16,8 @@
 // but may pass through its end points (every boundary or non-manifold vertex is
 // a pseudo-source, as every saddle vertex is).
 
-#include "geodual/triangle_mesh.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/surface_point.hpp"
 
 #include <array>
 #include <cstddef>

@@ -15,9 +15,9 @@
 // Voronoi vertices are solved to machine precision; between them, arcs are
 // traced as polylines that stay within `boundary_tolerance` of the exact curve.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
-#include "geodual/voronoi/surface_point.hpp"
+#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 

@@ -4,7 +4,7 @@
 // millions of faces a comparison sort of the 3F half-edges is a noticeable
 // part of the stage.
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstddef>
 #include <vector>

@@ -2,7 +2,7 @@
 // A point on a triangle mesh: a vertex, or a point of a face given by
 // barycentric coordinates (which also covers points on edges).
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

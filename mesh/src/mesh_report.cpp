@@ -1,6 +1,8 @@
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
-#include "geodual/error.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/random.hpp"
+#include "geodual/mesh/union_find.hpp"
 
 #include <Eigen/Geometry>
 
@@ -27,45 +29,6 @@ namespace geodual {
 namespace {
 
 using Corner = std::uint32_t;  // 3 * face + k: corner k of a face
-
-/// Disjoint sets over 0..n-1 with path halving; counts the merges it made.
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) { reset(n); }
-
-  /// n singletons again, reusing the storage.
-  void reset(std::size_t n) {
-    parent_.resize(n);
-    std::iota(parent_.begin(), parent_.end(), std::uint32_t{0});
-    merges_ = 0;
-  }
-
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    // Attach the larger root to the smaller: deterministic and keeps trees shallow
-    // enough together with path halving.
-    if (a < b) std::swap(a, b);
-    parent_[a] = b;
-    ++merges_;
-  }
-
-  std::size_t merges() const { return merges_; }
-  std::size_t sets() const { return parent_.size() - merges_; }
-
- private:
-  std::vector<std::uint32_t> parent_;
-  std::size_t merges_ = 0;
-};
 
 /// For every vertex, the corners (face corners) that sit on it.
 struct VertexCorners {
@@ -221,11 +184,11 @@ struct StarSummary {
 StarSummary summarize_stars(const TriangleMesh& mesh, const VertexCorners& incidence) {
   StarSummary summary;
   const auto num_vertices = static_cast<std::size_t>(mesh.num_vertices());
-  DisjointSets connected(num_vertices);
+  UnionFind connected(num_vertices);
   std::vector<std::pair<Index, Index>> boundary;  // one entry per boundary edge
   std::int64_t boundary_vertices = 0;
   VertexStar star;
-  DisjointSets fans(0);
+  UnionFind fans(0);
 
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     const std::size_t degree = incidence.degree(v);
@@ -236,12 +199,12 @@ StarSummary summarize_stars(const TriangleMesh& mesh, const VertexCorners& incid
     bool on_boundary = false;
 
     star.for_each_edge([&](std::span<const EdgeUse> uses) {
-      for (const EdgeUse& use : uses) fans.unite(uses[0].slot(), use.slot());
+      for (const EdgeUse& use : uses) fans.unite(static_cast<Index>(uses[0].slot()), static_cast<Index>(use.slot()));
       if (uses.size() == 1) on_boundary = true;
       const Index w = uses[0].neighbor();
       if (w < v) return;  // classified at its smaller endpoint
       ++summary.edges;
-      connected.unite(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w));
+      connected.unite(v, w);
       if (uses.size() == 1) boundary.emplace_back(v, w);
       if (uses.size() > 2) ++summary.nonmanifold_edges;
       const auto outgoing = std::count_if(uses.begin(), uses.end(),
@@ -260,7 +223,7 @@ StarSummary summarize_stars(const TriangleMesh& mesh, const VertexCorners& incid
   if (!boundary.empty()) {
     connected.reset(num_vertices);
     for (const auto& [v, w] : boundary) {
-      connected.unite(static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(w));
+      connected.unite(v, w);
     }
     summary.boundary_loops = boundary_vertices - static_cast<std::int64_t>(connected.merges());
   }
@@ -272,7 +235,7 @@ StarSummary summarize_stars(const TriangleMesh& mesh, const VertexCorners& incid
 /// each interior edge ties the states of its two faces, and the mesh is
 /// orientable unless some face ends up tied to its own flip.
 bool is_orientable(const TriangleMesh& mesh, const VertexCorners& incidence) {
-  DisjointSets states(2 * static_cast<std::size_t>(mesh.num_faces()));
+  UnionFind states(2 * static_cast<std::size_t>(mesh.num_faces()));
   VertexStar star;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     star.gather(mesh, incidence, v);
@@ -282,12 +245,12 @@ bool is_orientable(const TriangleMesh& mesh, const VertexCorners& incidence) {
       const Corner g = star.face(uses[1].slot());
       // Same direction on the shared edge: one of the two faces must flip.
       const Corner flip = uses[0].outgoing() == uses[1].outgoing() ? 1 : 0;
-      states.unite(2 * f, 2 * g + flip);
-      states.unite(2 * f + 1, 2 * g + 1 - flip);
+      states.unite(static_cast<Index>(2 * f), static_cast<Index>(2 * g + flip));
+      states.unite(static_cast<Index>(2 * f + 1), static_cast<Index>(2 * g + 1 - flip));
     });
   }
   for (Corner f = 0; f < static_cast<Corner>(mesh.num_faces()); ++f) {
-    if (states.find(2 * f) == states.find(2 * f + 1)) return false;
+    if (states.find(static_cast<Index>(2 * f)) == states.find(static_cast<Index>(2 * f + 1))) return false;
   }
   return true;
 }
@@ -315,12 +278,6 @@ PositionKey position_key(const TriangleMesh& mesh, Index v) {
   return key;
 }
 
-std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9U;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebU;
-  return x ^ (x >> 31);
-}
-
 /// Vertices at exactly the position of an earlier vertex, found with an
 /// open-addressing hash set of vertex ids (linear probing, at most half full).
 std::int64_t count_duplicate_vertices(const TriangleMesh& mesh) {
@@ -331,7 +288,7 @@ std::int64_t count_duplicate_vertices(const TriangleMesh& mesh) {
   std::int64_t duplicates = 0;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     const PositionKey key = position_key(mesh, v);
-    std::size_t slot = mix(key[0] ^ mix(key[1] ^ mix(key[2]))) & mask;
+    std::size_t slot = splitmix64_mix(key[0] ^ splitmix64_mix(key[1] ^ splitmix64_mix(key[2]))) & mask;
     while (table[slot] != empty && position_key(mesh, static_cast<Index>(table[slot])) != key) {
       slot = (slot + 1) & mask;
     }

@@ -1,7 +1,7 @@
 // analyze_mesh on small hand-built meshes whose counts are known by hand.
 
-#include "geodual/error.hpp"
-#include "geodual/mesh_report.hpp"
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/mesh_report.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // What a mesh is made of and what is wrong with it: the defects scans carry
 // (holes, non-manifold edges, unreferenced vertices, degenerate faces, ...).
 
-#include "geodual/triangle_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 
