@@ -2,6 +2,7 @@
 
 #include "geodual/error.hpp"
 #include "geodual/vertex_pair_sort.hpp"
+#include "geodual/voronoi/face_area.hpp"
 
 #include <Eigen/Geometry>
 
@@ -297,7 +298,8 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
     const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
     const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    surface.face_area[f] = std::isfinite(area) ? area : 0.0;  // overflow: no site there
+    // Overflow, or a face too thin for the geodesic engine: no site there.
+    surface.face_area[f] = std::isfinite(area) && voronoi::has_geodesic_area(mesh, f) ? area : 0.0;
     for (int k = 1; k < 3; ++k) {
       const Index r0 = find_root(parent, mesh.faces(f, 0));
       const Index r1 = find_root(parent, mesh.faces(f, k));
