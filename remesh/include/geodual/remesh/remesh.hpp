@@ -48,8 +48,7 @@ struct RemeshResult {
   /// Input vertices cut apart first (non-manifold edges and pinch vertices,
   /// see manifold_cut.hpp); the remesh has the topology of the cut surface.
   std::int64_t vertices_split = 0;
-  /// Faces of scraps too small to remesh (pieces of fewer than 4 faces after
-  /// the cut), left out.
+  /// Faces of scraps too small to remesh (see ManifoldCutOptions), left out.
   std::int64_t faces_disabled = 0;
   int repair_rounds = 0;
   std::vector<double> energy;   ///< CVT energy (density-weighted with curvature_adaptation) before and after each Lloyd iteration
