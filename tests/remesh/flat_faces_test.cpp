@@ -3,6 +3,7 @@
 // them) are flat to the geodesic engine, which refuses a site on them.
 // Sampling must never put a site there, by the engine's own test.
 
+#include "../../remesh/src/surface_walk.hpp"
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/error.hpp"
@@ -89,6 +90,25 @@ TEST(FlatFaces, SamplingPutsNoSiteOnThem) {
         }
       }
       EXPECT_NO_THROW(voronoi::compute_geodesic_field(mesh, sites));
+    }
+  }
+}
+
+TEST(FlatFaces, AWalkNeverEndsInOne) {
+  // Lloyd's steps walk the sites over the surface: walks from the bottom
+  // row's cells straight down run into the needles and stop at the boundary
+  // beyond them, on the cell they left.
+  const NeedleSquare square = needle_square(8);
+  const TriangleMesh& mesh = square.mesh;
+  const voronoi::GeodesicField field =
+      voronoi::compute_geodesic_field(mesh, std::vector{SurfacePoint::in_face(40, 1.0 / 3, 1.0 / 3, 1.0 / 3)});
+  for (Index cell = 0; cell < 16; cell += 2) {  // the lower triangle of each bottom cell
+    const SurfacePoint start = SurfacePoint::in_face(cell, 0.4, 0.4, 0.2);
+    for (const double length : {0.1, 0.2, 1.0}) {
+      const SurfacePoint end = detail::walk_on_surface(mesh, field, start, Eigen::Vector3d(0.1, -1, 0), length);
+      ASSERT_EQ(end.kind, SurfacePoint::Kind::face);
+      EXPECT_TRUE(voronoi::has_geodesic_area(mesh, end.element)) << "from face " << cell << ", length " << length;
+      EXPECT_GE(end.position(mesh).y(), -1e-12);
     }
   }
 }
