@@ -3,8 +3,11 @@
 #include "geodual/mesh/detail/vertex_pair_sort.hpp"
 #include "geodual/mesh/union_find.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <numeric>
 #include <vector>
 
@@ -14,6 +17,15 @@ namespace {
 bool proper(const TriangleMesh& mesh, Index f) {
   const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
   return a != b && b != c && c != a;
+}
+
+/// The face's area; 0 where it overflows.
+double face_area(const TriangleMesh& mesh, Index f) {
+  const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
+  const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
+  const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  return std::isfinite(area) ? area : 0.0;
 }
 
 }  // namespace
@@ -84,7 +96,9 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   }
   cut.vertices_split = std::count(split.begin(), split.end(), std::uint8_t{1});
 
-  // Scraps: pieces (faces joined through shared vertices) too small to remesh.
+  // Scraps: pieces (faces joined through shared vertices) too small to
+  // remesh, both in faces and in their share of the surface's area; never
+  // every piece.
   if (options.min_component_faces > 0) {
     const Index n = static_cast<Index>(cut.mesh.vertices.rows());
     UnionFind piece(static_cast<std::size_t>(n));
@@ -94,11 +108,25 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
       piece.unite(cut.mesh.faces(f, 1), cut.mesh.faces(f, 2));
     }
     std::vector<Index> faces_in(static_cast<std::size_t>(n), 0);
+    std::vector<double> area_of(static_cast<std::size_t>(n), 0.0);
+    double total_area = 0;
     for (Index f = 0; f < num_faces; ++f) {
-      if (proper(cut.mesh, f)) ++faces_in[piece.find(cut.mesh.faces(f, 0))];
+      if (!proper(cut.mesh, f)) continue;
+      const Index p = piece.find(cut.mesh.faces(f, 0));
+      ++faces_in[p];
+      const double area = face_area(cut.mesh, f);
+      area_of[p] += area;
+      total_area += area;
     }
+    auto is_scrap = [&](Index p) {
+      return faces_in[p] < options.min_component_faces && area_of[p] <= options.max_scrap_area_share * total_area;
+    };
+    std::int64_t kept = 0;
     for (Index f = 0; f < num_faces; ++f) {
-      if (!proper(cut.mesh, f) || faces_in[piece.find(cut.mesh.faces(f, 0))] >= options.min_component_faces) continue;
+      if (proper(cut.mesh, f) && !is_scrap(piece.find(cut.mesh.faces(f, 0)))) ++kept;
+    }
+    for (Index f = 0; f < num_faces && kept > 0; ++f) {
+      if (!proper(cut.mesh, f) || !is_scrap(piece.find(cut.mesh.faces(f, 0)))) continue;
       cut.mesh.faces(f, 1) = cut.mesh.faces(f, 2) = cut.mesh.faces(f, 0);
       ++cut.faces_disabled;
     }

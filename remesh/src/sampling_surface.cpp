@@ -3,6 +3,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/detail/vertex_pair_sort.hpp"
 #include "geodual/mesh/union_find.hpp"
+#include "geodual/voronoi/face_area.hpp"
 
 #include <Eigen/Geometry>
 
@@ -263,7 +264,8 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
     const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
     const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    surface.face_area[f] = std::isfinite(area) ? area : 0.0;  // overflow: no site there
+    // Overflow, or a face too thin for the geodesic engine: no site there.
+    surface.face_area[f] = std::isfinite(area) && voronoi::has_geodesic_area(mesh, f) ? area : 0.0;
     for (int k = 1; k < 3; ++k) components.unite(mesh.faces(f, 0), mesh.faces(f, k));
   }
   // Components numbered in the order of their first face.

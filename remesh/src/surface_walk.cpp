@@ -1,5 +1,7 @@
 #include "surface_walk.hpp"
 
+#include "geodual/voronoi/face_area.hpp"
+
 #include <Eigen/Geometry>
 
 #include <tbb/blocked_range.h>
@@ -44,9 +46,9 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
   v.normalize();
   double remaining = length;
   Index entry_edge = -1;
-  // A zero-area face is crossed flat but never ended in (a site there would
-  // have no barycentric coordinates): a walk ending in one stops where it
-  // entered it, on the last face with area.
+  // A face without area (as the geodesic engine sees it, which refuses a
+  // site there) is crossed flat but never ended in: a walk ending in one
+  // stops where it entered it, on the last face with area.
   bool flat = false;
   Index last_face = face;
   Eigen::Vector3d last_point = p;
@@ -86,8 +88,8 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     Eigen::Vector3d next_normal =
         (corner(mesh, next, 1) - corner(mesh, next, 0)).cross(corner(mesh, next, 2) - corner(mesh, next, 0));
     if (!flat) last_face = face, last_point = p;
-    flat = !(next_normal.norm() > 0);
-    if (flat) next_normal = normal;  // a zero-area face: cross it flat
+    flat = !voronoi::has_geodesic_area(mesh, next);
+    if (flat) next_normal = normal;  // cross it flat
     next_normal.normalize();
     Eigen::Vector3d inward = next_normal.cross(along);
     // `inward` must point from the edge into the next face.
@@ -142,6 +144,7 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Ge
     const Index v = site.element;
     SurfacePoint best = site;
     for (const Index f : fans.around(v)) {
+      if (!voronoi::has_geodesic_area(mesh, f)) continue;  // a walk cannot start in a flat face
       int c = 0;
       while (mesh.faces(f, c) != v) ++c;
       const Eigen::Vector3d p = mesh.vertices.row(v).transpose();

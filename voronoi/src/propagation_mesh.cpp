@@ -98,7 +98,7 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     const Index e = static_cast<Index>(pm.edge_faces.size());
     const Index v0 = mesh.faces(first.face, first.local);
     const Index v1 = mesh.faces(first.face, (first.local + 1) % 3);
-    const double length = (mesh.vertices.row(v1) - mesh.vertices.row(v0)).norm();
+    const double length = edge_length(mesh, v0, v1);
     auto attach = [&](const HalfEdge& half, std::uint32_t flags) {
       pm.face_records[half.face].edge_bits[half.local] = static_cast<std::uint32_t>(e) | flags;
     };

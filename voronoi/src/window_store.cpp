@@ -303,8 +303,11 @@ std::vector<Index> WindowStore::edges_by_address(Holding holding) const {
 
 void WindowStore::slide_down(std::span<const Index> edges) {
   // Blocks in the order they lie in memory, each moved down to the first
-  // free address in a page it fits in whole (so never onto windows not yet
-  // moved). A block larger than a page stays where it is, in its own pages.
+  // free address in a held page it fits in whole (so never onto windows not
+  // yet moved, nor into a page given back by an earlier slide: a block larger
+  // than a page leaves such a gap below it). A block larger than a page stays
+  // where it is, in its own pages. The block's own page is held, so the
+  // cursor never passes it.
   std::vector<std::uint8_t> page_used(page_of_.size(), 0);
   std::uint32_t cursor = 0;
   for (const Index e : edges) {
@@ -312,8 +315,10 @@ void WindowStore::slide_down(std::span<const Index> edges) {
     const std::uint32_t count = slot.count;
     if (count > kPageWindows) {
       cursor = slot.begin;
-    } else if ((cursor & (kPageWindows - 1)) + count > kPageWindows) {
-      cursor = (cursor | (kPageWindows - 1)) + 1;
+    } else {
+      while ((cursor & (kPageWindows - 1)) + count > kPageWindows || page_of_[cursor >> kPageShift] == nullptr) {
+        cursor = (cursor | (kPageWindows - 1)) + 1;
+      }
     }
     if (cursor != slot.begin) std::memmove(window_at(cursor), window_at(slot.begin), count * sizeof(Window));
     slot.begin = cursor;

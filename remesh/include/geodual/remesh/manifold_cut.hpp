@@ -14,14 +14,17 @@
 namespace geodual::remesh {
 
 struct ManifoldCutOptions {
-  /// Connected pieces (after the cut) with fewer faces than this are scraps
-  /// below any remesh's resolution (a flap of two faces glued back to back, a
-  /// lone triangle, a few faces left as a star of flaps where pinch vertices
-  /// were cut; a remesh puts at least 4 sites on every piece): their faces
-  /// are disabled (all three corners set to the first), so that every later
-  /// stage ignores them. 0 keeps everything. (With 4, ogre's four-face star
-  /// got no valid dual at any site count.)
+  /// Connected pieces (after the cut) with fewer faces than this, and at most
+  /// max_scrap_area_share of the surface's area, are scraps below any
+  /// remesh's resolution (a flap of two faces glued back to back, a lone
+  /// triangle, a few faces left as a star of flaps where pinch vertices were
+  /// cut; a remesh puts at least 4 sites on every piece): their faces are
+  /// disabled (all three corners set to the first), so that every later
+  /// stage ignores them. Scraps are never the whole surface: if every piece
+  /// is one, none is disabled. 0 keeps everything. (With 4, ogre's four-face
+  /// star got no valid dual at any site count.)
   Index min_component_faces = 8;
+  double max_scrap_area_share = 1e-3;
 };
 
 struct ManifoldCut {
