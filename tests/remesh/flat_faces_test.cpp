@@ -119,8 +119,8 @@ TEST(FlatFaces, TheSquareRemeshes) {
   RemeshOptions options;
   options.lloyd.iterations = 3;  // Lloyd moves the sites too: still never onto a needle
   const RemeshResult result = remesh_from_sites(square.mesh, sites, options);
-  EXPECT_TRUE(result.check.valid);
-  EXPECT_GE(result.mesh.num_faces(), 100);
+  EXPECT_TRUE(result.dual.check.valid);
+  EXPECT_GE(result.dual.mesh.num_faces(), 100);
 }
 
 }  // namespace

@@ -84,8 +84,8 @@ TEST(SmallPieces, ATetrahedronRemeshes) {
   for (const std::int64_t count : {4, 20, 200}) {
     SCOPED_TRACE(std::to_string(count) + " sites");
     const RemeshResult result = remesh_mesh(mesh, count);
-    EXPECT_TRUE(result.check.valid);
-    const MeshReport out = analyze_mesh(result.mesh);
+    EXPECT_TRUE(result.dual.check.valid);
+    const MeshReport out = analyze_mesh(result.dual.mesh);
     EXPECT_EQ(out.components, 1);
     EXPECT_EQ(out.euler_characteristic, 2);
     EXPECT_EQ(out.boundary_loops, 0);
@@ -105,8 +105,8 @@ TEST(SmallPieces, ASquareOfTwoFacesRemeshesOrNamesTheSiteCount) {
   for (const std::int64_t count : {10, 100}) {
     SCOPED_TRACE(std::to_string(count) + " sites");
     const RemeshResult result = remesh_mesh(mesh, count);
-    EXPECT_TRUE(result.check.valid);
-    const MeshReport out = analyze_mesh(result.mesh);
+    EXPECT_TRUE(result.dual.check.valid);
+    const MeshReport out = analyze_mesh(result.dual.mesh);
     EXPECT_EQ(out.components, 1);
     EXPECT_EQ(out.euler_characteristic, 1);
     EXPECT_EQ(out.boundary_loops, 1);
