@@ -53,7 +53,7 @@
 // Surface_mesh, remeshing, and reading it back), not of the statistics. Peak
 // RSS is measured before the statistics too.
 //
-// Quality: geodual::remesh::compare_meshes(input, output) for every row
+// Quality: geodual::quality::compare_meshes(input, output) for every row
 // (10^6 area-uniform samples per side plus all vertices for the distances;
 // --samples changes it). Hausdorff and RMS are in % of the input's bounding
 // box diagonal.
@@ -68,7 +68,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -111,7 +111,7 @@ struct Options {
   BorderMode border = BorderMode::keep;
   double tolerance_pct = 3.0;
   int max_runs = 8;
-  std::int64_t samples = remesh::QualityOptions{}.samples_per_side;
+  std::int64_t samples = quality::QualityOptions{}.samples_per_side;
   unsigned time_limit_seconds = 1800;
   std::vector<std::filesystem::path> meshes;
 };
@@ -139,7 +139,7 @@ struct RunResult {
   Figures input;  ///< the reference side of compare_meshes, distances NaN
 };
 
-Figures figures_of(const remesh::TriangleQuality& q) {
+Figures figures_of(const quality::TriangleQuality& q) {
   Figures f;
   f.vertices = q.vertices;
   f.faces = q.faces;
@@ -157,9 +157,9 @@ Figures figures_of(const remesh::TriangleQuality& q) {
 }
 
 void add_figures(RunResult& run, const TriangleMesh& input, const TriangleMesh& output, const Options& options) {
-  remesh::QualityOptions quality;
+  quality::QualityOptions quality;
   quality.samples_per_side = options.samples;
-  const remesh::QualityReport report = remesh::compare_meshes(input, output, quality);
+  const quality::QualityReport report = quality::compare_meshes(input, output, quality);
   run.output = figures_of(report.candidate);
   run.output.hausdorff_pct = report.hausdorff_pct;
   run.output.rms_pct = report.rms_pct;
@@ -595,7 +595,7 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--max-runs") {
       options.max_runs = static_cast<int>(parse_integer(arg, value(), 1, 100));
     } else if (arg == "--samples") {
-      options.samples = parse_integer(arg, value(), 0, remesh::max_samples_per_side);
+      options.samples = parse_integer(arg, value(), 0, quality::max_samples_per_side);
     } else if (arg == "--time-limit") {
       options.time_limit_seconds = static_cast<unsigned>(parse_integer(arg, value(), 1, 1'000'000));
     } else if (arg == "--help" || arg == "-h") {

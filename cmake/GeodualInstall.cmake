@@ -27,7 +27,7 @@ set(GEODUAL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/geodual CACHE STRING
 mark_as_advanced(GEODUAL_INSTALL_CMAKEDIR)
 
 # Library targets and their exported names.
-set(GEODUAL_INSTALLED_COMPONENTS mesh io voronoi remesh pipeline)
+set(GEODUAL_INSTALLED_COMPONENTS mesh io voronoi remesh quality pipeline)
 set(_geodual_installed_libraries)
 foreach(component IN LISTS GEODUAL_INSTALLED_COMPONENTS)
   set_target_properties(geodual_${component} PROPERTIES EXPORT_NAME ${component})

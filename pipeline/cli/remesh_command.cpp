@@ -18,7 +18,7 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
 #include "geodual/pipeline/version.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 
 #include <CLI/CLI.hpp>
@@ -77,7 +77,7 @@ class RemeshCommand final : public Command {
     command.add_option("--samples-per-side,--samples", samples_,
                        "Points per side for the Hausdorff and RMS distance to the input (-1: no comparison)")
         ->capture_default_str()
-        ->check(integer_between(-1, remesh::max_samples_per_side));
+        ->check(integer_between(-1, quality::max_samples_per_side));
     command.add_flag_callback(
         "--no-statistics", [this] { samples_ = -1; }, "No comparison with the input (the same as --samples-per-side -1)");
     command.add_flag("--strict", strict_,
@@ -125,8 +125,8 @@ class RemeshCommand final : public Command {
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
     const remesh::RepairedDual& result = run.remesh;
     const remesh::LloydResult& relaxation = run.relaxation;
-    const remesh::TriangleQuality quality =
-        run.statistics ? run.statistics->candidate : remesh::triangle_quality(result.mesh);
+    const quality::TriangleQuality quality =
+        run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
       std::cerr << "geodual remesh: warning: " << mesh_path_ << ": " << run.dropped.faces << " faces ("
                 << significant(run.dropped.area_pct, 3)

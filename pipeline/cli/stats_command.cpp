@@ -9,7 +9,7 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -40,7 +40,7 @@ nlohmann::ordered_json genus_json(const std::optional<double>& genus) {
 }
 
 /// The figures of one mesh, under the keys the README documents.
-nlohmann::ordered_json quality_json(const remesh::TriangleQuality& q) {
+nlohmann::ordered_json quality_json(const quality::TriangleQuality& q) {
   nlohmann::ordered_json json;
   json["vertices"] = q.vertices;
   json["faces"] = q.faces;
@@ -86,7 +86,7 @@ class StatsCommand final : public Command {
     command.add_option("--samples-per-side,--samples", options_.samples_per_side,
                        "Area-uniform samples per mesh for the distances, besides the vertices")
         ->capture_default_str()
-        ->check(integer_between(0, remesh::max_samples_per_side));
+        ->check(integer_between(0, quality::max_samples_per_side));
     command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str()->check(unsigned_integer());
     return command;
   }
@@ -97,9 +97,9 @@ class StatsCommand final : public Command {
     const io::LoadedMesh candidate = io::read_mesh(candidate_path_);
     const double read_seconds = seconds_since(start);
     const auto stats_start = std::chrono::steady_clock::now();
-    remesh::QualityReport report;
+    quality::QualityReport report;
     try {
-      report = remesh::compare_meshes(reference.mesh, candidate.mesh, options_);
+      report = quality::compare_meshes(reference.mesh, candidate.mesh, options_);
     } catch (const Error& error) {
       throw Error(name_the_file(error.what()));
     }
@@ -125,7 +125,7 @@ class StatsCommand final : public Command {
     return std::string(message);
   }
 
-  void print_json(const remesh::QualityReport& report, double read_seconds, double stats_seconds) const {
+  void print_json(const quality::QualityReport& report, double read_seconds, double stats_seconds) const {
     nlohmann::ordered_json json;
     json["reference"] = reference_path_;
     json["candidate"] = candidate_path_;
@@ -150,9 +150,9 @@ class StatsCommand final : public Command {
     std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
   }
 
-  void print_table(const remesh::QualityReport& report, double read_seconds, double stats_seconds) const {
-    const remesh::TriangleQuality& r = report.reference;
-    const remesh::TriangleQuality& c = report.candidate;
+  void print_table(const quality::QualityReport& report, double read_seconds, double stats_seconds) const {
+    const quality::TriangleQuality& r = report.reference;
+    const quality::TriangleQuality& c = report.candidate;
     KeyValueTable table;
     table.add("reference", reference_path_);
     table.add("candidate", candidate_path_);
@@ -162,11 +162,11 @@ class StatsCommand final : public Command {
     const auto both = [&rows](std::string key, std::string ref, std::string cand) {
       rows.push_back({std::move(key), {std::move(ref), std::move(cand)}});
     };
-    const auto valence6 = [](const remesh::TriangleQuality& q) {
+    const auto valence6 = [](const quality::TriangleQuality& q) {
       return q.pct_valence6 ? percent(*q.pct_valence6) + " of " + with_thousands(q.interior_vertices)
                             : std::string("no interior vertex");
     };
-    const auto genus = [](const remesh::TriangleQuality& q) {
+    const auto genus = [](const quality::TriangleQuality& q) {
       return q.genus ? significant(*q.genus) : std::string("not defined");
     };
     both("", "reference", "candidate");
@@ -217,7 +217,7 @@ class StatsCommand final : public Command {
   std::string reference_path_;
   std::string candidate_path_;
   bool json_ = false;
-  remesh::QualityOptions options_;
+  quality::QualityOptions options_;
 };
 
 }  // namespace

@@ -8,7 +8,7 @@
 #include "geodual/io/write_mesh.hpp"
 #include "geodual/pipeline/field_output.hpp"
 #include "geodual/pipeline/version.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <sys/resource.h>
 
@@ -112,10 +112,10 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
 }
 
 Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh) {
-  // Q per triangle (remesh::face_quality), averaged at vertices.
+  // Q per triangle (quality::face_quality), averaged at vertices.
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.vertices.rows()), count = sum;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const double q = remesh::face_quality(mesh, f);
+    const double q = quality::face_quality(mesh, f);
     for (int k = 0; k < 3; ++k) sum[mesh.faces(f, k)] += q, count[mesh.faces(f, k)] += 1;
   }
   Eigen::Matrix<float, Eigen::Dynamic, 3> colors(mesh.vertices.rows(), 3);

@@ -134,7 +134,7 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   if (options.statistics) {
     report(options.progress, Stage::statistics, 0.0);
     StageClock statistics_clock(result.timings, Stage::statistics);
-    result.statistics = remesh::compare_meshes(result.input.mesh, result.remesh.mesh, options.quality);
+    result.statistics = quality::compare_meshes(result.input.mesh, result.remesh.mesh, options.quality);
     statistics_clock.stop();
     report(options.progress, Stage::statistics, 1.0);
   }

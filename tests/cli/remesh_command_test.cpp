@@ -91,20 +91,17 @@ TEST(RemeshCommand, SameInputSameBytesInEveryFormat) {
 }
 
 TEST(RemeshCommand, LeftOutAreaIsReportedAndStrictRefusesIt) {
-  // A 20 x 20 grid on the unit square, plus a flap of two triangles glued back
-  // to back (a closed two-face piece no remesh can keep) of area 0.02 each.
+  // A 20 x 20 grid on the unit square, plus 20 lone triangles of area 0.0005
+  // each: scraps (each under 0.1 % of the area), together about 1 % of it.
   ScratchFolder folder;
   TriangleMesh mesh;
-  const int n = 20;
-  mesh.vertices.resize((n + 1) * (n + 1) + 3, 3);
+  const int n = 20, lone = 20;
+  const Index grid_vertices = (n + 1) * (n + 1);
+  mesh.vertices.resize(grid_vertices + 3 * lone, 3);
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= n; ++i) mesh.vertices.row(j * (n + 1) + i) << double(i) / n, double(j) / n, 0;
   }
-  const Index p = (n + 1) * (n + 1);
-  mesh.vertices.row(p) << 2, 0, 0;
-  mesh.vertices.row(p + 1) << 2.2, 0, 0;
-  mesh.vertices.row(p + 2) << 2, 0.2, 0;
-  mesh.faces.resize(2 * n * n + 2, 3);
+  mesh.faces.resize(2 * n * n + lone, 3);
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const Index v = j * (n + 1) + i;
@@ -112,20 +109,25 @@ TEST(RemeshCommand, LeftOutAreaIsReportedAndStrictRefusesIt) {
       mesh.faces.row(2 * (j * n + i) + 1) << v, v + n + 2, v + n + 1;
     }
   }
-  mesh.faces.row(2 * n * n) << p, p + 1, p + 2;
-  mesh.faces.row(2 * n * n + 1) << p, p + 2, p + 1;
-  const auto input = folder.path() / "grid-and-flap.ply";
+  for (int k = 0; k < lone; ++k) {
+    const Index p = grid_vertices + 3 * k;
+    mesh.vertices.row(p) << 2 + 0.1 * k, 0, 0;
+    mesh.vertices.row(p + 1) << 2.01 + 0.1 * k, 0, 0;
+    mesh.vertices.row(p + 2) << 2 + 0.1 * k, 0.1, 0;
+    mesh.faces.row(2 * n * n + k) << p, p + 1, p + 2;
+  }
+  const auto input = folder.path() / "grid-and-scraps.ply";
   io::write_ply(input, mesh);
-  const double flap_pct = 100 * 0.04 / 1.04;
+  const double scraps_pct = 100 * (lone * 0.0005) / (1 + lone * 0.0005);
 
   const auto out = folder.path() / "out.glb";
   const CliRun run = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
-  EXPECT_EQ(json["dropped_faces"].get<int>(), 2);
-  EXPECT_NEAR(json["dropped_area_pct"].get<double>(), flap_pct, 1e-9);
+  EXPECT_EQ(json["dropped_faces"].get<int>(), lone);
+  EXPECT_NEAR(json["dropped_area_pct"].get<double>(), scraps_pct, 1e-9);
   EXPECT_NE(run.err.find("warning"), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find("grid-and-flap.ply"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("grid-and-scraps.ply"), std::string::npos) << run.err;
 
   const auto strict_out = folder.path() / "strict.glb";
   const CliRun strict = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "--strict", "-o", strict_out.string()});

@@ -6,7 +6,7 @@
 #include "scratch_folder.hpp"
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -80,12 +80,12 @@ TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
 
   // The same figures as the library's for the same meshes and options (JSON
   // numbers round-trip doubles exactly).
-  remesh::QualityOptions options;
+  quality::QualityOptions options;
   options.samples_per_side = test_samples;
   options.seed = 3;
-  const remesh::QualityReport report =
-      remesh::compare_meshes(io::read_mesh(reference_mesh).mesh, io::read_mesh(candidate_mesh).mesh, options);
-  const remesh::TriangleQuality& c = report.candidate;
+  const quality::QualityReport report =
+      quality::compare_meshes(io::read_mesh(reference_mesh).mesh, io::read_mesh(candidate_mesh).mesh, options);
+  const quality::TriangleQuality& c = report.candidate;
   EXPECT_EQ(json.at("vertices").get<std::int64_t>(), c.vertices);
   EXPECT_EQ(json.at("faces").get<std::int64_t>(), c.faces);
   EXPECT_EQ(json.at("q_min").get<double>(), c.q_min);

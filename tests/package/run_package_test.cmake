@@ -44,7 +44,8 @@ foreach(file
     include/geodual/mesh/surface_point.hpp include/geodual/mesh/mesh_topology.hpp
     include/geodual/mesh/union_find.hpp include/geodual/mesh/random.hpp
     include/geodual/io/gltf.hpp include/geodual/voronoi/geodesic_field.hpp
-    include/geodual/remesh/remesh.hpp include/geodual/pipeline/version.hpp)
+    include/geodual/remesh/remesh.hpp include/geodual/quality/quality_stats.hpp
+    include/geodual/pipeline/version.hpp)
   if(NOT EXISTS ${prefix}/${file})
     message(FATAL_ERROR "package test: ${file} was not installed under ${prefix}")
   endif()
@@ -52,7 +53,7 @@ endforeach()
 # Only public headers are installed: no module's private headers, no detail/.
 file(GLOB_RECURSE installed_headers RELATIVE ${prefix}/include ${prefix}/include/*)
 foreach(header IN LISTS installed_headers)
-  if(header MATCHES "/detail/" OR NOT header MATCHES "^geodual/(mesh|io|voronoi|remesh|pipeline)/[a-z0-9_]+\\.hpp$")
+  if(header MATCHES "/detail/" OR NOT header MATCHES "^geodual/(mesh|io|voronoi|remesh|quality|pipeline)/[a-z0-9_]+\\.hpp$")
     message(FATAL_ERROR "package test: include/${header} is installed but is not a public header")
   endif()
 endforeach()

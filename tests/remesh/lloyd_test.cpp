@@ -8,7 +8,7 @@
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/lloyd.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
@@ -38,7 +38,7 @@ TEST(Lloyd, EnergyNeverRisesAndQualityImprovesOnAScan) {
   for (std::size_t i = 1; i < after.relaxation.energy.size(); ++i) EXPECT_LE(after.relaxation.energy[i], after.relaxation.energy[i - 1]);
   EXPECT_LT(after.relaxation.energy.back(), 0.8 * after.relaxation.energy.front());
   EXPECT_DOUBLE_EQ(after.relaxation.energy.front(), before.relaxation.energy.front());
-  const remesh::TriangleQuality q0 = remesh::triangle_quality(before.dual.mesh), q1 = remesh::triangle_quality(after.dual.mesh);
+  const quality::TriangleQuality q0 = quality::triangle_quality(before.dual.mesh), q1 = quality::triangle_quality(after.dual.mesh);
   EXPECT_GT(q1.q_avg, q0.q_avg + 0.1);
   EXPECT_GT(q1.theta_min_deg, q0.theta_min_deg);
   EXPECT_LT(q1.pct_angles_lt30, q0.pct_angles_lt30);
@@ -148,7 +148,7 @@ TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   // Lloyd's energy above the CVT's decays slowly; Newton's steps go further
   // down in as many iterations.
   EXPECT_LT(by_newton.relaxation.energy.back(), by_lloyd.relaxation.energy.back());
-  EXPECT_GT(remesh::triangle_quality(by_newton.dual.mesh).q_avg, remesh::triangle_quality(by_lloyd.dual.mesh).q_avg);
+  EXPECT_GT(quality::triangle_quality(by_newton.dual.mesh).q_avg, quality::triangle_quality(by_lloyd.dual.mesh).q_avg);
 }
 
 TEST(Lloyd, OptionsOutOfRangeAreRefusedByName) {
@@ -276,7 +276,7 @@ TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
   for (std::size_t i = 1; i < from_warm.relaxation.energy.size(); ++i) EXPECT_LT(from_warm.relaxation.energy[i], from_warm.relaxation.energy[i - 1]);
   EXPECT_LT(from_warm.relaxation.energy[1], from_cold.relaxation.energy.back());  // the warm start alone beats three geodesic iterations
   EXPECT_LT(from_warm.relaxation.energy.back(), from_cold.relaxation.energy.back());
-  EXPECT_GT(remesh::triangle_quality(from_warm.dual.mesh).q_avg, remesh::triangle_quality(from_cold.dual.mesh).q_avg + 0.01);
+  EXPECT_GT(quality::triangle_quality(from_warm.dual.mesh).q_avg, quality::triangle_quality(from_cold.dual.mesh).q_avg + 0.01);
 }
 
 }  // namespace

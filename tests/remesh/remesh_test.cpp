@@ -8,7 +8,7 @@
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
@@ -94,7 +94,7 @@ TEST(Remesh, ASlitKeepsItsEnd) {
     SCOPED_TRACE(count);
     const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, remesh::sample_sites(mesh, count));
     expect_oriented_manifold_like(analyze_mesh(result.dual.mesh), analyze_mesh(mesh));
-    EXPECT_GT(remesh::triangle_quality(result.dual.mesh).q_min, 0.3);
+    EXPECT_GT(quality::triangle_quality(result.dual.mesh).q_min, 0.3);
     bool end_kept = false;
     for (Index v = 0; v < result.dual.mesh.num_vertices(); ++v) {
       end_kept = end_kept || (result.dual.mesh.vertices.row(v) - Eigen::RowVector3d(0.5, 0.5, 0)).norm() < 1e-6;
@@ -114,7 +114,7 @@ TEST(Remesh, OgresSlitsGetNoZeroAreaTriangle) {
   remesh::RemeshOptions options;
   options.lloyd.iterations = 0;
   const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, remesh::sample_sites(mesh, 2000), options);
-  EXPECT_GT(remesh::triangle_quality(result.dual.mesh).q_min, 1e-3);
+  EXPECT_GT(quality::triangle_quality(result.dual.mesh).q_min, 1e-3);
 }
 
 TEST(Remesh, SameSitesGiveTheSameMesh) {

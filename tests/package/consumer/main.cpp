@@ -12,7 +12,7 @@
 #include <geodual/io/gltf.hpp>
 #include <geodual/io/read_mesh.hpp>
 #include <geodual/pipeline/version.hpp>
-#include <geodual/remesh/quality_stats.hpp>
+#include <geodual/quality/quality_stats.hpp>
 #include <geodual/remesh/remesh.hpp>
 #include <geodual/remesh/sample_sites.hpp>
 #include <geodual/mesh/triangle_mesh.hpp>
@@ -107,19 +107,19 @@ void run_checks() {
 
   // remesh: Q = 6/sqrt(3) A / (p h) with A = 1/2, p = 1 + sqrt(2)/2, h = sqrt(2).
   const double q_right_isosceles = 6 / std::sqrt(3.0) * 0.5 / ((1 + std::sqrt(2.0) / 2) * std::sqrt(2.0));
-  const auto quality = geodual::remesh::triangle_quality(flat);
+  const auto quality = geodual::quality::triangle_quality(flat);
   check(std::abs(quality.q_min - q_right_isosceles) < 1e-12 && std::abs(quality.q_avg - q_right_isosceles) < 1e-12 &&
             quality.euler_characteristic == 1 && quality.boundary_loops == 1,
         "remesh: triangle_quality of the grid (Q = " + std::to_string(quality.q_min) + ", one disk)");
 
-  const auto distance = geodual::remesh::compare_meshes(flat, grid(11, 0.25), {.samples_per_side = 1000});
+  const auto distance = geodual::quality::compare_meshes(flat, grid(11, 0.25), {.samples_per_side = 1000});
   check(std::abs(distance.hausdorff - 0.25) < 1e-9 && std::abs(distance.rms - 0.25) < 1e-9,
         "remesh: compare_meshes of parallel grids 0.25 apart (Hausdorff " + std::to_string(distance.hausdorff) + ")");
 
   const geodual::TriangleMesh ball = sphere(16, 32);
   const auto sites = geodual::remesh::sample_sites(ball, 60);
   const auto remeshed = geodual::remesh::remesh_from_sites(ball, sites);
-  const auto remeshed_quality = geodual::remesh::triangle_quality(remeshed.dual.mesh);
+  const auto remeshed_quality = geodual::quality::triangle_quality(remeshed.dual.mesh);
   check(remeshed.dual.mesh.num_vertices() == static_cast<geodual::Index>(remeshed.dual.sites.size()) &&
             remeshed_quality.euler_characteristic == 2 && remeshed_quality.boundary_loops == 0 &&
             remeshed_quality.nonmanifold_edges == 0 && remeshed_quality.components == 1,

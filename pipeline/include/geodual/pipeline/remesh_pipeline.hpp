@@ -15,12 +15,12 @@
 //   auto sites = geodual::remesh::sample_sites(surface, 2000);
 //   auto relaxed = geodual::remesh::lloyd_relax(surface, sites);
 //   auto remeshed = geodual::remesh::dual_with_repair(surface, relaxed.sites, std::move(relaxed.diagram));
-//   auto report = geodual::remesh::compare_meshes(loaded.mesh, remeshed.mesh);
+//   auto report = geodual::quality::compare_meshes(loaded.mesh, remeshed.mesh);
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
@@ -56,7 +56,7 @@ struct RemeshPipelineOptions {
   bool strict = false;
   double max_dropped_area_pct = 0.1;
   bool statistics = true;               ///< compare the remesh with the input (quality, Hausdorff)
-  remesh::QualityOptions quality;       ///< 10^6 samples per side
+  quality::QualityOptions quality;       ///< 10^6 samples per side
   ProgressCallback progress;
 };
 
@@ -86,7 +86,7 @@ struct RemeshPipelineResult {
   std::vector<SurfacePoint> initial_sites;
   remesh::LloydResult relaxation;  ///< the relax stage: relaxed sites, energy history (its diagram moved on to `remesh`)
   remesh::RepairedDual remesh;     ///< the dual stage: the remeshed mesh, final sites and diagram
-  std::optional<remesh::QualityReport> statistics;
+  std::optional<quality::QualityReport> statistics;
   std::vector<StageTiming> timings;
 };
 

@@ -23,7 +23,7 @@
 #include <optional>
 #include <vector>
 
-namespace geodual::remesh {
+namespace geodual::quality {
 
 /// More samples than this would take days: refused.
 inline constexpr std::int64_t max_samples_per_side = 1'000'000'000'000;
@@ -127,4 +127,4 @@ struct QualityReport {
 QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
                              const QualityOptions& options = {});
 
-}  // namespace geodual::remesh
+}  // namespace geodual::quality

@@ -3,7 +3,7 @@
 // tree) from every referenced vertex and from area-uniform samples of each
 // side. The only translation unit of geodual_remesh that includes CGAL.
 
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include "geodual/mesh/detail/morton_code.hpp"
 #include "geodual/mesh/error.hpp"
@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-namespace geodual::remesh {
+namespace geodual::quality {
 namespace {
 
 using Kernel = CGAL::Simple_cartesian<double>;
@@ -346,4 +346,4 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
   return report;
 }
 
-}  // namespace geodual::remesh
+}  // namespace geodual::quality

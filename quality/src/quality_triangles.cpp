@@ -1,7 +1,7 @@
 // triangle_quality: element shape, valence and topology figures of one mesh
 // (no CGAL here; the distances between meshes live in quality_stats.cpp).
 
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace geodual::remesh {
+namespace geodual::quality {
 namespace {
 
 constexpr double degrees_per_radian = 180.0 / std::numbers::pi;
@@ -186,4 +186,4 @@ TriangleQuality triangle_quality(const TriangleMesh& mesh) {
   return quality;
 }
 
-}  // namespace geodual::remesh
+}  // namespace geodual::quality

@@ -9,7 +9,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
-#include "geodual/remesh/quality_stats.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <CGAL/Simple_cartesian.h>
 #include <Eigen/Geometry>
@@ -27,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-namespace geodual::remesh {
+namespace geodual::quality {
 namespace {
 
 using Vec = Eigen::Vector3d;
@@ -512,9 +512,9 @@ TEST(CompareMeshes, BunnyScanAgainstItself) {
 }
 
 }  // namespace
-}  // namespace geodual::remesh
+}  // namespace geodual::quality
 
-namespace geodual::remesh {
+namespace geodual::quality {
 namespace {
 
 TEST(FaceQuality, OneForEquilateralZeroForDegenerate) {
@@ -529,4 +529,4 @@ TEST(FaceQuality, OneForEquilateralZeroForDegenerate) {
 }
 
 }  // namespace
-}  // namespace geodual::remesh
+}  // namespace geodual::quality
