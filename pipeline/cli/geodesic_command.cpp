@@ -11,6 +11,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/pipeline/field_output.hpp"
 #include "geodual/pipeline/sites.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
@@ -54,6 +55,7 @@ class GeodesicCommand final : public Command {
       io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
     }
     const io::LoadedMesh loaded = io::read_mesh(mesh_path_);
+    require_computable_range(loaded.mesh, mesh_path_);
     const TriangleMesh& mesh = loaded.mesh;
     const std::vector<SurfacePoint> sites = sites_.sites(mesh);
     voronoi::GeodesicOptions options;

@@ -4,6 +4,7 @@
 #include "text_table.hpp"
 
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
@@ -44,6 +45,7 @@ class InfoCommand final : public Command {
     }
     const auto start = std::chrono::steady_clock::now();
     const io::LoadedMesh loaded = io::read_mesh(path_);
+    require_computable_range(loaded.mesh, path_);
     const double read_seconds = seconds_since(start);
     const auto analysis_start = std::chrono::steady_clock::now();
     const MeshReport report = analyze_mesh(loaded.mesh);

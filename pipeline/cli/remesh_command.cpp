@@ -14,6 +14,7 @@
 
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
@@ -121,6 +122,7 @@ class RemeshCommand final : public Command {
       return bar.update(pipeline::stage_name(stage), fraction);
     };
     io::LoadedMesh loaded = io::read_mesh(mesh_path_);
+    require_computable_range(loaded.mesh, mesh_path_);
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
     const remesh::RepairedDual& result = run.remesh;

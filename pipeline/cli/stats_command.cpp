@@ -9,6 +9,7 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
 #include <CLI/CLI.hpp>
@@ -95,6 +96,8 @@ class StatsCommand final : public Command {
     const auto start = std::chrono::steady_clock::now();
     const io::LoadedMesh reference = io::read_mesh(reference_path_);
     const io::LoadedMesh candidate = io::read_mesh(candidate_path_);
+    require_computable_range(reference.mesh, reference_path_);
+    require_computable_range(candidate.mesh, candidate_path_);
     const double read_seconds = seconds_since(start);
     const auto stats_start = std::chrono::steady_clock::now();
     quality::QualityReport report;

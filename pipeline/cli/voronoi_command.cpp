@@ -11,6 +11,7 @@
 
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
@@ -58,6 +59,7 @@ class VoronoiCommand final : public Command {
     }
     const auto start = std::chrono::steady_clock::now();
     const io::LoadedMesh loaded = io::read_mesh(mesh_path_);
+    require_computable_range(loaded.mesh, mesh_path_);
     const TriangleMesh& mesh = loaded.mesh;
     const double load_seconds = seconds_since(start);
     const auto sample_start = std::chrono::steady_clock::now();

@@ -1,5 +1,6 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 
@@ -70,6 +71,7 @@ RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, con
   report(options.progress, Stage::load, 0.0);
   StageClock clock(timings, Stage::load);
   io::LoadedMesh loaded = io::read_mesh(input);
+  require_computable_range(loaded.mesh, input.string());
   clock.stop();
   report(options.progress, Stage::load, 1.0);
   RemeshPipelineResult result = run_remesh_pipeline(std::move(loaded), options);

@@ -131,6 +131,21 @@ TEST_F(CliBadInput, NanCoordinates) {
                                 "0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n"));
 }
 
+TEST_F(CliBadInput, CoordinatesBeyondWhatDoublesComputeWith) {
+  // Finite, but their squared areas overflow (or vanish): info printed inf and nan.
+  const auto huge = folder_.write("huge.obj", "v 0 0 0\nv 1e300 0 0\nv 0 1e300 0\nf 1 2 3\n");
+  const auto tiny = folder_.write("tiny.obj", "v 0 0 0\nv 1e-300 0 0\nv 0 1e-300 0\nf 1 2 3\n");
+  for (const auto& path : {huge, tiny}) {
+    expect_rejected(path);
+    expect_error(run_cli({"stats", path.string(), "tests/data/woody.ply"}), exit_failure, path.string());
+    expect_error(run_cli({"remesh", path.string(), "--sites", "10", "-o", (folder_.path() / "out.ply").string()}),
+                 exit_failure, path.string());
+  }
+  // A mesh far from the origin but within range is fine.
+  const auto far = folder_.write("far.obj", "v 1e60 0 0\nv 1e60 1e59 0\nv 1e60 0 1e59\nf 1 2 3\n");
+  EXPECT_EQ(run_cli({"info", far.string()}).exit_status, 0);
+}
+
 TEST_F(CliBadInput, FaceIndexOutOfRange) {
   expect_rejected(folder_.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"));
   expect_rejected(folder_.write("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"));
