@@ -387,6 +387,9 @@ void WindowVtp::push_face_key(Index face) {
   face_events_.push({rounded_up, face});
 }
 
+// Definition 3.1 (redundant triangle): all windows on the face's three edges
+// come from one source. Its three vertices must carry that source's label too,
+// so that the face holds no piece of a cell boundary through a vertex.
 bool WindowVtp::face_is_redundant(Index face) const {
   const Index site = label_[pm_.vertex(face, 0)];
   if (site < 0) return false;
@@ -405,6 +408,9 @@ bool WindowVtp::face_is_redundant(Index face) const {
   return true;
 }
 
+// RWR, the paper's Procedure 1: Step 1 (Proposition 3.1, below) finds the faces
+// now inactive, Step 2 (Definition 3.1) frees the windows of the redundant
+// edges among them: edges whose two faces are both inactive and redundant.
 void WindowVtp::remove_redundant_windows(double lower_bound) {
   // Proposition 3.1: with d_min(f) taken from f's vertices (an upper bound of
   // the true minimum over f), no window yet to come, all of which are at least
@@ -438,6 +444,13 @@ void WindowVtp::report_progress() {
   if (!options_.progress(fraction)) throw Cancelled("geodesic computation cancelled");
 }
 
+// Algorithm 2. Step 0 (one window per edge opposite each source, its
+// neighbours into Q) ran in the constructor and add_sites(); each pass of the
+// loop is Steps 1-6: pop the nearest vertex (Step 1), add its faces to the
+// traversed area and propagate their waiting windows through a FIFO (Steps
+// 2-3, expand), free what the inactive region makes redundant (Step 4),
+// and queue the new faces for it (Step 6, in expand); vertex keys are
+// updated as windows reach them (Step 5, relax).
 void WindowVtp::run() {
   drain_fifo();
   Event event{};
@@ -450,7 +463,7 @@ void WindowVtp::run() {
     } else {
       expand(event.vertex);
     }
-    if (options_.remove_redundant_windows) remove_redundant_windows(next_event_key());
+    if (options_.remove_redundant_windows) remove_redundant_windows(next_event_key());  // Step 4
     report_progress();
   }
   if (options_.remove_redundant_windows) remove_redundant_windows(kInfinity);
@@ -469,6 +482,8 @@ void WindowVtp::run() {
   stats_.peak_window_bytes = peak_window_bytes_;
 }
 
+// A valid face is one Definition 3.1 does not call redundant: windows from
+// different sites meet on it, so a cell boundary crosses it.
 std::vector<bool> WindowVtp::valid_faces() const {
   std::vector<bool> valid(static_cast<std::size_t>(pm_.num_faces()), false);
   for (Index f = 0; f < pm_.num_faces(); ++f) {

@@ -30,7 +30,7 @@ namespace geodual::voronoi {
 
 struct GeodesicOptions {
   /// Free the windows that cannot matter for the Voronoi diagram as soon as
-  /// their faces are inactive (seed §3.2). Off keeps every window, as MMP and
+  /// their faces are inactive ([QYZ17] §3.2, Proposition 3.1). Off keeps every window, as MMP and
   /// [LCT11] do; distances and labels are the same either way.
   bool remove_redundant_windows = true;
   /// Stop with a geodual::Error when the windows held at one time need more
@@ -104,8 +104,8 @@ struct GeodesicField {
   std::vector<FacePointSource> face_point_sources;
 
   /// Per face: true where windows from different sites meet on the face's
-  /// edges or vertices (the face is crossed by a Voronoi boundary, seed
-  /// Definition 3.1). query() is exact inside these faces and at every vertex.
+  /// edges or vertices (the face is crossed by a Voronoi boundary: not
+  /// redundant in the sense of [QYZ17] Definition 3.1). query() is exact inside these faces and at every vertex.
   std::vector<bool> valid_face;
 
   GeodesicStats stats;
