@@ -300,6 +300,7 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
     std::vector<std::pair<std::uint64_t, std::int32_t>> order;
     std::vector<double> squared;
     for (std::size_t run = range.begin(); run != range.end(); ++run) {
+      if (!keep_going()) return;  // before drawing the run's points
       const std::int64_t first = static_cast<std::int64_t>(run) * block * blocks_per_run;
       const std::int64_t last = std::min(first + block * blocks_per_run, count);
       const auto size = static_cast<std::size_t>(last - first);
