@@ -1,10 +1,12 @@
 // geodual info FILE [--json]: what a mesh file holds and what is wrong with it.
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 #include "text_table.hpp"
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
@@ -47,9 +49,11 @@ class InfoCommand final : public Command {
     const io::LoadedMesh loaded = io::read_mesh(path_);
     require_computable_range(loaded.mesh, path_);
     const double read_seconds = seconds_since(start);
+    stop_if_interrupted();
     const auto analysis_start = std::chrono::steady_clock::now();
     const MeshReport report = analyze_mesh(loaded.mesh);
     const double analysis_seconds = seconds_since(analysis_start);
+    stop_if_interrupted();
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, loaded.mesh);
 
     if (json_) {
@@ -61,6 +65,11 @@ class InfoCommand final : public Command {
   }
 
  private:
+  /// Ctrl-C: exit 3 before writing anything.
+  static void stop_if_interrupted() {
+    if (interrupted()) throw Cancelled("info cancelled");
+  }
+
   void print_json(const io::ReadInfo& info, const MeshReport& report, double read_seconds,
                   double analysis_seconds) const {
     nlohmann::ordered_json json;

@@ -5,6 +5,7 @@
 
 #include "command.hpp"
 #include "option_checks.hpp"
+#include "progress_bar.hpp"
 #include "text_table.hpp"
 
 #include "geodual/mesh/error.hpp"
@@ -89,23 +90,36 @@ class StatsCommand final : public Command {
         ->capture_default_str()
         ->check(integer_between(0, quality::max_samples_per_side));
     command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str()->check(unsigned_integer());
+    command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
 
   int run() override {
+    ProgressBar bar(quiet_);
+    const auto read = [&bar](const std::string& path, double fraction) {
+      if (!bar.update("read", fraction)) throw Cancelled("stats cancelled");
+      io::LoadedMesh loaded = io::read_mesh(path);
+      if (!bar.update("read", fraction + 0.5)) throw Cancelled("stats cancelled");
+      return loaded;
+    };
     const auto start = std::chrono::steady_clock::now();
-    const io::LoadedMesh reference = io::read_mesh(reference_path_);
-    const io::LoadedMesh candidate = io::read_mesh(candidate_path_);
+    const io::LoadedMesh reference = read(reference_path_, 0.0);
+    const io::LoadedMesh candidate = read(candidate_path_, 0.5);
     require_computable_range(reference.mesh, reference_path_);
     require_computable_range(candidate.mesh, candidate_path_);
     const double read_seconds = seconds_since(start);
     const auto stats_start = std::chrono::steady_clock::now();
+    quality::QualityOptions options = options_;
+    options.progress = [&bar](double fraction) { return bar.update("statistics", fraction); };
     quality::QualityReport report;
     try {
-      report = quality::compare_meshes(reference.mesh, candidate.mesh, options_);
+      report = quality::compare_meshes(reference.mesh, candidate.mesh, options);
+    } catch (const Cancelled&) {
+      throw;
     } catch (const Error& error) {
       throw Error(name_the_file(error.what()));
     }
+    bar.finish();
     const double stats_seconds = seconds_since(stats_start);
     if (json_) {
       print_json(report, read_seconds, stats_seconds);
@@ -220,6 +234,7 @@ class StatsCommand final : public Command {
   std::string reference_path_;
   std::string candidate_path_;
   bool json_ = false;
+  bool quiet_ = false;
   quality::QualityOptions options_;
 };
 

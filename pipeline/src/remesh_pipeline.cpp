@@ -136,7 +136,11 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   if (options.statistics) {
     report(options.progress, Stage::statistics, 0.0);
     StageClock statistics_clock(result.timings, Stage::statistics);
-    result.statistics = quality::compare_meshes(result.input.mesh, result.remesh.mesh, options.quality);
+    quality::QualityOptions quality_options = options.quality;
+    if (options.progress) {
+      quality_options.progress = [&](double fraction) { return options.progress(Stage::statistics, fraction); };
+    }
+    result.statistics = quality::compare_meshes(result.input.mesh, result.remesh.mesh, quality_options);
     statistics_clock.stop();
     report(options.progress, Stage::statistics, 1.0);
   }

@@ -1,12 +1,18 @@
 // The progress line appears on a terminal and nowhere else, --threads does
-// not change the result, and Ctrl-C (SIGINT) exits 3 leaving no file.
+// not change the result, and Ctrl-C (SIGINT) exits 3 within a second in every
+// command, leaving no file.
 
 #include "cli_runner.hpp"
 #include "scratch_folder.hpp"
 
+#include "geodual/io/write_mesh.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -34,6 +40,109 @@ std::pair<int, std::string> shell(const std::string& command) {
   while (const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+/// A wavy n x n grid of 2 (n - 1)^2 faces, `phase` shifting its waves.
+TriangleMesh wavy_grid(int n, double phase) {
+  TriangleMesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(n) * n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double x = static_cast<double>(i) / (n - 1), y = static_cast<double>(j) / (n - 1);
+      mesh.vertices.row(i * n + j) << x, y, 0.05 * std::sin(20 * x + phase) * std::cos(17 * y);
+    }
+  }
+  mesh.faces.resize(2 * static_cast<Eigen::Index>(n - 1) * (n - 1), 3);
+  Eigen::Index f = 0;
+  for (int i = 0; i + 1 < n; ++i) {
+    for (int j = 0; j + 1 < n; ++j) {
+      const Index a = i * n + j, b = a + n;
+      mesh.faces.row(f++) << a, b, b + 1;
+      mesh.faces.row(f++) << a, b + 1, a + 1;
+    }
+  }
+  return mesh;
+}
+
+struct InterruptedRun {
+  int status = 0;
+  std::string output;
+  double seconds_after_signal = 0;  ///< from SIGINT to exit
+};
+
+/// Runs the tool with `arguments`, sends SIGINT after `delay` seconds and
+/// SIGKILL 3 s later if it is still running.
+InterruptedRun interrupt_after(double delay, const std::string& arguments) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto [status, output] = shell("timeout --preserve-status -k 3 -s INT " + std::to_string(delay) + " " +
+                                      std::string(GEODUAL_CLI) + " " + arguments);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {status, output, seconds - delay};
+}
+
+/// Meshes written once for all the tests here: a large one of a million
+/// faces, and two of 125,000 faces whose distances take long with many samples.
+class LargeMeshes : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    folder_ = new ScratchFolder;
+    io::write_ply(large(), wavy_grid(708, 0.0));
+    io::write_ply(reference(), wavy_grid(251, 0.0));
+    io::write_ply(candidate(), wavy_grid(250, 0.3));
+  }
+  static void TearDownTestSuite() {
+    delete folder_;
+    folder_ = nullptr;
+  }
+  static std::string large() { return (folder_->path() / "large.ply").string(); }
+  static std::string reference() { return (folder_->path() / "reference.ply").string(); }
+  static std::string candidate() { return (folder_->path() / "candidate.ply").string(); }
+
+  ScratchFolder output_folder_;
+
+ private:
+  static ScratchFolder* folder_;
+};
+
+ScratchFolder* LargeMeshes::folder_ = nullptr;
+
+TEST_F(LargeMeshes, CtrlCStopsStatsWithinASecond) {
+  // 1.5 s in, while it measures the 2 x 10^8 sample distances (minutes).
+  const InterruptedRun run = interrupt_after(
+      1.5, "stats " + reference() + " " + candidate() + " --samples 100000000 --json");
+  EXPECT_EQ(run.status, 3) << run.output;
+  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
+  EXPECT_NE(run.output.find("cancelled"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("hausdorff"), std::string::npos) << run.output;  // no result printed
+}
+
+TEST_F(LargeMeshes, CtrlCStopsInfoWithinASecond) {
+  const auto preview = output_folder_.path() / "preview.png";
+  // 0.3 s in, while it reads or analyses the mesh (each takes longer), before
+  // the preview.
+  const InterruptedRun run =
+      interrupt_after(0.3, "info " + large() + " --json --preview " + preview.string());
+  EXPECT_EQ(run.status, 3) << run.output;
+  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
+  EXPECT_EQ(run.output.find("faces"), std::string::npos) << run.output;  // no result printed
+  EXPECT_FALSE(std::filesystem::exists(preview));
+}
+
+TEST(Interrupt, CtrlCStopsTheStatisticsStageOfRemeshWithinASecond) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "out.ply";
+  const std::string remesh = std::string("remesh ") + scan + " --sites 300 --lloyd 0 -o " + out.string();
+  // How long the stages before the statistics take; then a run whose
+  // statistics take minutes, interrupted one second into them.
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(shell(std::string(GEODUAL_CLI) + " " + remesh + " --samples -1").first, 0);
+  const double before_statistics = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::filesystem::remove(out);
+  const InterruptedRun run = interrupt_after(before_statistics + 1, remesh + " --samples 1000000000");
+  EXPECT_EQ(run.status, 3) << run.output;
+  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
+  EXPECT_NE(run.output.find("statistics cancelled"), std::string::npos) << run.output;
+  EXPECT_TRUE(std::filesystem::is_empty(folder.path()));
 }
 
 TEST(Progress, OnATerminalOnlyAndNotWithQuiet) {

@@ -23,6 +23,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -468,6 +469,45 @@ TEST(CompareMeshes, DeterministicForAnyThreadCount) {
   const QualityReport reseeded = compare_meshes(sphere, bumpy, samples(50000, 8));
   EXPECT_NE(many.rms, reseeded.rms);
   EXPECT_NEAR(many.rms, reseeded.rms, 0.02 * many.rms);
+}
+
+TEST(CompareMeshes, ProgressChangesNothingAndCancels) {
+  const TriangleMesh sphere = test::icosphere(3);
+  TriangleMesh bumpy = sphere;
+  for (Index v = 0; v < bumpy.num_vertices(); ++v) bumpy.vertices.row(v) *= 1.0 + 0.02 * std::sin(7.0 * v);
+  const QualityReport plain = compare_meshes(sphere, bumpy, samples(200000, 7));
+  QualityOptions watched = samples(200000, 7);
+  std::vector<double> fractions;
+  watched.progress = [&fractions](double fraction) {
+    fractions.push_back(fraction);
+    return true;
+  };
+  const QualityReport reported = compare_meshes(sphere, bumpy, watched);
+  EXPECT_EQ(plain.hausdorff_reference_to_candidate, reported.hausdorff_reference_to_candidate);
+  EXPECT_EQ(plain.hausdorff_candidate_to_reference, reported.hausdorff_candidate_to_reference);
+  EXPECT_EQ(plain.rms, reported.rms);
+  // Asked every block of 4096 queries the calling thread runs (about 100 blocks).
+  ASSERT_GT(fractions.size(), 20U);
+  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_EQ(fractions.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+
+  // Refused once past half way: Cancelled, and never asked again.
+  for (const int threads : {0, 1}) {
+    QualityOptions cancelling = samples(200000, 7);
+    int calls_after_refusal = 0;
+    bool refused = false;
+    cancelling.progress = [&](double fraction) {
+      if (refused) ++calls_after_refusal;
+      refused = refused || fraction >= 0.5;
+      return !refused;
+    };
+    std::optional<tbb::global_control> single;
+    if (threads == 1) single.emplace(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_THROW(compare_meshes(sphere, bumpy, cancelling), Cancelled);
+    EXPECT_TRUE(refused);
+    EXPECT_EQ(calls_after_refusal, 0);
+  }
 }
 
 TEST(CompareMeshes, BadRequestsAreErrors) {

@@ -20,6 +20,7 @@
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct QualityOptions {
   std::int64_t samples_per_side = 1'000'000;
   /// Seed of the (counter-based, platform-independent) sample generator.
   std::uint64_t seed = 1;
+  /// Called on the calling thread now and then (between phases and every few
+  /// thousand distance queries) with the fraction done, in [0, 1]; returning
+  /// false cancels the computation (geodual::Cancelled is thrown). It changes
+  /// no result.
+  std::function<bool(double fraction)> progress;
 };
 
 /// Figures of one mesh alone. Percentages are in [0, 100].
