@@ -129,6 +129,9 @@ class RemeshCommand final : public Command {
     const remesh::LloydResult& relaxation = run.relaxation;
     const quality::TriangleQuality quality =
         run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
+    if (run.sites_added_for_topology > 0) {
+      std::cerr << "geodual remesh: note: " << mesh_path_ << ": " << run.sites_added_reason << "\n";
+    }
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
       std::cerr << "geodual remesh: warning: " << mesh_path_ << ": " << run.dropped.faces << " faces ("
                 << significant(run.dropped.area_pct, 3)
@@ -149,6 +152,7 @@ class RemeshCommand final : public Command {
     figures["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     figures["seed"] = sites_.seed();
     figures["sites"] = run.initial_sites.size();
+    figures["sites_added_for_topology"] = run.sites_added_for_topology;
     figures["lloyd_iterations"] = relaxation.iterations;
     figures["warm_start_iterations"] = relaxation.warm_start_iterations;
     figures["lloyd_diagrams"] = relaxation.diagrams;

@@ -2,6 +2,7 @@
 
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 
 #include <Eigen/Geometry>
@@ -55,6 +56,10 @@ DroppedSurface dropped_surface(const TriangleMesh& input, const remesh::Manifold
     const Eigen::Vector3d b = input.vertices.row(input.faces(f, 1));
     const Eigen::Vector3d c = input.vertices.row(input.faces(f, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
+    if (!cut.copy_of.empty() && cut.copy_of[static_cast<std::size_t>(f)] >= 0) {
+      ++dropped.faces;  // a copy of a face that is kept: no surface of its own
+      continue;
+    }
     total += area;
     const auto kept = cut.mesh.faces.row(f);
     if (kept[0] == kept[1] || kept[1] == kept[2] || kept[2] == kept[0]) {
@@ -94,8 +99,24 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
                 "non-manifold pieces); more than the " + std::to_string(options.max_dropped_area_pct) +
                 " % allowed with strict");
   }
-  result.initial_sites = options.given_sites ? *options.given_sites
-                                             : remesh::sample_sites(result.surface.mesh, options.sites, options.sampling);
+  // Loops the input does not have were opened by the cut (at non-manifold
+  // edges): messages about loops say so.
+  const auto loops_from_cut = [&](std::int64_t surface_loops) -> std::string {
+    if (surface_loops <= result.input_report.boundary_loops) return "";
+    return " (the input has " + std::to_string(result.input_report.boundary_loops) + " boundary loops; " +
+           std::to_string(surface_loops - result.input_report.boundary_loops) +
+           " were made by the cut to a manifold at its non-manifold edges and vertices)";
+  };
+  if (options.given_sites) {
+    result.initial_sites = *options.given_sites;
+  } else {
+    remesh::SampledSites sampled =
+        remesh::sample_sites_for_topology(result.surface.mesh, options.sites, options.sampling);
+    result.initial_sites = std::move(sampled.sites);
+    result.sites_added_for_topology = sampled.sites_added_for_topology;
+    result.sites_added_reason = sampled.topology_reason;
+    if (sampled.sites_added_for_topology > 0) result.sites_added_reason += loops_from_cut(sampled.boundary_loops);
+  }
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
 
@@ -129,7 +150,17 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   report(options.progress, Stage::dual, 0.0);
   StageClock dual_clock(result.timings, Stage::dual);
   // The relaxed diagram moves on to the dual (its first round's diagram).
-  result.remesh = remesh::dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram), repair);
+  try {
+    result.remesh = remesh::dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram), repair);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    // The message names the surface's pieces and loops: say where loops the
+    // input does not have come from.
+    const std::string note = loops_from_cut(build_mesh_topology(surface).num_boundary_loops);
+    if (note.empty()) throw;
+    throw Error(e.what() + note);
+  }
   dual_clock.stop();
   report(options.progress, Stage::dual, 1.0);
 

@@ -12,6 +12,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace geodual::remesh {
 namespace {
@@ -191,7 +192,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
       repair_far_from(s);
     }
   }
-  const ManifoldCut fans = cut_to_manifold(dual.mesh, {.min_component_faces = 0});
+  const ManifoldCut fans = cut_to_manifold(dual.mesh, {.disable_duplicate_faces = false, .min_component_faces = 0});
   std::vector<std::uint8_t> several_fans(static_cast<std::size_t>(num_sites), 0);
   for (std::size_t copy = static_cast<std::size_t>(num_sites); copy < fans.original_vertex.size(); ++copy) {
     several_fans[fans.original_vertex[copy]] = 1;
@@ -239,12 +240,31 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     if (same) continue;
     if (check.topology_mismatches++ == 0) {
       // Named in the message: where to look (a scrap far below the sites'
-      // spacing may need to go; a large piece needs more sites).
+      // spacing may need to go; a large piece needs more sites), what the
+      // piece is and what the remesh made of it.
+      auto loops = [](std::int64_t n) { return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops"); };
+      std::vector<Index> pieces;  // of the remesh, holding the piece's sites
+      for (const Index s : sites) {
+        if (dual_topology.vertex_component[s] >= 0) pieces.push_back(dual_topology.vertex_component[s]);
+      }
+      std::sort(pieces.begin(), pieces.end());
+      pieces.erase(std::unique(pieces.begin(), pieces.end()), pieces.end());
+      ComponentCounts made;
+      for (const Index p : pieces) {
+        made.vertices += dual_topology.components[p].vertices;
+        made.edges += dual_topology.components[p].edges;
+        made.faces += dual_topology.components[p].faces;
+        made.boundary_loops += dual_topology.components[p].boundary_loops;
+      }
+      const std::string remeshed =
+          pieces.empty() ? "no triangle"
+                         : (pieces.size() > 1 ? std::to_string(pieces.size()) + " pieces, together " : std::string()) +
+                               "Euler characteristic " + std::to_string(made.euler_characteristic()) + ", " +
+                               loops(made.boundary_loops);
       first_mismatch = " (the first: the piece with input vertex " + std::to_string(component) + ", " +
                        std::to_string(expected.faces) + " faces, " + std::to_string(sites.size()) +
                        " sites, Euler characteristic " + std::to_string(expected.euler_characteristic()) + ", " +
-                       std::to_string(expected.boundary_loops) +
-                       (expected.boundary_loops == 1 ? " boundary loop)" : " boundary loops)");
+                       loops(expected.boundary_loops) + "; in the remesh: " + remeshed + ")";
     }
     // Local problems explain most mismatches; without any, refine where
     // cells are largest (a handle or hole inside one): their farthest vertices.

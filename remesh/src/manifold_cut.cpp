@@ -14,9 +14,81 @@
 namespace geodual::remesh {
 namespace {
 
-bool proper(const TriangleMesh& mesh, Index f) {
-  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+bool proper(const FaceMatrix& faces, Index f) {
+  const Index a = faces(f, 0), b = faces(f, 1), c = faces(f, 2);
   return a != b && b != c && c != a;
+}
+
+bool proper(const TriangleMesh& mesh, Index f) { return proper(mesh.faces, f); }
+
+/// Per vertex: the smallest index of a vertex at exactly its position (its
+/// own for a vertex with a coordinate that is not finite).
+std::vector<Index> position_ids(const VertexMatrix& vertices) {
+  const Index n = static_cast<Index>(vertices.rows());
+  std::vector<Index> id(static_cast<std::size_t>(n));
+  std::iota(id.begin(), id.end(), Index{0});
+  std::vector<Index> order;
+  order.reserve(id.size());
+  for (Index v = 0; v < n; ++v) {
+    if (vertices.row(v).allFinite()) order.push_back(v);
+  }
+  auto less = [&](Index a, Index b) {
+    for (int d = 0; d < 3; ++d) {
+      if (vertices(a, d) != vertices(b, d)) return vertices(a, d) < vertices(b, d);
+    }
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    if (vertices.row(order[i]) == vertices.row(order[i - 1])) id[order[i]] = id[order[i - 1]];
+  }
+  return id;
+}
+
+/// Disables (all corners set to the first) every face whose corners, as
+/// positions, are those of an earlier face; fills copy_of and returns how
+/// many were disabled.
+std::int64_t disable_duplicate_faces(const VertexMatrix& vertices, FaceMatrix& faces, std::vector<Index>& copy_of) {
+  const Index num_faces = static_cast<Index>(faces.rows());
+  copy_of.assign(static_cast<std::size_t>(num_faces), -1);
+  const std::vector<Index> id = position_ids(vertices);
+  struct FaceKey {
+    std::array<Index, 3> corners;  // position ids, increasing
+    Index face;
+  };
+  std::vector<FaceKey> keys;
+  keys.reserve(static_cast<std::size_t>(num_faces));
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!proper(faces, f)) continue;
+    std::array<Index, 3> corners = {id[faces(f, 0)], id[faces(f, 1)], id[faces(f, 2)]};
+    std::sort(corners.begin(), corners.end());
+    if (corners[0] == corners[1] || corners[1] == corners[2]) continue;  // zero area: no copy of anything
+    keys.push_back({corners, f});
+  }
+  // By corners, equal keys in face order: the first of a run is kept.
+  sort_by_vertex_pair(keys, static_cast<Index>(vertices.rows()), [](const FaceKey& k) { return k.corners[0]; },
+                      [](const FaceKey& k) { return k.corners[1]; });
+  std::int64_t disabled = 0;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].corners[0] == keys[i].corners[0] && keys[j].corners[1] == keys[i].corners[1]) ++j;
+    if (j - i > 1) {
+      std::stable_sort(keys.begin() + static_cast<std::ptrdiff_t>(i), keys.begin() + static_cast<std::ptrdiff_t>(j),
+                       [](const FaceKey& a, const FaceKey& b) { return a.corners[2] < b.corners[2]; });
+      for (std::size_t k = i + 1, first = i; k < j; ++k) {
+        if (keys[k].corners[2] != keys[first].corners[2]) {
+          first = k;
+          continue;
+        }
+        const Index f = keys[k].face;
+        copy_of[f] = keys[first].face;
+        faces(f, 1) = faces(f, 2) = faces(f, 0);
+        ++disabled;
+      }
+    }
+    i = j;
+  }
+  return disabled;
 }
 
 /// The face's area; 0 where it overflows.
@@ -33,6 +105,13 @@ double face_area(const TriangleMesh& mesh, Index f) {
 ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options) {
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   const Index num_vertices = static_cast<Index>(mesh.vertices.rows());
+  ManifoldCut cut;
+  cut.mesh.faces = mesh.faces;
+  if (options.disable_duplicate_faces) {
+    cut.duplicates_disabled = disable_duplicate_faces(mesh.vertices, cut.mesh.faces, cut.copy_of);
+    cut.faces_disabled = cut.duplicates_disabled;
+  }
+  const FaceMatrix faces = cut.mesh.faces;  // the input's, copies disabled
   // Corners (face * 3 + k) joined when their faces share an edge with exactly
   // two faces and they sit at the same vertex of it.
   struct HalfEdge {
@@ -41,9 +120,9 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   std::vector<HalfEdge> edges;
   edges.reserve(static_cast<std::size_t>(3 * num_faces));
   for (Index f = 0; f < num_faces; ++f) {
-    if (!proper(mesh, f)) continue;
+    if (!proper(faces, f)) continue;
     for (int k = 0; k < 3; ++k) {
-      const Index u = mesh.faces(f, k), v = mesh.faces(f, (k + 1) % 3);
+      const Index u = faces(f, k), v = faces(f, (k + 1) % 3);
       const Index cu = 3 * f + k, cv = 3 * f + (k + 1) % 3;
       edges.push_back(u < v ? HalfEdge{u, v, cu, cv} : HalfEdge{v, u, cv, cu});
     }
@@ -63,16 +142,14 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   }
   // One vertex per fan: the first fan of a vertex keeps its index, further
   // fans get new vertices at the end, in the order of their first corner.
-  ManifoldCut cut;
-  cut.mesh.faces = mesh.faces;
   std::vector<Index> vertex_of_fan(fans.size(), -1);
   std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0), split(static_cast<std::size_t>(num_vertices), 0);
   std::vector<Index> extra;  // original vertex of each new vertex
   for (Index f = 0; f < num_faces; ++f) {
-    if (!proper(mesh, f)) continue;
+    if (!proper(faces, f)) continue;
     for (int k = 0; k < 3; ++k) {
       const Index corner = 3 * f + k, root = fans.find(corner);
-      const Index v = mesh.faces(f, k);
+      const Index v = faces(f, k);
       if (vertex_of_fan[root] < 0) {
         if (!taken[v]) {
           taken[v] = 1;

@@ -31,6 +31,30 @@ std::string plural(std::int64_t n, const std::string& word) {
   return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
 }
 
+/// The sites every component with area needs: 3 per boundary loop (so that
+/// the dual keeps it) and at least 4 (a tetrahedron, the smallest closed
+/// remesh).
+struct TopologyMinimum {
+  std::int64_t needed = 0;           ///< every component its minimum
+  std::int64_t needed_by_loops = 0;  ///< 3 per loop
+  std::int64_t components = 0;       ///< with area
+  std::int64_t loops = 0;
+};
+
+std::int64_t component_minimum(std::int64_t loops) { return std::max<std::int64_t>(4, 3 * loops); }
+
+TopologyMinimum topology_minimum(const SamplingSurface& surface, const std::vector<std::int64_t>& loops_per_component) {
+  TopologyMinimum minimum;
+  for (Index c = 0; c < surface.num_components; ++c) {
+    if (!(surface.component_area[c] > 0)) continue;
+    ++minimum.components;
+    minimum.loops += loops_per_component[c];
+    minimum.needed += component_minimum(loops_per_component[c]);
+    minimum.needed_by_loops += 3 * loops_per_component[c];
+  }
+  return minimum;
+}
+
 /// Sites per component (0 for components without area).
 std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
                                               const std::vector<std::int64_t>& loops_per_component,
@@ -41,14 +65,12 @@ std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
   }
   std::vector<double> areas;
   std::vector<std::int64_t> minimum, loop_minimum;
-  std::int64_t needed = 0, needed_by_loops = 0, num_loops = 0;
+  const TopologyMinimum total = topology_minimum(surface, loops_per_component);
+  const std::int64_t needed = total.needed, needed_by_loops = total.needed_by_loops, num_loops = total.loops;
   for (const Index c : with_area) {
     areas.push_back(surface.component_area[c]);
     loop_minimum.push_back(3 * loops_per_component[c]);
-    minimum.push_back(std::max<std::int64_t>(4, loop_minimum.back()));
-    needed += minimum.back();
-    needed_by_loops += loop_minimum.back();
-    num_loops += loops_per_component[c];
+    minimum.push_back(component_minimum(loops_per_component[c]));
   }
   if (count < needed_by_loops) {
     const std::string also = needed > needed_by_loops ? " (" + std::to_string(needed) +
@@ -155,9 +177,10 @@ void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
               " sites at distinct positions off the vertices (the faces are too small for their coordinates)");
 }
 
-}  // namespace
-
-std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
+/// sample_sites, with the count raised to the topology's minimum first when
+/// `raise_for_topology`.
+SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options,
+                    bool raise_for_topology) {
   if (count < 4) {
     throw UsageError("site count " + std::to_string(count) + " is too small: at least 4 sites are needed");
   }
@@ -176,6 +199,22 @@ std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t co
   for (const BoundaryLoop& loop : surface.boundary_loops) {
     loops[loop.component].push_back(&loop);
     ++loops_per_component[loop.component];
+  }
+  SampledSites sampled;
+  sampled.boundary_loops = static_cast<std::int64_t>(surface.boundary_loops.size());
+  const TopologyMinimum minimum = topology_minimum(surface, loops_per_component);
+  if (raise_for_topology && count < minimum.needed) {
+    sampled.sites_added_for_topology = minimum.needed - count;
+    sampled.topology_reason =
+        "site count " + std::to_string(count) + " raised to " + std::to_string(minimum.needed) + ": the surface's " +
+        plural(minimum.components, "piece") + (minimum.loops > 0 ? " and " + plural(minimum.loops, "boundary loop") : "") +
+        " need at least 4 sites per piece" + (minimum.loops > 0 ? " and 3 per loop" : "") +
+        ", or the remesh would lose pieces" + (minimum.loops > 0 ? " or holes" : "");
+    count = minimum.needed;
+    if (count > std::numeric_limits<Index>::max()) {
+      throw UsageError(sampled.topology_reason + "; that is more than the " +
+                       std::to_string(std::numeric_limits<Index>::max()) + " sites allowed");
+    }
   }
   const std::vector<std::int64_t> sites = sites_per_component(surface, loops_per_component, count);
 
@@ -222,7 +261,18 @@ std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t co
                 std::to_string(count));
   }
   separate_coincident_sites(mesh, result, options.seed);
-  return result;
+  sampled.sites = std::move(result);
+  return sampled;
+}
+
+}  // namespace
+
+std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
+  return sample(mesh, count, options, false).sites;
+}
+
+SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
+  return sample(mesh, count, options, true);
 }
 
 SamplingStrategy parse_sampling_strategy(std::string_view name) {

@@ -12,7 +12,7 @@
 // the calls the pipeline makes):
 //   auto loaded = geodual::io::read_mesh("scan.ply");
 //   auto surface = geodual::remesh::cut_to_manifold(loaded.mesh).mesh;
-//   auto sites = geodual::remesh::sample_sites(surface, 2000);
+//   auto sites = geodual::remesh::sample_sites_for_topology(surface, 2000).sites;
 //   auto relaxed = geodual::remesh::lloyd_relax(surface, sites);
 //   auto remeshed = geodual::remesh::dual_with_repair(surface, relaxed.sites, std::move(relaxed.diagram));
 //   auto report = geodual::quality::compare_meshes(loaded.mesh, remeshed.mesh);
@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -67,7 +68,9 @@ struct StageTiming {
 };
 
 /// The input's faces the remesh leaves out: scraps and flaps the cut to a
-/// manifold disabled (manifold_cut.hpp), and faces with a repeated corner.
+/// manifold disabled (manifold_cut.hpp), duplicate faces (counted in `faces`,
+/// not in the area: the face they copy is kept), and faces with a repeated
+/// corner.
 struct DroppedSurface {
   std::int64_t faces = 0;
   double area = 0;
@@ -84,6 +87,10 @@ struct RemeshPipelineResult {
   remesh::ManifoldCut surface;
   DroppedSurface dropped;  ///< what the cut left out
   std::vector<SurfacePoint> initial_sites;
+  /// Sites sampled beyond options.sites because the surface's pieces and
+  /// boundary loops need them (remesh::sample_sites_for_topology), and why.
+  std::int64_t sites_added_for_topology = 0;
+  std::string sites_added_reason;
   remesh::LloydResult relaxation;  ///< the relax stage: relaxed sites, energy history (its diagram moved on to `remesh`)
   remesh::RepairedDual remesh;     ///< the dual stage: the remeshed mesh, final sites and diagram
   std::optional<quality::QualityReport> statistics;

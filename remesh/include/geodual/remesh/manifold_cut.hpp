@@ -6,14 +6,24 @@
 // copy per fan of faces joined through edges with exactly two faces. Face
 // indices and positions stay the same (so face-and-barycentric sites keep
 // their meaning); a non-manifold edge becomes a boundary of each of its faces.
+// Before the cut, duplicate faces (a CAD soup's second copy of a triangle)
+// are disabled, so that they neither cut the surface apart nor count twice.
 
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
+#include <vector>
 
 namespace geodual::remesh {
 
 struct ManifoldCutOptions {
+  /// A face whose corners are those of an earlier face, in either
+  /// orientation, adds no surface: it is disabled (corners set to the first)
+  /// and the first one kept. Corners count as the same when they are the
+  /// same vertex or vertices at exactly the same position (an unwelded soup);
+  /// the vertices themselves are not welded, so pieces that merely touch stay
+  /// apart.
+  bool disable_duplicate_faces = true;
   /// Connected pieces (after the cut) with fewer faces than this, and at most
   /// max_scrap_area_share of the surface's area, are scraps below any
   /// remesh's resolution (a flap of two faces glued back to back, a lone
@@ -31,7 +41,11 @@ struct ManifoldCut {
   TriangleMesh mesh;                    ///< same faces, vertices split per fan
   std::vector<Index> original_vertex;   ///< per vertex of `mesh`, the input vertex it copies
   std::int64_t vertices_split = 0;      ///< input vertices that got more than one copy
-  std::int64_t faces_disabled = 0;      ///< faces of scraps (see ManifoldCutOptions)
+  std::int64_t faces_disabled = 0;      ///< faces of scraps and duplicates (see ManifoldCutOptions)
+  std::int64_t duplicates_disabled = 0; ///< of faces_disabled, the copies of an earlier face
+  /// Per face: the earlier face it copies (and was disabled for), -1 for the
+  /// others; empty when duplicates are kept.
+  std::vector<Index> copy_of;
 };
 
 /// Faces with a repeated vertex index keep their indices and join no fan.

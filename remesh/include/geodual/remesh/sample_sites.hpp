@@ -97,6 +97,26 @@ struct SamplingOptions {
 std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t count,
                                        const SamplingOptions& options = {});
 
+/// Sites for a remesh, and how many were added to the count asked.
+struct SampledSites {
+  std::vector<SurfacePoint> sites;
+  /// Sites beyond the count asked that the surface's topology needs, and
+  /// why (empty when none were added).
+  std::int64_t sites_added_for_topology = 0;
+  std::string topology_reason;
+  /// Boundary loops that got sites (0 without sites on the boundary).
+  std::int64_t boundary_loops = 0;
+};
+
+/// sample_sites for a remesh, which must keep every piece and every hole:
+/// where `count` is below what every component with area needs
+/// (max(4, 3 x its boundary loops) each), the count is raised to exactly that
+/// sum instead of throwing or leaving small components without sites; the
+/// sites are then shared as sample_sites shares them. Throws as sample_sites
+/// does otherwise.
+SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count,
+                                       const SamplingOptions& options = {});
+
 /// "random", "poisson", "fps" -> the strategy; anything else throws
 /// geodual::UsageError naming the accepted values.
 SamplingStrategy parse_sampling_strategy(std::string_view name);
