@@ -363,5 +363,63 @@ TEST(RemeshCommand, BadSideOutputsFailBeforeAnyWork) {
   EXPECT_TRUE(std::filesystem::is_empty(folder.path()));
 }
 
+/// OBJ text of unit cubes (12 triangles each, outward) at x = 0, 3, 6, ...,
+/// then `extra_faces` lines.
+std::string cubes_obj(int count, const std::string& extra_faces = "") {
+  std::string text;
+  for (int c = 0; c < count; ++c) {
+    for (int k = 0; k < 8; ++k) {
+      const int x = (k == 1 || k == 2 || k == 5 || k == 6) ? 1 : 0, y = (k == 2 || k == 3 || k == 6 || k == 7) ? 1 : 0;
+      text += "v " + std::to_string(3 * c + x) + " " + std::to_string(y) + " " + std::to_string(k >= 4 ? 1 : 0) + "\n";
+    }
+  }
+  const int faces[12][3] = {{1, 3, 2}, {1, 4, 3}, {5, 6, 7}, {5, 7, 8}, {1, 2, 6}, {1, 6, 5},
+                            {4, 8, 7}, {4, 7, 3}, {1, 5, 8}, {1, 8, 4}, {2, 3, 7}, {2, 7, 6}};
+  for (int c = 0; c < count; ++c) {
+    for (const auto& f : faces) {
+      text += "f " + std::to_string(f[0] + 8 * c) + " " + std::to_string(f[1] + 8 * c) + " " + std::to_string(f[2] + 8 * c) + "\n";
+    }
+  }
+  return text + extra_faces;
+}
+
+TEST(RemeshCommand, SitesAddedForTopologyAreReported) {
+  // Three cubes need 12 sites: 4 asked used to leave two of them out.
+  ScratchFolder folder;
+  const auto input = folder.write("cubes.obj", cubes_obj(3));
+  const auto out = folder.path() / "cubes.ply";
+  const CliRun run = run_cli({"remesh", input.string(), "--sites", "4", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["sites"].get<std::int64_t>(), 12);
+  EXPECT_EQ(json["sites_added_for_topology"].get<std::int64_t>(), 8);
+  EXPECT_NE(run.err.find("site count 4 raised to 12"), std::string::npos) << run.err;
+  const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
+  EXPECT_EQ(output.components, 3);
+  EXPECT_EQ(output.euler_characteristic, 6);
+  // Enough sites: none added, nothing said.
+  const CliRun enough = run_cli({"remesh", input.string(), "--sites", "60", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  ASSERT_EQ(enough.exit_status, 0) << enough.err;
+  EXPECT_EQ(nlohmann::json::parse(enough.out)["sites_added_for_topology"].get<std::int64_t>(), 0);
+  EXPECT_EQ(enough.err.find("raised"), std::string::npos) << enough.err;
+}
+
+TEST(RemeshCommand, DuplicateFacesLoseNoSurface) {
+  // A cube with its first face again, flipped, and its second face again:
+  // the copies are left out, the cube stays closed and whole.
+  ScratchFolder folder;
+  const auto input = folder.write("cube.obj", cubes_obj(1, "f 1 2 3\nf 1 4 3\n"));
+  const auto out = folder.path() / "cube.ply";
+  const CliRun run = run_cli({"remesh", input.string(), "--sites", "40", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["dropped_faces"].get<std::int64_t>(), 2);
+  EXPECT_EQ(json["dropped_area_pct"].get<double>(), 0.0);
+  const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
+  EXPECT_EQ(output.components, 1);
+  EXPECT_EQ(output.euler_characteristic, 2);
+  EXPECT_EQ(output.boundary_loops, 0);
+}
+
 }  // namespace
 }  // namespace geodual::cli_test

@@ -90,6 +90,7 @@ TEST(DuplicateFaces, CopiesByPositionAreDisabledTouchingPiecesStayApart) {
   }
   const ManifoldCut cut = cut_to_manifold(mesh);
   EXPECT_EQ(cut.duplicates_disabled, 10);
+  ASSERT_EQ(cut.copy_of.size(), static_cast<std::size_t>(mesh.num_faces()));
   for (Index i = 0; i < 10; ++i) {
     EXPECT_TRUE(disabled(cut, sphere.num_faces() + i));
     EXPECT_EQ(cut.copy_of[sphere.num_faces() + i], i);
