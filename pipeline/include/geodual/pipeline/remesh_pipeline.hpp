@@ -74,7 +74,7 @@ struct StageTiming {
 struct DroppedSurface {
   std::int64_t faces = 0;
   double area = 0;
-  double area_pct = 0;  ///< of the input's total area
+  double area_pct = 0;  ///< of the input's total area, copies of kept faces aside
 };
 
 /// The faces of `input` that `cut` (its cut to a manifold) leaves out.
