@@ -103,9 +103,10 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   // edges): messages about loops say so.
   const auto loops_from_cut = [&](std::int64_t surface_loops) -> std::string {
     if (surface_loops <= result.input_report.boundary_loops) return "";
-    return " (the input has " + std::to_string(result.input_report.boundary_loops) + " boundary loops; " +
-           std::to_string(surface_loops - result.input_report.boundary_loops) +
-           " were made by the cut to a manifold at its non-manifold edges and vertices)";
+    const std::int64_t input_loops = result.input_report.boundary_loops, made = surface_loops - input_loops;
+    return " (the input has " + std::to_string(input_loops) + (input_loops == 1 ? " boundary loop; " : " boundary loops; ") +
+           std::to_string(made) + (made == 1 ? " was" : " were") +
+           " made by the cut to a manifold at its non-manifold edges and vertices)";
   };
   if (options.given_sites) {
     result.initial_sites = *options.given_sites;

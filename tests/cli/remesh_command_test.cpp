@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -419,6 +420,51 @@ TEST(RemeshCommand, DuplicateFacesLoseNoSurface) {
   EXPECT_EQ(output.components, 1);
   EXPECT_EQ(output.euler_characteristic, 2);
   EXPECT_EQ(output.boundary_loops, 0);
+}
+
+TEST(RemeshCommand, LoopsMadeByTheCutAreNamedAsSuch) {
+  // Three square sheets of 32 faces hinged on one edge (a non-manifold edge
+  // of three faces): the cut makes three disks, whose three loops need 12
+  // sites; the note says that the loops come from the cut.
+  constexpr int n = 4;
+  std::string obj;
+  for (int sheet = 0; sheet < 3; ++sheet) {
+    const double angle = 2.0943951023931953 * sheet;
+    for (int j = 0; j <= n; ++j) {
+      for (int i = (sheet == 0 ? 0 : 1); i <= n; ++i) {
+        const double r = double(i) / n;
+        obj += "v " + std::to_string(r * std::cos(angle)) + " " + std::to_string(r * std::sin(angle)) + " " +
+               std::to_string(double(j) / n) + "\n";
+      }
+    }
+  }
+  // Vertex (sheet, i, j), 1-based: the hinge (i = 0) is sheet 0's.
+  auto vertex = [&](int sheet, int i, int j) {
+    if (i == 0) sheet = 0;
+    const int first = sheet == 0 ? 0 : (n + 1) * (n + 1) + (sheet - 1) * n * (n + 1);
+    const int row = sheet == 0 ? n + 1 : n;
+    return first + j * row + (sheet == 0 ? i : i - 1) + 1;
+  };
+  for (int sheet = 0; sheet < 3; ++sheet) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const int a = vertex(sheet, i, j), b = vertex(sheet, i + 1, j), c = vertex(sheet, i + 1, j + 1), d = vertex(sheet, i, j + 1);
+        obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n";
+        obj += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+      }
+    }
+  }
+  ScratchFolder folder;
+  const auto input = folder.write("hinge.obj", obj);
+  const auto out = folder.path() / "hinge.ply";
+  const CliRun run = run_cli({"remesh", input.string(), "--sites", "4", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["sites_added_for_topology"].get<std::int64_t>(), 8);
+  EXPECT_NE(run.err.find("3 boundary loops"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("made by the cut to a manifold"), std::string::npos) << run.err;
+  const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
+  EXPECT_EQ(output.components, 3);
+  EXPECT_EQ(output.boundary_loops, 3);
 }
 
 }  // namespace
