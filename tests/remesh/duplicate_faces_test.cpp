@@ -12,8 +12,8 @@
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <chrono>
 #include <vector>
@@ -83,10 +83,11 @@ TEST(DuplicateFaces, CopiesByPositionAreDisabledTouchingPiecesStayApart) {
   mesh.vertices.topRows(sphere.num_vertices()) = sphere.vertices;
   mesh.faces.topRows(sphere.num_faces()) = sphere.faces;
   for (Index i = 0; i < 10; ++i) {
-    for (int k = 0; k < 3; ++k) mesh.vertices.row(sphere.num_vertices() + 3 * i + k) = sphere.vertices.row(sphere.faces(i, k));
+    for (int k = 0; k < 3; ++k)
+      mesh.vertices.row(sphere.num_vertices() + 3 * i + k) = sphere.vertices.row(sphere.faces(i, k));
     const Index first = sphere.num_vertices() + 3 * i;
-    mesh.faces.row(sphere.num_faces() + i) =
-        i % 2 == 0 ? Eigen::Matrix<Index, 1, 3>(first, first + 1, first + 2) : Eigen::Matrix<Index, 1, 3>(first, first + 2, first + 1);
+    mesh.faces.row(sphere.num_faces() + i) = i % 2 == 0 ? Eigen::Matrix<Index, 1, 3>(first, first + 1, first + 2)
+                                                        : Eigen::Matrix<Index, 1, 3>(first, first + 2, first + 1);
   }
   const ManifoldCut cut = cut_to_manifold(mesh);
   EXPECT_EQ(cut.duplicates_disabled, 10);
@@ -99,9 +100,9 @@ TEST(DuplicateFaces, CopiesByPositionAreDisabledTouchingPiecesStayApart) {
 
   // Two tetrahedra touching at one point, each with its own vertex there:
   // no copies, nothing welded, nothing cut.
-  const TriangleMesh tetrahedra = test::mesh_from_lists(
-      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},
-      {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {4, 5, 6}, {4, 7, 5}, {4, 6, 7}, {5, 7, 6}});
+  const TriangleMesh tetrahedra =
+      test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},
+                            {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {4, 5, 6}, {4, 7, 5}, {4, 6, 7}, {5, 7, 6}});
   const ManifoldCut apart = cut_to_manifold(tetrahedra);
   EXPECT_EQ(apart.faces_disabled, 0);
   EXPECT_EQ(apart.vertices_split, 0);
