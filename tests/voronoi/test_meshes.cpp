@@ -1,5 +1,7 @@
 #include "voronoi/test_meshes.hpp"
 
+#include "geodual/mesh/union_find.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -22,23 +24,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 Eigen::Vector3d vertex(const TriangleMesh& mesh, Index v) { return mesh.vertices.row(v).transpose(); }
-
-struct UnionFind {
-  std::vector<Index> parent;
-  explicit UnionFind(Index n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
-  Index find(Index x) {
-    while (parent[x] != x) {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
-    }
-    return x;
-  }
-  void unite(Index a, Index b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 TriangleMesh to_mesh(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<Index, 3>>& tris) {
   TriangleMesh mesh;
@@ -215,7 +200,7 @@ std::vector<bool> referenced_vertices(const TriangleMesh& mesh) {
 }
 
 std::vector<Index> vertex_components(const TriangleMesh& mesh) {
-  UnionFind uf(mesh.num_vertices());
+  UnionFind uf(static_cast<std::size_t>(mesh.num_vertices()));
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     if (!face_takes_part(mesh, f)) continue;
     uf.unite(mesh.faces(f, 0), mesh.faces(f, 1));

@@ -41,7 +41,7 @@ struct QualityOptions {
   /// thousand distance queries) with the fraction done, in [0, 1]; returning
   /// false cancels the computation (geodual::Cancelled is thrown). It changes
   /// no result.
-  std::function<bool(double fraction)> progress;
+  std::function<bool(double fraction)> progress{};
 };
 
 /// Figures of one mesh alone. Percentages are in [0, 100].
