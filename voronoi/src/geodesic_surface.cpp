@@ -9,8 +9,9 @@ namespace geodual::voronoi {
 namespace {
 
 /// The propagation's topology in the caller's numbering of vertices and
-/// faces (edges keep the propagation's numbering).
-SurfaceTopology caller_topology(const detail::PropagationMesh& pm, const detail::LocalityOrder& order) {
+/// faces (edges keep the propagation's numbering). The edge lengths move
+/// over from the propagation mesh, which views them there from then on.
+SurfaceTopology caller_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& order) {
   SurfaceTopology topology;
   const auto num_edges = static_cast<std::size_t>(pm.num_edges());
   topology.edge_vertices.resize(num_edges);
@@ -23,7 +24,7 @@ SurfaceTopology caller_topology(const detail::PropagationMesh& pm, const detail:
       topology.edge_faces[e][side] = f >= 0 ? order.old_face[f] : -1;
     }
   }
-  topology.edge_length = pm.edge_lengths;
+  topology.edge_length = std::move(pm.edge_length_storage);
   topology.face_edges.resize(pm.face_records.size());
   for (std::size_t f = 0; f < pm.face_records.size(); ++f) {
     topology.face_edges[order.old_face[f]] = pm.face_edges(static_cast<Index>(f));
@@ -52,7 +53,7 @@ GeodesicSurface::GeodesicSurface(const TriangleMesh& mesh) : mesh_(&mesh) {
 std::size_t GeodesicSurface::memory_bytes() const {
   const detail::PropagationMesh& pm = prepared_->propagation;
   const detail::LocalityOrder& order = prepared_->order;
-  return bytes_of(pm.face_records) + bytes_of(pm.edge_faces) + bytes_of(pm.edge_lengths) + bytes_of(pm.vertex_face) +
+  return bytes_of(pm.face_records) + bytes_of(pm.edge_faces) + bytes_of(pm.edge_length_storage) + bytes_of(pm.vertex_face) +
          bytes_of(pm.fan_offsets) + bytes_of(pm.extra_fans) + bytes_of(pm.is_pseudo_source) +
          bytes_of(order.new_face) + bytes_of(order.old_face) + bytes_of(order.new_vertex) +
          bytes_of(order.old_vertex) + bytes_of(topology_->edge_vertices) + bytes_of(topology_->edge_faces) +
