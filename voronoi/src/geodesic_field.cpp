@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -152,20 +154,29 @@ void move_windows(detail::WindowStore& store, Index num_edges, GeodesicField& fi
   for (; next_edge <= num_edges; ++next_edge) field.window_begin[next_edge] = static_cast<Index>(field.windows.size());
 }
 
-}  // namespace
-
-GeodesicField compute_geodesic_field(const GeodesicSurface& surface, std::span<const SurfacePoint> sites,
-                                     const GeodesicOptions& options) {
+/// compute_geodesic_field on a prepared surface and its topology. For a
+/// single field (`disposable`, holding `prepared`, and no topology yet), the
+/// topology is made once propagation is over and the surface goes before
+/// the windows are moved out: the peak is then what one field needs.
+GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurface& prepared,
+                            std::shared_ptr<const SurfaceTopology> topology, std::span<const SurfacePoint> sites,
+                            const GeodesicOptions& options, std::optional<detail::PreparedSurface>* disposable) {
   const auto start = Clock::now();
   // Propagation runs on the surface's copy renumbered for memory locality;
   // everything it returns is mapped back to the caller's numbering.
-  const detail::PropagationMesh& pm = surface.prepared().propagation;
-  const detail::LocalityOrder& order = surface.prepared().order;
+  const detail::PropagationMesh& pm = prepared.propagation;
+  const detail::LocalityOrder& order = prepared.order;
   GeodesicField field;
-  field.sites = validated_sites(surface.mesh(), pm, order, sites);
+  field.sites = validated_sites(mesh, pm, order, sites);
   std::vector<SurfacePoint> local_sites = field.sites;
   for (SurfacePoint& site : local_sites) {
     site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
+  }
+  if (disposable != nullptr) {
+    // Only the maps back to the caller's numbering are needed from here on.
+    // (Assigning {} would keep a vector's memory.)
+    (*disposable)->order.new_vertex = std::vector<Index>();
+    (*disposable)->order.new_face = std::vector<Index>();
   }
   const double setup_seconds = seconds_since(start);
 
@@ -173,24 +184,44 @@ GeodesicField compute_geodesic_field(const GeodesicSurface& surface, std::span<c
   windows.compact();
   to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   field.stats.setup_seconds = setup_seconds;
-  field.topology = surface.topology();
+  const Index num_edges = pm.num_edges();
+  if (disposable != nullptr) {
+    detail::PreparedSurface& surface = **disposable;
+    // What only propagation needed goes first.
+    surface.propagation.vertex_face = std::vector<Index>();
+    surface.propagation.fan_offsets = decltype(surface.propagation.fan_offsets)();
+    surface.propagation.extra_fans = std::vector<std::array<Index, 2>>();
+    surface.propagation.is_pseudo_source = std::vector<std::uint8_t>();
+    if (!topology) topology = std::make_shared<const SurfaceTopology>(detail::caller_topology(surface.propagation, surface.order));
+    disposable->reset();
+  }
+  field.topology = std::move(topology);
   field.edge_vertices = field.topology->edge_vertices;
   field.edge_faces = field.topology->edge_faces;
   field.edge_length = field.topology->edge_length;
   field.face_edges = field.topology->face_edges;
-  if (options.release_memory_between_phases) trim_heap();  // the propagation's queues and flags
-  move_windows(windows, pm.num_edges(), field);
+  if (options.release_memory_between_phases) trim_heap();  // the propagation's state (and the surface given up)
+  move_windows(windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;
 }
 
+}  // namespace
+
+GeodesicField compute_geodesic_field(const GeodesicSurface& surface, std::span<const SurfacePoint> sites,
+                                     const GeodesicOptions& options) {
+  return compute_field(surface.mesh(), surface.prepared(), surface.topology(), sites, options, nullptr);
+}
+
 GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                      const GeodesicOptions& options) {
-  const GeodesicSurface surface(mesh);
+  const auto start = Clock::now();
+  std::optional<detail::PreparedSurface> prepared(detail::prepare_surface(mesh));
+  const double preparation_seconds = seconds_since(start);
   if (options.release_memory_between_phases) trim_heap();  // the preparation's scratch
-  GeodesicField field = compute_geodesic_field(surface, sites, options);
-  field.stats.setup_seconds += surface.preparation_seconds();
-  field.stats.total_seconds += surface.preparation_seconds();
+  GeodesicField field = compute_field(mesh, *prepared, nullptr, sites, options, &prepared);
+  field.stats.setup_seconds += preparation_seconds;
+  field.stats.total_seconds += preparation_seconds;
   return field;
 }
 

@@ -6,12 +6,17 @@
 #include <utility>
 
 namespace geodual::voronoi {
-namespace {
+namespace detail {
 
-/// The propagation's topology in the caller's numbering of vertices and
-/// faces (edges keep the propagation's numbering). The edge lengths move
-/// over from the propagation mesh, which views them there from then on.
-SurfaceTopology caller_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& order) {
+PreparedSurface prepare_surface(const TriangleMesh& mesh) {
+  PreparedSurface prepared;
+  prepared.order = locality_order(mesh);
+  prepared.propagation = build_propagation_mesh(prepared.order.mesh);
+  prepared.order.mesh = TriangleMesh{};  // only the numbering is needed from here on
+  return prepared;
+}
+
+SurfaceTopology caller_topology(PropagationMesh& pm, const LocalityOrder& order) {
   SurfaceTopology topology;
   const auto num_edges = static_cast<std::size_t>(pm.num_edges());
   topology.edge_vertices.resize(num_edges);
@@ -32,6 +37,10 @@ SurfaceTopology caller_topology(detail::PropagationMesh& pm, const detail::Local
   return topology;
 }
 
+}  // namespace detail
+
+namespace {
+
 template <class T>
 std::size_t bytes_of(const std::vector<T>& values) {
   return values.capacity() * sizeof(T);
@@ -41,11 +50,8 @@ std::size_t bytes_of(const std::vector<T>& values) {
 
 GeodesicSurface::GeodesicSurface(const TriangleMesh& mesh) : mesh_(&mesh) {
   const auto start = std::chrono::steady_clock::now();
-  auto prepared = std::make_shared<detail::PreparedSurface>();
-  prepared->order = detail::locality_order(mesh);
-  prepared->propagation = detail::build_propagation_mesh(prepared->order.mesh);
-  prepared->order.mesh = TriangleMesh{};  // only the numbering is needed from here on
-  topology_ = std::make_shared<const SurfaceTopology>(caller_topology(prepared->propagation, prepared->order));
+  auto prepared = std::make_shared<detail::PreparedSurface>(detail::prepare_surface(mesh));
+  topology_ = std::make_shared<const SurfaceTopology>(detail::caller_topology(prepared->propagation, prepared->order));
   prepared_ = std::move(prepared);
   preparation_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
