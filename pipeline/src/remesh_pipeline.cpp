@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -139,7 +140,9 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   }
   report(options.progress, Stage::relax, 0.0);
   StageClock relax_clock(result.timings, Stage::relax);
-  result.relaxation = remesh::lloyd_relax(surface, result.initial_sites, lloyd);
+  // Prepared once for every diagram of the relax and dual stages; gone before the statistics.
+  std::optional<voronoi::GeodesicSurface> geodesic_surface(std::in_place, surface);
+  result.relaxation = remesh::lloyd_relax(*geodesic_surface, result.initial_sites, lloyd);
   relax_clock.stop();
   report(options.progress, Stage::relax, 1.0);
 
@@ -152,7 +155,8 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   StageClock dual_clock(result.timings, Stage::dual);
   // The relaxed diagram moves on to the dual (its first round's diagram).
   try {
-    result.remesh = remesh::dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram), repair);
+    result.remesh = remesh::dual_with_repair(*geodesic_surface, result.relaxation.sites,
+                                             std::move(result.relaxation.diagram), repair);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
@@ -162,6 +166,7 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     if (note.empty()) throw;
     throw Error(e.what() + note);
   }
+  geodesic_surface.reset();
   dual_clock.stop();
   report(options.progress, Stage::dual, 1.0);
 

@@ -2,6 +2,7 @@
 
 #include "cvt_newton.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 #include "restricted_voronoi.hpp"
 #include "surface_walk.hpp"
 #include "weighted_cells.hpp"
@@ -227,13 +228,22 @@ void check_options(const LloydOptions& options) {
 
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options) {
   check_options(options);
+  const voronoi::GeodesicSurface surface(mesh);
+  if (options.voronoi.geodesic.release_memory_between_phases) trim_heap();  // the preparation's scratch
+  return lloyd_relax(surface, std::move(sites), options);
+}
+
+LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<SurfacePoint> sites,
+                        const LloydOptions& options) {
+  check_options(options);
+  const TriangleMesh& mesh = surface.mesh();
   if (!options.density.empty() && options.density.size() != static_cast<std::size_t>(mesh.num_vertices())) {
     throw UsageError("lloyd_relax: density has " + std::to_string(options.density.size()) +
                      " values for a mesh of " + std::to_string(mesh.num_vertices()) + " vertices");
   }
   LloydResult result;
   auto diagram_of = [&](const std::vector<SurfacePoint>& points) {
-    voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, points, options.voronoi);
+    voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(surface, points, options.voronoi);
     result.geodesic_seconds += diagram.stats.geodesic_seconds;
     result.diagram_seconds += diagram.stats.extraction_seconds;
     ++result.diagrams;

@@ -7,24 +7,31 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <optional>
 #include <string>
 #include <utility>
 
 namespace geodual::remesh {
 
-RepairedDual dual_with_repair(const TriangleMesh& surface, std::vector<SurfacePoint> sites,
-                              voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
+namespace {
+
+/// dual_with_repair on `mesh`; `surface` is its prepared surface, made on
+/// the first repair round when it is empty.
+RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::GeodesicSurface>& surface,
+                         std::vector<SurfacePoint> sites, voronoi::VoronoiDiagram diagram,
+                         const RepairOptions& options) {
   RepairedDual result;
   result.sites = std::move(sites);
   result.diagram = std::move(diagram);
   for (int round = 0;; ++round) {
     if (round > 0) {
-      result.diagram = voronoi::compute_voronoi(surface, result.sites, options.voronoi);
+      if (!surface) surface.emplace(mesh);
+      result.diagram = voronoi::compute_voronoi(*surface, result.sites, options.voronoi);
       result.geodesic_seconds += result.diagram.stats.geodesic_seconds;
       result.diagram_seconds += result.diagram.stats.extraction_seconds;
     }
     const auto start = std::chrono::steady_clock::now();
-    DualMesh dual = dual_delaunay(surface, result.diagram);
+    DualMesh dual = dual_delaunay(mesh, result.diagram);
     result.dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result.repair_rounds = round;
     if (dual.check.valid) {
@@ -42,6 +49,20 @@ RepairedDual dual_with_repair(const TriangleMesh& surface, std::vector<SurfacePo
     result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
     result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());
   }
+}
+
+}  // namespace
+
+RepairedDual dual_with_repair(const voronoi::GeodesicSurface& surface, std::vector<SurfacePoint> sites,
+                              voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
+  std::optional<voronoi::GeodesicSurface> prepared(surface);  // a copy shares the prepared data
+  return repair_dual(surface.mesh(), prepared, std::move(sites), std::move(diagram), options);
+}
+
+RepairedDual dual_with_repair(const TriangleMesh& surface, std::vector<SurfacePoint> sites,
+                              voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
+  std::optional<voronoi::GeodesicSurface> prepared;
+  return repair_dual(surface, prepared, std::move(sites), std::move(diagram), options);
 }
 
 LloydOptions relaxation_options(const TriangleMesh& surface, std::int64_t site_count, const RemeshOptions& options) {
@@ -79,12 +100,16 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
     }
   }
   if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
-  trim_heap();  // the cut's scratch (a sorted list of all half-edges)
+  const bool release_memory = options.lloyd.voronoi.geodesic.release_memory_between_phases;
+  if (release_memory) trim_heap();  // the cut's scratch (a sorted list of all half-edges)
   const TriangleMesh& surface = changed ? cut.mesh : mesh;
   const LloydOptions lloyd = relaxation_options(surface, static_cast<std::int64_t>(sites.size()), options);
-  result.relaxation = lloyd_relax(surface, std::move(sites), lloyd);
+  // Prepared once for every diagram of both stages.
+  const voronoi::GeodesicSurface geodesic_surface(surface);
+  if (release_memory) trim_heap();  // the preparation's scratch
+  result.relaxation = lloyd_relax(geodesic_surface, std::move(sites), lloyd);
   // The relaxed diagram moves on to the dual (its first round's diagram).
-  result.dual = dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram),
+  result.dual = dual_with_repair(geodesic_surface, result.relaxation.sites, std::move(result.relaxation.diagram),
                                  {.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi});
   return result;
 }

@@ -2,15 +2,16 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
-#include "locality_order.hpp"
-#include "propagation_mesh.hpp"
+#include "prepared_surface.hpp"
 #include "window_vtp.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -134,26 +135,6 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
   return vtp.take_windows();
 }
 
-/// The propagation's topology into the field, in the caller's numbering of
-/// vertices and faces (edges keep the propagation's numbering), freeing the
-/// propagation mesh on the way.
-void move_topology(detail::PropagationMesh& pm, const detail::LocalityOrder& order, GeodesicField& field) {
-  const auto num_edges = static_cast<std::size_t>(pm.num_edges());
-  field.edge_vertices.resize(num_edges);
-  for (std::size_t e = 0; e < num_edges; ++e) {
-    const std::array<Index, 2> ends = pm.edge_vertices(static_cast<Index>(e));
-    field.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
-  }
-  field.edge_length = std::move(pm.edge_lengths);
-  field.edge_faces = std::move(pm.edge_faces);
-  for (auto& faces : field.edge_faces) {
-    for (Index& f : faces) f = f >= 0 ? order.old_face[f] : -1;
-  }
-  field.face_edges.resize(pm.face_records.size());
-  for (std::size_t f = 0; f < pm.face_records.size(); ++f) field.face_edges[order.old_face[f]] = pm.face_edges(static_cast<Index>(f));
-  pm = {};
-}
-
 /// The retained windows into the field, grouped by edge, emptying the store
 /// as they go (see WindowStore::drain: the two copies would otherwise be the
 /// peak of the whole computation).
@@ -173,51 +154,74 @@ void move_windows(detail::WindowStore& store, Index num_edges, GeodesicField& fi
   for (; next_edge <= num_edges; ++next_edge) field.window_begin[next_edge] = static_cast<Index>(field.windows.size());
 }
 
-}  // namespace
-
-GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
-                                     const GeodesicOptions& options) {
+/// compute_geodesic_field on a prepared surface and its topology. For a
+/// single field (`disposable`, holding `prepared`, and no topology yet), the
+/// topology is made once propagation is over and the surface goes before
+/// the windows are moved out: the peak is then what one field needs.
+GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurface& prepared,
+                            std::shared_ptr<const SurfaceTopology> topology, std::span<const SurfacePoint> sites,
+                            const GeodesicOptions& options, std::optional<detail::PreparedSurface>* disposable) {
   const auto start = Clock::now();
-  // Propagation runs on a copy renumbered for memory locality; everything it
-  // returns is mapped back to the caller's numbering. Each structure is freed
-  // as soon as it has served: on large meshes the peak memory is the sum of
-  // what is alive at once.
-  detail::LocalityOrder order = detail::locality_order(mesh);
-  detail::PropagationMesh pm = detail::build_propagation_mesh(order.mesh);
-  order.mesh = TriangleMesh{};  // only the numbering is needed from here on
+  // Propagation runs on the surface's copy renumbered for memory locality;
+  // everything it returns is mapped back to the caller's numbering.
+  const detail::PropagationMesh& pm = prepared.propagation;
+  const detail::LocalityOrder& order = prepared.order;
   GeodesicField field;
   field.sites = validated_sites(mesh, pm, order, sites);
   std::vector<SurfacePoint> local_sites = field.sites;
   for (SurfacePoint& site : local_sites) {
     site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
   }
-  // Results map back through old_face, and old_vertex, made again from it
-  // once propagation is over. (Assigning {} would keep a vector's memory: it
-  // is assignment from an empty initializer list.)
-  order.new_vertex = std::vector<Index>();
-  order.old_vertex = std::vector<Index>();
-  order.new_face = std::vector<Index>();
-  trim_heap();  // the renumbered copy and the setup's scratch arrays
+  if (disposable != nullptr) {
+    // Only the maps back to the caller's numbering are needed from here on.
+    // (Assigning {} would keep a vector's memory.)
+    (*disposable)->order.new_vertex = std::vector<Index>();
+    (*disposable)->order.new_face = std::vector<Index>();
+  }
   const double setup_seconds = seconds_since(start);
 
   detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
   windows.compact();
-  {
-    std::vector<Index> new_vertex;  // goes at once: only old_vertex is needed
-    detail::number_vertices(mesh, order.old_face, new_vertex, order.old_vertex);
-  }
   to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   field.stats.setup_seconds = setup_seconds;
-  pm.vertex_face = std::vector<Index>();
-  pm.fan_offsets = std::vector<std::array<std::uint8_t, detail::PropagationMesh::kFanOffsets>>();
-  pm.extra_fans = std::vector<std::array<Index, 2>>();
-  pm.is_pseudo_source = std::vector<std::uint8_t>();
   const Index num_edges = pm.num_edges();
-  move_topology(pm, order, field);
-  order = {};
-  trim_heap();  // the propagation's arrays
+  if (disposable != nullptr) {
+    detail::PreparedSurface& surface = **disposable;
+    // What only propagation needed goes first.
+    surface.propagation.vertex_face = std::vector<Index>();
+    surface.propagation.fan_offsets = decltype(surface.propagation.fan_offsets)();
+    surface.propagation.extra_fans = std::vector<std::array<Index, 2>>();
+    surface.propagation.is_pseudo_source = std::vector<std::uint8_t>();
+    if (!topology) topology = std::make_shared<const SurfaceTopology>(detail::caller_topology(surface.propagation, surface.order));
+    disposable->reset();
+  }
+  field.topology = std::move(topology);
+  field.edge_vertices = field.topology->edge_vertices;
+  field.edge_faces = field.topology->edge_faces;
+  field.edge_length = field.topology->edge_length;
+  field.face_edges = field.topology->face_edges;
+  if (options.release_memory_between_phases) trim_heap();  // the propagation's state (and the surface given up)
   move_windows(windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
+  return field;
+}
+
+}  // namespace
+
+GeodesicField compute_geodesic_field(const GeodesicSurface& surface, std::span<const SurfacePoint> sites,
+                                     const GeodesicOptions& options) {
+  return compute_field(surface.mesh(), surface.prepared(), surface.topology(), sites, options, nullptr);
+}
+
+GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                     const GeodesicOptions& options) {
+  const auto start = Clock::now();
+  std::optional<detail::PreparedSurface> prepared(detail::prepare_surface(mesh));
+  const double preparation_seconds = seconds_since(start);
+  if (options.release_memory_between_phases) trim_heap();  // the preparation's scratch
+  GeodesicField field = compute_field(mesh, *prepared, nullptr, sites, options, &prepared);
+  field.stats.setup_seconds += preparation_seconds;
+  field.stats.total_seconds += preparation_seconds;
   return field;
 }
 

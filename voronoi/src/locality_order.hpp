@@ -22,7 +22,7 @@ LocalityOrder locality_order(const TriangleMesh& mesh);
 
 /// The vertex numbering that goes with a face order: old_vertex (new ->
 /// old) and new_vertex, vertices in the order the faces first use them, then
-/// the unreferenced ones. (Cheap to make again, so it need not be kept.)
+/// the unreferenced ones.
 void number_vertices(const TriangleMesh& mesh, const std::vector<Index>& old_face, std::vector<Index>& new_vertex,
                      std::vector<Index>& old_vertex);
 

@@ -88,7 +88,8 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     i = j;
   }
   pm.edge_faces.reserve(num_edges);
-  pm.edge_lengths.reserve(num_edges);
+  std::vector<double> lengths;
+  lengths.reserve(num_edges);
 
   if (num_edges > FaceRecord::kEdgeMask) {
     throw Error("meshes of more than 2^30 edges are not supported");
@@ -102,7 +103,7 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     auto attach = [&](const HalfEdge& half, std::uint32_t flags) {
       pm.face_records[half.face].edge_bits[half.local] = static_cast<std::uint32_t>(e) | flags;
     };
-    pm.edge_lengths.push_back(length);
+    lengths.push_back(length);
     attach(first, 0);
     if (second != nullptr) {
       const bool reversed = mesh.faces(second->face, second->local) == v1;
@@ -140,13 +141,14 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
       }
     }
     std::vector<std::array<Index, 2>> edge_faces(pm.edge_faces.size());
-    std::vector<double> edge_lengths(pm.edge_lengths.size());
+    std::vector<double> edge_lengths(lengths.size());
     for (std::size_t e = 0; e < new_edge.size(); ++e) {
       edge_faces[new_edge[e]] = pm.edge_faces[e];
-      edge_lengths[new_edge[e]] = pm.edge_lengths[e];
+      edge_lengths[new_edge[e]] = lengths[e];
     }
     pm.edge_faces = std::move(edge_faces);
-    pm.edge_lengths = std::move(edge_lengths);
+    pm.edge_length_storage = std::move(edge_lengths);
+    pm.edge_lengths = pm.edge_length_storage;
   }
 
   for (Index f = 0; f < num_faces; ++f) {

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -93,14 +94,23 @@ static_assert(sizeof(FaceRecord) == 24);
 /// Each fact is stored once: an edge's end vertices are read from the record
 /// of its face [0].
 struct PropagationMesh {
+  PropagationMesh() = default;
+  PropagationMesh(PropagationMesh&&) = default;
+  PropagationMesh& operator=(PropagationMesh&&) = default;
+  PropagationMesh(const PropagationMesh&) = delete;  // a copy's edge_lengths would view the original's
+  PropagationMesh& operator=(const PropagationMesh&) = delete;
+
   /// Per face, the data propagation reads (see FaceRecord); faces with a
   /// repeated vertex index take no part and keep default records (edges -1).
   std::vector<FaceRecord> face_records;
   /// Per edge: the faces on its y > 0 side ([0]) and its y < 0 side ([1], or
   /// -1). The edge runs from v0 to v1 in the direction of face [0].
   std::vector<std::array<Index, 2>> edge_faces;
-  /// Per edge: its length.
-  std::vector<double> edge_lengths;
+  /// Per edge: its length. A view of edge_length_storage, or of the array
+  /// that took that storage over (moving a vector keeps its elements in
+  /// place): a GeodesicSurface hands it to the topology its fields share.
+  std::span<const double> edge_lengths;
+  std::vector<double> edge_length_storage;
 
   /// Per vertex, one of its faces (-1: used by no face that takes part); the
   /// others follow by turning around the vertex (for_each_face_around).

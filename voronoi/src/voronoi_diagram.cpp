@@ -36,7 +36,9 @@ Index chunk_count(Index items, Index per_chunk) { return (items + per_chunk - 1)
 
 /// Computes in parallel the crossings of every edge marked in `needed` that
 /// `store` lacks, and appends them to it.
-void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tracers, EdgeCrossingStore& store) {
+/// With `release_memory`, hands the merged chunks' memory back as it goes.
+void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tracers, EdgeCrossingStore& store,
+                            bool release_memory) {
   struct Found {
     std::vector<Index> edges, counts;
     std::vector<detail::EdgeCrossing> crossings;
@@ -68,7 +70,7 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
   constexpr std::size_t kChunksBetweenTrims = 64;
   for (std::size_t c = 0; c < found.size(); ++c) {
     Found& chunk = found[c];
-    if (c % kChunksBetweenTrims == kChunksBetweenTrims - 1) trim_heap();
+    if (release_memory && c % kChunksBetweenTrims == kChunksBetweenTrims - 1) trim_heap();
     Index next = static_cast<Index>(store.crossings.size());
     for (std::size_t i = 0; i < chunk.edges.size(); ++i) {
       store.first[chunk.edges[i]] = next;
@@ -78,7 +80,7 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
     store.crossings.insert(store.crossings.end(), chunk.crossings.begin(), chunk.crossings.end());
     chunk = Found{};
   }
-  trim_heap();  // the chunks' lists, scattered through the heap
+  if (release_memory) trim_heap();  // the chunks' lists, scattered through the heap
 }
 
 /// The merged graph under construction, and where each edge crossing's node is in it.
@@ -301,6 +303,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   VoronoiDiagram diagram;
   diagram.field = std::move(field);
   const GeodesicField& f = diagram.field;
+  const bool release_memory = options.geodesic.release_memory_between_phases;
   diagram.stats.geodesic_seconds = f.stats.total_seconds;
   diagram.cell_area.assign(f.sites.size(), 0.0);
 
@@ -326,7 +329,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     if (!traced[face]) continue;
     for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
-  compute_edge_crossings(needed, tracers, store);
+  compute_edge_crossings(needed, tracers, store, release_memory);
   // Nearly every node of the graph is an edge crossing, found by now but for
   // the few of the faces next to these (2, below); the rest are Voronoi
   // vertices (two per cell) and the crossings inside refined faces, fewer
@@ -357,7 +360,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     if (traced[face] != 2) continue;
     for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
-  compute_edge_crossings(needed, tracers, store);
+  compute_edge_crossings(needed, tracers, store, release_memory);
   std::vector<std::uint8_t>().swap(needed);
 
   // Trace the faces chunk by chunk in parallel; merge the chunks in order.
@@ -418,14 +421,19 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   store = EdgeCrossingStore(0);
   tracers.clear();
   std::vector<std::uint8_t>().swap(traced);
-  trim_heap();
+  if (release_memory) trim_heap();
   chain_arcs(graph, diagram);
   graph = BoundaryGraph{};
   collect_adjacency(diagram);
-  trim_heap();  // the graph and the tracing's scratch
+  if (release_memory) trim_heap();  // the graph and the tracing's scratch
   diagram.stats.extraction_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return diagram;
+}
+
+VoronoiDiagram compute_voronoi(const GeodesicSurface& surface, std::span<const SurfacePoint> sites,
+                               const VoronoiOptions& options) {
+  return extract_voronoi(surface.mesh(), compute_geodesic_field(surface, sites, options.geodesic), options);
 }
 
 VoronoiDiagram compute_voronoi(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,

@@ -107,7 +107,8 @@ int crossings(const Cone& c1, const Cone& c2, double lo, double hi, std::array<d
 
 }  // namespace
 
-WindowStore::WindowStore(Index num_edges) : slots_(static_cast<std::size_t>(num_edges)) {
+WindowStore::WindowStore(Index num_edges, bool release_memory)
+    : release_memory_(release_memory), slots_(static_cast<std::size_t>(num_edges)) {
   // Address 0, where empty edges point, always exists.
   add_pages(kPageWindows);
 }
@@ -184,7 +185,7 @@ std::uint32_t WindowStore::allocate_block(std::uint32_t block_class) {
     if (free_windows_ >= held_pages_ * (kPageWindows / kRepackFraction)) {
       repack();
       ++repacks_;
-      trim_heap();  // the sorted list of blocks
+      if (release_memory_) trim_heap();  // the sorted list of blocks
     }
     if (!carve(size)) {
       free_rest_of_pages();

@@ -31,7 +31,9 @@ namespace geodual::voronoi::detail {
 
 class WindowStore {
  public:
-  explicit WindowStore(Index num_edges);
+  /// With `release_memory`, a repack hands the heap's free pages back (see
+  /// GeodesicOptions::release_memory_between_phases).
+  explicit WindowStore(Index num_edges, bool release_memory = true);
 
   static constexpr Index kNoSite = -1;
   static constexpr Index kMixedSites = -2;
@@ -203,6 +205,7 @@ class WindowStore {
   /// Repack rather than add a page once the free blocks hold 1/kRepackFraction of the pages.
   static constexpr std::int64_t kRepackFraction = 16;
   std::int64_t repacks_ = 0;
+  bool release_memory_ = true;
   std::vector<Slot> slots_;
   std::vector<WindowSource> sources_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class

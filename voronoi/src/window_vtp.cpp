@@ -26,7 +26,7 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
       vertex_flags_(static_cast<std::size_t>(mesh.num_vertices()), 0),
       face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
-      store_(mesh.num_edges()),
+      store_(mesh.num_edges(), options.release_memory_between_phases),
       events_(mesh.num_vertices()) {
   window_bytes_limit_ = static_cast<std::int64_t>(
       std::min<std::size_t>(options.window_memory_limit_bytes, std::numeric_limits<std::int64_t>::max()));

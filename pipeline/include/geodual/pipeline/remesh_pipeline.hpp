@@ -13,8 +13,9 @@
 //   auto loaded = geodual::io::read_mesh("scan.ply");
 //   auto surface = geodual::remesh::cut_to_manifold(loaded.mesh).mesh;
 //   auto sites = geodual::remesh::sample_sites_for_topology(surface, 2000).sites;
-//   auto relaxed = geodual::remesh::lloyd_relax(surface, sites);
-//   auto remeshed = geodual::remesh::dual_with_repair(surface, relaxed.sites, std::move(relaxed.diagram));
+//   geodual::voronoi::GeodesicSurface geodesic(surface);  // prepared once for both stages
+//   auto relaxed = geodual::remesh::lloyd_relax(geodesic, sites);
+//   auto remeshed = geodual::remesh::dual_with_repair(geodesic, relaxed.sites, std::move(relaxed.diagram));
 //   auto report = geodual::quality::compare_meshes(loaded.mesh, remeshed.mesh);
 
 #include "geodual/io/read_mesh.hpp"

@@ -29,6 +29,7 @@
 
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <functional>
@@ -94,7 +95,13 @@ struct LloydResult {
   double move_seconds = 0;          ///< centroid steps
 };
 
-/// Throws geodual::UsageError for options out of range, and as compute_voronoi does.
+/// Relaxes sites on `surface`'s mesh; every diagram reuses the prepared
+/// surface. \throw geodual::UsageError for options out of range, and as
+/// compute_voronoi does.
+LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<SurfacePoint> sites,
+                        const LloydOptions& options = {});
+
+/// The same on a surface prepared for this call alone.
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options = {});
 
 }  // namespace geodual::remesh

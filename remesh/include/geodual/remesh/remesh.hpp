@@ -12,6 +12,7 @@
 #include "geodual/remesh/lloyd.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <cstdint>
@@ -40,10 +41,14 @@ struct RepairedDual {
   double dual_seconds = 0;      ///< building and checking the duals
 };
 
-/// The dual of `diagram` (of `sites` on `surface`, a 2-manifold such as
-/// cut_to_manifold's mesh); where it fails the checks, sites are added where
-/// it fails and the diagram recomputed. \throw geodual::Error if it is still
+/// The dual of `diagram` (of `sites` on `surface`'s mesh, a 2-manifold such
+/// as cut_to_manifold's mesh); where it fails the checks, sites are added
+/// where it fails and the diagram recomputed on the prepared surface. \throw geodual::Error if it is still
 /// not a valid remesh after options.max_rounds, naming what is wrong.
+RepairedDual dual_with_repair(const voronoi::GeodesicSurface& surface, std::vector<SurfacePoint> sites,
+                              voronoi::VoronoiDiagram diagram, const RepairOptions& options = {});
+
+/// The same on a mesh, prepared for the repair rounds only if one is needed.
 RepairedDual dual_with_repair(const TriangleMesh& surface, std::vector<SurfacePoint> sites,
                               voronoi::VoronoiDiagram diagram, const RepairOptions& options = {});
 
@@ -75,7 +80,7 @@ struct RemeshResult {
 };
 
 /// The three stages in a row: cut_to_manifold(input), lloyd_relax with
-/// relaxation_options, dual_with_repair. \throw geodual::Error as
+/// relaxation_options, dual_with_repair (both on one GeodesicSurface). \throw geodual::Error as
 /// dual_with_repair, and for bad sites as compute_geodesic_field.
 RemeshResult remesh_from_sites(const TriangleMesh& input, std::vector<SurfacePoint> sites,
                                const RemeshOptions& options = {});

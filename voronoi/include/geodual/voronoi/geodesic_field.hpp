@@ -9,6 +9,9 @@
 //   field.distance[v], field.nearest_site[v]     // exact, per vertex
 //   geodual::voronoi::query(field, mesh, point)  // any point of a valid triangle
 //
+// Many fields on one mesh: prepare it once (geodesic_surface.hpp) and pass
+// the GeodesicSurface instead of the mesh.
+//
 // The surface is the mesh's triangles with their intrinsic edge lengths. Faces
 // with a repeated vertex index take no part; zero-area faces with distinct
 // vertices are crossed. Edges with three or more faces are treated as boundary
@@ -18,11 +21,13 @@
 
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -36,6 +41,11 @@ struct GeodesicOptions {
   /// Stop with a geodual::Error when the windows held at one time need more
   /// than this many bytes (a clear error instead of being killed for memory).
   std::size_t window_memory_limit_bytes = std::size_t{8} << 30;
+  /// Hand freed heap memory back to the system between the computation's
+  /// phases (glibc's malloc_trim, which is process-wide): keeps the peak
+  /// resident memory low on large meshes. false leaves the heap to the
+  /// allocator, for callers that trim on their own schedule.
+  bool release_memory_between_phases = true;
   /// Called now and then with the fraction of faces reached, in [0, 1];
   /// returning false cancels the computation (geodual::Cancelled is thrown).
   std::function<bool(double fraction)> progress;
@@ -49,7 +59,7 @@ struct GeodesicStats {
   std::int64_t vertices_popped = 0;   ///< vertices taken from the priority queue to expand
   std::int64_t pseudo_sources = 0;    ///< saddle / boundary vertices that emitted windows
   std::int64_t faces_inactive = 0;    ///< faces that reached the inactive region
-  double setup_seconds = 0;           ///< topology, edge lengths, vertex classes
+  double setup_seconds = 0;           ///< checking the sites; with a mesh rather than a GeodesicSurface, preparing it too
   double propagation_seconds = 0;     ///< window-VTP including RWR
   double total_seconds = 0;
 };
@@ -86,14 +96,14 @@ struct GeodesicField {
   /// The sites, as given.
   std::vector<SurfacePoint> sites;
 
-  /// Propagation topology: edge e joins two vertices; its faces are -1 where
-  /// absent (boundary, non-manifold, or degenerate neighbour).
-  std::vector<std::array<Index, 2>> edge_vertices;
-  std::vector<std::array<Index, 2>> edge_faces;
-  std::vector<double> edge_length;
-  /// Per face, its edges: edge k joins corners k and (k + 1) mod 3; all -1 for
-  /// faces that take no part (a repeated vertex index).
-  std::vector<std::array<Index, 3>> face_edges;
+  /// The surface's topology (see SurfaceTopology), shared by every field
+  /// computed on one GeodesicSurface and kept alive by each; the four views
+  /// below are its tables.
+  std::shared_ptr<const SurfaceTopology> topology;
+  std::span<const std::array<Index, 2>> edge_vertices;
+  std::span<const std::array<Index, 2>> edge_faces;
+  std::span<const double> edge_length;
+  std::span<const std::array<Index, 3>> face_edges;
 
   /// Retained windows, grouped by edge and sorted along it: those of edge e are
   /// windows[window_begin[e] .. window_begin[e + 1]).
@@ -116,6 +126,10 @@ struct GeodesicField {
 /// coordinates, a site on a face that takes no part or on an unreferenced
 /// vertex, two sites at the same point) and when the window memory limit is
 /// exceeded.
+GeodesicField compute_geodesic_field(const GeodesicSurface& surface, std::span<const SurfacePoint> sites,
+                                     const GeodesicOptions& options = {});
+
+/// The same on a surface prepared for this call alone.
 GeodesicField compute_geodesic_field(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                      const GeodesicOptions& options = {});
 

@@ -3,7 +3,7 @@
 // from the windows that window-VTP with Redundant Window Removal keeps
 // (Qin, Yu & Zhang, CGF 2017, §3.3 and Fig. 4).
 //
-//   auto diagram = geodual::voronoi::compute_voronoi(mesh, sites);
+//   auto diagram = geodual::voronoi::compute_voronoi(mesh, sites);  // or a GeodesicSurface
 //   diagram.vertices   // points equidistant to three (or more) sites
 //   diagram.arcs       // the boundaries between cells, as polylines
 //   diagram.cell_area  // per site
@@ -17,6 +17,7 @@
 
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
@@ -119,6 +120,10 @@ struct VoronoiDiagram {
 
 /// Computes the geodesic field of the sites (see compute_geodesic_field, whose
 /// errors it shares) and extracts the diagram from it.
+VoronoiDiagram compute_voronoi(const GeodesicSurface& surface, std::span<const SurfacePoint> sites,
+                               const VoronoiOptions& options = {});
+
+/// The same on a surface prepared for this call alone.
 VoronoiDiagram compute_voronoi(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                const VoronoiOptions& options = {});
 
