@@ -1,31 +1,10 @@
 #pragma once
-// Lloyd relaxation towards a geodesic centroidal Voronoi tessellation: each
-// iteration moves every site to (one Riemannian centre-of-mass step towards)
-// its cell's geodesic centroid and recomputes the diagram.
+// Lloyd relaxation towards a geodesic centroidal Voronoi tessellation
+// (Lloyd–Newton by default, after a warm start on the restricted Voronoi
+// diagram): the mathematics is in docs/algorithms.md#lloydnewton-relaxation.
 //
 //   auto relaxed = geodual::remesh::lloyd_relax(mesh, sites, {.iterations = 10});
-//   relaxed.energy  // CVT energy per accepted iteration, never increasing
-//
-// Lloyd's step: m_i = (1 / |cell_i|) int_cell log_{s_i}(x) dA (the mean of
-// the log map at the site, VoronoiDiagram::cell_log_moment), then
-// s_i <- exp_{s_i}(w m_i) (w: over_relaxation), walking a straightest
-// geodesic. Lloyd converges slowly (on a scan, 10 iterations reach about the
-// energy 40 would); by default each iteration instead takes a damped Newton
-// step on the energy (Lloyd–Newton), whose gradient is -2 int log_{s_i}(x) dA
-// and whose Hessian comes from the cell boundaries, and walks it the same way.
-// With a density rho (LloydOptions::density) the energy, gradient, Lloyd step
-// and Hessian are weighted by it (a weighted CVT). The energy
-// E = sum_i int_cell rho(x) d(x, s_i)^2 dA is recorded each iteration; a
-// step that would raise it is not taken (a Newton step is retried more
-// damped, then Lloyd's is tried), and when no step lowers it the relaxation
-// stops there, so the recorded energies never increase.
-//
-// Warm start: before the geodesic iterations, the same steps are taken on the
-// restricted Voronoi diagram (each site's Euclidean Voronoi cell in space cut
-// down to the surface, as geogram's CVT remeshing uses), which needs no
-// geodesics and costs about a tenth of a geodesic diagram a step. Where cells are
-// small against the curvature the two diagrams nearly agree, so the geodesic
-// iterations start close to a CVT; they then make it the geodesic one.
+//   relaxed.energy  // CVT energy before and after each accepted iteration, never increasing
 
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
