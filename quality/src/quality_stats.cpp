@@ -59,7 +59,9 @@ class ProgressCheck {
   bool keep_going(double done) {
     if (stopped_.load(std::memory_order_relaxed)) return false;
     if (!callback_ || std::this_thread::get_id() != caller_) return true;
-    if (callback_(from_ + share_ * std::clamp(done, 0.0, 1.0))) return true;
+    // Never backwards, not even by the rounding of from + share at a phase's end.
+    reported_ = std::max(reported_, from_ + share_ * std::clamp(done, 0.0, 1.0));
+    if (callback_(reported_)) return true;
     stopped_.store(true, std::memory_order_relaxed);
     return false;
   }
@@ -72,6 +74,7 @@ class ProgressCheck {
  private:
   const std::function<bool(double)>& callback_;
   std::thread::id caller_;
+  double reported_ = 0;  ///< the last fraction reported
   std::atomic<bool> stopped_{false};
   double from_ = 0.0;
   double share_ = 0.0;
