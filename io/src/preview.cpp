@@ -470,6 +470,12 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
   const int ss = options.supersampling;
   detail::SampleBuffer buffer(options.width * ss, options.height * ss);
 
+  // Drawing the faces is the first half of the work, resolving the rows the second.
+  const auto ask = [&options](double done) {
+    if (options.progress && !options.progress(done)) throw Cancelled("preview cancelled");
+  };
+  ask(0.0);
+
   std::vector<ScreenVertex> screen;
   std::vector<Eigen::Vector3d> normals;
   float wire_alpha = 0.0f;
@@ -481,6 +487,7 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
       screen[static_cast<std::size_t>(v)] = camera.project(mesh.vertices.row(v).transpose());
     }
     for (Index f = 0; f < mesh.num_faces(); ++f) {
+      if (f % 4096 == 0) ask(0.5 * static_cast<double>(f) / static_cast<double>(mesh.num_faces()));
       detail::rasterise_triangle(buffer, screen[static_cast<std::size_t>(mesh.faces(f, 0))],
                                  screen[static_cast<std::size_t>(mesh.faces(f, 1))],
                                  screen[static_cast<std::size_t>(mesh.faces(f, 2))], f);
@@ -514,6 +521,7 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
   }
   const float inverse_count = 1.0f / static_cast<float>(ss * ss);
   for (int py = 0; py < options.height; ++py) {
+    if (py % 16 == 0) ask(0.5 + 0.5 * py / options.height);
     for (int px = 0; px < options.width; ++px) {
       Eigen::Vector3f sum = Eigen::Vector3f::Zero();
       bool all_background = true;
@@ -545,6 +553,7 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
       }
     }
   }
+  ask(1.0);
   return rgb;
 }
 

@@ -54,7 +54,7 @@ class InfoCommand final : public Command {
     const MeshReport report = analyze_mesh(loaded.mesh);
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();
-    if (!preview_path_.empty()) write_mesh_preview(preview_path_, loaded.mesh);
+    if (!preview_path_.empty()) write_mesh_preview(preview_path_, loaded.mesh, {}, still_wanted);
 
     if (json_) {
       print_json(loaded.info, report, read_seconds, analysis_seconds);

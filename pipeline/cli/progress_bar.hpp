@@ -13,6 +13,8 @@ namespace geodual::cli {
 /// Installs the SIGINT handler (once); interrupted() becomes true on Ctrl-C.
 void catch_interrupts();
 bool interrupted();
+/// A progress callback for work that shows no bar: false once Ctrl-C was pressed.
+inline bool still_wanted(double /*fraction*/) { return !interrupted(); }
 
 class ProgressBar {
  public:

@@ -191,8 +191,9 @@ class RemeshCommand final : public Command {
     const auto write_start = std::chrono::steady_clock::now();
     const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
         color_ == "quality" ? quality_colors(result.mesh) : Eigen::Matrix<float, Eigen::Dynamic, 3>();
+    // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
+    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, colors, still_wanted);
     write_remesh(output_path_, result.mesh, figures.dump(), colors);
-    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, colors);
     const double write_seconds = seconds_since(write_start);
     bar.finish();
     json["write_s"] = write_seconds;

@@ -72,8 +72,9 @@ class VoronoiCommand final : public Command {
     const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites, options);
     bar.finish();
     const auto write_start = std::chrono::steady_clock::now();
+    // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
+    if (!preview_path_.empty()) write_voronoi_preview(preview_path_, mesh, diagram, still_wanted);
     write_voronoi_diagram(output_path_, mesh, diagram);
-    if (!preview_path_.empty()) write_voronoi_preview(preview_path_, mesh, diagram);
     const double write_seconds = seconds_since(write_start);
     double boundary_length = 0;
     for (const voronoi::VoronoiArc& arc : diagram.arcs) boundary_length += arc.length;

@@ -94,7 +94,7 @@ void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, c
 }
 
 void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                           const voronoi::VoronoiDiagram& diagram) {
+                           const voronoi::VoronoiDiagram& diagram, const std::function<bool(double)>& progress) {
   io::PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = false;
@@ -108,7 +108,9 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
     scene.polylines.emplace_back(line.begin(), line.end());
   }
   for (const SurfacePoint& site : diagram.field.sites) scene.points.push_back(site.position(mesh));
-  io::write_preview_png(path, scene);
+  io::PreviewOptions options;
+  options.progress = progress;
+  io::write_preview_png(path, scene, options);
 }
 
 Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh) {
@@ -128,14 +130,17 @@ Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh)
 }
 
 void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors) {
+                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors,
+                        const std::function<bool(double)>& progress) {
   io::PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = true;
   if (vertex_colors.rows() == mesh.vertices.rows()) {
     for (Index v = 0; v < vertex_colors.rows(); ++v) scene.vertex_colors.emplace_back(vertex_colors.row(v).transpose());
   }
-  io::write_preview_png(path, scene);
+  io::PreviewOptions options;
+  options.progress = progress;
+  io::write_preview_png(path, scene, options);
 }
 
 std::int64_t peak_memory_bytes() {

@@ -1,7 +1,7 @@
 // compare_meshes: two-sided Hausdorff and RMS distance between two meshes by
 // exact point-to-surface distances (nearest triangle found through a CGAL AABB
 // tree) from every referenced vertex and from area-uniform samples of each
-// side. The only translation unit of geodual_remesh that includes CGAL.
+// side. The only translation unit of the library that includes CGAL.
 
 #include "geodual/quality/quality_stats.hpp"
 
@@ -183,12 +183,31 @@ class NearestTriangle {
   std::size_t best_triangle_;
 };
 
+/// CGAL's median split of the tree build, asking `progress` first at every
+/// node of at least 4096 triangles, so that a cancel ends a build of millions
+/// of triangles within milliseconds (by Cancelled, thrown through the build).
+class CancellableSplit {
+ public:
+  CancellableSplit(const Tree& tree, ProgressCheck& progress)
+      : split_(tree.traits().split_primitives_object()), progress_(progress) {}
+
+  template <typename PrimitiveIterator>
+  void operator()(PrimitiveIterator first, PrimitiveIterator beyond, const CGAL::Bbox_3& box) const {
+    if (beyond - first >= 4096) progress_.check(0.0);
+    split_(first, beyond, box);
+  }
+
+ private:
+  Tree::AABB_traits::Split_primitives split_;
+  ProgressCheck& progress_;
+};
+
 /// One mesh as a surface to sample and to measure distances to: its faces of
 /// non-zero area in an AABB tree, their cumulative areas, and its referenced
-/// vertices.
+/// vertices. Building it asks `progress` (and throws Cancelled when refused).
 class Surface {
  public:
-  explicit Surface(const TriangleMesh& mesh) {
+  Surface(const TriangleMesh& mesh, ProgressCheck& progress) {
     std::vector<char> referenced(static_cast<std::size_t>(mesh.num_vertices()), 0);
     double total = 0.0;
     for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -214,7 +233,7 @@ class Surface {
     }
     tree_.insert(triangles_.begin(), triangles_.end());
     // Built now, not lazily on the first query, so that the queries only read.
-    tree_.build();
+    tree_.custom_build(tree_.traits().compute_bbox_object(), CancellableSplit(tree_, progress));
     bbox_ = tree_.bbox();
   }
   Surface(const Surface&) = delete;
@@ -356,6 +375,8 @@ template <typename F>
 auto naming(const char* which, F&& f) {
   try {
     return f();
+  } catch (const Cancelled&) {
+    throw;
   } catch (const Error& error) {
     throw Error(std::string(which) + ": " + error.what());
   }
@@ -384,10 +405,10 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     // One scope, so that the trees are freed before returning.
     progress.phase(0.1, 0.05);
     progress.check(0.0);
-    const Surface reference_surface = naming("reference mesh", [&] { return Surface(reference); });
+    const Surface reference_surface = naming("reference mesh", [&] { return Surface(reference, progress); });
     progress.phase(0.15, 0.05);
     progress.check(0.0);
-    const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate); });
+    const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate, progress); });
     const std::uint64_t stream = splitmix64_mix(options.seed);
     progress.phase(0.2, 0.4);
     const OneSided forward = measure(reference_surface, candidate_surface, options.samples_per_side,

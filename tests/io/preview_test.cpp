@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -549,6 +550,48 @@ TEST(Preview, WritesPngFilesAtomicallyAndOnlyThose) {
   too_small.width = 100;
   EXPECT_THROW(io::write_preview_png(dir / "small.png", scene, too_small), Error);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"view.PNG"});
+}
+
+TEST(Preview, ProgressIsReportedAndCanCancel) {
+  // A 100 x 100 grid: 20,000 faces, so the faces are asked about several times.
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3i> faces;
+  const int n = 100;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) points.emplace_back(i, j, 0.1 * std::sin(0.3 * i));
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + n + 1;
+      faces.emplace_back(a, a + 1, b + 1);
+      faces.emplace_back(a, b + 1, b);
+    }
+  }
+  const TriangleMesh mesh = make_mesh(points, faces);
+  PreviewScene scene;
+  scene.mesh = &mesh;
+
+  PreviewOptions watched;
+  std::vector<double> fractions;
+  watched.progress = [&fractions](double fraction) {
+    fractions.push_back(fraction);
+    return true;
+  };
+  EXPECT_EQ(io::render_preview_png(scene, watched), io::render_preview_png(scene));
+  ASSERT_GT(fractions.size(), 50U);  // 5 face blocks, 900 / 16 row blocks
+  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_EQ(fractions.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_GT(std::count_if(fractions.begin(), fractions.end(), [](double f) { return f > 0.0 && f < 0.5; }), 2);
+
+  // Refused while the faces are drawn: Cancelled, and no file.
+  const TempDir dir;
+  PreviewOptions cancelling;
+  int calls = 0;
+  cancelling.progress = [&calls](double) { return ++calls < 3; };
+  EXPECT_THROW(io::write_preview_png(dir / "grid.png", scene, cancelling), Cancelled);
+  EXPECT_EQ(calls, 3);
+  EXPECT_TRUE(dir.entries().empty());
 }
 
 }  // namespace

@@ -510,6 +510,23 @@ TEST(CompareMeshes, ProgressChangesNothingAndCancels) {
   }
 }
 
+TEST(CompareMeshes, CancelsWhileBuildingATree) {
+  // 2 x 120^2 = 28,800 triangles: the reference's tree build is asked many
+  // times (phase 0.10 to 0.15), not only once before it starts.
+  const TriangleMesh grid = plane_grid(120);
+  QualityOptions cancelling = samples(1000);
+  int asked_in_build = 0;
+  bool asked_later = false;
+  cancelling.progress = [&](double fraction) {
+    if (fraction >= 0.15) asked_later = true;
+    if (fraction >= 0.1 && fraction < 0.15) ++asked_in_build;
+    return asked_in_build < 3;
+  };
+  EXPECT_THROW(compare_meshes(grid, grid, cancelling), Cancelled);
+  EXPECT_EQ(asked_in_build, 3);
+  EXPECT_FALSE(asked_later);
+}
+
 TEST(CompareMeshes, BadRequestsAreErrors) {
   const TriangleMesh cube = unit_cube();
   EXPECT_THROW(compare_meshes(cube, cube, samples(-1)), Error);

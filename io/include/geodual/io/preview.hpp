@@ -34,6 +34,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -90,6 +91,10 @@ struct PreviewOptions {
   /// Polylines and points are moved this fraction of the bounding-box diagonal
   /// towards the camera before the depth test, in [0, 1].
   double overlay_depth_bias = 0.002;
+
+  /// Asked with the fraction done in [0, 1] about every 4096 faces drawn and
+  /// every 16 rows resolved; returning false stops with geodual::Cancelled.
+  std::function<bool(double)> progress;
 };
 
 /// Renders the scene and returns the bytes of a PNG file (8-bit RGB).
@@ -97,7 +102,8 @@ struct PreviewOptions {
 /// 2^26 samples in all), options out of the ranges above, nothing to draw (no
 /// face, polyline vertex or point), face indices out of range, colour counts
 /// that do not match the faces / vertices, non-finite coordinates or colours.
-/// Degenerate faces and unreferenced vertices are fine.
+/// Degenerate faces and unreferenced vertices are fine. Throws
+/// geodual::Cancelled when options.progress says stop.
 std::vector<std::uint8_t> render_preview_png(const PreviewScene& scene,
                                              const PreviewOptions& options = {});
 

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace geodual {
@@ -31,13 +32,16 @@ void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, c
 Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh);
 
 /// A PNG picture of the input coloured by cell with the boundaries and sites.
+/// `progress` as io::PreviewOptions::progress (false: Cancelled, nothing written).
 void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                           const voronoi::VoronoiDiagram& diagram);
+                           const voronoi::VoronoiDiagram& diagram,
+                           const std::function<bool(double)>& progress = {});
 
 /// A PNG picture of a mesh, shaded with its wireframe (coloured per vertex
-/// when `vertex_colors` has a row per vertex).
+/// when `vertex_colors` has a row per vertex); `progress` as above.
 void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors = {});
+                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors = {},
+                        const std::function<bool(double)>& progress = {});
 
 /// The process's peak resident memory in bytes (0 where unknown).
 std::int64_t peak_memory_bytes();
