@@ -1,3 +1,4 @@
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 
 #include "geodual/mesh/error.hpp"
@@ -255,16 +256,7 @@ bool is_orientable(const TriangleMesh& mesh, const VertexCorners& incidence) {
   return true;
 }
 
-bool is_degenerate(const TriangleMesh& mesh, Index f) {
-  const Index a = mesh.faces(f, 0);
-  const Index b = mesh.faces(f, 1);
-  const Index c = mesh.faces(f, 2);
-  if (a == b || b == c || a == c) return true;
-  const Eigen::Vector3d p = mesh.vertices.row(a);
-  const Eigen::Vector3d q = mesh.vertices.row(b);
-  const Eigen::Vector3d r = mesh.vertices.row(c);
-  return (q - p).cross(r - p).isZero(0.0);
-}
+bool is_degenerate(const TriangleMesh& mesh, Index f) { return !has_positive_area(mesh, f); }
 
 /// A vertex position as bits, with -0 taken as +0, so that equal positions
 /// give equal keys (and a NaN coordinate matches only the same NaN bits).

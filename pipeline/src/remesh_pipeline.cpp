@@ -1,5 +1,6 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
@@ -53,17 +54,13 @@ DroppedSurface dropped_surface(const TriangleMesh& input, const remesh::Manifold
   DroppedSurface dropped;
   double total = 0;
   for (Index f = 0; f < input.num_faces(); ++f) {
-    const Eigen::Vector3d a = input.vertices.row(input.faces(f, 0));
-    const Eigen::Vector3d b = input.vertices.row(input.faces(f, 1));
-    const Eigen::Vector3d c = input.vertices.row(input.faces(f, 2));
-    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double area = face_area(input, f);
     if (!cut.copy_of.empty() && cut.copy_of[static_cast<std::size_t>(f)] >= 0) {
       ++dropped.faces;  // a copy of a face that is kept: no surface of its own
       continue;
     }
     total += area;
-    const auto kept = cut.mesh.faces.row(f);
-    if (kept[0] == kept[1] || kept[1] == kept[2] || kept[2] == kept[0]) {
+    if (has_repeated_corner(cut.mesh, f)) {
       ++dropped.faces;
       dropped.area += area;
     }

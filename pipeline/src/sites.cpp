@@ -1,5 +1,6 @@
 #include "geodual/pipeline/sites.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/random.hpp"
 
@@ -29,9 +30,8 @@ std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, std::int
   // take no part in any surface computation).
   std::vector<std::uint8_t> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || c == a) continue;
-    used[a] = used[b] = used[c] = 1;
+    if (has_repeated_corner(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) used[mesh.faces(f, k)] = 1;
   }
   std::vector<Index> candidates;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {

@@ -5,6 +5,7 @@
 
 #include "geodual/quality/quality_stats.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/detail/morton_code.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/random.hpp"
@@ -215,11 +216,11 @@ class Surface {
       const Index b = mesh.faces(f, 1);
       const Index c = mesh.faces(f, 2);
       referenced[a] = referenced[b] = referenced[c] = 1;
+      const double area = face_area(mesh, f);
+      if (!has_positive_area(mesh, f) || !(area > 0.0)) continue;  // degenerate: left out
       const Eigen::Vector3d p0 = mesh.vertices.row(a);
       const Eigen::Vector3d p1 = mesh.vertices.row(b);
       const Eigen::Vector3d p2 = mesh.vertices.row(c);
-      const double area = 0.5 * (p1 - p0).cross(p2 - p0).norm();
-      if (a == b || b == c || a == c || !(area > 0.0)) continue;  // degenerate: left out
       triangles_.emplace_back(Point(p0.x(), p0.y(), p0.z()), Point(p1.x(), p1.y(), p1.z()),
                               Point(p2.x(), p2.y(), p2.z()));
       total += area;

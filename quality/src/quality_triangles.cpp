@@ -3,6 +3,7 @@
 
 #include "geodual/quality/quality_stats.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 
@@ -34,18 +35,14 @@ struct FaceShape {
 
 FaceShape face_shape(const TriangleMesh& mesh, Index f) {
   FaceShape shape;
-  const Index a = mesh.faces(f, 0);
-  const Index b = mesh.faces(f, 1);
-  const Index c = mesh.faces(f, 2);
-  if (a == b || b == c || a == c) return shape;
-  const Eigen::Vector3d p0 = mesh.vertices.row(a);
-  const Eigen::Vector3d p1 = mesh.vertices.row(b);
-  const Eigen::Vector3d p2 = mesh.vertices.row(c);
+  if (!has_positive_area(mesh, f)) return shape;  // as analyze_mesh says
+  const Eigen::Vector3d p0 = mesh.vertices.row(mesh.faces(f, 0));
+  const Eigen::Vector3d p1 = mesh.vertices.row(mesh.faces(f, 1));
+  const Eigen::Vector3d p2 = mesh.vertices.row(mesh.faces(f, 2));
   const Eigen::Vector3d e01 = p1 - p0;
   const Eigen::Vector3d e12 = p2 - p1;
   const Eigen::Vector3d e20 = p0 - p2;
   const Eigen::Vector3d cross = e01.cross(-e20);
-  if (cross.isZero(0.0)) return shape;  // exactly zero area, as analyze_mesh says
 
   const double twice_area = cross.norm();
   const double l01 = e01.norm();

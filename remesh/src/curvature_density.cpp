@@ -1,5 +1,6 @@
 #include "geodual/remesh/curvature_density.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
 
 #include <Eigen/Geometry>
@@ -13,20 +14,14 @@
 namespace geodual::remesh {
 namespace {
 
-bool degenerate(const TriangleMesh& mesh, Index f) {
-  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-  return a == b || b == c || c == a;
-}
-
 Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int c) { return mesh.vertices.row(mesh.faces(f, c)).transpose(); }
 
 /// Per vertex, a third of the area of the faces around it.
 std::vector<double> vertex_areas(const TriangleMesh& mesh) {
   std::vector<double> area(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (degenerate(mesh, f)) continue;
-    const double third =
-        (corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0)).norm() / 6;
+    if (has_repeated_corner(mesh, f)) continue;
+    const double third = face_area(mesh, f) / 3;
     for (int c = 0; c < 3; ++c) area[mesh.faces(f, c)] += third;
   }
   return area;
@@ -37,7 +32,7 @@ std::vector<std::array<Index, 3>> edge_sides(const TriangleMesh& mesh) {
   std::vector<std::array<Index, 3>> sides;
   sides.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (degenerate(mesh, f)) continue;
+    if (has_repeated_corner(mesh, f)) continue;
     for (int c = 0; c < 3; ++c) {
       const Index u = mesh.faces(f, c), v = mesh.faces(f, (c + 1) % 3);
       sides.push_back({std::min(u, v), std::max(u, v), f});
@@ -105,8 +100,8 @@ void smooth(std::vector<double>& value, const std::vector<std::array<Index, 3>>&
 double uniform_spacing(const TriangleMesh& mesh, std::int64_t sites) {
   double area = 0;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (degenerate(mesh, f)) continue;
-    area += (corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0)).norm() / 2;
+    if (has_repeated_corner(mesh, f)) continue;
+    area += face_area(mesh, f);
   }
   return sites > 0 ? std::sqrt(2 * area / (std::sqrt(3.0) * static_cast<double>(sites))) : 0.0;
 }

@@ -1,6 +1,7 @@
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/union_find.hpp"
 
@@ -29,17 +30,16 @@ std::map<Index, ComponentCounts> topology_by_component(const TriangleMesh& mesh,
   const Index n = mesh.num_vertices();
   std::vector<std::uint8_t> used(n, 0);
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
+    if (has_repeated_corner(mesh, f)) continue;
     const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || c == a) continue;
     components.unite(a, b);
     components.unite(b, c);
     used[a] = used[b] = used[c] = 1;
   }
   std::map<Index, ComponentCounts> result;
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
-    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || c == a) continue;
-    ++result[components.find(a)].faces;
+    if (has_repeated_corner(mesh, f)) continue;
+    ++result[components.find(mesh.faces(f, 0))].faces;
   }
   for (Index v = 0; v < n; ++v) {
     if (used[v]) ++result[components.find(v)].vertices;

@@ -1,6 +1,8 @@
 #include "geodual/remesh/manifold_cut.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/detail/vertex_pair_sort.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/union_find.hpp"
 
 #include <Eigen/Geometry>
@@ -91,15 +93,6 @@ std::int64_t disable_duplicate_faces(const VertexMatrix& vertices, FaceMatrix& f
   return disabled;
 }
 
-/// The face's area; 0 where it overflows.
-double face_area(const TriangleMesh& mesh, Index f) {
-  const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
-  const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
-  const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  return std::isfinite(area) ? area : 0.0;
-}
-
 }  // namespace
 
 ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options) {
@@ -111,60 +104,34 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
     cut.duplicates_disabled = disable_duplicate_faces(mesh.vertices, cut.mesh.faces, cut.copy_of);
     cut.faces_disabled = cut.duplicates_disabled;
   }
-  const FaceMatrix faces = cut.mesh.faces;  // the input's, copies disabled
-  // Corners (face * 3 + k) joined when their faces share an edge with exactly
-  // two faces and they sit at the same vertex of it.
-  struct HalfEdge {
-    Index low, high, corner_low, corner_high;
-  };
-  std::vector<HalfEdge> edges;
-  edges.reserve(static_cast<std::size_t>(3 * num_faces));
-  for (Index f = 0; f < num_faces; ++f) {
-    if (!proper(faces, f)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const Index u = faces(f, k), v = faces(f, (k + 1) % 3);
-      const Index cu = 3 * f + k, cv = 3 * f + (k + 1) % 3;
-      edges.push_back(u < v ? HalfEdge{u, v, cu, cv} : HalfEdge{v, u, cv, cu});
-    }
-  }
-  // By (low, high), then corner_low: equal pairs keep their order, by face.
-  sort_by_vertex_pair(edges, num_vertices, [](const HalfEdge& e) { return e.low; },
-                      [](const HalfEdge& e) { return e.high; });
-  UnionFind fans(static_cast<std::size_t>(3 * num_faces));
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
-    if (j - i == 2) {
-      fans.unite(edges[i].corner_low, edges[i + 1].corner_low);
-      fans.unite(edges[i].corner_high, edges[i + 1].corner_high);
-    }
-    i = j;
-  }
+  // The fans of the input, copies disabled: corners at one vertex whose faces
+  // are joined around it across edges with exactly two faces.
+  cut.mesh.vertices = mesh.vertices;
+  const std::vector<Index> corner_fan = build_mesh_topology(cut.mesh).corner_fan;
   // One vertex per fan: the first fan of a vertex keeps its index, further
   // fans get new vertices at the end, in the order of their first corner.
-  std::vector<Index> vertex_of_fan(fans.size(), -1);
+  std::vector<Index> vertex_of_fan;
   std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0), split(static_cast<std::size_t>(num_vertices), 0);
   std::vector<Index> extra;  // original vertex of each new vertex
   for (Index f = 0; f < num_faces; ++f) {
-    if (!proper(faces, f)) continue;
+    if (!proper(cut.mesh, f)) continue;
     for (int k = 0; k < 3; ++k) {
-      const Index corner = 3 * f + k, root = fans.find(corner);
-      const Index v = faces(f, k);
-      if (vertex_of_fan[root] < 0) {
+      const auto fan = static_cast<std::size_t>(corner_fan[static_cast<std::size_t>(3 * f + k)]);
+      const Index v = cut.mesh.faces(f, k);
+      if (fan == vertex_of_fan.size()) {  // fans are numbered in the order of their first corner
         if (!taken[v]) {
           taken[v] = 1;
-          vertex_of_fan[root] = v;
+          vertex_of_fan.push_back(v);
         } else {
           split[v] = 1;
-          vertex_of_fan[root] = num_vertices + static_cast<Index>(extra.size());
+          vertex_of_fan.push_back(num_vertices + static_cast<Index>(extra.size()));
           extra.push_back(v);
         }
       }
-      cut.mesh.faces(f, k) = vertex_of_fan[root];
+      cut.mesh.faces(f, k) = vertex_of_fan[fan];
     }
   }
-  cut.mesh.vertices.resize(num_vertices + static_cast<Index>(extra.size()), 3);
-  cut.mesh.vertices.topRows(num_vertices) = mesh.vertices;
+  cut.mesh.vertices.conservativeResize(num_vertices + static_cast<Index>(extra.size()), 3);
   cut.original_vertex.resize(static_cast<std::size_t>(num_vertices) + extra.size());
   std::iota(cut.original_vertex.begin(), cut.original_vertex.begin() + num_vertices, Index{0});
   for (std::size_t i = 0; i < extra.size(); ++i) {

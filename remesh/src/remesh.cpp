@@ -1,5 +1,6 @@
 #include "geodual/remesh/remesh.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
@@ -89,9 +90,8 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
     // A corner of the vertex's first face that takes part (one pass).
     std::vector<std::array<Index, 2>> corner_of(static_cast<std::size_t>(mesh.vertices.rows()), {-1, 0});
     for (Index f = mesh.num_faces(); f-- > 0;) {
-      const auto row = mesh.faces.row(f);
-      if (row[0] == row[1] || row[1] == row[2] || row[2] == row[0]) continue;
-      for (int c = 0; c < 3; ++c) corner_of[row[c]] = {f, c};
+      if (has_repeated_corner(mesh, f)) continue;
+      for (int c = 0; c < 3; ++c) corner_of[mesh.faces(f, c)] = {f, c};
     }
     for (SurfacePoint& site : sites) {
       if (site.kind != SurfacePoint::Kind::vertex || site.element < 0 || site.element >= mesh.vertices.rows()) continue;

@@ -1,13 +1,13 @@
 #include "sampling_surface.hpp"
 
 #include "geodual/mesh/error.hpp"
-#include "geodual/mesh/detail/vertex_pair_sort.hpp"
-#include "geodual/mesh/union_find.hpp"
-#include "geodual/voronoi/face_area.hpp"
+#include "geodual/mesh/face_area.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -15,11 +15,6 @@
 
 namespace geodual::remesh::detail {
 namespace {
-
-bool has_repeated_corner(const TriangleMesh& mesh, Index f) {
-  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-  return a == b || b == c || c == a;
-}
 
 /// Groups `items` (face indices) by `key` (component) into CSR arrays, keeping
 /// the items' order within a group.
@@ -33,36 +28,21 @@ void group_by_component(const std::vector<Index>& items, const std::vector<Index
   for (const Index f : items) grouped[fill[face_component[f]]++] = f;
 }
 
-void find_boundary_loops(SamplingSurface& surface) {
+void find_boundary_loops(SamplingSurface& surface, const MeshTopology& topology) {
   const TriangleMesh& mesh = *surface.mesh;
-  // Half-edges of faces with distinct corners, sorted by undirected vertex
-  // pair: a pair used exactly once is a boundary edge (twice: interior; three
-  // or more times: non-manifold, not a boundary).
+  // Boundary edges (one face) as the corner of their face they start at, in
+  // edge order.
   struct HalfEdge {
-    std::uint64_t key;
     Index face;
     int corner;
   };
-  std::vector<HalfEdge> half_edges;
-  half_edges.reserve(surface.component_faces.size() * 3);
-  for (const Index f : surface.component_faces) {
-    for (int k = 0; k < 3; ++k) {
-      const auto u = static_cast<std::uint64_t>(static_cast<std::uint32_t>(mesh.faces(f, k)));
-      const auto w = static_cast<std::uint64_t>(static_cast<std::uint32_t>(mesh.faces(f, (k + 1) % 3)));
-      half_edges.push_back({std::min(u, w) << 32 | std::max(u, w), f, k});
-    }
-  }
-  sort_by_vertex_pair(half_edges, mesh.num_vertices(), [](const HalfEdge& h) { return static_cast<Index>(h.key >> 32); },
-                      [](const HalfEdge& h) { return static_cast<Index>(h.key & 0xffffffffu); });
   std::vector<HalfEdge> boundary;
-  for (std::size_t i = 0; i < half_edges.size();) {
-    std::size_t j = i + 1;
-    while (j < half_edges.size() && half_edges[j].key == half_edges[i].key) ++j;
-    if (j - i == 1) boundary.push_back(half_edges[i]);
-    i = j;
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (!topology.is_boundary_edge(e)) continue;
+    const Index face = topology.edge_faces(e)[0];
+    const std::array<Index, 3>& edges = topology.face_edges[static_cast<std::size_t>(face)];
+    boundary.push_back({face, edges[0] == e ? 0 : edges[1] == e ? 1 : 2});
   }
-  half_edges.clear();
-  half_edges.shrink_to_fit();
   if (boundary.empty()) return;
 
   // Boundary edges around each vertex (CSR, edges in increasing order).
@@ -241,8 +221,6 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
   const Index num_faces = mesh.num_faces();
   const Index num_vertices = mesh.num_vertices();
 
-  // Components: union-find over the corners of faces with distinct corners.
-  UnionFind components(static_cast<std::size_t>(num_vertices));
   surface.face_area.assign(static_cast<std::size_t>(num_faces), 0.0);
   std::vector<Index> proper_faces;
   for (Index f = 0; f < num_faces; ++f) {
@@ -260,22 +238,13 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
       }
     }
     proper_faces.push_back(f);
-    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
-    const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
-    const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
-    const double area = 0.5 * (b - a).cross(c - a).norm();
     // Overflow, or a face too thin for the geodesic engine: no site there.
-    surface.face_area[f] = std::isfinite(area) && voronoi::has_geodesic_area(mesh, f) ? area : 0.0;
-    for (int k = 1; k < 3; ++k) components.unite(mesh.faces(f, 0), mesh.faces(f, k));
+    surface.face_area[f] = has_positive_area(mesh, f) ? face_area(mesh, f) : 0.0;
   }
-  // Components numbered in the order of their first face.
-  std::vector<Index> root_component(static_cast<std::size_t>(num_vertices), -1);
-  surface.face_component.assign(static_cast<std::size_t>(num_faces), -1);
-  for (const Index f : proper_faces) {
-    const Index root = components.find(mesh.faces(f, 0));
-    if (root_component[root] < 0) root_component[root] = surface.num_components++;
-    surface.face_component[f] = root_component[root];
-  }
+  // Components: faces joined through shared vertices, in the order of their first face.
+  MeshTopology topology = build_mesh_topology(mesh);
+  surface.face_component = std::move(topology.face_component);
+  surface.num_components = topology.num_components();
   group_by_component(proper_faces, surface.face_component, surface.num_components, surface.component_face_begin,
                      surface.component_faces);
 
@@ -295,7 +264,7 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
     }
     surface.component_area[c] = sum;
   }
-  if (with_boundary_loops) find_boundary_loops(surface);
+  if (with_boundary_loops) find_boundary_loops(surface, topology);
   return surface;
 }
 

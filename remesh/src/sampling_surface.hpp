@@ -75,7 +75,7 @@ struct BoundaryLoop {
 struct SamplingSurface {
   const TriangleMesh* mesh = nullptr;
   /// Per face: its area; 0 for faces with a repeated corner and for faces
-  /// the geodesic engine sees as flat (voronoi::has_geodesic_area), which
+  /// the geodesic engine sees as flat (has_positive_area), which
   /// must carry no site.
   std::vector<double> face_area;
   /// Per face: its component, -1 for faces with a repeated corner (which

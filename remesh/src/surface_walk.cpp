@@ -1,6 +1,6 @@
 #include "surface_walk.hpp"
 
-#include "geodual/voronoi/face_area.hpp"
+#include "geodual/mesh/face_area.hpp"
 
 #include <Eigen/Geometry>
 
@@ -88,7 +88,7 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     Eigen::Vector3d next_normal =
         (corner(mesh, next, 1) - corner(mesh, next, 0)).cross(corner(mesh, next, 2) - corner(mesh, next, 0));
     if (!flat) last_face = face, last_point = p;
-    flat = !voronoi::has_geodesic_area(mesh, next);
+    flat = !has_positive_area(mesh, next);
     if (flat) next_normal = normal;  // cross it flat
     next_normal.normalize();
     Eigen::Vector3d inward = next_normal.cross(along);
@@ -144,7 +144,7 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Ge
     const Index v = site.element;
     SurfacePoint best = site;
     for (const Index f : fans.around(v)) {
-      if (!voronoi::has_geodesic_area(mesh, f)) continue;  // a walk cannot start in a flat face
+      if (!has_positive_area(mesh, f)) continue;  // a walk cannot start in a flat face
       int c = 0;
       while (mesh.faces(f, c) != v) ++c;
       const Eigen::Vector3d p = mesh.vertices.row(v).transpose();

@@ -1,5 +1,7 @@
 // analyze_mesh on small hand-built meshes whose counts are known by hand.
 
+#include "mesh/small_meshes.hpp"
+
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 
@@ -14,21 +16,7 @@
 namespace geodual {
 namespace {
 
-TriangleMesh make_mesh(std::initializer_list<std::array<double, 3>> vertices,
-                       std::initializer_list<std::array<Index, 3>> faces) {
-  TriangleMesh mesh;
-  mesh.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  Eigen::Index row = 0;
-  for (const auto& v : vertices) {
-    mesh.vertices.row(row++) << v[0], v[1], v[2];
-  }
-  row = 0;
-  for (const auto& f : faces) {
-    mesh.faces.row(row++) << f[0], f[1], f[2];
-  }
-  return mesh;
-}
+using test::make_mesh;
 
 /// Appends a face to a mesh.
 void add_face(TriangleMesh& mesh, Index a, Index b, Index c) {

@@ -1,6 +1,8 @@
 // MeshTopology on small meshes whose connectivity is known by hand, and
 // against analyze_mesh (the defect report) on the same meshes.
 
+#include "mesh/small_meshes.hpp"
+
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
@@ -17,17 +19,7 @@
 namespace geodual {
 namespace {
 
-TriangleMesh make_mesh(std::initializer_list<std::array<double, 3>> vertices,
-                       std::initializer_list<std::array<Index, 3>> faces) {
-  TriangleMesh mesh;
-  mesh.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  Index i = 0;
-  for (const auto& v : vertices) mesh.vertices.row(i++) << v[0], v[1], v[2];
-  i = 0;
-  for (const auto& f : faces) mesh.faces.row(i++) << f[0], f[1], f[2];
-  return mesh;
-}
+using test::make_mesh;
 
 /// A square split along its diagonal 0-2.
 TriangleMesh square() { return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}); }

@@ -9,7 +9,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
-#include "geodual/voronoi/face_area.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include <Eigen/Geometry>
@@ -61,9 +61,9 @@ TEST(FlatFaces, NeedlesHaveACrossProductButNoGeodesicArea) {
     const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
                           c = mesh.vertices.row(mesh.faces(f, 2));
     EXPECT_GT((b - a).cross(c - a).z(), 0.0) << "face " << f;  // oriented like the grid, not zero
-    EXPECT_FALSE(voronoi::has_geodesic_area(mesh, f)) << "face " << f;
+    EXPECT_FALSE(has_positive_area(mesh, f)) << "face " << f;
   }
-  for (Index f = 0; f < 2 * 8 * 8; ++f) EXPECT_TRUE(voronoi::has_geodesic_area(mesh, f)) << "face " << f;
+  for (Index f = 0; f < 2 * 8 * 8; ++f) EXPECT_TRUE(has_positive_area(mesh, f)) << "face " << f;
   // The engine refuses a site inside a needle, and says so.
   const Index needle = square.needles[3];
   try {
@@ -86,7 +86,7 @@ TEST(FlatFaces, SamplingPutsNoSiteOnThem) {
       ASSERT_EQ(static_cast<std::int64_t>(sites.size()), count);
       for (const SurfacePoint& site : sites) {
         if (site.kind == SurfacePoint::Kind::face) {
-          EXPECT_TRUE(voronoi::has_geodesic_area(mesh, site.element)) << "a site on face " << site.element;
+          EXPECT_TRUE(has_positive_area(mesh, site.element)) << "a site on face " << site.element;
         }
       }
       EXPECT_NO_THROW(voronoi::compute_geodesic_field(mesh, sites));
@@ -107,7 +107,7 @@ TEST(FlatFaces, AWalkNeverEndsInOne) {
     for (const double length : {0.1, 0.2, 1.0}) {
       const SurfacePoint end = detail::walk_on_surface(mesh, field, start, Eigen::Vector3d(0.1, -1, 0), length);
       ASSERT_EQ(end.kind, SurfacePoint::Kind::face);
-      EXPECT_TRUE(voronoi::has_geodesic_area(mesh, end.element)) << "from face " << cell << ", length " << length;
+      EXPECT_TRUE(has_positive_area(mesh, end.element)) << "from face " << cell << ", length " << length;
       EXPECT_GE(end.position(mesh).y(), -1e-12);
     }
   }

@@ -63,7 +63,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       }
       if (nonzero == 1) {
         site = SurfacePoint::at_vertex(mesh.faces(site.element, corner));
-      } else if (!detail::has_area_from_lengths(pm.face_lengths(pm.face_records[local_face]))) {
+      } else if (!has_area_from_lengths(pm.face_lengths(pm.face_records[local_face]))) {
         throw Error(site_name(i) + ": face " + std::to_string(site.element) +
                     " has zero area; place the site on a neighbouring face");
       }

@@ -62,8 +62,7 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
   std::vector<HalfEdge> half_edges;
   half_edges.reserve(static_cast<std::size_t>(num_faces) * 3);
   for (Index f = 0; f < num_faces; ++f) {
-    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || c == a) continue;
+    if (has_repeated_corner(mesh, f)) continue;
     ++pm.num_included_faces;
     for (int k = 0; k < 3; ++k) {
       const auto u = static_cast<std::uint64_t>(mesh.faces(f, k));

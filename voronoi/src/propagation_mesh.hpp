@@ -4,6 +4,7 @@
 // and which vertices are pseudo-sources. Built once per mesh; independent of
 // the sites.
 
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
@@ -25,24 +26,6 @@ struct EdgeLayout {
   double length = 0;
   Eigen::Vector2d apex = Eigen::Vector2d::Zero();
 };
-
-/// Twice the area of a triangle with side lengths a, b, c, by Kahan's
-/// cancellation-free form of Heron's formula (0 for impossible lengths).
-inline double twice_area_from_lengths(double a, double b, double c) {
-  if (a < b) std::swap(a, b);
-  if (b < c) std::swap(b, c);
-  if (a < b) std::swap(a, b);
-  const double product = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
-  return product > 0 ? 0.5 * std::sqrt(product) : 0.0;
-}
-
-/// Whether a face with these edge lengths has positive area where the
-/// layouts below are concerned: its height over every edge is positive.
-inline bool has_area_from_lengths(const std::array<double, 3>& length) {
-  const double twice_area = twice_area_from_lengths(length[0], length[1], length[2]);
-  const double longest = std::max({length[0], length[1], length[2]});
-  return twice_area > 0 && twice_area / longest > 0;
-}
 
 /// The length of the edge between vertices a and b (the same either way round).
 inline double edge_length(const TriangleMesh& mesh, Index a, Index b) {

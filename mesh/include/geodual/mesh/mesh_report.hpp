@@ -28,7 +28,7 @@ struct MeshReport {
   /// vertex joined through shared edges); an end of a non-manifold edge alone
   /// does not make a vertex non-manifold.
   std::int64_t nonmanifold_vertices = 0;
-  std::int64_t degenerate_faces = 0;       ///< a repeated index, or exactly zero area (in double)
+  std::int64_t degenerate_faces = 0;       ///< no area by has_positive_area (face_area.hpp)
   std::int64_t duplicate_faces = 0;        ///< same vertex set as an earlier face
   std::int64_t duplicate_vertices = 0;     ///< exactly the position of an earlier vertex
   std::int64_t unreferenced_vertices = 0;  ///< used by no face
