@@ -8,6 +8,7 @@
 // stays one executable.
 
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/pipeline/sites.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
@@ -158,6 +159,37 @@ inline std::vector<std::string_view> split_commas(std::string_view text) {
     if (comma == std::string_view::npos) return parts;
     text.remove_prefix(comma + 1);
   }
+}
+
+/// A finite number given to `option`, or a UsageError naming it.
+inline double parse_number(const std::string& option, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used != text.size() || !std::isfinite(value)) throw std::invalid_argument(text);
+    return value;
+  } catch (const std::exception&) {
+    throw UsageError(option + ": not a number: '" + text + "'");
+  }
+}
+
+/// An integer in [low, high] given to `option`, or a UsageError naming it.
+inline std::int64_t parse_integer(const std::string& option, const std::string& text, std::int64_t low,
+                                  std::int64_t high) {
+  const double value = parse_number(option, text);
+  if (value != std::floor(value) || value < static_cast<double>(low) || value > static_cast<double>(high)) {
+    throw UsageError(option + ": expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) +
+                     "], got '" + text + "'");
+  }
+  return static_cast<std::int64_t>(value);
+}
+
+/// "a,b,c", each an integer in [low, high] (parse_integer).
+inline std::vector<std::int64_t> parse_integer_list(const std::string& option, const std::string& text,
+                                                    std::int64_t low, std::int64_t high) {
+  std::vector<std::int64_t> values;
+  for (const std::string_view item : split_commas(text)) values.push_back(parse_integer(option, std::string(item), low, high));
+  return values;
 }
 
 /// The 1, 5 and 15 minute load averages as /proc/loadavg prints them.
@@ -487,10 +519,7 @@ class TextTable {
 
 /// True for a face whose three corners are distinct (faces with a repeated
 /// vertex take no part in any surface computation).
-inline bool is_proper_face(const TriangleMesh& mesh, Index f) {
-  const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-  return a != b && b != c && a != c;
-}
+inline bool is_proper_face(const TriangleMesh& mesh, Index f) { return !has_repeated_corner(mesh, f); }
 
 /// The vertices of geodual::random_vertex_sites (the CLI's --sites), as indices.
 inline std::vector<Index> random_vertex_sites(const TriangleMesh& mesh, std::size_t count, std::uint64_t seed) {

@@ -522,26 +522,6 @@ int run_benchmark(const Options& options) {
 // ---------------------------------------------------------------------------
 // Command line
 
-double parse_number(const std::string& option, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used != text.size() || !std::isfinite(value)) throw std::invalid_argument(text);
-    return value;
-  } catch (const std::exception&) {
-    throw UsageError(option + ": not a number: '" + text + "'");
-  }
-}
-
-std::int64_t parse_integer(const std::string& option, const std::string& text, std::int64_t low, std::int64_t high) {
-  const double value = parse_number(option, text);
-  if (value != std::floor(value) || value < static_cast<double>(low) || value > static_cast<double>(high)) {
-    throw UsageError(option + ": expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) +
-                     "], got '" + text + "'");
-  }
-  return static_cast<std::int64_t>(value);
-}
-
 constexpr const char* usage =
     "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--plain-lloyd] [--adapt S]\n"
     "                     [--no-cgal]\n"
@@ -559,11 +539,7 @@ Options parse_options(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--sites") {
-      options.site_counts.clear();
-      const std::string list = value();
-      for (const std::string_view item : split_commas(list)) {
-        options.site_counts.push_back(parse_integer(arg, std::string(item), 4, 100'000'000));
-      }
+      options.site_counts = parse_integer_list(arg, value(), 4, 100'000'000);
     } else if (arg == "--lloyd") {
       options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
     } else if (arg == "--warm-start") {

@@ -44,18 +44,6 @@ struct Run {
   std::int64_t peak_rss = 0;
 };
 
-std::vector<std::int64_t> parse_list(const std::string& text) {
-  std::vector<std::int64_t> values;
-  for (const std::string_view item : split_commas(text)) {
-    try {
-      values.push_back(std::stoll(std::string(item)));
-    } catch (const std::exception&) {
-      throw UsageError("not a number: '" + std::string(item) + "'");
-    }
-  }
-  return values;
-}
-
 Options parse_options(int argc, char** argv) {
   Options options;
   options.cache = std::filesystem::path(argv[0]).parent_path() / "subdivided";
@@ -66,18 +54,17 @@ Options parse_options(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--sites") {
-      options.site_counts = parse_list(value());
+      options.site_counts = parse_integer_list(arg, value(), 4, 100'000'000);
     } else if (arg == "--subdivided") {
-      for (const std::int64_t level : parse_list(value())) {
-        if (level < 1 || level > 2) throw UsageError("--subdivided: levels are 1 and 2");
+      for (const std::int64_t level : parse_integer_list(arg, value(), 1, 2)) {
         options.subdivided_levels.push_back(static_cast<int>(level));
       }
     } else if (arg == "--subdivided-cache") {
       options.cache = value();
     } else if (arg == "--lloyd") {
-      options.lloyd = static_cast<int>(parse_list(value()).at(0));
+      options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
     } else if (arg == "--time-limit") {
-      options.time_limit_seconds = static_cast<unsigned>(parse_list(value()).at(0));
+      options.time_limit_seconds = static_cast<unsigned>(parse_integer(arg, value(), 1, 1'000'000));
     } else if (arg == "--help" || arg == "-h") {
       std::cout << "usage: remesh_bench [--sites 2000,4000] [--lloyd K] [--subdivided 1,2] [--subdivided-cache D]"
                    " [--time-limit S] MESH...\n";

@@ -34,6 +34,7 @@
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/mesh/union_find.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <Eigen/Geometry>
 
@@ -90,30 +91,6 @@ struct RunFigures {
   double dropped_area_pct = 0;
 };
 
-std::vector<std::int64_t> parse_list(const std::string& option, const std::string& text) {
-  std::vector<std::int64_t> values;
-  for (const std::string_view item : split_commas(text)) {
-    std::size_t used = 0;
-    std::int64_t value = 0;
-    try {
-      value = std::stoll(std::string(item), &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || value < 0) {
-      throw UsageError(option + ": not a non-negative number: '" + std::string(item) + "'");
-    }
-    values.push_back(value);
-  }
-  return values;
-}
-
-std::int64_t parse_one(const std::string& option, const std::string& text) {
-  const std::vector<std::int64_t> values = parse_list(option, text);
-  if (values.size() != 1) throw UsageError(option + " takes one number");
-  return values.front();
-}
-
 Options parse_options(int argc, char** argv) {
   Options options;
   for (int i = 1; i < argc; ++i) {
@@ -123,19 +100,16 @@ Options parse_options(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--sites") {
-      options.site_counts = parse_list(arg, value());
-      if (std::find(options.site_counts.begin(), options.site_counts.end(), 0) != options.site_counts.end()) {
-        throw UsageError("--sites: counts must be positive");
-      }
+      options.site_counts = parse_integer_list(arg, value(), 1, 100'000'000);
     } else if (arg == "--only") {
       const std::string names = value();
       for (const std::string_view name : split_commas(names)) options.only.emplace_back(name);
     } else if (arg == "--time-limit") {
-      options.time_limit_seconds = static_cast<unsigned>(std::min<std::int64_t>(parse_one(arg, value()), 1 << 30));
+      options.time_limit_seconds = static_cast<unsigned>(parse_integer(arg, value(), 1, 1'000'000));
     } else if (arg == "--lloyd") {
-      options.lloyd = static_cast<int>(std::min<std::int64_t>(parse_one(arg, value()), 1000));
+      options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
     } else if (arg == "--samples") {
-      options.samples = parse_one(arg, value());
+      options.samples = parse_integer(arg, value(), 0, quality::max_samples_per_side);
     } else if (arg == "--repo") {
       options.repo = value();
     } else if (arg == "--list") {

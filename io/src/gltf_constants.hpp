@@ -67,12 +67,6 @@ enum class PrimitiveMode : std::uint32_t {
   triangle_fan = 6,
 };
 
-/// bufferView.target
-enum class BufferTarget : std::uint32_t {
-  array_buffer = 34962,
-  element_array_buffer = 34963,
-};
-
 /// The GLB container: a 12-byte header, then chunks of (length, type, data).
 inline constexpr std::uint32_t glb_magic = 0x46546C67;       // "glTF"
 inline constexpr std::uint32_t glb_version = 2;

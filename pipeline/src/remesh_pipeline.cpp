@@ -107,7 +107,7 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
            " made by the cut to a manifold at its non-manifold edges and vertices)";
   };
   if (options.given_sites) {
-    result.initial_sites = *options.given_sites;
+    result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
   } else {
     remesh::SampledSites sampled =
         remesh::sample_sites_for_topology(result.surface.mesh, options.sites, options.sampling);

@@ -95,6 +95,23 @@ std::int64_t disable_duplicate_faces(const VertexMatrix& vertices, FaceMatrix& f
 
 }  // namespace
 
+std::vector<SurfacePoint> points_on_cut(const ManifoldCut& cut, std::vector<SurfacePoint> points) {
+  const auto is_vertex = [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; };
+  if (std::none_of(points.begin(), points.end(), is_vertex)) return points;
+  // Per input vertex, the first corner (face, k) of the cut at one of its copies.
+  std::vector<std::array<Index, 2>> corner_of(cut.original_vertex.size(), {-1, 0});
+  for (Index f = cut.mesh.num_faces(); f-- > 0;) {
+    if (has_repeated_corner(cut.mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) corner_of[static_cast<std::size_t>(cut.original_vertex[cut.mesh.faces(f, k)])] = {f, k};
+  }
+  for (SurfacePoint& p : points) {
+    if (!is_vertex(p) || p.element < 0 || static_cast<std::size_t>(p.element) >= corner_of.size()) continue;
+    const auto [f, k] = corner_of[static_cast<std::size_t>(p.element)];
+    if (f >= 0) p = SurfacePoint::in_face(f, k == 0, k == 1, k == 2);
+  }
+  return points;
+}
+
 ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options) {
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   const Index num_vertices = static_cast<Index>(mesh.vertices.rows());

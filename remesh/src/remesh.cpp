@@ -1,6 +1,5 @@
 #include "geodual/remesh/remesh.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
@@ -80,25 +79,11 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
                                const RemeshOptions& options) {
   RemeshResult result;
   // The surface to remesh: cut apart at non-manifold edges and vertices.
-  // Face points keep their meaning; vertex sites become face points.
   ManifoldCut cut = cut_to_manifold(mesh);
   result.vertices_split = cut.vertices_split;
   result.faces_disabled = cut.faces_disabled;
   const bool changed = cut.vertices_split > 0 || cut.faces_disabled > 0;
-  if (changed && std::any_of(sites.begin(), sites.end(),
-                             [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
-    // A corner of the vertex's first face that takes part (one pass).
-    std::vector<std::array<Index, 2>> corner_of(static_cast<std::size_t>(mesh.vertices.rows()), {-1, 0});
-    for (Index f = mesh.num_faces(); f-- > 0;) {
-      if (has_repeated_corner(mesh, f)) continue;
-      for (int c = 0; c < 3; ++c) corner_of[mesh.faces(f, c)] = {f, c};
-    }
-    for (SurfacePoint& site : sites) {
-      if (site.kind != SurfacePoint::Kind::vertex || site.element < 0 || site.element >= mesh.vertices.rows()) continue;
-      const auto [f, c] = corner_of[site.element];
-      if (f >= 0) site = SurfacePoint::in_face(f, c == 0, c == 1, c == 2);
-    }
-  }
+  if (changed) sites = points_on_cut(cut, std::move(sites));
   if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
   const bool release_memory = options.lloyd.voronoi.geodesic.release_memory_between_phases;
   if (release_memory) trim_heap();  // the cut's scratch (a sorted list of all half-edges)

@@ -226,6 +226,35 @@ TriangleMesh bowtie(int n) {
   return test::mesh_from_lists(points, triangles);
 }
 
+TEST(ManifoldCut, VertexPointsBecomeCornersOfFacesThatTakePart) {
+  // The bowtie, plus a lone triangle at its pinch vertex 0 listed first: a
+  // scrap the cut disables, so vertex 0's first face in the input is gone.
+  const TriangleMesh bow = bowtie(4);
+  TriangleMesh mesh = bow;
+  const Index extra = static_cast<Index>(mesh.vertices.rows());
+  mesh.vertices.conservativeResize(extra + 2, 3);
+  mesh.vertices.row(extra) << 0, 0, 0.01;  // 2.5e-5 of area: below the scraps' 0.1 %
+  mesh.vertices.row(extra + 1) << 0, 0.005, 0.01;
+  mesh.faces.resize(bow.faces.rows() + 1, 3);
+  mesh.faces.row(0) << 0, extra, extra + 1;
+  mesh.faces.bottomRows(bow.faces.rows()) = bow.faces;
+  const remesh::ManifoldCut cut = remesh::cut_to_manifold(mesh);
+  ASSERT_GT(cut.faces_disabled, 0);
+  const Index far_vertex = 7;
+  const std::vector<SurfacePoint> points = remesh::points_on_cut(
+      cut, {SurfacePoint::at_vertex(0), SurfacePoint::at_vertex(far_vertex), SurfacePoint::in_face(5, 0.2, 0.3, 0.5)});
+  ASSERT_EQ(points.size(), 3U);
+  for (int i = 0; i < 2; ++i) {
+    const SurfacePoint& p = points[static_cast<std::size_t>(i)];
+    ASSERT_EQ(p.kind, SurfacePoint::Kind::face) << i;
+    EXPECT_NE(cut.mesh.faces(p.element, 0), cut.mesh.faces(p.element, 1)) << "a face that takes part";
+    EXPECT_EQ(p.position(cut.mesh), mesh.vertices.row(i == 0 ? 0 : far_vertex).transpose()) << i;
+  }
+  EXPECT_EQ(points[2].kind, SurfacePoint::Kind::face);  // face points keep their face
+  EXPECT_EQ(points[2].element, 5);
+  EXPECT_EQ(points[2].position(cut.mesh), points[2].position(mesh));
+}
+
 TEST(ManifoldCut, PinchVerticesAreCutApartAndRemeshed) {
   const TriangleMesh mesh = bowtie(24);
   ASSERT_EQ(analyze_mesh(mesh).nonmanifold_vertices, 1);

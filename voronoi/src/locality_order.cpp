@@ -11,6 +11,36 @@
 
 namespace geodual::voronoi::detail {
 
+namespace {
+
+/// The vertex numbering that goes with a face order: old_vertex (new ->
+/// old) and new_vertex, vertices in the order the faces first use them, then
+/// the unreferenced ones.
+void number_vertices(const TriangleMesh& mesh, const std::vector<Index>& old_face, std::vector<Index>& new_vertex,
+                     std::vector<Index>& old_vertex) {
+  const Index num_vertices = mesh.num_vertices();
+  new_vertex.assign(static_cast<std::size_t>(num_vertices), -1);
+  old_vertex.clear();
+  old_vertex.reserve(static_cast<std::size_t>(num_vertices));
+  for (const Index f : old_face) {
+    for (int c = 0; c < 3; ++c) {
+      const Index v = mesh.faces(f, c);
+      if (new_vertex[v] < 0) {
+        new_vertex[v] = static_cast<Index>(old_vertex.size());
+        old_vertex.push_back(v);
+      }
+    }
+  }
+  for (Index v = 0; v < num_vertices; ++v) {
+    if (new_vertex[v] < 0) {
+      new_vertex[v] = static_cast<Index>(old_vertex.size());
+      old_vertex.push_back(v);
+    }
+  }
+}
+
+}  // namespace
+
 LocalityOrder locality_order(const TriangleMesh& mesh) {
   const Index num_vertices = mesh.num_vertices();
   const Index num_faces = mesh.num_faces();
@@ -54,29 +84,6 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
     for (int c = 0; c < 3; ++c) order.mesh.faces(f, c) = order.new_vertex[mesh.faces(order.old_face[f], c)];
   }
   return order;
-}
-
-void number_vertices(const TriangleMesh& mesh, const std::vector<Index>& old_face, std::vector<Index>& new_vertex,
-                     std::vector<Index>& old_vertex) {
-  const Index num_vertices = mesh.num_vertices();
-  new_vertex.assign(static_cast<std::size_t>(num_vertices), -1);
-  old_vertex.clear();
-  old_vertex.reserve(static_cast<std::size_t>(num_vertices));
-  for (const Index f : old_face) {
-    for (int c = 0; c < 3; ++c) {
-      const Index v = mesh.faces(f, c);
-      if (new_vertex[v] < 0) {
-        new_vertex[v] = static_cast<Index>(old_vertex.size());
-        old_vertex.push_back(v);
-      }
-    }
-  }
-  for (Index v = 0; v < num_vertices; ++v) {
-    if (new_vertex[v] < 0) {
-      new_vertex[v] = static_cast<Index>(old_vertex.size());
-      old_vertex.push_back(v);
-    }
-  }
 }
 
 }  // namespace geodual::voronoi::detail

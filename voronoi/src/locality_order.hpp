@@ -20,10 +20,4 @@ struct LocalityOrder {
 
 LocalityOrder locality_order(const TriangleMesh& mesh);
 
-/// The vertex numbering that goes with a face order: old_vertex (new ->
-/// old) and new_vertex, vertices in the order the faces first use them, then
-/// the unreferenced ones.
-void number_vertices(const TriangleMesh& mesh, const std::vector<Index>& old_face, std::vector<Index>& new_vertex,
-                     std::vector<Index>& old_vertex);
-
 }  // namespace geodual::voronoi::detail

@@ -9,6 +9,7 @@
 // Before the cut, duplicate faces (a CAD soup's second copy of a triangle)
 // are disabled, so that they neither cut the surface apart nor count twice.
 
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
@@ -50,5 +51,11 @@ struct ManifoldCut {
 
 /// Faces with a repeated vertex index keep their indices and join no fan.
 ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options = {});
+
+/// Points of the input as points of the cut surface: a vertex becomes the
+/// corner of the first face of `cut.mesh` that takes part and has a copy of
+/// it there (the cut may have split the vertex or disabled its faces); face
+/// points, and vertices with no such face, are kept as they are.
+std::vector<SurfacePoint> points_on_cut(const ManifoldCut& cut, std::vector<SurfacePoint> points);
 
 }  // namespace geodual::remesh
