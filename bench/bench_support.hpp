@@ -9,8 +9,8 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
-#include "geodual/pipeline/sites.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/pipeline/sites.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,8 +24,8 @@
 #include <exception>
 #include <fstream>
 #include <functional>
-#include <iostream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <new>
 #include <optional>
@@ -40,12 +40,12 @@
 #include <utility>
 #include <vector>
 
-#include <csignal>
 #include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+#include <csignal>
 
 namespace geodual::bench {
 
@@ -188,7 +188,8 @@ inline std::int64_t parse_integer(const std::string& option, const std::string& 
 inline std::vector<std::int64_t> parse_integer_list(const std::string& option, const std::string& text,
                                                     std::int64_t low, std::int64_t high) {
   std::vector<std::int64_t> values;
-  for (const std::string_view item : split_commas(text)) values.push_back(parse_integer(option, std::string(item), low, high));
+  for (const std::string_view item : split_commas(text))
+    values.push_back(parse_integer(option, std::string(item), low, high));
   return values;
 }
 

@@ -23,8 +23,8 @@
 #include "bench_support.hpp"
 #include "subdivided_inputs.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -252,8 +252,8 @@ Answer run_ours(const TriangleMesh& mesh, std::span<const SurfacePoint> sites, b
   try {
     field = voronoi::compute_geodesic_field(mesh, sites, options);
   } catch (const Cancelled&) {
-    throw Error("time limit of " + std::to_string(deadline->seconds) + " s: stopped with " +
-                fixed(100 * reached, 1) + "% of the faces reached");
+    throw Error("time limit of " + std::to_string(deadline->seconds) + " s: stopped with " + fixed(100 * reached, 1) +
+                "% of the faces reached");
   }
   Answer answer;
   answer.stats = field.stats;
@@ -609,8 +609,8 @@ void judge(MethodResult& r, const Agreement& a, double diagonal, double toleranc
       // An exact geodesic is never longer than a path along edges.
       if (a.max_excess > tolerance * diagonal) {
         r.check_failed = true;
-        r.note += "CHECK FAILED: ours exceeds the edge path by " + scientific(a.max_excess / diagonal) +
-                  " of the diagonal; ";
+        r.note +=
+            "CHECK FAILED: ours exceeds the edge path by " + scientific(a.max_excess / diagonal) + " of the diagonal; ";
       }
       r.note += "upper bound; labels differ at " + grouped(a.label_differs) + " vertices";
       break;
@@ -635,7 +635,8 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
   std::vector<SurfacePoint> sites;
   for (const Index v : site_vertices) sites.push_back(SurfacePoint::at_vertex(v));
   std::cerr << "   sites (vertex ids):";
-  for (std::size_t i = 0; i < site_vertices.size(); ++i) std::cerr << (i % 15 == 0 ? "\n     " : " ") << site_vertices[i];
+  for (std::size_t i = 0; i < site_vertices.size(); ++i)
+    std::cerr << (i % 15 == 0 ? "\n     " : " ") << site_vertices[i];
   std::cerr << '\n';
 
   // Ours stops itself at the time limit; SIGALRM, a minute later, is the
@@ -669,7 +670,8 @@ MeshResult bench_mesh(const std::filesystem::path& path, const Options& options,
     std::cerr << "   " << method_title(method) << ": " << repeat << " run(s) ... " << std::flush;
     const ChildOutcome outcome = run_in_child(limits, [&] {
       if (options.time_limit_seconds > 0) {
-        deadline = Deadline{Clock::now() + std::chrono::seconds(options.time_limit_seconds), options.time_limit_seconds};
+        deadline =
+            Deadline{Clock::now() + std::chrono::seconds(options.time_limit_seconds), options.time_limit_seconds};
       }
       return encode(measure(run, repeat));
     });
@@ -764,8 +766,9 @@ void print_tables(std::span<const MeshResult> results, const Options& options) {
       table.add_row(std::move(row));
     }
   }
-  std::cout << "\nTable 1. Exact multi-source geodesics, " << options.sites << " random vertex sites (seed " << options.seed
-            << ").\n" << kTable1Legend << "\n\n";
+  std::cout << "\nTable 1. Exact multi-source geodesics, " << options.sites << " random vertex sites (seed "
+            << options.seed << ").\n"
+            << kTable1Legend << "\n\n";
   table.print(std::cout);
 
   TextTable ratios({{"mesh", Align::left},
@@ -782,17 +785,16 @@ void print_tables(std::span<const MeshResult> results, const Options& options) {
     const MethodResult* cgal = mesh.find(Method::cgal);
     const MethodResult* dijkstra = mesh.find(Method::dijkstra);
     const bool both_ours = rwr && rwr->report && no_rwr && no_rwr->report;
-    ratios.add_row(
-        {mesh.name, grouped(mesh.faces), ratio(median_cpu(cgal), median_cpu(rwr)),
-         both_ours ? ratio(static_cast<double>(no_rwr->report->stats.windows_stored),
-                           static_cast<double>(rwr->report->stats.windows_stored))
-                   : "-",
-         both_ours ? ratio(static_cast<double>(no_rwr->report->stats.peak_window_bytes),
-                           static_cast<double>(rwr->report->stats.peak_window_bytes))
-                   : "-",
-         ratio(median_cpu(rwr), median_cpu(dijkstra)),
-         cgal && cgal->diff_over_diagonal ? scientific(*cgal->diff_over_diagonal) : "-",
-         both_ours ? (no_rwr->identical_to_reference ? "identical" : "DIFFERENT") : "-"});
+    ratios.add_row({mesh.name, grouped(mesh.faces), ratio(median_cpu(cgal), median_cpu(rwr)),
+                    both_ours ? ratio(static_cast<double>(no_rwr->report->stats.windows_stored),
+                                      static_cast<double>(rwr->report->stats.windows_stored))
+                              : "-",
+                    both_ours ? ratio(static_cast<double>(no_rwr->report->stats.peak_window_bytes),
+                                      static_cast<double>(rwr->report->stats.peak_window_bytes))
+                              : "-",
+                    ratio(median_cpu(rwr), median_cpu(dijkstra)),
+                    cgal && cgal->diff_over_diagonal ? scientific(*cgal->diff_over_diagonal) : "-",
+                    both_ours ? (no_rwr->identical_to_reference ? "identical" : "DIFFERENT") : "-"});
   }
   std::cout << "\nTable 2. Ratios of the medians in Table 1; times are compared by CPU time, which a loaded\n"
                "machine disturbs less than wall time.\n\n";
@@ -874,7 +876,6 @@ int run_benchmark(const Options& options) {
 }  // namespace geodual::bench
 
 int main(int argc, char** argv) {
-  return geodual::bench::run_main("geodesic_bench", [&] {
-    return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv));
-  });
+  return geodual::bench::run_main(
+      "geodesic_bench", [&] { return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv)); });
 }

@@ -81,7 +81,8 @@ inline TriangleMesh voxel_surface(const std::array<std::vector<double>, 3>& latt
                                     static_cast<int>(lattice[2].size()) - 1};
   auto inside = [&](const std::array<int, 3>& c) {
     for (int d = 0; d < 3; ++d) {
-      if (c[static_cast<std::size_t>(d)] < 0 || c[static_cast<std::size_t>(d)] >= cells[static_cast<std::size_t>(d)]) return false;
+      if (c[static_cast<std::size_t>(d)] < 0 || c[static_cast<std::size_t>(d)] >= cells[static_cast<std::size_t>(d)])
+        return false;
     }
     return solid(c[0], c[1], c[2]);
   };
@@ -90,8 +91,9 @@ inline TriangleMesh voxel_surface(const std::array<std::vector<double>, 3>& latt
   auto point = [&](const std::array<int, 3>& p) {
     const auto [it, inserted] = point_index.try_emplace(p, 0);
     if (inserted) {
-      it->second = builder.add_vertex({lattice[0][static_cast<std::size_t>(p[0])], lattice[1][static_cast<std::size_t>(p[1])],
-                                       lattice[2][static_cast<std::size_t>(p[2])]});
+      it->second =
+          builder.add_vertex({lattice[0][static_cast<std::size_t>(p[0])], lattice[1][static_cast<std::size_t>(p[1])],
+                              lattice[2][static_cast<std::size_t>(p[2])]});
     }
     return it->second;
   };
@@ -193,8 +195,8 @@ inline TriangleMesh torus(double major_radius, double minor_radius, int segments
 /// A closed cone: apex at `apex`, axis `axis` (unit) pointing from the apex
 /// to the base disc of `radius` at distance `height`; the side has `rings`
 /// bands, the base `rings / 2` rings around its centre. The apex is vertex 0.
-inline TriangleMesh closed_cone(const Eigen::Vector3d& apex, const Eigen::Vector3d& axis, double radius,
-                                double height, int segments, int rings) {
+inline TriangleMesh closed_cone(const Eigen::Vector3d& apex, const Eigen::Vector3d& axis, double radius, double height,
+                                int segments, int rings) {
   const Eigen::Vector3d a = axis.normalized();
   const Eigen::Vector3d helper = std::abs(a.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d e1 = a.cross(helper).normalized(), e2 = a.cross(e1);
@@ -247,8 +249,7 @@ inline TriangleMesh plate_with_holes() {
   constexpr int n = 100;
   MeshBuilder builder;
   add_grid(
-      builder, n, 1.0,
-      [&](int i, int j) { return !in_plate_hole(i, j, n); },
+      builder, n, 1.0, [&](int i, int j) { return !in_plate_hole(i, j, n); },
       [&](int, int, int ci, int cj) { return static_cast<Index>(ci + (n + 1) * cj); });
   TriangleMesh mesh = builder.build();
   // Drop the vertices of removed cells that no kept cell uses: keep the mesh
@@ -264,7 +265,8 @@ inline TriangleMesh plate_with_holes() {
   TriangleMesh compact;
   compact.vertices.resize(used, 3);
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
-    if (new_index[static_cast<std::size_t>(v)] >= 0) compact.vertices.row(new_index[static_cast<std::size_t>(v)]) = mesh.vertices.row(v);
+    if (new_index[static_cast<std::size_t>(v)] >= 0)
+      compact.vertices.row(new_index[static_cast<std::size_t>(v)]) = mesh.vertices.row(v);
   }
   compact.faces = mesh.faces;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -337,11 +339,13 @@ inline TriangleMesh pinched_cones() {
     for (const TriangleMesh& cone : cones) {
       std::vector<Index> index(static_cast<std::size_t>(cone.num_vertices()));
       for (Index v = 0; v < cone.num_vertices(); ++v) {
-        index[static_cast<std::size_t>(v)] = (v == 0 && apex >= 0) ? apex : builder.add_vertex(cone.vertices.row(v).transpose());
+        index[static_cast<std::size_t>(v)] =
+            (v == 0 && apex >= 0) ? apex : builder.add_vertex(cone.vertices.row(v).transpose());
       }
       if (apex < 0) apex = index[0];
       for (Index f = 0; f < cone.num_faces(); ++f) {
-        builder.add_face(index[static_cast<std::size_t>(cone.faces(f, 0))], index[static_cast<std::size_t>(cone.faces(f, 1))],
+        builder.add_face(index[static_cast<std::size_t>(cone.faces(f, 0))],
+                         index[static_cast<std::size_t>(cone.faces(f, 1))],
                          index[static_cast<std::size_t>(cone.faces(f, 2))]);
       }
     }
@@ -350,7 +354,8 @@ inline TriangleMesh pinched_cones() {
     const Eigen::Vector3d apex(2.5 * pair, 0, 0);
     const Eigen::Vector3d axis(std::sin(0.3 * pair), 0, std::cos(0.3 * pair));  // tilted differently
     const double radius = 0.4 + 0.15 * pair;
-    add_sharing_apex({closed_cone(apex, axis, radius, 1.0, 32, 12), closed_cone(apex, -axis, 0.5, 0.8 + 0.2 * pair, 32, 12)});
+    add_sharing_apex(
+        {closed_cone(apex, axis, radius, 1.0, 32, 12), closed_cone(apex, -axis, 0.5, 0.8 + 0.2 * pair, 32, 12)});
   }
   const Eigen::Vector3d star(4.0, 3.0, 0);
   std::vector<TriangleMesh> arms;
@@ -394,7 +399,8 @@ inline TriangleMesh slit_square() {
       });
   // The copies were numbered slit by slit: add their positions in that order.
   for (const Slit& slit : slits) {
-    for (int i = slit.first; i <= slit.last; ++i) builder.add_vertex({static_cast<double>(i) / n, static_cast<double>(slit.row) / n, 0.0});
+    for (int i = slit.first; i <= slit.last; ++i)
+      builder.add_vertex({static_cast<double>(i) / n, static_cast<double>(slit.row) / n, 0.0});
   }
   return builder.build();
 }

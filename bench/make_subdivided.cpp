@@ -40,9 +40,9 @@ int run(int argc, char** argv) {
 
   const auto start = geodual::bench::Clock::now();
   const geodual::TriangleMesh mesh = geodual::bench::write_subdivided(input, levels, output);
-  std::printf("%s: %d Loop step(s): %d vertices, %d faces -> %s (%ju bytes, %.2f s)\n", input.string().c_str(),
-              levels, mesh.num_vertices(), mesh.num_faces(), output.string().c_str(),
-              std::filesystem::file_size(output), geodual::bench::seconds_since(start));
+  std::printf("%s: %d Loop step(s): %d vertices, %d faces -> %s (%ju bytes, %.2f s)\n", input.string().c_str(), levels,
+              mesh.num_vertices(), mesh.num_faces(), output.string().c_str(), std::filesystem::file_size(output),
+              geodual::bench::seconds_since(start));
   return 0;
 }
 

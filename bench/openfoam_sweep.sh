@@ -26,10 +26,11 @@ while IFS= read -r -d '' file; do
   [[ -n ${seen[$sum]:-} ]] && continue
   seen[$sum]=1
   relative=${file#"$root"/}
-  example=$(echo "$relative" | awk -F/ '{print $(NF-3)}')
+  example=$(echo "$relative" | awk -F/ '{print (NF >= 4 ? $(NF - 3) : $1)}')
   base=$(basename "$file" .gz)
   target="$work/$example-$base"
-  for ((n = 2; -e $target; ++n)); do target="$work/$example-$n-$base"; done
+  n=2
+  while [[ -e $target ]]; do target="$work/$example-$((n++))-$base"; done
   zcat -f "$file" >"$target"
   meshes+=("$target")
 done < <(find "$root" -type f \( -iname '*.obj' -o -iname '*.obj.gz' -o -iname '*.stl' -o -iname '*.stl.gz' \) -print0 | sort -z)

@@ -65,8 +65,8 @@
 
 #include "bench_support.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
@@ -306,11 +306,11 @@ double surface_area(const TriangleMesh& mesh) {
 }
 
 struct CgalSearch {
-  std::optional<RunResult> result;  ///< the run reported (with figures)
-  double length = 0;                ///< its target edge length
-  int runs = 0;                     ///< remeshes done, the reported one included
-  double search_seconds = 0;        ///< wall time of all of them
-  std::string failure;              ///< why there is no result
+  std::optional<RunResult> result;    ///< the run reported (with figures)
+  double length = 0;                  ///< its target edge length
+  int runs = 0;                       ///< remeshes done, the reported one included
+  double search_seconds = 0;          ///< wall time of all of them
+  std::string failure;                ///< why there is no result
   std::int64_t failed_child_rss = 0;  ///< the failed run's peak RSS
 };
 
@@ -422,8 +422,8 @@ void add_row(TextTable& table, const std::string& method, const std::string& sit
              const std::string& seconds, const std::string& cpu, const std::string& rss, const std::string& notes) {
   table.add_row({method, sites, grouped(f.vertices), grouped(f.faces), std::to_string(f.euler_characteristic),
                  std::to_string(f.boundary_loops), fixed(f.q_min, 3), fixed(f.q_avg, 3), fixed(f.theta_min_deg, 1),
-                 fixed(f.theta_min_avg_deg, 1), fixed(f.pct_angles_lt30, 2), fixed(f.p30, 2),
-                 fixed(f.pct_valence6, 1), fixed(f.hausdorff_pct, 3), fixed(f.rms_pct, 4), seconds, cpu, rss, notes});
+                 fixed(f.theta_min_avg_deg, 1), fixed(f.pct_angles_lt30, 2), fixed(f.p30, 2), fixed(f.pct_valence6, 1),
+                 fixed(f.hausdorff_pct, 3), fixed(f.rms_pct, 4), seconds, cpu, rss, notes});
 }
 
 void add_run_row(TextTable& table, const std::string& method, std::int64_t sites, const RunResult& run,
@@ -446,7 +446,8 @@ int run_benchmark(const Options& options) {
   std::cout << "machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads, load "
             << load_average() << "\n";
   std::cout << "options: Lloyd " << options.lloyd << " iterations (tolerance " << options.lloyd_tolerance
-            << ", warm start " << options.warm_start << " steps), CGAL isotropic_remeshing " << options.cgal_iterations << " iterations, borders "
+            << ", warm start " << options.warm_start << " steps), CGAL isotropic_remeshing " << options.cgal_iterations
+            << " iterations, borders "
             << (options.border == BorderMode::keep ? "kept (CGAL default)" : "protected (split to L, then fixed)")
             << ", vertex count within " << options.tolerance_pct << " %, " << grouped(options.samples)
             << " samples per side\n";
@@ -471,7 +472,8 @@ int run_benchmark(const Options& options) {
       std::vector<Variant> variants = {{0, true, 0.0, "geodual"}};
       if (options.lloyd > 0 && options.plain_lloyd) variants.push_back({options.lloyd, false, 0.0, "geodual+plain"});
       if (options.lloyd > 0) variants.push_back({options.lloyd, true, 0.0, "geodual+Lloyd"});
-      if (options.lloyd > 0 && options.adapt > 0) variants.push_back({options.lloyd, true, options.adapt, "geodual+adapt"});
+      if (options.lloyd > 0 && options.adapt > 0)
+        variants.push_back({options.lloyd, true, options.adapt, "geodual+adapt"});
       for (const auto& [lloyd, newton, adapt, method] : variants) {
         std::cerr << "quality_bench:   " << method << " " << sites << " sites\n";
         const ChildOutcome outcome =
@@ -485,8 +487,10 @@ int run_benchmark(const Options& options) {
         if (!input_figures) input_figures = run.input;
         std::string notes;
         if (lloyd > 0) notes = std::to_string(run.lloyd_iterations) + " Lloyd iterations";
-        if (run.warm_start_iterations > 0) notes += " after " + std::to_string(run.warm_start_iterations) + " warm-start steps";
-        if (run.sites_added > 0) notes += (notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
+        if (run.warm_start_iterations > 0)
+          notes += " after " + std::to_string(run.warm_start_iterations) + " warm-start steps";
+        if (run.sites_added > 0)
+          notes += (notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
         add_run_row(table, method, sites, run, notes);
         if (adapt == 0) target = run.vertices;  // the Lloyd row's when it succeeds
       }
@@ -523,7 +527,8 @@ int run_benchmark(const Options& options) {
 // Command line
 
 constexpr const char* usage =
-    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--plain-lloyd] [--adapt S]\n"
+    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--plain-lloyd] [--adapt "
+    "S]\n"
     "                     [--no-cgal]\n"
     "                     [--cgal-iterations N]\n"
     "                     [--cgal-border keep|protect] [--tolerance PCT] [--max-runs R] [--samples S]\n"
@@ -595,7 +600,6 @@ Options parse_options(int argc, char** argv) {
 }  // namespace geodual::bench
 
 int main(int argc, char** argv) {
-  return geodual::bench::run_main("quality_bench", [&] {
-    return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv));
-  });
+  return geodual::bench::run_main(
+      "quality_bench", [&] { return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv)); });
 }

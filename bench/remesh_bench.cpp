@@ -14,8 +14,8 @@
 #include "bench_support.hpp"
 #include "subdivided_inputs.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
@@ -113,11 +113,22 @@ int run_benchmark(const Options& options) {
               << "x (cached in " << options.cache.string() << ")\n";
     meshes.push_back(ensure_subdivided(options.subdivided_input, level, options.cache));
   }
-  const std::filesystem::path scratch = std::filesystem::temp_directory_path() / ("remesh_bench_" + std::to_string(::getpid()));
+  const std::filesystem::path scratch =
+      std::filesystem::temp_directory_path() / ("remesh_bench_" + std::to_string(::getpid()));
   std::filesystem::create_directories(scratch);
 
-  TextTable table({{"mesh", TextTable::Align::left}, {"faces"}, {"sites"}, {"added"}, {"load s"}, {"sample s"},
-                   {"geodesics s"}, {"diagram s"}, {"dual s"}, {"write s"}, {"total s"}, {"peak RSS MiB"}});
+  TextTable table({{"mesh", TextTable::Align::left},
+                   {"faces"},
+                   {"sites"},
+                   {"added"},
+                   {"load s"},
+                   {"sample s"},
+                   {"geodesics s"},
+                   {"diagram s"},
+                   {"dual s"},
+                   {"write s"},
+                   {"total s"},
+                   {"peak RSS MiB"}});
   std::cout << "machine: " << cpu_model() << ", load " << load_average() << "\n\n";
   for (const auto& mesh : meshes) {
     for (const std::int64_t sites : options.site_counts) {
@@ -152,7 +163,6 @@ int run_benchmark(const Options& options) {
 }  // namespace geodual::bench
 
 int main(int argc, char** argv) {
-  return geodual::bench::run_main("remesh_bench", [&] {
-    return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv));
-  });
+  return geodual::bench::run_main(
+      "remesh_bench", [&] { return geodual::bench::run_benchmark(geodual::bench::parse_options(argc, argv)); });
 }

@@ -192,7 +192,8 @@ TriangleMesh with_faces(const TriangleMesh& mesh, const std::vector<Index>& face
   TriangleMesh part;
   part.vertices = mesh.vertices;
   part.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < faces.size(); ++i) part.faces.row(static_cast<Eigen::Index>(i)) = mesh.faces.row(faces[i]);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    part.faces.row(static_cast<Eigen::Index>(i)) = mesh.faces.row(faces[i]);
   return part;
 }
 
@@ -204,15 +205,17 @@ Topology topology_of(const TriangleMesh& mesh) {
 
 /// Compares the surface remeshed with the remesh, in total and per component:
 /// `site_component[i]` is the surface component of remesh vertex i.
-void compare_topology(const TriangleMesh& surface, const TriangleMesh& remesh, const std::vector<Index>& surface_component,
-                      Index components, const std::vector<Index>& site_component, RunFigures& figures) {
+void compare_topology(const TriangleMesh& surface, const TriangleMesh& remesh,
+                      const std::vector<Index>& surface_component, Index components,
+                      const std::vector<Index>& site_component, RunFigures& figures) {
   std::vector<std::vector<Index>> surface_faces(static_cast<std::size_t>(components));
   std::vector<std::vector<Index>> remesh_faces(static_cast<std::size_t>(components));
   std::vector<Index> all_surface_faces;
   for (Index f = 0; f < surface.num_faces(); ++f) {
     if (!is_proper_face(surface, f)) continue;
     all_surface_faces.push_back(f);
-    surface_faces[static_cast<std::size_t>(surface_component[static_cast<std::size_t>(surface.faces(f, 0))])].push_back(f);
+    surface_faces[static_cast<std::size_t>(surface_component[static_cast<std::size_t>(surface.faces(f, 0))])].push_back(
+        f);
   }
   std::int64_t unplaced = 0;  // remesh faces whose first corner lies on no component
   for (Index f = 0; f < remesh.num_faces(); ++f) {
@@ -302,8 +305,15 @@ int run_sweep(const Options& options) {
   const std::vector<SweepMesh> meshes = sweep_meshes(options);
   if (options.list) {
     // Names, and what the generated cases are made of (analyze_mesh's figures).
-    TextTable list({{"mesh", TextTable::Align::left}, {"file", TextTable::Align::left}, {"faces"}, {"components"},
-                    {"loops"}, {"chi"}, {"nm edges"}, {"nm vertices"}, {"duplicates"}});
+    TextTable list({{"mesh", TextTable::Align::left},
+                    {"file", TextTable::Align::left},
+                    {"faces"},
+                    {"components"},
+                    {"loops"},
+                    {"chi"},
+                    {"nm edges"},
+                    {"nm vertices"},
+                    {"duplicates"}});
     for (const SweepMesh& mesh : meshes) {
       if (!mesh.generate) {
         list.add_row({mesh.name, mesh.path.string()});
@@ -320,8 +330,20 @@ int run_sweep(const Options& options) {
   }
   if (meshes.empty()) throw UsageError("no meshes (run from the repository root or give --repo)");
 
-  TextTable table({{"mesh", TextTable::Align::left}, {"faces"}, {"sites"}, {"added"}, {"result", TextTable::Align::left},
-                   {"time s"}, {"peak MiB"}, {"Qmin"}, {"Qavg"}, {"H %"}, {"pieces"}, {"chi"}, {"loops"}, {"topology", TextTable::Align::left},
+  TextTable table({{"mesh", TextTable::Align::left},
+                   {"faces"},
+                   {"sites"},
+                   {"added"},
+                   {"result", TextTable::Align::left},
+                   {"time s"},
+                   {"peak MiB"},
+                   {"Qmin"},
+                   {"Qavg"},
+                   {"H %"},
+                   {"pieces"},
+                   {"chi"},
+                   {"loops"},
+                   {"topology", TextTable::Align::left},
                    {"dropped %"}});
   std::vector<std::string> failures;
   std::cout << "machine: " << cpu_model() << ", load " << load_average() << "\n\n";
@@ -348,13 +370,16 @@ int run_sweep(const Options& options) {
       const auto r = in.get<RunFigures>();
       std::string topology = "yes";
       if (r.components_differing > 0) {
-        topology = "no (" + std::to_string(r.components_differing) + " of " + std::to_string(r.surface.components) + ")";
+        topology =
+            "no (" + std::to_string(r.components_differing) + " of " + std::to_string(r.surface.components) + ")";
       }
-      table.add_row({mesh.name, grouped(r.input_faces), grouped(sites), grouped(r.sites_added), "ok", seconds,
-                     mebibytes(r.peak_rss), fixed(r.q_min, 3), fixed(r.q_avg, 3), fixed(r.hausdorff_pct, 3),
-                     arrow(r.surface.components, r.remesh.components), arrow(r.surface.euler_characteristic, r.remesh.euler_characteristic),
-                     arrow(r.surface.boundary_loops, r.remesh.boundary_loops), topology,
-                     fixed(r.dropped_area_pct, 2) + (r.dropped_faces > 0 ? " (" + grouped(r.dropped_faces) + " f)" : "")});
+      table.add_row(
+          {mesh.name, grouped(r.input_faces), grouped(sites), grouped(r.sites_added), "ok", seconds,
+           mebibytes(r.peak_rss), fixed(r.q_min, 3), fixed(r.q_avg, 3), fixed(r.hausdorff_pct, 3),
+           arrow(r.surface.components, r.remesh.components),
+           arrow(r.surface.euler_characteristic, r.remesh.euler_characteristic),
+           arrow(r.surface.boundary_loops, r.remesh.boundary_loops), topology,
+           fixed(r.dropped_area_pct, 2) + (r.dropped_faces > 0 ? " (" + grouped(r.dropped_faces) + " f)" : "")});
     }
   }
   table.print(std::cout);

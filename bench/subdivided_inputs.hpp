@@ -10,10 +10,10 @@
 //
 // Header-only: every bench/*.cpp is its own executable (bench/CMakeLists.txt).
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

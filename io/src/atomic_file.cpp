@@ -41,8 +41,7 @@ void refuse_to_overwrite_inputs(const fs::path& output, std::initializer_list<fs
   }
 }
 
-void write_file_atomically(const fs::path& output,
-                           const std::function<void(std::ostream&)>& write) {
+void write_file_atomically(const fs::path& output, const std::function<void(std::ostream&)>& write) {
   std::error_code ec;
   if (fs::is_directory(output, ec)) {
     throw Error(output.string() + ": is a directory, expected an output file path");
@@ -97,7 +96,8 @@ void require_output_path(const fs::path& path, std::initializer_list<std::string
   // The folder must take a new file now, not only after the work is done.
   const fs::path probe = temporary_sibling(path);
   if (!std::ofstream(probe, std::ios::binary)) {
-    throw Error(path.string() + ": cannot create a file in '" + folder.string() + "' (permission denied or read-only?)");
+    throw Error(path.string() + ": cannot create a file in '" + folder.string() +
+                "' (permission denied or read-only?)");
   }
   fs::remove(probe, error);
 }

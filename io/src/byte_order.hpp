@@ -19,13 +19,21 @@ namespace byte_order_internal {
 template <std::size_t Size>
 struct UnsignedOfSize;
 template <>
-struct UnsignedOfSize<1> { using type = std::uint8_t; };
+struct UnsignedOfSize<1> {
+  using type = std::uint8_t;
+};
 template <>
-struct UnsignedOfSize<2> { using type = std::uint16_t; };
+struct UnsignedOfSize<2> {
+  using type = std::uint16_t;
+};
 template <>
-struct UnsignedOfSize<4> { using type = std::uint32_t; };
+struct UnsignedOfSize<4> {
+  using type = std::uint32_t;
+};
 template <>
-struct UnsignedOfSize<8> { using type = std::uint64_t; };
+struct UnsignedOfSize<8> {
+  using type = std::uint64_t;
+};
 
 template <class U>
 constexpr U reverse_bytes(U value) {

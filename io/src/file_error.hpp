@@ -41,8 +41,7 @@ template <class... Pieces>
 
 /// Throws geodual::Error("<file>: line <line>: <pieces...>").
 template <class... Pieces>
-[[noreturn]] void throw_line_error(const std::filesystem::path& file, std::size_t line,
-                                   const Pieces&... pieces) {
+[[noreturn]] void throw_line_error(const std::filesystem::path& file, std::size_t line, const Pieces&... pieces) {
   throw Error(str_cat(display_name(file), ": line ", line, ": ", pieces...));
 }
 

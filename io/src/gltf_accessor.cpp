@@ -54,12 +54,12 @@ std::vector<std::uint32_t> load_scalars(const AccessorView& view) {
 
 }  // namespace
 
-AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t index,
-                           AccessorShape shape, const std::string& user) {
+AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t index, AccessorShape shape,
+                           const std::string& user) {
   const Json& accessors = array_member(root, "accessors", user);
   if (index >= accessors.size()) {
-    fail(user, "refers to accessor " + std::to_string(index) + ", but the file has " +
-                   std::to_string(accessors.size()));
+    fail(user,
+         "refers to accessor " + std::to_string(index) + ", but the file has " + std::to_string(accessors.size()));
   }
   const Json& accessor = accessors[index];
   const std::string where = user + " " + describe("accessor", index, accessor);
@@ -96,8 +96,7 @@ AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t i
   const std::uint64_t view_length = required_uint(view, "byteLength", view_where);
   if (view_length == 0) fail(view_where, "'byteLength' must be at least 1");
 
-  const std::uint64_t element_size =
-      component_size(*component_type) * (shape == AccessorShape::vec3 ? 3 : 1);
+  const std::uint64_t element_size = component_size(*component_type) * (shape == AccessorShape::vec3 ? 3 : 1);
   const std::optional<std::uint64_t> declared_stride = optional_uint(view, "byteStride", view_where);
   if (declared_stride) {
     if (*declared_stride < min_byte_stride || *declared_stride > max_byte_stride) {
@@ -105,29 +104,29 @@ AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t i
     }
     if (*declared_stride < element_size) {
       fail(view_where, "'byteStride' " + std::to_string(*declared_stride) +
-                           " is shorter than one element of accessor " + std::to_string(index) +
-                           " (" + std::to_string(element_size) + " bytes)");
+                           " is shorter than one element of accessor " + std::to_string(index) + " (" +
+                           std::to_string(element_size) + " bytes)");
     }
   }
   const std::uint64_t stride = declared_stride.value_or(element_size);
 
   const std::span<const std::byte> buffer = buffers.bytes(buffer_index);
   if (view_offset > buffer.size() || view_length > buffer.size() - view_offset) {
-    fail(view_where, "bytes " + std::to_string(view_offset) + ".." +
-                         std::to_string(view_offset + view_length) + " run past the end of buffer " +
-                         std::to_string(buffer_index) + " (" + std::to_string(buffer.size()) + " bytes)");
+    fail(view_where, "bytes " + std::to_string(view_offset) + ".." + std::to_string(view_offset + view_length) +
+                         " run past the end of buffer " + std::to_string(buffer_index) + " (" +
+                         std::to_string(buffer.size()) + " bytes)");
   }
   // All terms are below 2^53 and stride <= 252, so none of this overflows.
   const std::uint64_t accessor_bytes = (count - 1) * stride + element_size;
   if (accessor_offset > view_length || accessor_bytes > view_length - accessor_offset) {
-    fail(where, std::to_string(count) + " elements from byteOffset " + std::to_string(accessor_offset) +
-                    " need " + std::to_string(accessor_offset + accessor_bytes) + " bytes, but bufferView " +
+    fail(where, std::to_string(count) + " elements from byteOffset " + std::to_string(accessor_offset) + " need " +
+                    std::to_string(accessor_offset + accessor_bytes) + " bytes, but bufferView " +
                     std::to_string(*view_index) + " has " + std::to_string(view_length));
   }
 
   AccessorView result;
-  result.bytes = buffer.subspan(static_cast<std::size_t>(view_offset + accessor_offset),
-                                static_cast<std::size_t>(accessor_bytes));
+  result.bytes =
+      buffer.subspan(static_cast<std::size_t>(view_offset + accessor_offset), static_cast<std::size_t>(accessor_bytes));
   result.count = static_cast<std::size_t>(count);
   result.stride = static_cast<std::size_t>(stride);
   result.component_type = *component_type;

@@ -26,18 +26,18 @@ namespace geodual::io::detail::gltf {
 struct AccessorView {
   std::span<const std::byte> bytes;  ///< from element 0's first byte to the last element's last byte
   std::size_t count = 0;
-  std::size_t stride = 0;            ///< bytes from one element to the next
+  std::size_t stride = 0;  ///< bytes from one element to the next
   ComponentType component_type = ComponentType::float_;
   bool normalized = false;
-  std::string where;                 ///< e.g. "scan.glb: mesh 0 primitive 1: POSITION accessor 4", for messages
+  std::string where;  ///< e.g. "scan.glb: mesh 0 primitive 1: POSITION accessor 4", for messages
 };
 
 enum class AccessorShape { scalar, vec3 };
 
 /// Accessor `index`, which must have the given shape. `where` names the user,
 /// e.g. "scan.glb: mesh 0 primitive 1: POSITION".
-AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t index,
-                           AccessorShape shape, const std::string& where);
+AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t index, AccessorShape shape,
+                           const std::string& where);
 
 /// Appends count x 3 coordinates to `out`. FLOAT always; (unsigned) byte and
 /// short, normalized or not, when `allow_quantized` (KHR_mesh_quantization).

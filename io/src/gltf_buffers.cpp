@@ -73,13 +73,12 @@ std::vector<std::byte> decode_data_uri(std::string_view uri, std::string_view wh
   return std::move(*data);
 }
 
-std::vector<std::byte> read_file_prefix(const fs::path& path, std::uint64_t length,
-                                        std::string_view uri, std::string_view where) {
+std::vector<std::byte> read_file_prefix(const fs::path& path, std::uint64_t length, std::string_view uri,
+                                        std::string_view where) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) {
-    fail(where, "external buffer file '" + shortened(uri) + "' not found (looked for '" +
-                    path.string() + "')");
+    fail(where, "external buffer file '" + shortened(uri) + "' not found (looked for '" + path.string() + "')");
   }
   if (!fs::is_regular_file(status)) {
     fail(where, "external buffer '" + path.string() + "' is not a regular file");
@@ -101,8 +100,8 @@ std::vector<std::byte> read_file_prefix(const fs::path& path, std::uint64_t leng
 
 fs::path resolve_relative_uri(std::string_view uri, const fs::path& file, std::string_view where) {
   if (has_scheme(uri)) {
-    fail(where, "URI '" + shortened(uri) +
-                    "' is not a relative file reference (only data: URIs and relative paths are read)");
+    fail(where,
+         "URI '" + shortened(uri) + "' is not a relative file reference (only data: URIs and relative paths are read)");
   }
   const std::optional<std::string> decoded = percent_decode(uri);
   if (!decoded) fail(where, "URI '" + shortened(uri) + "' has an invalid %-escape");
@@ -133,8 +132,8 @@ fs::path resolve_relative_uri(std::string_view uri, const fs::path& file, std::s
   return target;
 }
 
-BufferStore::BufferStore(const Json& root, std::optional<std::span<const std::byte>> glb_bin,
-                         fs::path file, std::string where)
+BufferStore::BufferStore(const Json& root, std::optional<std::span<const std::byte>> glb_bin, fs::path file,
+                         std::string where)
     : buffers_(array_member(root, "buffers", where)),
       glb_bin_(glb_bin),
       file_(std::move(file)),
@@ -170,8 +169,8 @@ std::span<const std::byte> BufferStore::load(std::size_t index) {
   if (starts_with_ignoring_case(*uri, "data:")) {
     data = decode_data_uri(*uri, where);
     if (data.size() < length) {
-      fail(where, "data URI holds " + std::to_string(data.size()) +
-                      " bytes, fewer than the declared byteLength " + std::to_string(length));
+      fail(where, "data URI holds " + std::to_string(data.size()) + " bytes, fewer than the declared byteLength " +
+                      std::to_string(length));
     }
     data.resize(static_cast<std::size_t>(length));
   } else {

@@ -29,8 +29,8 @@ class BufferStore {
  public:
   /// `root` must outlive the store. `glb_bin` is the GLB BIN chunk, if any.
   /// `file` is the glTF file's path (empty: read from memory without a name).
-  BufferStore(const Json& root, std::optional<std::span<const std::byte>> glb_bin,
-              std::filesystem::path file, std::string where);
+  BufferStore(const Json& root, std::optional<std::span<const std::byte>> glb_bin, std::filesystem::path file,
+              std::string where);
 
   std::size_t size() const { return loaded_.size(); }
 

@@ -68,7 +68,7 @@ enum class PrimitiveMode : std::uint32_t {
 };
 
 /// The GLB container: a 12-byte header, then chunks of (length, type, data).
-inline constexpr std::uint32_t glb_magic = 0x46546C67;       // "glTF"
+inline constexpr std::uint32_t glb_magic = 0x46546C67;  // "glTF"
 inline constexpr std::uint32_t glb_version = 2;
 inline constexpr std::uint32_t glb_chunk_json = 0x4E4F534A;  // "JSON"
 inline constexpr std::uint32_t glb_chunk_bin = 0x004E4942;   // "BIN\0"

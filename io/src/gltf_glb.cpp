@@ -11,8 +11,7 @@
 namespace geodual::io::detail {
 namespace {
 
-static_assert(std::endian::native == std::endian::little,
-              "GLB is little-endian; this code reads it in native order");
+static_assert(std::endian::native == std::endian::little, "GLB is little-endian; this code reads it in native order");
 
 std::uint32_t load_u32(std::span<const std::byte> data, std::size_t offset) {
   std::uint32_t value = 0;
@@ -38,8 +37,7 @@ std::string chunk_type_name(std::uint32_t type) {
 GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where) {
   using namespace gltf;
   if (data.size() < glb_header_size) {
-    fail(where, "truncated GLB: " + std::to_string(data.size()) +
-                    " bytes, shorter than the 12-byte header");
+    fail(where, "truncated GLB: " + std::to_string(data.size()) + " bytes, shorter than the 12-byte header");
   }
   if (load_u32(data, 0) != glb_magic) {
     fail(where, "not a GLB file (the first 4 bytes are not 'glTF')");
@@ -49,13 +47,12 @@ GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where) {
   }
   const std::uint32_t declared_length = load_u32(data, 8);
   if (declared_length > data.size()) {
-    fail(where, "truncated GLB: the header declares " + std::to_string(declared_length) +
-                    " bytes but the data has " + std::to_string(data.size()));
+    fail(where, "truncated GLB: the header declares " + std::to_string(declared_length) + " bytes but the data has " +
+                    std::to_string(data.size()));
   }
   if (declared_length < data.size()) {
-    fail(where, "GLB header declares " + std::to_string(declared_length) +
-                    " bytes but the data has " + std::to_string(data.size()) +
-                    " (trailing bytes after the GLB)");
+    fail(where, "GLB header declares " + std::to_string(declared_length) + " bytes but the data has " +
+                    std::to_string(data.size()) + " (trailing bytes after the GLB)");
   }
 
   GlbChunks chunks;
@@ -63,16 +60,15 @@ GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where) {
   std::size_t offset = glb_header_size;
   for (int chunk = 0; offset < data.size(); ++chunk) {
     if (data.size() - offset < glb_chunk_header_size) {
-      fail(where, "truncated GLB: chunk " + std::to_string(chunk) + " header at byte " +
-                      std::to_string(offset) + " runs past the end");
+      fail(where, "truncated GLB: chunk " + std::to_string(chunk) + " header at byte " + std::to_string(offset) +
+                      " runs past the end");
     }
     const std::uint32_t length = load_u32(data, offset);
     const std::uint32_t type = load_u32(data, offset + 4);
     offset += glb_chunk_header_size;
     if (length > data.size() - offset) {
-      fail(where, "truncated GLB: chunk " + std::to_string(chunk) + " ('" + chunk_type_name(type) +
-                      "') declares " + std::to_string(length) + " bytes but only " +
-                      std::to_string(data.size() - offset) + " remain");
+      fail(where, "truncated GLB: chunk " + std::to_string(chunk) + " ('" + chunk_type_name(type) + "') declares " +
+                      std::to_string(length) + " bytes but only " + std::to_string(data.size() - offset) + " remain");
     }
     const std::span<const std::byte> payload = data.subspan(offset, length);
     offset += length;
@@ -87,8 +83,7 @@ GlbChunks parse_glb(std::span<const std::byte> data, std::string_view where) {
       fail(where, "GLB has a second JSON chunk (chunk " + std::to_string(chunk) + ")");
     } else if (type == glb_chunk_bin) {
       if (chunk != 1) {
-        fail(where, "the GLB BIN chunk must be the second chunk, found it as chunk " +
-                        std::to_string(chunk));
+        fail(where, "the GLB BIN chunk must be the second chunk, found it as chunk " + std::to_string(chunk));
       }
       chunks.bin = payload;
     }

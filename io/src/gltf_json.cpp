@@ -36,9 +36,7 @@ std::optional<std::uint64_t> as_uint(const Json& value) {
 
 }  // namespace
 
-void fail(std::string_view where, std::string_view what) {
-  throw Error(std::string(where) + ": " + std::string(what));
-}
+void fail(std::string_view where, std::string_view what) { throw Error(std::string(where) + ": " + std::string(what)); }
 
 const Json* find_member(const Json& object, std::string_view key) {
   if (!object.is_object()) return nullptr;
@@ -63,14 +61,12 @@ const Json& array_member(const Json& object, std::string_view key, std::string_v
 std::uint64_t uint_value(const Json& value, std::string_view what, std::string_view where) {
   const std::optional<std::uint64_t> v = as_uint(value);
   if (!v) {
-    fail(where, std::string(what) + " must be a non-negative integer (at most 2^53), found " +
-                    short_text(value));
+    fail(where, std::string(what) + " must be a non-negative integer (at most 2^53), found " + short_text(value));
   }
   return *v;
 }
 
-std::optional<std::uint64_t> optional_uint(const Json& object, std::string_view key,
-                                           std::string_view where) {
+std::optional<std::uint64_t> optional_uint(const Json& object, std::string_view key, std::string_view where) {
   const Json* value = find_member(object, key);
   if (value == nullptr) return std::nullopt;
   return uint_value(*value, quoted(key), where);
@@ -82,8 +78,7 @@ std::uint64_t required_uint(const Json& object, std::string_view key, std::strin
   return *v;
 }
 
-std::size_t index_value(const Json& value, std::size_t count, std::string_view kind,
-                        std::string_view where) {
+std::size_t index_value(const Json& value, std::size_t count, std::string_view kind, std::string_view where) {
   const std::uint64_t index = uint_value(value, std::string(kind) + " index", where);
   if (index >= count) {
     fail(where, "refers to " + std::string(kind) + " " + std::to_string(index) + ", but the file has " +
@@ -92,23 +87,21 @@ std::size_t index_value(const Json& value, std::size_t count, std::string_view k
   return static_cast<std::size_t>(index);
 }
 
-std::optional<std::size_t> optional_index(const Json& object, std::string_view key,
-                                          std::size_t count, std::string_view kind,
-                                          std::string_view where) {
+std::optional<std::size_t> optional_index(const Json& object, std::string_view key, std::size_t count,
+                                          std::string_view kind, std::string_view where) {
   const Json* value = find_member(object, key);
   if (value == nullptr) return std::nullopt;
   return index_value(*value, count, kind, where);
 }
 
-std::size_t required_index(const Json& object, std::string_view key, std::size_t count,
-                           std::string_view kind, std::string_view where) {
+std::size_t required_index(const Json& object, std::string_view key, std::size_t count, std::string_view kind,
+                           std::string_view where) {
   const std::optional<std::size_t> index = optional_index(object, key, count, kind, where);
   if (!index) fail(where, "required " + quoted(key) + " is missing");
   return *index;
 }
 
-std::optional<std::string> optional_string(const Json& object, std::string_view key,
-                                           std::string_view where) {
+std::optional<std::string> optional_string(const Json& object, std::string_view key, std::string_view where) {
   const Json* value = find_member(object, key);
   if (value == nullptr) return std::nullopt;
   if (!value->is_string()) fail(where, quoted(key) + " must be a string");

@@ -34,8 +34,7 @@ const Json* optional_object(const Json& object, std::string_view key, std::strin
 const Json& array_member(const Json& object, std::string_view key, std::string_view where);
 
 /// A non-negative integer (at most 2^53); nullopt when absent.
-std::optional<std::uint64_t> optional_uint(const Json& object, std::string_view key,
-                                           std::string_view where);
+std::optional<std::uint64_t> optional_uint(const Json& object, std::string_view key, std::string_view where);
 std::uint64_t required_uint(const Json& object, std::string_view key, std::string_view where);
 
 /// A non-negative integer JSON value (not a member), e.g. an element of "children".
@@ -43,17 +42,14 @@ std::uint64_t uint_value(const Json& value, std::string_view what, std::string_v
 
 /// An index into an array of `count` elements (`kind` names them in messages,
 /// e.g. "accessor").
-std::size_t index_value(const Json& value, std::size_t count, std::string_view kind,
-                        std::string_view where);
-std::optional<std::size_t> optional_index(const Json& object, std::string_view key,
-                                          std::size_t count, std::string_view kind,
-                                          std::string_view where);
+std::size_t index_value(const Json& value, std::size_t count, std::string_view kind, std::string_view where);
+std::optional<std::size_t> optional_index(const Json& object, std::string_view key, std::size_t count,
+                                          std::string_view kind, std::string_view where);
 
-std::size_t required_index(const Json& object, std::string_view key, std::size_t count,
-                           std::string_view kind, std::string_view where);
+std::size_t required_index(const Json& object, std::string_view key, std::size_t count, std::string_view kind,
+                           std::string_view where);
 
-std::optional<std::string> optional_string(const Json& object, std::string_view key,
-                                           std::string_view where);
+std::optional<std::string> optional_string(const Json& object, std::string_view key, std::string_view where);
 bool optional_bool(const Json& object, std::string_view key, bool fallback, std::string_view where);
 
 /// Exactly N numbers, e.g. a node's "translation"; nullopt when absent.

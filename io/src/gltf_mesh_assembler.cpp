@@ -41,8 +41,9 @@ TriangleMesh MeshAssembler::assemble(const std::vector<MeshInstance>& instances)
     total_vertices += plan.vertices;
     total_triangles += plan.triangles;
     if (total_vertices > max_elements || total_triangles > max_elements) {
-      fail(where, "the scene expands to more than 2^31 - 1 vertices or triangles (counting every instance of "
-                  "every mesh), more than a geodual mesh holds");
+      fail(where,
+           "the scene expands to more than 2^31 - 1 vertices or triangles (counting every instance of "
+           "every mesh), more than a geodual mesh holds");
     }
   }
 
@@ -145,10 +146,10 @@ void MeshAssembler::append_triangles(const PrimitivePlan& primitive, std::size_t
     corners = read_indices(*primitive.indices);
     for (std::size_t i = 0; i < corners.size(); ++i) {
       if (corners[i] >= vertex_count) {
-        fail(primitive.indices->where,
-             "element " + std::to_string(i) + " is vertex index " + std::to_string(corners[i]) +
-                 ", but POSITION accessor " + std::to_string(primitive.position_accessor) + " has only " +
-                 std::to_string(vertex_count) + " vertices");
+        fail(primitive.indices->where, "element " + std::to_string(i) + " is vertex index " +
+                                           std::to_string(corners[i]) + ", but POSITION accessor " +
+                                           std::to_string(primitive.position_accessor) + " has only " +
+                                           std::to_string(vertex_count) + " vertices");
       }
     }
   } else {
@@ -188,7 +189,8 @@ std::vector<std::string> MeshAssembler::notes() const {
       kinds += (kinds.empty() ? "" : ", ") + std::to_string(n) + " " + mode;
       total += n;
     }
-    notes.push_back("skipped " + counted(total, "non-triangle primitive", "non-triangle primitives") + " (" + kinds + ")");
+    notes.push_back("skipped " + counted(total, "non-triangle primitive", "non-triangle primitives") + " (" + kinds +
+                    ")");
   }
   if (without_position_ > 0) {
     notes.push_back("skipped " + counted(without_position_, "primitive", "primitives") + " without POSITION");

@@ -67,8 +67,8 @@ class MeshAssembler {
   bool allow_quantized_;
   std::string where_;
   std::map<std::size_t, MeshPlan> plans_;  // by mesh index
-  std::vector<double> vertices_;            // x, y, z per vertex
-  std::vector<Index> faces_;                // three per triangle
+  std::vector<double> vertices_;           // x, y, z per vertex
+  std::vector<Index> faces_;               // three per triangle
 
   std::size_t instances_ = 0;
   std::size_t transformed_instances_ = 0;

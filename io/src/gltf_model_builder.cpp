@@ -67,15 +67,16 @@ void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.attributes["POSITION"] = add_positions(mesh.vertices, where);
   const std::vector<float> normals = area_weighted_vertex_normals(mesh.vertices, mesh.faces);
-  primitive.attributes["NORMAL"] = add_accessor(bytes_of(normals), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                TINYGLTF_TYPE_VEC3, normals.size() / 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+  primitive.attributes["NORMAL"] = add_accessor(bytes_of(normals), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                                normals.size() / 3, TINYGLTF_TARGET_ARRAY_BUFFER);
   if (const auto color = add_colors(colors, mesh.vertices.rows(), where)) primitive.attributes["COLOR_0"] = *color;
 
   std::set<std::string, std::less<>> names;
   for (const GltfVertexScalar& scalar : scalars) {
     const std::string scalar_where = where + ": scalar attribute '" + scalar.name + "'";
     if (scalar.name.size() < 2 || scalar.name[0] != '_') {
-      fail(scalar_where, "name must start with '_' (glTF's rule for application-specific attributes), e.g. '_DISTANCE'");
+      fail(scalar_where,
+           "name must start with '_' (glTF's rule for application-specific attributes), e.g. '_DISTANCE'");
     }
     if (!names.insert(scalar.name).second) fail(scalar_where, "is given twice");
     if (scalar.values.size() != static_cast<std::size_t>(mesh.num_vertices())) {
@@ -88,8 +89,8 @@ void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh
       }
     }
     primitive.attributes[valid_utf8(scalar.name)] =
-        add_accessor(bytes_of(scalar.values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
-                     scalar.values.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+        add_accessor(bytes_of(scalar.values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, scalar.values.size(),
+                     TINYGLTF_TARGET_ARRAY_BUFFER);
   }
   primitive.indices = add_indices(corners, mesh.num_vertices());
   add_node(name, std::move(primitive));
@@ -115,7 +116,8 @@ void ModelBuilder::add_points(const GltfPointSet& points) {
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_POINTS;
   primitive.attributes["POSITION"] = add_positions(points.points, where);
-  if (const auto color = add_colors(points.colors, points.points.rows(), where)) primitive.attributes["COLOR_0"] = *color;
+  if (const auto color = add_colors(points.colors, points.points.rows(), where))
+    primitive.attributes["COLOR_0"] = *color;
   add_node(points.name, std::move(primitive));
 }
 
@@ -150,29 +152,29 @@ int ModelBuilder::add_positions(const VertexMatrix& points, const std::string& w
 std::optional<int> ModelBuilder::add_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where) {
   if (colors.size() == 0) return std::nullopt;
   if (colors.rows() != rows || (colors.cols() != 3 && colors.cols() != 4)) {
-    fail(where, "colours are " + std::to_string(colors.rows()) + " x " + std::to_string(colors.cols()) +
-                    "; expected " + std::to_string(rows) + " x 3 (RGB) or x 4 (RGBA)");
+    fail(where, "colours are " + std::to_string(colors.rows()) + " x " + std::to_string(colors.cols()) + "; expected " +
+                    std::to_string(rows) + " x 3 (RGB) or x 4 (RGBA)");
   }
   for (Eigen::Index v = 0; v < colors.rows(); ++v) {
     for (Eigen::Index k = 0; k < colors.cols(); ++k) {
       const float c = colors(v, k);
       if (!(c >= 0.0F && c <= 1.0F)) {
-        fail(where, "colour of vertex " + std::to_string(v) + " has component " + std::to_string(c) +
-                        ", outside [0, 1]");
+        fail(where,
+             "colour of vertex " + std::to_string(v) + " has component " + std::to_string(c) + ", outside [0, 1]");
       }
     }
   }
   const std::span<const float> values(colors.data(), static_cast<std::size_t>(colors.size()));
   return add_accessor(std::as_bytes(values), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                      colors.cols() == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4,
-                      static_cast<std::size_t>(rows), TINYGLTF_TARGET_ARRAY_BUFFER);
+                      colors.cols() == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, static_cast<std::size_t>(rows),
+                      TINYGLTF_TARGET_ARRAY_BUFFER);
 }
 
 int ModelBuilder::add_indices(std::span<const Index> indices, Index vertex_count) {
   if (vertex_count <= max_vertices_for_uint16) {
     const std::vector<std::uint16_t> narrow(indices.begin(), indices.end());
-    return add_accessor(bytes_of(narrow), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR,
-                        indices.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    return add_accessor(bytes_of(narrow), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, indices.size(),
+                        TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   }
   const std::vector<std::uint32_t> wide(indices.begin(), indices.end());
   return add_accessor(bytes_of(wide), TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size(),

@@ -31,8 +31,8 @@
 namespace geodual::io::detail {
 namespace {
 
-using gltf::Json;
 using gltf::fail;
+using gltf::Json;
 
 constexpr std::string_view memory_name = "<memory>";
 
@@ -59,7 +59,8 @@ Json parse_json(std::span<const std::byte> text, const std::string& where) {
   } catch (const Json::parse_error& e) {
     // Drop nlohmann's "[json.exception.parse_error.101] " prefix.
     std::string detail = e.what();
-    if (const std::size_t close = detail.find("] "); !detail.empty() && detail[0] == '[' && close != std::string::npos) {
+    if (const std::size_t close = detail.find("] ");
+        !detail.empty() && detail[0] == '[' && close != std::string::npos) {
       detail.erase(0, close + 2);
     }
     constexpr std::size_t max_detail = 200;  // "last read" can quote a long token
@@ -114,8 +115,8 @@ bool check_extensions(const Json& root, const std::string& where, std::vector<st
   return names_string(used, "KHR_mesh_quantization") || names_string(required, "KHR_mesh_quantization");
 }
 
-LoadedMesh read_gltf_document(std::span<const std::byte> data, bool binary,
-                              const std::filesystem::path& name, const std::string& where) {
+LoadedMesh read_gltf_document(std::span<const std::byte> data, bool binary, const std::filesystem::path& name,
+                              const std::string& where) {
   LoadedMesh result;
   ReadInfo& info = result.info;
   info.file_bytes = data.size();

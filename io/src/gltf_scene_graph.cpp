@@ -21,8 +21,7 @@ Eigen::Affine3d local_transform(const Json& node, const std::string& where) {
       fail(where, "has both 'matrix' and translation/rotation/scale; glTF allows one or the other");
     }
     const Eigen::Map<const Eigen::Matrix4d> m(matrix->data());  // glTF matrices are column-major, as Eigen's
-    if (m.row(3).head<3>().cwiseAbs().maxCoeff() > affine_tolerance ||
-        std::abs(m(3, 3) - 1.0) > affine_tolerance) {
+    if (m.row(3).head<3>().cwiseAbs().maxCoeff() > affine_tolerance || std::abs(m(3, 3) - 1.0) > affine_tolerance) {
       fail(where, "'matrix' is not affine (its last row must be 0 0 0 1)");
     }
     transform.matrix().topRows<3>() = m.topRows<3>();
@@ -57,8 +56,7 @@ NodeGraph link_nodes(const Json& nodes, const std::string& where) {
       if (child == i) fail(node_where, "lists itself as a child");
       if (graph.parent[child]) {
         fail(node_where, "lists node " + std::to_string(child) + " as a child, but node " +
-                             std::to_string(*graph.parent[child]) +
-                             " does too; a glTF node has at most one parent");
+                             std::to_string(*graph.parent[child]) + " does too; a glTF node has at most one parent");
       }
       graph.parent[child] = i;
       graph.children[i].push_back(child);
@@ -71,8 +69,7 @@ NodeGraph link_nodes(const Json& nodes, const std::string& where) {
 std::vector<std::size_t> choose_roots(const Json& root, const Json& nodes, const NodeGraph& graph,
                                       const std::string& where, std::vector<std::string>& notes) {
   const Json& scenes = array_member(root, "scenes", where);
-  const std::optional<std::size_t> default_scene =
-      optional_index(root, "scene", scenes.size(), "scene", where);
+  const std::optional<std::size_t> default_scene = optional_index(root, "scene", scenes.size(), "scene", where);
   if (!scenes.empty()) {
     const std::size_t s = default_scene.value_or(0);
     if (!default_scene && scenes.size() > 1) {

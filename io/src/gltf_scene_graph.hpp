@@ -22,9 +22,9 @@ namespace geodual::io::detail::gltf {
 
 struct MeshInstance {
   std::size_t mesh = 0;
-  std::string node;               ///< e.g. "node 4 'Arm'", empty when the file has no nodes
+  std::string node;  ///< e.g. "node 4 'Arm'", empty when the file has no nodes
   Eigen::Affine3d world = Eigen::Affine3d::Identity();
-  bool identity = true;           ///< world is exactly the identity: coordinates are copied bit for bit
+  bool identity = true;  ///< world is exactly the identity: coordinates are copied bit for bit
 };
 
 /// The mesh instances in depth-first node order. Adds remarks to `notes`

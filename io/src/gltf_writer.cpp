@@ -4,9 +4,9 @@
 
 #include "geodual/io/gltf.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/mesh_format.hpp"
+#include "geodual/mesh/error.hpp"
 #include "gltf_asset_extras.hpp"
 #include "gltf_model_builder.hpp"
 
@@ -80,8 +80,8 @@ void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh) {
   const GltfContainer container = container_for(path);
   detail::gltf::ModelBuilder builder(path.string());
   builder.add_triangles({}, mesh, ColorMatrix{}, {});  // no copy of the mesh
-  write_bytes(path, write_model(builder.finish(), detail::gltf::AssetExtras({}, path.string()), container,
-                                path.string()));
+  write_bytes(path,
+              write_model(builder.finish(), detail::gltf::AssetExtras({}, path.string()), container, path.string()));
 }
 
 }  // namespace geodual::io

@@ -21,8 +21,8 @@ inline void check_face_indices(const std::filesystem::path& file, const Triangle
   const Index* index = mesh.faces.data();
   for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) {
     if (index[i] < 0 || index[i] >= vertex_count) {
-      throw_file_error(file, "triangle ", i / 3, " refers to vertex ", index[i], ", but the mesh has ",
-                       vertex_count, " vertices");
+      throw_file_error(file, "triangle ", i / 3, " refers to vertex ", index[i], ", but the mesh has ", vertex_count,
+                       " vertices");
     }
   }
 }
@@ -44,8 +44,8 @@ inline void check_finite_coordinates(const std::filesystem::path& file, const Tr
     for (Eigen::Index axis = 0; axis < 3; ++axis) {
       const double value = mesh.vertices(v, axis);
       if (!std::isfinite(value)) {
-        throw_file_error(file, "vertex ", v, " (counting from 0) has a non-finite coordinate ", "xyz"[axis],
-                         " = ", value);
+        throw_file_error(file, "vertex ", v, " (counting from 0) has a non-finite coordinate ", "xyz"[axis], " = ",
+                         value);
       }
     }
   }

@@ -1,7 +1,7 @@
 #include "geodual/io/mesh_format.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <string>
 

@@ -11,8 +11,8 @@
 
 #include <array>
 #include <charconv>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <ostream>
 #include <string>
 

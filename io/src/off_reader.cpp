@@ -44,17 +44,17 @@ class OffParser {
     read_header();
     const std::uint64_t available = text_.size() - lines_.offset() + 1;  // the last line may lack its end
     // A vertex line holds at least "0 0 0\n", a face line "3 0 0 0\n".
-    const std::uint64_t needed = saturating_add(saturating_mul<std::uint64_t>(vertex_count_, 6),
-                                                saturating_mul<std::uint64_t>(face_count_, 8));
+    const std::uint64_t needed =
+        saturating_add(saturating_mul<std::uint64_t>(vertex_count_, 6), saturating_mul<std::uint64_t>(face_count_, 8));
     if (needed > available) {
       // Too short for the counts: name the first bad line without allocating
       // (a dry run), else report the shortfall itself.
       const std::size_t body_start = lines_.offset();
       read_vertices(nullptr);
       read_faces(nullptr);
-      throw_line_error(file_, counts_line_, "the counts line declares ", vertex_count_, " vertices and ",
-                       face_count_, " faces, which need at least ", needed, " bytes, but only ",
-                       text_.size() - body_start, " follow (file is ", text_.size(), " bytes)");
+      throw_line_error(file_, counts_line_, "the counts line declares ", vertex_count_, " vertices and ", face_count_,
+                       " faces, which need at least ", needed, " bytes, but only ", text_.size() - body_start,
+                       " follow (file is ", text_.size(), " bytes)");
     }
     LoadedMesh loaded;
     loaded.info.format = MeshFormat::off;
@@ -85,8 +85,8 @@ class OffParser {
     if (number < 0) {
       throw_file_error(file_, "the file ends before ", what, " (line ", lines_.line_number(), ")");
     }
-    throw_file_error(file_, "the file ends before ", what, " ", number, " of ", count, " (line ",
-                     lines_.line_number(), ")");
+    throw_file_error(file_, "the file ends before ", what, " ", number, " of ", count, " (line ", lines_.line_number(),
+                     ")");
   }
 
   void read_header() {
@@ -158,8 +158,7 @@ class OffParser {
       for (Eigen::Index axis = 0; axis < 3; ++axis) {
         std::string_view word;
         if (!words.next(word)) {
-          throw_line_error(file_, lines_.line_number(), "vertex ", v, " has ", axis,
-                           " coordinates; expected x y z");
+          throw_line_error(file_, lines_.line_number(), "vertex ", v, " has ", axis, " coordinates; expected x y z");
         }
         const auto value = parse_double(word);
         if (!value) {
@@ -194,13 +193,11 @@ class OffParser {
       corners_.clear();
       for (std::int64_t c = 0; c < *corners; ++c) {
         if (!words.next(word)) {
-          throw_line_error(file_, lines_.line_number(), "face ", f, " declares ", *corners, " corners but lists ",
-                           c);
+          throw_line_error(file_, lines_.line_number(), "face ", f, " declares ", *corners, " corners but lists ", c);
         }
         const auto index = parse_integer<std::int64_t>(word);
         if (!index) {
-          throw_line_error(file_, lines_.line_number(), "face ", f, ": malformed vertex index '", excerpt(word),
-                           "'");
+          throw_line_error(file_, lines_.line_number(), "face ", f, ": malformed vertex index '", excerpt(word), "'");
         }
         if (*index < 0 || *index >= vertex_count_) {
           throw_line_error(file_, lines_.line_number(), "face ", f, ": vertex index ", *index,

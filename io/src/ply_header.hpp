@@ -36,9 +36,7 @@ constexpr std::size_t size_of(PlyScalar type) {
   return 0;
 }
 
-constexpr bool is_integer(PlyScalar type) {
-  return type != PlyScalar::float32 && type != PlyScalar::float64;
-}
+constexpr bool is_integer(PlyScalar type) { return type != PlyScalar::float32 && type != PlyScalar::float64; }
 
 /// The name PLY's original specification uses.
 constexpr std::string_view name_of(PlyScalar type) {
@@ -57,16 +55,17 @@ constexpr std::string_view name_of(PlyScalar type) {
 
 /// Both spellings in use: char/uchar/... and int8/uint8/... .
 constexpr std::optional<PlyScalar> ply_scalar_from_name(std::string_view name) {
-  struct Spelling { std::string_view name; PlyScalar type; };
+  struct Spelling {
+    std::string_view name;
+    PlyScalar type;
+  };
   constexpr Spelling spellings[] = {
-      {"char", PlyScalar::int8},     {"int8", PlyScalar::int8},
-      {"uchar", PlyScalar::uint8},   {"uint8", PlyScalar::uint8},
-      {"short", PlyScalar::int16},   {"int16", PlyScalar::int16},
-      {"ushort", PlyScalar::uint16}, {"uint16", PlyScalar::uint16},
-      {"int", PlyScalar::int32},     {"int32", PlyScalar::int32},
-      {"uint", PlyScalar::uint32},   {"uint32", PlyScalar::uint32},
-      {"float", PlyScalar::float32}, {"float32", PlyScalar::float32},
-      {"double", PlyScalar::float64}, {"float64", PlyScalar::float64},
+      {"char", PlyScalar::int8},       {"int8", PlyScalar::int8},       {"uchar", PlyScalar::uint8},
+      {"uint8", PlyScalar::uint8},     {"short", PlyScalar::int16},     {"int16", PlyScalar::int16},
+      {"ushort", PlyScalar::uint16},   {"uint16", PlyScalar::uint16},   {"int", PlyScalar::int32},
+      {"int32", PlyScalar::int32},     {"uint", PlyScalar::uint32},     {"uint32", PlyScalar::uint32},
+      {"float", PlyScalar::float32},   {"float32", PlyScalar::float32}, {"double", PlyScalar::float64},
+      {"float64", PlyScalar::float64},
   };
   for (const Spelling& spelling : spellings) {
     if (spelling.name == name) {
@@ -150,8 +149,7 @@ struct PlyHeader {
 /// Parses the header at the start of a PLY file's text, line by line.
 class PlyHeaderParser {
  public:
-  PlyHeaderParser(std::string_view file_text, const std::filesystem::path& file)
-      : lines_(file_text), file_(file) {}
+  PlyHeaderParser(std::string_view file_text, const std::filesystem::path& file) : lines_(file_text), file_(file) {}
 
   /// Throws geodual::Error naming the line for anything malformed or unsupported.
   PlyHeader parse() {
@@ -208,8 +206,7 @@ class PlyHeaderParser {
     if (const auto type = ply_scalar_from_name(word)) {
       return *type;
     }
-    throw_line_error(file_, line_, "unsupported PLY property type '", excerpt(word), "' (expected ", type_list,
-                     ")");
+    throw_line_error(file_, line_, "unsupported PLY property type '", excerpt(word), "' (expected ", type_list, ")");
   }
 
   void parse_format(WordCursor& words) {
@@ -252,8 +249,8 @@ class PlyHeaderParser {
     }
     // Hash sets keep duplicate checks linear however many names a header holds.
     if (const auto [first, added] = element_lines_.emplace(name, line_); !added) {
-      throw_line_error(file_, line_, "element '", excerpt(name), "' is declared twice (first on line ",
-                       first->second, ")");
+      throw_line_error(file_, line_, "element '", excerpt(name), "' is declared twice (first on line ", first->second,
+                       ")");
     }
     property_names_.clear();
     header_.elements.push_back(PlyElement{.name = std::string(name), .count = *count, .properties = {}, .line = line_});
@@ -268,15 +265,17 @@ class PlyHeaderParser {
     std::string_view type_word;
     std::string_view name;
     if (!words.next(type_word)) {
-      throw_line_error(file_, line_, "malformed property line (expected 'property <type> <name>' or "
-                                     "'property list <count type> <item type> <name>')");
+      throw_line_error(file_, line_,
+                       "malformed property line (expected 'property <type> <name>' or "
+                       "'property list <count type> <item type> <name>')");
     }
     if (type_word == "list") {
       std::string_view count_word;
       std::string_view item_word;
       if (!words.next(count_word) || !words.next(item_word) || !words.next(name) || !words.at_end()) {
-        throw_line_error(file_, line_, "malformed list property line (expected 'property list <count type> "
-                                       "<item type> <name>')");
+        throw_line_error(file_, line_,
+                         "malformed list property line (expected 'property list <count type> "
+                         "<item type> <name>')");
       }
       property.count_type = scalar_type(count_word);
       property.type = scalar_type(item_word);
@@ -304,7 +303,7 @@ class PlyHeaderParser {
   PlyHeader header_;
   bool have_format_ = false;
   std::unordered_map<std::string_view, std::size_t> element_lines_;  // name -> declaring line
-  std::unordered_set<std::string_view> property_names_;             // of the latest element
+  std::unordered_set<std::string_view> property_names_;              // of the latest element
 };
 
 /// Parses the header at the start of `file_text`; throws geodual::Error naming

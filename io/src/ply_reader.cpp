@@ -40,7 +40,7 @@ struct PlyMeshLayout {
   const PlyElement* vertex = nullptr;
   std::array<std::size_t, 3> xyz{};  ///< property indices of x, y, z in *vertex
   const PlyElement* face = nullptr;
-  std::size_t corner_list = 0;       ///< property index of vertex_indices in *face
+  std::size_t corner_list = 0;  ///< property index of vertex_indices in *face
 };
 
 PlyMeshLayout find_mesh_layout(const PlyHeader& header, const fs::path& file) {
@@ -71,14 +71,12 @@ PlyMeshLayout find_mesh_layout(const PlyHeader& header, const fs::path& file) {
         list = element.find_property("vertex_index");
       }
       if (!list) {
-        throw_line_error(file, element.line,
-                         "element 'face' has no property 'vertex_indices' (or 'vertex_index')");
+        throw_line_error(file, element.line, "element 'face' has no property 'vertex_indices' (or 'vertex_index')");
       }
       const PlyProperty& property = element.properties[*list];
       if (!property.is_list()) {
         throw_line_error(file, element.line, "face property '", property.name,
-                         "' is not a list; expected 'property list <count type> <index type> ",
-                         property.name, "'");
+                         "' is not a list; expected 'property list <count type> <index type> ", property.name, "'");
       }
       if (!is_integer(property.type)) {
         throw_line_error(file, element.line, "face property '", property.name, "' holds items of type ",
@@ -141,8 +139,8 @@ std::optional<Shortfall> find_shortfall(const PlyHeader& header, const PlyMeshLa
 [[noreturn]] void throw_shortfall(const Shortfall& shortfall, std::size_t file_size, const fs::path& file) {
   throw_file_error(file, "the header declares ", shortfall.element->count, " '", excerpt(shortfall.element->name),
                    "' records, which need at least ", shortfall.needed,
-                   " bytes after the header, but the file has only ",
-                   shortfall.available, " (file is ", file_size, " bytes)");
+                   " bytes after the header, but the file has only ", shortfall.available, " (file is ", file_size,
+                   " bytes)");
 }
 
 /// "float32", "int16", ... as ReadInfo::encoding spells coordinate types.
@@ -205,13 +203,12 @@ class BinaryPlyBody {
       return;
     }
     for (std::uint64_t record = 0; record < element.count; ++record) {
-      walk_record(element, record, [](std::size_t, const std::byte*) {},
-                  [](std::size_t, std::uint64_t, const std::byte*) {});
+      walk_record(
+          element, record, [](std::size_t, const std::byte*) {}, [](std::size_t, std::uint64_t, const std::byte*) {});
     }
   }
 
-  void read_vertices(const PlyElement& element, const std::array<std::size_t, 3>& xyz,
-                     VertexMatrix& vertices) {
+  void read_vertices(const PlyElement& element, const std::array<std::size_t, 3>& xyz, VertexMatrix& vertices) {
     const PlyScalar type = element.properties[xyz[0]].type;
     const bool same_type = element.properties[xyz[1]].type == type && element.properties[xyz[2]].type == type;
     const auto record_size = element.fixed_record_size();
@@ -245,8 +242,7 @@ class BinaryPlyBody {
     }
   }
 
-  void read_faces(const PlyElement& element, std::size_t corner_list, const CornerCheck& check,
-                  FaceBuffer& triangles) {
+  void read_faces(const PlyElement& element, std::size_t corner_list, const CornerCheck& check, FaceBuffer& triangles) {
     const PlyProperty& list = element.properties[corner_list];
     if (element.properties.size() == 1) {
       visit_ply_scalar(*list.count_type, [&](auto count_tag) {
@@ -262,23 +258,24 @@ class BinaryPlyBody {
     }
     const std::size_t item_size = size_of(list.type);
     for (std::uint64_t record = 0; record < element.count; ++record) {
-      walk_record(element, record, [](std::size_t, const std::byte*) {},
-                  [&](std::size_t property, std::uint64_t count, const std::byte* items) {
-                    if (property != corner_list) {
-                      return;
-                    }
-                    check.corner_count(static_cast<std::int64_t>(count), record);
-                    triangles.add_polygon(count, [&](std::size_t corner) {
-                      return check(load_integer(list.type, items + corner * item_size), record);
-                    });
-                  });
+      walk_record(
+          element, record, [](std::size_t, const std::byte*) {},
+          [&](std::size_t property, std::uint64_t count, const std::byte* items) {
+            if (property != corner_list) {
+              return;
+            }
+            check.corner_count(static_cast<std::int64_t>(count), record);
+            triangles.add_polygon(count, [&](std::size_t corner) {
+              return check(load_integer(list.type, items + corner * item_size), record);
+            });
+          });
     }
   }
 
  private:
   [[noreturn, gnu::cold, gnu::noinline]] void truncated(const PlyElement& element, std::uint64_t record) const {
-    throw_file_error(file_, "truncated binary data: ", excerpt(element.name), " ", record, " of ",
-                     element.count, " ends past the end of the file (file is ", data_.size(), " bytes)");
+    throw_file_error(file_, "truncated binary data: ", excerpt(element.name), " ", record, " of ", element.count,
+                     " ends past the end of the file (file is ", data_.size(), " bytes)");
   }
 
   /// Throws unless `bytes` more are there, naming `record` as the one cut off.
@@ -304,9 +301,8 @@ class BinaryPlyBody {
   }
 
   static double load_real(PlyScalar type, const std::byte* at) {
-    return visit_ply_scalar(type, [at](auto tag) {
-      return static_cast<double>(load<typename decltype(tag)::type, Order>(at));
-    });
+    return visit_ply_scalar(
+        type, [at](auto tag) { return static_cast<double>(load<typename decltype(tag)::type, Order>(at)); });
   }
 
   /// Loads an integer-typed value (types were checked when the layout was found).
@@ -339,8 +335,8 @@ class BinaryPlyBody {
       const std::int64_t count = load_integer(*property.count_type, data_.data() + at_);
       at_ += count_size;
       if (count < 0) {
-        throw_file_error(file_, excerpt(element.name), " ", record, " of ", element.count,
-                         ": list '", excerpt(property.name), "' has a negative length ", count);
+        throw_file_error(file_, excerpt(element.name), " ", record, " of ", element.count, ": list '",
+                         excerpt(property.name), "' has a negative length ", count);
       }
       const auto items = static_cast<std::uint64_t>(count);
       if (items > remaining() / value_size) {
@@ -398,9 +394,8 @@ class BinaryPlyBody {
 };
 
 template <std::endian Order>
-std::size_t read_binary_body(std::span<const std::byte> data, const PlyHeader& header,
-                             const PlyMeshLayout& layout, const fs::path& file, TriangleMesh& mesh,
-                             FaceBuffer& triangles) {
+std::size_t read_binary_body(std::span<const std::byte> data, const PlyHeader& header, const PlyMeshLayout& layout,
+                             const fs::path& file, TriangleMesh& mesh, FaceBuffer& triangles) {
   BinaryPlyBody<Order> body(data, header.body_offset, file);
   const std::uint64_t vertex_count = layout.vertex ? layout.vertex->count : 0;
   for (const PlyElement& element : header.elements) {
@@ -452,8 +447,8 @@ class AsciiPlyBody {
         }
         const std::int64_t count = value_as_integer(next_word(words, element, record), *property.count_type);
         if (count < 0) {
-          throw_line_error(file_, lines_.line_number(), "list '", excerpt(property.name),
-                           "' has a negative length ", count);
+          throw_line_error(file_, lines_.line_number(), "list '", excerpt(property.name), "' has a negative length ",
+                           count);
         }
         if (corner_list && p == *corner_list) {
           check->corner_count(count, record);
@@ -472,8 +467,8 @@ class AsciiPlyBody {
       }
       if (!words.at_end()) {
         throw_line_error(file_, lines_.line_number(), "more values than the ", element.properties.size(),
-                         " properties of element '", excerpt(element.name), "' declare (", excerpt(element.name),
-                         " ", record, ")");
+                         " properties of element '", excerpt(element.name), "' declare (", excerpt(element.name), " ",
+                         record, ")");
       }
     }
   }
@@ -531,8 +526,8 @@ class AsciiPlyBody {
   std::int64_t value_as_integer(std::string_view word, PlyScalar type) const {
     const auto value = parse_integer<std::int64_t>(word);
     if (!value) {
-      throw_line_error(file_, lines_.line_number(), "'", excerpt(word), "' is not an integer (type ",
-                       name_of(type), ")");
+      throw_line_error(file_, lines_.line_number(), "'", excerpt(word), "' is not an integer (type ", name_of(type),
+                       ")");
     }
     const bool fits = visit_ply_scalar(type, [v = *value](auto tag) {
       using T = typename decltype(tag)::type;
@@ -607,8 +602,8 @@ std::string ignored_parts(const PlyHeader& header, const PlyMeshLayout& layout) 
     }
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
       const bool is_coordinate = p == layout.xyz[0] || p == layout.xyz[1] || p == layout.xyz[2];
-      const bool used = (&element == layout.vertex && is_coordinate) ||
-                        (&element == layout.face && p == layout.corner_list);
+      const bool used =
+          (&element == layout.vertex && is_coordinate) || (&element == layout.face && p == layout.corner_list);
       if (!used) {
         add(excerpt(element.name), " property '", excerpt(element.properties[p].name), "'");
       }
@@ -635,8 +630,7 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
         throw_shortfall(*shortfall, data.size(), name);
       case PlyEncoding::binary_little_endian:
         name_truncated_record<std::endian::little>(data, header, *shortfall, name);
-      case PlyEncoding::binary_big_endian:
-        name_truncated_record<std::endian::big>(data, header, *shortfall, name);
+      case PlyEncoding::binary_big_endian: name_truncated_record<std::endian::big>(data, header, *shortfall, name);
     }
   }
 

@@ -48,13 +48,11 @@ std::size_t value_count(const VertexProperty& property) {
 }
 
 /// Names must be one PLY word, unique, and not one of the coordinates.
-void check_properties(const fs::path& path, const TriangleMesh& mesh,
-                      const std::vector<VertexProperty>& properties) {
+void check_properties(const fs::path& path, const TriangleMesh& mesh, const std::vector<VertexProperty>& properties) {
   for (std::size_t i = 0; i < properties.size(); ++i) {
     const VertexProperty& property = properties[i];
-    const bool is_word = !property.name.empty() &&
-                         std::all_of(property.name.begin(), property.name.end(),
-                                     [](char c) { return c > ' ' && c <= '~'; });
+    const bool is_word = !property.name.empty() && std::all_of(property.name.begin(), property.name.end(),
+                                                               [](char c) { return c > ' ' && c <= '~'; });
     if (!is_word) {
       throw_file_error(path, "vertex property name '", detail::excerpt(property.name),
                        "' must be one word of printable ASCII characters");
@@ -68,23 +66,23 @@ void check_properties(const fs::path& path, const TriangleMesh& mesh,
       }
     }
     if (value_count(property) != static_cast<std::size_t>(mesh.vertices.rows())) {
-      throw_file_error(path, "vertex property '", property.name, "' has ", value_count(property),
-                       " values for ", mesh.vertices.rows(), " vertices");
+      throw_file_error(path, "vertex property '", property.name, "' has ", value_count(property), " values for ",
+                       mesh.vertices.rows(), " vertices");
     }
   }
 }
 
 std::string ply_header(const TriangleMesh& mesh, const std::vector<VertexProperty>& properties) {
-  std::string header = detail::str_cat("ply\nformat binary_little_endian 1.0\ncomment written by geodual\n",
-                                       "element vertex ", mesh.vertices.rows(),
-                                       "\nproperty double x\nproperty double y\nproperty double z\n");
+  std::string header =
+      detail::str_cat("ply\nformat binary_little_endian 1.0\ncomment written by geodual\n", "element vertex ",
+                      mesh.vertices.rows(), "\nproperty double x\nproperty double y\nproperty double z\n");
   for (const VertexProperty& property : properties) {
     const std::string_view type = std::visit(
         [](const auto& values) { return ply_type_name<std::decay_t<decltype(values[0])>>(); }, property.values);
     header += detail::str_cat("property ", type, " ", property.name, "\n");
   }
-  header += detail::str_cat("element face ", mesh.faces.rows(),
-                            "\nproperty list uchar int vertex_indices\nend_header\n");
+  header +=
+      detail::str_cat("element face ", mesh.faces.rows(), "\nproperty list uchar int vertex_indices\nend_header\n");
   return header;
 }
 

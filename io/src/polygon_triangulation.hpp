@@ -40,8 +40,7 @@ class PolygonTriangulator {
   /// Writes the polygon's corners.size() - 2 triangles, three vertex indices
   /// each, to `triangles`. `xyz` holds x, y, z of each vertex in turn;
   /// `corners` (at least 3) index vertices in it.
-  PolygonShape triangulate(std::span<const Index> corners, std::span<const double> xyz,
-                           std::span<Index> triangles);
+  PolygonShape triangulate(std::span<const Index> corners, std::span<const double> xyz, std::span<Index> triangles);
 
  private:
   using Point = std::array<double, 2>;
@@ -69,7 +68,7 @@ class PolygonTriangulator {
   std::vector<std::size_t> previous_;  // the ring of corners not yet clipped
   std::vector<std::size_t> next_;
   std::vector<std::uint8_t> turns_left_;  // turns_left() of each corner in the ring
-  double extent_ = 0;  // the largest distance of a corner from the first, in the plane
+  double extent_ = 0;                     // the largest distance of a corner from the first, in the plane
 };
 
 /// Collects a reader's faces: triangles as given, polygons triangulated at
@@ -85,7 +84,9 @@ class FaceBuffer {
   /// The vertices read so far, x, y, z each in turn; the storage must stay
   /// put until the next add_polygon.
   void know_vertices(std::span<const double> xyz) { known_xyz_ = xyz; }
-  void know_vertices(const VertexMatrix& vertices) { known_xyz_ = {vertices.data(), static_cast<std::size_t>(vertices.size())}; }
+  void know_vertices(const VertexMatrix& vertices) {
+    known_xyz_ = {vertices.data(), static_cast<std::size_t>(vertices.size())};
+  }
 
   /// A face of `corners` (at least 3) corners; `corner(i)` returns the i-th
   /// corner's vertex index (not negative), and is called once for each.

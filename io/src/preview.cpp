@@ -9,8 +9,8 @@
 #include "preview_raster.hpp"
 #include "str_cat.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <Eigen/Geometry>
 
@@ -73,8 +73,8 @@ void check_options(const PreviewOptions& options) {
   const double samples = static_cast<double>(options.width) * static_cast<double>(options.height) *
                          static_cast<double>(options.supersampling * options.supersampling);
   if (samples > kMaxSamples) {
-    fail(options.width, " x ", options.height, " pixels at ", options.supersampling, " x ",
-         options.supersampling, " supersampling is more than 2^26 samples; choose a smaller picture or less "
+    fail(options.width, " x ", options.height, " pixels at ", options.supersampling, " x ", options.supersampling,
+         " supersampling is more than 2^26 samples; choose a smaller picture or less "
          "supersampling");
   }
   check_range("margin", options.margin, 0.0, 0.4);
@@ -196,7 +196,7 @@ Camera frame_scene(const PreviewScene& scene, const PreviewOptions& options) {
 
   // Extent of everything framed: referenced vertices, polyline vertices, points.
   constexpr double inf = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf);    // in (u, v, depth)
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf);  // in (u, v, depth)
   Eigen::Vector3d hi = Eigen::Vector3d::Constant(-inf);
   Eigen::Vector3d world_lo = Eigen::Vector3d::Constant(inf);
   Eigen::Vector3d world_hi = Eigen::Vector3d::Constant(-inf);
@@ -297,8 +297,7 @@ double mean_edge_pixels(const TriangleMesh& mesh, const std::vector<ScreenVertex
 class FaceShader {
  public:
   FaceShader(const PreviewScene& scene, const PreviewOptions& options, const Camera& camera,
-             const std::vector<ScreenVertex>& screen, const std::vector<Eigen::Vector3d>& normals,
-             float wire_alpha)
+             const std::vector<ScreenVertex>& screen, const std::vector<Eigen::Vector3d>& normals, float wire_alpha)
       : mesh_(*scene.mesh),
         scene_(scene),
         options_(options),
@@ -460,8 +459,7 @@ void draw_overlays(const PreviewScene& scene, const PreviewOptions& options, con
   const double rim = std::min(1.0 * ss, 0.5 * point_radius);
   for (const Eigen::Vector3d& p : scene.points) {
     const ScreenVertex v = pulled(p, point_radius);
-    detail::rasterise_disc(buffer, v.x, v.y, v.depth, point_radius, rim, detail::kPointFillId,
-                           detail::kPointRimId);
+    detail::rasterise_disc(buffer, v.x, v.y, v.depth, point_radius, rim, detail::kPointFillId, detail::kPointRimId);
   }
 }
 
@@ -541,8 +539,9 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
           all_background = false;
         }
       }
-      std::uint8_t* out = &rgb[(static_cast<std::size_t>(py) * static_cast<std::size_t>(options.width) +
-                                static_cast<std::size_t>(px)) * 3];
+      std::uint8_t* out =
+          &rgb[(static_cast<std::size_t>(py) * static_cast<std::size_t>(options.width) + static_cast<std::size_t>(px)) *
+               3];
       if (all_background) {
         std::copy(background_bytes, background_bytes + 3, out);
       } else {
@@ -556,7 +555,6 @@ std::vector<std::uint8_t> render_rgb(const PreviewScene& scene, const PreviewOpt
   ask(1.0);
   return rgb;
 }
-
 
 }  // namespace
 

@@ -48,8 +48,7 @@ std::vector<std::uint8_t> encode_png_rgb(const std::vector<std::uint8_t>& rgb, i
     throw Error("preview: internal error: pixel buffer does not match the picture size");
   }
   std::vector<std::uint8_t> png;
-  if (stbi_write_png_to_func(append_bytes, &png, width, height, kChannels, rgb.data(),
-                             width * kChannels) == 0) {
+  if (stbi_write_png_to_func(append_bytes, &png, width, height, kChannels, rgb.data(), width * kChannels) == 0) {
     throw Error("preview: PNG encoding failed (out of memory?)");
   }
   return png;

@@ -59,8 +59,8 @@ SampleBuffer::SampleBuffer(int width_samples, int height_samples)
             std::numeric_limits<float>::infinity()),
       id(depth.size(), kBackgroundId) {}
 
-void rasterise_triangle(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b,
-                        const ScreenVertex& c, std::int32_t id) {
+void rasterise_triangle(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c,
+                        std::int32_t id) {
   FixedPoint p0 = to_fixed(a);
   FixedPoint p1 = to_fixed(b);
   FixedPoint p2 = to_fixed(c);
@@ -134,8 +134,8 @@ void rasterise_triangle(SampleBuffer& buffer, const ScreenVertex& a, const Scree
   }
 }
 
-void rasterise_disc(SampleBuffer& buffer, double x, double y, float depth, double radius,
-                    double rim_width, std::int32_t fill_id, std::int32_t rim_id) {
+void rasterise_disc(SampleBuffer& buffer, double x, double y, float depth, double radius, double rim_width,
+                    std::int32_t fill_id, std::int32_t rim_id) {
   if (!(radius > 0.0)) {
     return;
   }
@@ -168,8 +168,8 @@ void rasterise_disc(SampleBuffer& buffer, double x, double y, float depth, doubl
   }
 }
 
-void rasterise_thick_segment(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b,
-                             double half_width, std::int32_t id) {
+void rasterise_thick_segment(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b, double half_width,
+                             std::int32_t id) {
   const double dx = b.x - a.x;
   const double dy = b.y - a.y;
   const double length = std::hypot(dx, dy);

@@ -24,10 +24,10 @@ struct ScreenVertex {
 };
 
 struct SampleBuffer {
-  int width = 0;   ///< samples
-  int height = 0;  ///< samples
-  std::vector<float> depth;        ///< +infinity where nothing was drawn
-  std::vector<std::int32_t> id;    ///< kBackgroundId where nothing was drawn
+  int width = 0;                 ///< samples
+  int height = 0;                ///< samples
+  std::vector<float> depth;      ///< +infinity where nothing was drawn
+  std::vector<std::int32_t> id;  ///< kBackgroundId where nothing was drawn
 
   SampleBuffer(int width_samples, int height_samples);
 
@@ -42,17 +42,17 @@ struct SampleBuffer {
 /// edge functions evaluated exactly in integers with a top-left rule: two
 /// triangles sharing an edge never both cover, nor both miss, a sample on it.
 /// Zero-area triangles draw nothing.
-void rasterise_triangle(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b,
-                        const ScreenVertex& c, std::int32_t id);
+void rasterise_triangle(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c,
+                        std::int32_t id);
 
 /// Depth-tested fill of the samples within `radius` of (x, y), at one depth;
 /// samples farther than radius - rim_width from the centre get rim_id.
-void rasterise_disc(SampleBuffer& buffer, double x, double y, float depth, double radius,
-                    double rim_width, std::int32_t fill_id, std::int32_t rim_id);
+void rasterise_disc(SampleBuffer& buffer, double x, double y, float depth, double radius, double rim_width,
+                    std::int32_t fill_id, std::int32_t rim_id);
 
 /// A segment of the given half width (a rectangle, no caps), depth
 /// interpolated along it: two triangles.
-void rasterise_thick_segment(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b,
-                             double half_width, std::int32_t id);
+void rasterise_thick_segment(SampleBuffer& buffer, const ScreenVertex& a, const ScreenVertex& b, double half_width,
+                             std::int32_t id);
 
 }  // namespace geodual::io::detail

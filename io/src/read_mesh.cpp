@@ -86,8 +86,7 @@ FileBytes read_whole_file(const fs::path& path) {
       detail::throw_file_error(path, "read failed: ", errno_text(errno));
     }
     if (got == 0) {
-      detail::throw_file_error(path, "the file shrank while being read (", done, " of ", contents.size,
-                               " bytes)");
+      detail::throw_file_error(path, "the file shrank while being read (", done, " of ", contents.size, " bytes)");
     }
     done += static_cast<std::size_t>(got);
   }

@@ -30,7 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::size_t binary_header_bytes = 84;  // 80-byte comment + uint32 triangle count
+constexpr std::size_t binary_header_bytes = 84;    // 80-byte comment + uint32 triangle count
 constexpr std::size_t binary_triangle_bytes = 50;  // normal, 3 corners (float32 x 3 each), uint16 attribute
 
 /// No control characters other than blanks and line ends in the first KiB.
@@ -52,8 +52,8 @@ void describe_welding(const PositionWelder& welder, LoadedMesh& loaded) {
   loaded.info.welded_corners = welder.welded_corners();
   loaded.info.notes.push_back(str_cat("STL stores every triangle corner separately: ", welder.corner_count(),
                                       " corners were welded into ", welder.vertex_count(),
-                                      " vertices by exact position (first occurrence order; ",
-                                      welder.welded_corners(), " corners repeated an earlier position)"));
+                                      " vertices by exact position (first occurrence order; ", welder.welded_corners(),
+                                      " corners repeated an earlier position)"));
 }
 
 LoadedMesh read_binary_stl(std::span<const std::byte> data, std::uint64_t triangle_count, const fs::path& file) {
@@ -154,7 +154,9 @@ class AsciiStlParser {
       facet_line_ = 0;
     } else {
       throw_line_error(file_, lines_.line_number(), "unexpected '", excerpt(keyword), "' in ASCII STL",
-                       in_facet ? " (inside a facet)" : in_solid_ ? "" : " (outside 'solid ... endsolid')");
+                       in_facet    ? " (inside a facet)"
+                       : in_solid_ ? ""
+                                   : " (outside 'solid ... endsolid')");
     }
   }
 

@@ -22,8 +22,7 @@ void append_piece(std::string& out, const Path& path) {
 }
 
 template <std::integral T>
-  requires(!std::same_as<T, bool> && !std::same_as<T, char>)
-void append_piece(std::string& out, T value) {
+requires(!std::same_as<T, bool> && !std::same_as<T, char>) void append_piece(std::string& out, T value) {
   char buffer[24];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, result.ptr);

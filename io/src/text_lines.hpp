@@ -10,9 +10,7 @@
 namespace geodual::io::detail {
 
 /// Space, tab and the other ASCII blanks that may separate words ('\n' ends lines).
-constexpr bool is_blank(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
+constexpr bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 /// Lines of a text ended by "\n" or "\r\n"; the last line may lack its end.
 class LineCursor {

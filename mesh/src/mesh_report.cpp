@@ -1,5 +1,5 @@
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/mesh/face_area.hpp"
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/random.hpp"
@@ -45,9 +45,8 @@ void check_indices(const TriangleMesh& mesh) {
   const auto count = static_cast<std::size_t>(mesh.faces.size());
   for (std::size_t i = 0; i < count; ++i) {
     if (index[i] < 0 || index[i] >= n) {
-      throw Error("analyze_mesh: face " + std::to_string(i / 3) + " refers to vertex " +
-                  std::to_string(index[i]) + ", but the mesh has " + std::to_string(n) +
-                  " vertices");
+      throw Error("analyze_mesh: face " + std::to_string(i / 3) + " refers to vertex " + std::to_string(index[i]) +
+                  ", but the mesh has " + std::to_string(n) + " vertices");
     }
   }
   // Corners are numbered in 32 bits, and positions around a vertex in 31.
@@ -100,8 +99,7 @@ class VertexStar {
     owned_faces_.clear();
     edgeless_corners_ = 0;
     const Index* index = mesh.faces.data();
-    corners_ = std::span<const Corner>(incidence.corners.data() + incidence.first[v],
-                                       incidence.degree(v));
+    corners_ = std::span<const Corner>(incidence.corners.data() + incidence.first[v], incidence.degree(v));
     for (std::uint32_t slot = 0; slot < corners_.size(); ++slot) {
       const Corner c = corners_[slot];
       const Corner face = c / 3;
@@ -113,8 +111,8 @@ class VertexStar {
       if (prev != v) uses_.emplace_back(prev, slot, false);
       if (next == v && prev == v) ++edgeless_corners_;
       // Each face is owned by the first of its corners that holds its smallest index.
-      const bool first_minimum = v <= next && v <= prev &&
-                                 (k == 0 || (k == 1 && prev != v) || (k == 2 && prev != v && next != v));
+      const bool first_minimum =
+          v <= next && v <= prev && (k == 0 || (k == 1 && prev != v) || (k == 2 && prev != v && next != v));
       if (first_minimum) owned_faces_.emplace_back(std::min(next, prev), std::max(next, prev));
     }
     std::sort(uses_.begin(), uses_.end());
@@ -208,8 +206,7 @@ StarSummary summarize_stars(const TriangleMesh& mesh, const VertexCorners& incid
       connected.unite(v, w);
       if (uses.size() == 1) boundary.emplace_back(v, w);
       if (uses.size() > 2) ++summary.nonmanifold_edges;
-      const auto outgoing = std::count_if(uses.begin(), uses.end(),
-                                          [](const EdgeUse& use) { return use.outgoing(); });
+      const auto outgoing = std::count_if(uses.begin(), uses.end(), [](const EdgeUse& use) { return use.outgoing(); });
       const auto incoming = static_cast<std::ptrdiff_t>(uses.size()) - outgoing;
       if (outgoing > 1 || incoming > 1) summary.oriented = false;
     });
@@ -329,11 +326,10 @@ MeshReport analyze_mesh(const TriangleMesh& mesh) {
   }
   report.bbox_diagonal = (report.bbox_max - report.bbox_min).norm();
 
-  const bool manifold = report.faces > 0 && report.nonmanifold_edges == 0 &&
-                        report.nonmanifold_vertices == 0;
+  const bool manifold = report.faces > 0 && report.nonmanifold_edges == 0 && report.nonmanifold_vertices == 0;
   if (manifold && (report.oriented || is_orientable(mesh, incidence))) {
-    report.genus = static_cast<double>(2 * report.components - report.boundary_loops -
-                                       report.euler_characteristic) / 2.0;
+    report.genus =
+        static_cast<double>(2 * report.components - report.boundary_loops - report.euler_characteristic) / 2.0;
   }
   return report;
 }

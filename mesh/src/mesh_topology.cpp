@@ -28,8 +28,7 @@ void check_indices(const TriangleMesh& mesh) {
   }
   // Corners are numbered in an Index.
   if (mesh.num_faces() > std::numeric_limits<Index>::max() / 3) {
-    throw Error("mesh topology: " + std::to_string(mesh.num_faces()) +
-                " faces are more than supported (715 million)");
+    throw Error("mesh topology: " + std::to_string(mesh.num_faces()) + " faces are more than supported (715 million)");
   }
 }
 
@@ -48,8 +47,9 @@ void build_edges(const TriangleMesh& mesh, MeshTopology& topology) {
     }
   }
   // Stable: the half-edges of one pair stay in corner order, hence face order.
-  sort_by_vertex_pair(half_edges, mesh.num_vertices(), [](const HalfEdge& h) { return h.low; },
-                      [](const HalfEdge& h) { return h.high; });
+  sort_by_vertex_pair(
+      half_edges, mesh.num_vertices(), [](const HalfEdge& h) { return h.low; },
+      [](const HalfEdge& h) { return h.high; });
   topology.face_edges.assign(static_cast<std::size_t>(mesh.num_faces()), {-1, -1, -1});
   topology.edge_face_list.reserve(half_edges.size());
   topology.edge_face_begin.push_back(0);
@@ -79,7 +79,8 @@ void build_fans(const TriangleMesh& mesh, MeshTopology& topology) {
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const std::span<const Index> faces = topology.edge_faces(e);
     if (faces.size() != 2) continue;
-    for (const Index v : topology.edge_vertices[e]) fans.unite(corner_at(mesh, faces[0], v), corner_at(mesh, faces[1], v));
+    for (const Index v : topology.edge_vertices[e])
+      fans.unite(corner_at(mesh, faces[0], v), corner_at(mesh, faces[1], v));
   }
   topology.corner_fan.assign(num_corners, -1);
   std::vector<Index> fan_of_root(num_corners, -1);
@@ -122,7 +123,8 @@ void build_components(const TriangleMesh& mesh, MeshTopology& topology) {
       vertex_component = c;
     }
   }
-  for (Index e = 0; e < topology.num_edges(); ++e) ++topology.components[topology.vertex_component[topology.edge_vertices[e][0]]].edges;
+  for (Index e = 0; e < topology.num_edges(); ++e)
+    ++topology.components[topology.vertex_component[topology.edge_vertices[e][0]]].edges;
 }
 
 void build_boundary_loops(const TriangleMesh& mesh, MeshTopology& topology) {

@@ -8,10 +8,10 @@
 #include "site_source.hpp"
 #include "text_table.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/field_output.hpp"
 #include "geodual/pipeline/sites.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
@@ -31,8 +31,8 @@ namespace {
 class GeodesicCommand final : public Command {
  public:
   CLI::App& add_to(CLI::App& app) override {
-    CLI::App& command = *app.add_subcommand(
-        "geodesic", "Exact geodesic distance to the nearest site at every vertex (window-VTP)");
+    CLI::App& command =
+        *app.add_subcommand("geodesic", "Exact geodesic distance to the nearest site at every vertex (window-VTP)");
     command.footer(
         "Example:\n  geodual geodesic scan.ply --sites 30 --seed 7 -o distance.ply\n"
         "Site file: one site per line, a vertex index, or 'f FACE U V W' (face and barycentric "
@@ -107,7 +107,8 @@ class GeodesicCommand final : public Command {
     table.add("max distance", significant(max_distance));
     table.add("windows created", with_thousands(s.windows_created));
     table.add("windows stored", with_thousands(s.windows_stored));
-    table.add("peak windows", with_thousands(s.peak_windows) + " (" + byte_size(static_cast<std::uintmax_t>(s.peak_window_bytes)) + ")");
+    table.add("peak windows", with_thousands(s.peak_windows) + " (" +
+                                  byte_size(static_cast<std::uintmax_t>(s.peak_window_bytes)) + ")");
     table.add("vertices popped", with_thousands(s.vertices_popped));
     table.add("pseudo-sources", with_thousands(s.pseudo_sources));
     table.add("faces inactive", with_thousands(s.faces_inactive));

@@ -25,7 +25,8 @@ class GeodesicFlags {
 
  private:
   bool no_rwr_ = false;
-  std::int64_t window_memory_mib_ = static_cast<std::int64_t>(voronoi::GeodesicOptions{}.window_memory_limit_bytes >> 20);
+  std::int64_t window_memory_mib_ =
+      static_cast<std::int64_t>(voronoi::GeodesicOptions{}.window_memory_limit_bytes >> 20);
 };
 
 }  // namespace geodual::cli

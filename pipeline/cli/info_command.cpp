@@ -4,11 +4,11 @@
 #include "progress_bar.hpp"
 #include "text_table.hpp"
 
+#include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
-#include "geodual/io/atomic_file.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/report_json.hpp"
 
@@ -30,10 +30,8 @@ std::string point(const Eigen::Vector3d& p) {
 class InfoCommand final : public Command {
  public:
   CLI::App& add_to(CLI::App& app) override {
-    CLI::App& command = *app.add_subcommand(
-        "info", "Read a mesh file and report its size, topology and defects");
-    command.add_option("FILE", path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")
-        ->required();
+    CLI::App& command = *app.add_subcommand("info", "Read a mesh file and report its size, topology and defects");
+    command.add_option("FILE", path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
     command.add_flag("--json", json_, "Print one JSON object instead of a table");
     command.add_option("--preview", preview_path_, "Also render a picture of the mesh: .png");
     command.footer("Example:\n  geodual info scan.ply --json\n  geodual info scan.ply --preview scan.png");
@@ -86,8 +84,8 @@ class InfoCommand final : public Command {
                    double analysis_seconds) const {
     KeyValueTable table;
     table.add("file", path_);
-    table.add("format", std::string(io::format_name(info.format)) +
-                            (info.encoding.empty() ? "" : ", " + info.encoding));
+    table.add("format",
+              std::string(io::format_name(info.format)) + (info.encoding.empty() ? "" : ", " + info.encoding));
     table.add("file size", byte_size(info.file_bytes));
     const double megabytes_per_second = static_cast<double>(info.file_bytes) / 1e6 / read_seconds;
     table.add("read time", duration(read_seconds) + " (" + significant(megabytes_per_second, 3) + " MB/s)");
@@ -99,8 +97,8 @@ class InfoCommand final : public Command {
     table.add("faces", with_thousands(report.faces));
     table.add("edges", with_thousands(report.edges));
     table.add("components", with_thousands(report.components));
-    table.add("boundary loops", with_thousands(report.boundary_loops) + " (" +
-                                    with_thousands(report.boundary_edges) + " boundary edges)");
+    table.add("boundary loops", with_thousands(report.boundary_loops) + " (" + with_thousands(report.boundary_edges) +
+                                    " boundary edges)");
     table.add("non-manifold edges", with_thousands(report.nonmanifold_edges));
     table.add("non-manifold vertices", with_thousands(report.nonmanifold_vertices));
     table.add("degenerate faces", with_thousands(report.degenerate_faces));
@@ -108,8 +106,7 @@ class InfoCommand final : public Command {
     table.add("duplicate vertices", with_thousands(report.duplicate_vertices));
     table.add("unreferenced vertices", with_thousands(report.unreferenced_vertices));
     table.add("euler characteristic", with_thousands(report.euler_characteristic));
-    table.add("genus", report.genus ? significant(*report.genus)
-                                    : "not defined (not an orientable 2-manifold)");
+    table.add("genus", report.genus ? significant(*report.genus) : "not defined (not an orientable 2-manifold)");
     table.add("oriented", report.oriented ? "yes" : "no (some edge is used twice in one direction)");
     table.add("bounding box", point(report.bbox_min) + " to " + point(report.bbox_max));
     table.add("bbox diagonal", significant(report.bbox_diagonal));

@@ -10,8 +10,8 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/version.hpp"
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include <exception>
 #include <iostream>
@@ -37,11 +37,7 @@ CommandFactory make_stats_command;
 namespace {
 
 constexpr CommandFactory* command_factories[] = {
-    &make_info_command,
-    &make_geodesic_command,
-    &make_voronoi_command,
-    &make_remesh_command,
-    &make_stats_command,
+    &make_info_command, &make_geodesic_command, &make_voronoi_command, &make_remesh_command, &make_stats_command,
 };
 
 constexpr int exit_failure = 1;
@@ -57,9 +53,10 @@ void report_error(std::string_view message) {
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"geodual: remeshing of dense triangle-mesh scans through exact geodesic "
-               "Voronoi diagrams",
-               "geodual"};
+  CLI::App app{
+      "geodual: remeshing of dense triangle-mesh scans through exact geodesic "
+      "Voronoi diagrams",
+      "geodual"};
   app.set_version_flag("--version", "geodual " + std::string(build_version()), "Print the version and exit");
   app.require_subcommand(1);
   app.fallthrough();  // --threads may come after the subcommand too

@@ -1,9 +1,9 @@
 #include "progress_bar.hpp"
 
+#include <unistd.h>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
-#include <unistd.h>
 
 namespace geodual::cli {
 namespace {

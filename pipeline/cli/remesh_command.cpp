@@ -36,8 +36,8 @@ namespace {
 class RemeshCommand final : public Command {
  public:
   CLI::App& add_to(CLI::App& app) override {
-    CLI::App& command = *app.add_subcommand(
-        "remesh", "Remesh a scan: the dual of the geodesic Voronoi diagram of N sites on it");
+    CLI::App& command =
+        *app.add_subcommand("remesh", "Remesh a scan: the dual of the geodesic Voronoi diagram of N sites on it");
     command.footer(
         "Example:\n  geodual remesh scan.ply --sites 4000 -o remeshed.glb --preview remeshed.png\n"
         "Output by extension: .glb, .gltf (statistics in asset.extras), .ply, .obj.");
@@ -47,40 +47,47 @@ class RemeshCommand final : public Command {
     // Flags are named after the option fields (RemeshOptions, LloydOptions,
     // GeodesicOptions, QualityOptions); the second name of a flag is its old
     // one, kept for one release.
-    command.add_option("--lloyd-iterations,--lloyd", options_.lloyd.iterations,
-                       "Lloyd iterations towards the geodesic centroids (0: the dual of the sampled sites)")
+    command
+        .add_option("--lloyd-iterations,--lloyd", options_.lloyd.iterations,
+                    "Lloyd iterations towards the geodesic centroids (0: the dual of the sampled sites)")
         ->capture_default_str()
         ->check(integer_between(0, 100000));
-    command.add_option("--lloyd-tolerance,--lloyd-tol", options_.lloyd.tolerance,
-                       "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
+    command
+        .add_option("--lloyd-tolerance,--lloyd-tol", options_.lloyd.tolerance,
+                    "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
         ->capture_default_str()
         ->check(finite_non_negative());
-    command.add_option("--warm-start-iterations,--warm-start", options_.lloyd.warm_start_iterations,
-                       "Steps on the restricted (Euclidean) Voronoi diagram before the geodesic Lloyd iterations: "
-                       "a cheap start close to a CVT (0: none)")
+    command
+        .add_option("--warm-start-iterations,--warm-start", options_.lloyd.warm_start_iterations,
+                    "Steps on the restricted (Euclidean) Voronoi diagram before the geodesic Lloyd iterations: "
+                    "a cheap start close to a CVT (0: none)")
         ->capture_default_str()
         ->check(integer_between(0, 100000));
     command.add_flag_callback(
         "--no-newton,--plain-lloyd", [this] { options_.lloyd.newton = false; },
         "Plain (over-relaxed) Lloyd steps instead of the default Newton-accelerated ones");
-    command.add_option("--curvature-adaptation", options_.curvature_adaptation,
-                       "Smaller cells where the surface bends sharply at the remesh's scale: Lloyd towards a "
-                       "curvature-weighted CVT of this strength (0: uniform; 1 lowers the Hausdorff distance "
-                       "at some cost in the worst triangles)")
+    command
+        .add_option("--curvature-adaptation", options_.curvature_adaptation,
+                    "Smaller cells where the surface bends sharply at the remesh's scale: Lloyd towards a "
+                    "curvature-weighted CVT of this strength (0: uniform; 1 lowers the Hausdorff distance "
+                    "at some cost in the worst triangles)")
         ->capture_default_str()
         ->check(finite_non_negative());
-    command.add_option("--max-repair-rounds", options_.max_repair_rounds,
-                       "Rounds of adding sites where the dual fails before giving up")
+    command
+        .add_option("--max-repair-rounds", options_.max_repair_rounds,
+                    "Rounds of adding sites where the dual fails before giving up")
         ->capture_default_str()
         ->check(integer_between(0, 1000));
     geodesic_.add_to(command);
     command.add_option("--preview", preview_path_, "Also render a picture of the result: .png");
-    command.add_option("--samples-per-side,--samples", samples_,
-                       "Points per side for the Hausdorff and RMS distance to the input (-1: no comparison)")
+    command
+        .add_option("--samples-per-side,--samples", samples_,
+                    "Points per side for the Hausdorff and RMS distance to the input (-1: no comparison)")
         ->capture_default_str()
         ->check(integer_between(-1, quality::max_samples_per_side));
     command.add_flag_callback(
-        "--no-statistics", [this] { samples_ = -1; }, "No comparison with the input (the same as --samples-per-side -1)");
+        "--no-statistics", [this] { samples_ = -1; },
+        "No comparison with the input (the same as --samples-per-side -1)");
     command.add_flag("--strict", strict_,
                      "Fail when more than 0.1 % of the input's area would be left out (scraps and flaps of "
                      "non-manifold pieces); without it, a warning");
@@ -149,7 +156,8 @@ class RemeshCommand final : public Command {
     figures["vertices_split"] = run.surface.vertices_split;
     figures["dropped_faces"] = run.dropped.faces;
     figures["dropped_area_pct"] = run.dropped.area_pct;
-    figures["sampling"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
+    figures["sampling"] =
+        sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     figures["seed"] = sites_.seed();
     figures["sites"] = run.initial_sites.size();
     figures["sites_added_for_topology"] = run.sites_added_for_topology;
@@ -169,7 +177,8 @@ class RemeshCommand final : public Command {
     figures["theta_min_avg_deg"] = quality.theta_min_avg_deg;
     figures["pct_angles_lt30"] = quality.pct_angles_lt30;
     figures["p30"] = quality.p30;
-    figures["pct_valence6"] = quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
+    figures["pct_valence6"] =
+        quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
     if (run.statistics) {
       figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
       figures["rms_pct"] = run.statistics->rms_pct;
@@ -206,26 +215,28 @@ class RemeshCommand final : public Command {
       return 0;
     }
     KeyValueTable table;
-    table.add("input", mesh_path_ + " (" + with_thousands(run.input.mesh.num_vertices()) + " vertices, " +
-                           with_thousands(run.input.mesh.num_faces()) + " faces" +
-                           (run.surface.vertices_split > 0 ? ", " + with_thousands(run.surface.vertices_split) +
-                                                                 " non-manifold vertices cut apart"
-                                                           : std::string()) +
-                           (run.dropped.faces > 0 ? ", " + with_thousands(run.dropped.faces) + " faces (" +
-                                                        significant(run.dropped.area_pct, 3) + " % of the area) left out"
-                                                  : std::string()) +
-                           ")");
-    table.add("sites", with_thousands(static_cast<std::int64_t>(run.initial_sites.size())) +
-                           (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
-                                                  : " (" + sites_.file() + ")") +
-                           (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
+    table.add("input",
+              mesh_path_ + " (" + with_thousands(run.input.mesh.num_vertices()) + " vertices, " +
+                  with_thousands(run.input.mesh.num_faces()) + " faces" +
+                  (run.surface.vertices_split > 0
+                       ? ", " + with_thousands(run.surface.vertices_split) + " non-manifold vertices cut apart"
+                       : std::string()) +
+                  (run.dropped.faces > 0 ? ", " + with_thousands(run.dropped.faces) + " faces (" +
+                                               significant(run.dropped.area_pct, 3) + " % of the area) left out"
+                                         : std::string()) +
+                  ")");
+    table.add("sites",
+              with_thousands(static_cast<std::int64_t>(run.initial_sites.size())) +
+                  (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
+                                         : " (" + sites_.file() + ")") +
+                  (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
     if (!relaxation.energy.empty()) {
       table.add("lloyd", std::to_string(relaxation.iterations) + " iterations" +
                              (relaxation.warm_start_iterations > 0
                                   ? " after " + std::to_string(relaxation.warm_start_iterations) + " warm-start steps"
                                   : std::string()) +
-                             ", CVT energy " +
-                             significant(relaxation.energy.front(), 4) + " -> " + significant(relaxation.energy.back(), 4));
+                             ", CVT energy " + significant(relaxation.energy.front(), 4) + " -> " +
+                             significant(relaxation.energy.back(), 4));
     }
     table.add("output", output_path_ + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
@@ -240,7 +251,8 @@ class RemeshCommand final : public Command {
     }
     std::string stages;
     for (const pipeline::StageTiming& timing : run.timings) {
-      stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(timing.stage)) + " " + duration(timing.seconds);
+      stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(timing.stage)) + " " +
+                duration(timing.seconds);
     }
     table.add("time", duration(seconds_since(start)) + " (" + stages + ", write " + duration(write_seconds) + ")");
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
@@ -256,7 +268,8 @@ class RemeshCommand final : public Command {
     report["geodual_version"] = build_version();
     nlohmann::ordered_json options;
     options["sites"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.count()) : nlohmann::ordered_json(nullptr);
-    options["site_file"] = sites_.file().empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sites_.file());
+    options["site_file"] =
+        sites_.file().empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sites_.file());
     options["sampling"] = sites_.sampling();
     options["seed"] = sites_.seed();
     options["lloyd_iterations"] = options_.lloyd.iterations;

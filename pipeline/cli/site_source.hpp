@@ -3,9 +3,9 @@
 // --sites N [--sampling random|poisson|fps] [--seed S], or --site-file F.
 // --sites N samples the surface the same way in every command.
 
-#include "geodual/remesh/sample_sites.hpp"
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/remesh/sample_sites.hpp"
 
 #include <cstdint>
 #include <string>

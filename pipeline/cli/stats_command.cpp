@@ -8,9 +8,9 @@
 #include "progress_bar.hpp"
 #include "text_table.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
 #include <CLI/CLI.hpp>
@@ -74,22 +74,24 @@ std::string signed_percent(double value) { return (value > 0 ? "+" : "") + perce
 class StatsCommand final : public Command {
  public:
   CLI::App& add_to(CLI::App& app) override {
-    CLI::App& command = *app.add_subcommand(
-        "stats", "Quality of a mesh and its Hausdorff/RMS distance to a reference mesh");
+    CLI::App& command =
+        *app.add_subcommand("stats", "Quality of a mesh and its Hausdorff/RMS distance to a reference mesh");
     command.footer(
         "Example:\n  geodual stats scan.ply remeshed.ply --json\n"
         "Distances: all vertices plus N area-uniform samples per side, exact distance to the "
         "other surface;\nin % of the reference's bounding-box diagonal.");
     command.add_option("REFERENCE", reference_path_, "The original mesh (.ply, .obj, .off, .stl, .gltf, .glb)")
         ->required();
-    command.add_option("CANDIDATE", candidate_path_, "The mesh to assess, e.g. a remesh of REFERENCE")
-        ->required();
+    command.add_option("CANDIDATE", candidate_path_, "The mesh to assess, e.g. a remesh of REFERENCE")->required();
     command.add_flag("--json", json_, "Print one JSON object instead of a table");
-    command.add_option("--samples-per-side,--samples", options_.samples_per_side,
-                       "Area-uniform samples per mesh for the distances, besides the vertices")
+    command
+        .add_option("--samples-per-side,--samples", options_.samples_per_side,
+                    "Area-uniform samples per mesh for the distances, besides the vertices")
         ->capture_default_str()
         ->check(integer_between(0, quality::max_samples_per_side));
-    command.add_option("--seed", options_.seed, "Seed for the samples")->capture_default_str()->check(unsigned_integer());
+    command.add_option("--seed", options_.seed, "Seed for the samples")
+        ->capture_default_str()
+        ->check(unsigned_integer());
     command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
@@ -193,8 +195,7 @@ class StatsCommand final : public Command {
     both("Q min", significant(r.q_min, 4), significant(c.q_min, 4));
     both("Q avg", significant(r.q_avg, 4), significant(c.q_avg, 4));
     both("min angle", significant(r.theta_min_deg, 4) + " deg", significant(c.theta_min_deg, 4) + " deg");
-    both("mean min angle", significant(r.theta_min_avg_deg, 4) + " deg",
-         significant(c.theta_min_avg_deg, 4) + " deg");
+    both("mean min angle", significant(r.theta_min_avg_deg, 4) + " deg", significant(c.theta_min_avg_deg, 4) + " deg");
     both("angles < 30 deg", percent(r.pct_angles_lt30), percent(c.pct_angles_lt30));
     both("P30", percent(r.p30), percent(c.p30));
     both("valence 6 (interior)", valence6(r), valence6(c));
@@ -213,9 +214,7 @@ class StatsCommand final : public Command {
     }
 
     const double diagonal = r.bbox_diagonal;
-    const auto distance = [diagonal](double d) {
-      return percent(100.0 * d / diagonal) + " (" + significant(d) + ")";
-    };
+    const auto distance = [diagonal](double d) { return percent(100.0 * d / diagonal) + " (" + significant(d) + ")"; };
     table.add("hausdorff", distance(report.hausdorff));
     table.add("  reference to candidate", distance(report.hausdorff_reference_to_candidate));
     table.add("  candidate to reference", distance(report.hausdorff_candidate_to_reference));
@@ -225,8 +224,8 @@ class StatsCommand final : public Command {
                                                         : std::string("not defined (reference volume 0)"));
     table.add("distances in", "% of the reference's bbox diagonal " + significant(diagonal));
     table.add("samples", with_thousands(options_.samples_per_side) + " per side + vertices (seed " +
-                             std::to_string(options_.seed) + "): " + with_thousands(report.reference_samples) +
-                             " + " + with_thousands(report.candidate_samples) + " points");
+                             std::to_string(options_.seed) + "): " + with_thousands(report.reference_samples) + " + " +
+                             with_thousands(report.candidate_samples) + " points");
     table.add("time", duration(stats_seconds) + " (reading " + duration(read_seconds) + ")");
     table.print(std::cout);
   }

@@ -6,9 +6,7 @@
 
 namespace geodual::cli {
 
-void KeyValueTable::add(std::string key, std::string value) {
-  rows_.emplace_back(std::move(key), std::move(value));
-}
+void KeyValueTable::add(std::string key, std::string value) { rows_.emplace_back(std::move(key), std::move(value)); }
 
 void KeyValueTable::print(std::ostream& out) const {
   std::size_t width = 0;
@@ -19,8 +17,7 @@ void KeyValueTable::print(std::ostream& out) const {
 }
 
 std::string with_thousands(std::int64_t value) {
-  const std::uint64_t magnitude =
-      value < 0 ? 0 - static_cast<std::uint64_t>(value) : static_cast<std::uint64_t>(value);
+  const std::uint64_t magnitude = value < 0 ? 0 - static_cast<std::uint64_t>(value) : static_cast<std::uint64_t>(value);
   std::string digits = std::to_string(magnitude);
   for (auto i = static_cast<std::ptrdiff_t>(digits.size()) - 3; i > 0; i -= 3) {
     digits.insert(static_cast<std::size_t>(i), 1, ',');

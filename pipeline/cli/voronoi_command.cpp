@@ -38,9 +38,10 @@ class VoronoiCommand final : public Command {
     sites_.add_to(command);
     command.add_option("-o,--output", output_path_, "Write the diagram: .glb or .gltf")->required();
     command.add_option("--preview", preview_path_, "Also render a picture of the diagram: .png");
-    command.add_option("--boundary-tolerance,--tolerance", options_.boundary_tolerance,
-                       "Largest distance between a traced boundary and the exact one, as a fraction of the "
-                       "bounding-box diagonal (--tolerance: the old name, kept for one release)")
+    command
+        .add_option("--boundary-tolerance,--tolerance", options_.boundary_tolerance,
+                    "Largest distance between a traced boundary and the exact one, as a fraction of the "
+                    "bounding-box diagonal (--tolerance: the old name, kept for one release)")
         ->capture_default_str()
         ->check(finite_positive());
     geodesic_.add_to(command);
@@ -117,7 +118,8 @@ class VoronoiCommand final : public Command {
         nlohmann::ordered_json v;
         v["position"] = point_json(vertex.position);
         v["face"] = vertex.location.element;
-        v["barycentric"] = {vertex.location.barycentric[0], vertex.location.barycentric[1], vertex.location.barycentric[2]};
+        v["barycentric"] = {vertex.location.barycentric[0], vertex.location.barycentric[1],
+                            vertex.location.barycentric[2]};
         v["distance"] = vertex.distance;
         const auto around = diagram.sites_of(vertex);
         v["sites"] = std::vector<Index>(around.begin(), around.end());
@@ -130,13 +132,15 @@ class VoronoiCommand final : public Command {
     KeyValueTable table;
     table.add("mesh", mesh_path_ + " (" + with_thousands(mesh.num_vertices()) + " vertices, " +
                           with_thousands(mesh.num_faces()) + " faces)");
-    table.add("sites", with_thousands(static_cast<std::int64_t>(sites.size())) +
-                           (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
-                                                  : " (" + sites_.file() + ")"));
+    table.add("sites",
+              with_thousands(static_cast<std::int64_t>(sites.size())) +
+                  (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
+                                         : " (" + sites_.file() + ")"));
     table.add("voronoi vertices", with_thousands(static_cast<std::int64_t>(diagram.vertices.size())));
     table.add("boundary arcs", with_thousands(static_cast<std::int64_t>(diagram.arcs.size())) + ", total length " +
                                    significant(boundary_length));
-    table.add("boundary faces", with_thousands(s.boundary_faces) + " (" + with_thousands(s.refined_faces) + " refined)");
+    table.add("boundary faces",
+              with_thousands(s.boundary_faces) + " (" + with_thousands(s.refined_faces) + " refined)");
     table.add("time", duration(seconds_since(start)) + " (load " + duration(load_seconds) + ", sample " +
                           duration(sample_seconds) + ", geodesics " + duration(s.geodesic_seconds) + ", diagram " +
                           duration(s.extraction_seconds) + ", write " + duration(write_seconds) + ")");

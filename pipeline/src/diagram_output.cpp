@@ -1,11 +1,11 @@
 #include "geodual/pipeline/diagram_output.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/io/preview.hpp"
 #include "geodual/io/write_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/field_output.hpp"
 #include "geodual/pipeline/version.hpp"
 #include "geodual/quality/quality_stats.hpp"
@@ -44,7 +44,8 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
     io::GltfLineSet lines;
     lines.name = "voronoi_boundaries";
     lines.points.resize(static_cast<Index>(diagram.points.size()), 3);
-    for (std::size_t i = 0; i < diagram.points.size(); ++i) lines.points.row(static_cast<Index>(i)) = diagram.points[i].transpose();
+    for (std::size_t i = 0; i < diagram.points.size(); ++i)
+      lines.points.row(static_cast<Index>(i)) = diagram.points[i].transpose();
     Index segments = 0;
     for (const voronoi::VoronoiArc& arc : diagram.arcs) segments += arc.point_end - arc.point_begin - 1;
     lines.segments.resize(segments, 2);

@@ -1,9 +1,9 @@
 #include "geodual/pipeline/field_output.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/io/write_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/version.hpp"
 
 #include <cmath>

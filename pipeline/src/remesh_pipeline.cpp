@@ -1,8 +1,8 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 
@@ -93,18 +93,19 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   result.dropped = dropped_surface(result.input.mesh, result.surface);
   if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
     throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
-                std::to_string(result.dropped.area_pct) + " % of the area (scraps and flaps cut off as "
-                "non-manifold pieces); more than the " + std::to_string(options.max_dropped_area_pct) +
-                " % allowed with strict");
+                std::to_string(result.dropped.area_pct) +
+                " % of the area (scraps and flaps cut off as "
+                "non-manifold pieces); more than the " +
+                std::to_string(options.max_dropped_area_pct) + " % allowed with strict");
   }
   // Loops the input does not have were opened by the cut (at non-manifold
   // edges): messages about loops say so.
   const auto loops_from_cut = [&](std::int64_t surface_loops) -> std::string {
     if (surface_loops <= result.input_report.boundary_loops) return "";
     const std::int64_t input_loops = result.input_report.boundary_loops, made = surface_loops - input_loops;
-    return " (the input has " + std::to_string(input_loops) + (input_loops == 1 ? " boundary loop; " : " boundary loops; ") +
-           std::to_string(made) + (made == 1 ? " was" : " were") +
-           " made by the cut to a manifold at its non-manifold edges and vertices)";
+    return " (the input has " + std::to_string(input_loops) +
+           (input_loops == 1 ? " boundary loop; " : " boundary loops; ") + std::to_string(made) +
+           (made == 1 ? " was" : " were") + " made by the cut to a manifold at its non-manifold edges and vertices)";
   };
   if (options.given_sites) {
     result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
@@ -122,8 +123,8 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   // Relaxation: the geodesic engine reports the fraction of faces reached in
   // each diagram; Lloyd's accepted iterations split the stage.
   const TriangleMesh& surface = result.surface.mesh;
-  remesh::LloydOptions lloyd = remesh::relaxation_options(
-      surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
+  remesh::LloydOptions lloyd =
+      remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
   const int diagrams = lloyd.iterations + 1;
   int diagrams_done = 0;  // the first diagram, then one per accepted iteration
   double relaxed = 0;     // the fraction reported last

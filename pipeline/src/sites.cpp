@@ -1,17 +1,17 @@
 #include "geodual/pipeline/sites.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/random.hpp"
 
 #include <array>
 #include <charconv>
-#include <functional>
-#include <unordered_set>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 
 namespace geodual {
 namespace {

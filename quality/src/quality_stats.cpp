@@ -5,9 +5,9 @@
 
 #include "geodual/quality/quality_stats.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/detail/morton_code.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/random.hpp"
 
 #include <CGAL/AABB_traits.h>
@@ -24,8 +24,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <functional>
+#include <limits>
 #include <string>
 #include <thread>
 #include <utility>
@@ -250,16 +250,15 @@ class Surface {
     const auto counter = 3 * static_cast<std::uint64_t>(i);
     const double target = uniform(stream, counter) * cumulative_area_.back();
     const auto found = std::upper_bound(cumulative_area_.begin(), cumulative_area_.end(), target);
-    const auto face = std::min<std::ptrdiff_t>(found - cumulative_area_.begin(),
-                                               static_cast<std::ptrdiff_t>(triangles_.size()) - 1);
+    const auto face =
+        std::min<std::ptrdiff_t>(found - cumulative_area_.begin(), static_cast<std::ptrdiff_t>(triangles_.size()) - 1);
     const Triangle& t = triangles_[static_cast<std::size_t>(face)];
     const double s = std::sqrt(uniform(stream, counter + 1));
     const double r = uniform(stream, counter + 2);
     const double wa = 1.0 - s;
     const double wb = s * (1.0 - r);
     const double wc = s * r;
-    return Point(wa * t[0].x() + wb * t[1].x() + wc * t[2].x(),
-                 wa * t[0].y() + wb * t[1].y() + wc * t[2].y(),
+    return Point(wa * t[0].x() + wb * t[1].x() + wc * t[2].x(), wa * t[0].y() + wb * t[1].y() + wc * t[2].y(),
                  wa * t[0].z() + wb * t[1].z() + wc * t[2].z());
   }
 
@@ -388,8 +387,8 @@ auto naming(const char* which, F&& f) {
 QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
                              const QualityOptions& options) {
   if (options.samples_per_side < 0 || options.samples_per_side > max_samples_per_side) {
-    throw Error("compare_meshes: samples_per_side is " + std::to_string(options.samples_per_side) +
-                "; give 0 to " + std::to_string(max_samples_per_side));
+    throw Error("compare_meshes: samples_per_side is " + std::to_string(options.samples_per_side) + "; give 0 to " +
+                std::to_string(max_samples_per_side));
   }
   // Shares of the work in each phase, roughly as measured on meshes of a
   // million faces with a million samples per side.
@@ -412,16 +411,16 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate, progress); });
     const std::uint64_t stream = splitmix64_mix(options.seed);
     progress.phase(0.2, 0.4);
-    const OneSided forward = measure(reference_surface, candidate_surface, options.samples_per_side,
-                                     splitmix64_mix(stream), progress);
+    const OneSided forward =
+        measure(reference_surface, candidate_surface, options.samples_per_side, splitmix64_mix(stream), progress);
     progress.phase(0.6, 0.4);
-    const OneSided backward = measure(candidate_surface, reference_surface, options.samples_per_side,
-                                      splitmix64_mix(stream + 1), progress);
+    const OneSided backward =
+        measure(candidate_surface, reference_surface, options.samples_per_side, splitmix64_mix(stream + 1), progress);
     report.hausdorff_reference_to_candidate = std::sqrt(forward.max_squared);
     report.hausdorff_candidate_to_reference = std::sqrt(backward.max_squared);
     report.hausdorff = std::max(report.hausdorff_reference_to_candidate, report.hausdorff_candidate_to_reference);
-    report.rms = std::sqrt((forward.sum_squared + backward.sum_squared) /
-                           static_cast<double>(forward.count + backward.count));
+    report.rms =
+        std::sqrt((forward.sum_squared + backward.sum_squared) / static_cast<double>(forward.count + backward.count));
     report.reference_samples = forward.count;
     report.candidate_samples = backward.count;
   }

@@ -3,8 +3,8 @@
 
 #include "geodual/quality/quality_stats.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 
 #include <Eigen/Geometry>
@@ -69,8 +69,8 @@ void check_mesh(const TriangleMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const Index v = mesh.faces(f, k);
       if (v < 0 || v >= n) {
-        throw Error("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
-                    ", but the mesh has " + std::to_string(n) + " vertices");
+        throw Error("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " +
+                    std::to_string(n) + " vertices");
       }
     }
   }
@@ -120,8 +120,7 @@ void count_valences(const TriangleMesh& mesh, TriangleQuality& quality) {
   }
   if (quality.interior_vertices > 0) {
     const std::int64_t six = quality.valence_histogram.size() > 6 ? quality.valence_histogram[6] : 0;
-    quality.pct_valence6 =
-        100.0 * static_cast<double>(six) / static_cast<double>(quality.interior_vertices);
+    quality.pct_valence6 = 100.0 * static_cast<double>(six) / static_cast<double>(quality.interior_vertices);
   }
 }
 

@@ -11,8 +11,8 @@
 
 #include "sampling_surface.hpp"
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 

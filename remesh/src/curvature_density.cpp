@@ -1,7 +1,7 @@
 #include "geodual/remesh/curvature_density.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 
 #include <Eigen/Geometry>
 
@@ -14,7 +14,9 @@
 namespace geodual::remesh {
 namespace {
 
-Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int c) { return mesh.vertices.row(mesh.faces(f, c)).transpose(); }
+Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int c) {
+  return mesh.vertices.row(mesh.faces(f, c)).transpose();
+}
 
 /// Per vertex, a third of the area of the faces around it.
 std::vector<double> vertex_areas(const TriangleMesh& mesh) {
@@ -128,7 +130,8 @@ std::vector<double> curvature_density(const TriangleMesh& mesh, const CurvatureD
   // sqrt(n) edges: (spacing / edge)^2 passes smooth over one spacing.
   const double edge = edge_sum / static_cast<double>(sides.size());
   constexpr int kMaxPasses = 400;
-  const int passes = static_cast<int>(std::clamp(std::ceil(std::pow(options.spacing / edge, 2)), 1.0, double(kMaxPasses)));
+  const int passes =
+      static_cast<int>(std::clamp(std::ceil(std::pow(options.spacing / edge, 2)), 1.0, double(kMaxPasses)));
 
   std::vector<double> k = total_curvature(mesh, sides, area);
   smooth(k, sides, area, passes);

@@ -27,9 +27,9 @@
 // face crossed, and whose moments are int (x - z) dA taken into the tangent
 // plane: there the formulas hold where the surface is flat across a cell.
 
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
-#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 

@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <map>
 #include <string>
 #include <utility>
@@ -26,7 +26,7 @@ namespace {
 /// visit(u, v, boundary) once for every edge of the mesh.
 template <class ForEachEdge>
 std::map<Index, ComponentCounts> topology_by_component(const TriangleMesh& mesh, UnionFind& components,
-                                                         ForEachEdge for_each_edge) {
+                                                       ForEachEdge for_each_edge) {
   const Index n = mesh.num_vertices();
   std::vector<std::uint8_t> used(n, 0);
   for (Index f = 0; f < mesh.faces.rows(); ++f) {
@@ -76,7 +76,7 @@ void visit_pair_runs(std::vector<std::array<Index, 2>>& pairs, Visit&& visit) {
 /// faces is one edge there; an edge with one face, or three or more, is one
 /// boundary edge per face, told apart here by how many share its ends.
 std::map<Index, ComponentCounts> field_topology(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
-                                                  UnionFind& components) {
+                                                UnionFind& components) {
   return topology_by_component(mesh, components, [&](auto&& visit) {
     std::vector<std::array<Index, 2>> split;
     for (std::size_t e = 0; e < field.edge_vertices.size(); ++e) {
@@ -111,8 +111,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
     const auto sites = diagram.sites_of(vertex);
     const std::size_t k = sites.size();
-    const std::size_t apex =
-        static_cast<std::size_t>(std::min_element(sites.begin(), sites.end()) - sites.begin());
+    const std::size_t apex = static_cast<std::size_t>(std::min_element(sites.begin(), sites.end()) - sites.begin());
     for (std::size_t i = 1; i + 1 < k; ++i) {
       triangles.push_back({sites[apex], sites[(apex + i) % k], sites[(apex + i + 1) % k]});
     }
@@ -232,8 +231,8 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (const auto& [component, sites] : sites_by_component) {
     const Index dual_component = dual_topology.vertex_component[sites[0]];
     bool same = dual_component >= 0 && std::all_of(sites.begin(), sites.end(), [&](Index s) {
-      return dual_topology.vertex_component[s] == dual_component;
-    });
+                  return dual_topology.vertex_component[s] == dual_component;
+                });
     const ComponentCounts& expected = input_topology.at(component);
     same = same && dual_topology.components[dual_component].euler_characteristic() == expected.euler_characteristic() &&
            dual_topology.components[dual_component].boundary_loops == expected.boundary_loops;

@@ -1,8 +1,8 @@
 #include "geodual/remesh/lloyd.hpp"
 
 #include "cvt_newton.hpp"
-#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
+#include "geodual/mesh/error.hpp"
 #include "restricted_voronoi.hpp"
 #include "surface_walk.hpp"
 #include "weighted_cells.hpp"
@@ -35,8 +35,8 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
                                 const voronoi::GeodesicField& field, std::span<const double> cell_area,
                                 const LloydOptions& options) {
   std::vector<bool> boundary_vertex;
-  const bool vertex_sites =
-      std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
+  const bool vertex_sites = std::any_of(sites.begin(), sites.end(),
+                                        [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
   if (vertex_sites && !options.move_boundary_sites) {
     boundary_vertex.assign(static_cast<std::size_t>(mesh.vertices.rows()), false);
     for (std::size_t e = 0; e < field.edge_faces.size(); ++e) {
@@ -47,9 +47,9 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
   std::vector<bool> movable(sites.size());
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const SurfacePoint& site = sites[i];
-    const bool boundary = !options.move_boundary_sites && (site.kind == SurfacePoint::Kind::vertex
-                                                                ? bool(boundary_vertex[site.element])
-                                                                : on_boundary(field, site));
+    const bool boundary =
+        !options.move_boundary_sites &&
+        (site.kind == SurfacePoint::Kind::vertex ? bool(boundary_vertex[site.element]) : on_boundary(field, site));
     movable[i] = cell_area[i] > 0 && !boundary;
   }
   return movable;
@@ -218,9 +218,9 @@ void check_options(const LloydOptions& options) {
   require(options.newton_max_step > 0 && std::isfinite(options.newton_max_step),
           "newton_max_step must be a finite number > 0, got " + std::to_string(options.newton_max_step));
   for (std::size_t v = 0; v < options.density.size(); ++v) {
-    require(options.density[v] > 0 && std::isfinite(options.density[v]),
-            "density must be finite and > 0, got " + std::to_string(options.density[v]) + " at vertex " +
-                std::to_string(v));
+    require(options.density[v] > 0 && std::isfinite(options.density[v]), "density must be finite and > 0, got " +
+                                                                             std::to_string(options.density[v]) +
+                                                                             " at vertex " + std::to_string(v));
   }
 }
 
@@ -238,8 +238,8 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   check_options(options);
   const TriangleMesh& mesh = surface.mesh();
   if (!options.density.empty() && options.density.size() != static_cast<std::size_t>(mesh.num_vertices())) {
-    throw UsageError("lloyd_relax: density has " + std::to_string(options.density.size()) +
-                     " values for a mesh of " + std::to_string(mesh.num_vertices()) + " vertices");
+    throw UsageError("lloyd_relax: density has " + std::to_string(options.density.size()) + " values for a mesh of " +
+                     std::to_string(mesh.num_vertices()) + " vertices");
   }
   LloydResult result;
   auto diagram_of = [&](const std::vector<SurfacePoint>& points) {

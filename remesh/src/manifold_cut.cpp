@@ -1,7 +1,7 @@
 #include "geodual/remesh/manifold_cut.hpp"
 
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/detail/vertex_pair_sort.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/union_find.hpp"
 
@@ -68,8 +68,9 @@ std::int64_t disable_duplicate_faces(const VertexMatrix& vertices, FaceMatrix& f
     keys.push_back({corners, f});
   }
   // By corners, equal keys in face order: the first of a run is kept.
-  sort_by_vertex_pair(keys, static_cast<Index>(vertices.rows()), [](const FaceKey& k) { return k.corners[0]; },
-                      [](const FaceKey& k) { return k.corners[1]; });
+  sort_by_vertex_pair(
+      keys, static_cast<Index>(vertices.rows()), [](const FaceKey& k) { return k.corners[0]; },
+      [](const FaceKey& k) { return k.corners[1]; });
   std::int64_t disabled = 0;
   for (std::size_t i = 0; i < keys.size();) {
     std::size_t j = i + 1;
@@ -128,7 +129,8 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   // One vertex per fan: the first fan of a vertex keeps its index, further
   // fans get new vertices at the end, in the order of their first corner.
   std::vector<Index> vertex_of_fan;
-  std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0), split(static_cast<std::size_t>(num_vertices), 0);
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0),
+      split(static_cast<std::size_t>(num_vertices), 0);
   std::vector<Index> extra;  // original vertex of each new vertex
   for (Index f = 0; f < num_faces; ++f) {
     if (!proper(cut.mesh, f)) continue;

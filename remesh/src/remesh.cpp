@@ -1,8 +1,8 @@
 #include "geodual/remesh/remesh.hpp"
 
+#include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
-#include "geodual/mesh/detail/trim_heap.hpp"
 
 #include <algorithm>
 #include <array>

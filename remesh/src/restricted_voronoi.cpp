@@ -3,10 +3,10 @@
 #include "sampling_grid.hpp"
 #include "surface_walk.hpp"
 
-#include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,8 @@ class FaceSet {
  private:
   bool place(Index face) {
     const std::size_t mask = slot_.size() - 1;
-    for (std::size_t at = (static_cast<std::size_t>(face) * 0x9E3779B97F4A7C15ull) >> 32 & mask;; at = (at + 1) & mask) {
+    for (std::size_t at = (static_cast<std::size_t>(face) * 0x9E3779B97F4A7C15ull) >> 32 & mask;;
+         at = (at + 1) & mask) {
       if (slot_[at] == face) return false;
       if (slot_[at] < 0) {
         slot_[at] = face;
@@ -71,7 +72,7 @@ struct Scratch {
   FaceSet reached;
   std::vector<Index> queue;
   std::vector<std::pair<double, Index>> near;  // the sites near the current one (squared distance, site), nearest first
-  std::vector<Eigen::Vector4d> planes;  // and their bisectors: normal . (x - site) <= w
+  std::vector<Eigen::Vector4d> planes;         // and their bisectors: normal . (x - site) <= w
   std::vector<Corner> polygon, clipped;
   std::vector<double> side;
   std::vector<SideLabel> label, clipped_label;
@@ -111,12 +112,12 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     if (topology.face_edges[f][0] < 0) continue;
     area += (corner(f, 1) - corner(f, 0)).head<3>().cross((corner(f, 2) - corner(f, 0)).head<3>()).norm() / 2;
   }
-  const double spacing =
-      area > 0 ? std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
+  const double spacing = area > 0 ? std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
   const PointGrid grid(position, 2 * spacing);
   // A vertex site's cell starts from every face around it.
   VertexFans fans;
-  if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+  if (std::any_of(sites.begin(), sites.end(),
+                  [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
     fans = vertex_fans(mesh, topology);
   }
 
@@ -248,13 +249,15 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
         }
         // A side on the face's side -1 - label: the cell goes on across it.
         const Index edge = topology.face_edges[face][-1 - label[k]];
-        const Index across = topology.edge_faces[edge][0] == face ? topology.edge_faces[edge][1] : topology.edge_faces[edge][0];
+        const Index across =
+            topology.edge_faces[edge][0] == face ? topology.edge_faces[edge][1] : topology.edge_faces[edge][0];
         if (across >= 0 && scratch.reached.insert(across)) queue.push_back(across);
       }
     }
     // One boundary per other site, its segments together.
     auto& segments = scratch.segments;
-    std::stable_sort(segments.begin(), segments.end(), [](const Scratch::Segment& a, const Scratch::Segment& b) { return a.other < b.other; });
+    std::stable_sort(segments.begin(), segments.end(),
+                     [](const Scratch::Segment& a, const Scratch::Segment& b) { return a.other < b.other; });
     for (std::size_t first = 0; first < segments.size();) {
       std::size_t last = first;
       double length = 0, weighted = 0;
@@ -266,8 +269,8 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
         scratch.segment_ends.push_back(segments[last].from);
         scratch.segment_ends.push_back(segments[last].to);
       }
-      scratch.boundaries.push_back({s, segments[first].other, length > 0 ? weighted / length : segments[first].density, begin,
-                                    static_cast<Index>(scratch.segment_ends.size())});
+      scratch.boundaries.push_back({s, segments[first].other, length > 0 ? weighted / length : segments[first].density,
+                                    begin, static_cast<Index>(scratch.segment_ends.size())});
       first = last;
     }
   };
@@ -280,17 +283,18 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
     std::vector<Eigen::Vector3d> segment_ends;
   };
   std::vector<Block> blocks((site_count + kBlock - 1) / kBlock);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()), [&](const tbb::blocked_range<std::size_t>& range) {
-    Scratch& scratch = scratches.local();
-    for (std::size_t block = range.begin(); block != range.end(); ++block) {
-      scratch.boundaries.clear();
-      scratch.segment_ends.clear();
-      for (std::size_t s = block * kBlock; s < std::min(site_count, (block + 1) * kBlock); ++s) {
-        cell(static_cast<Index>(s), scratch);
-      }
-      blocks[block] = {scratch.boundaries, scratch.segment_ends};
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      Scratch& scratch = scratches.local();
+                      for (std::size_t block = range.begin(); block != range.end(); ++block) {
+                        scratch.boundaries.clear();
+                        scratch.segment_ends.clear();
+                        for (std::size_t s = block * kBlock; s < std::min(site_count, (block + 1) * kBlock); ++s) {
+                          cell(static_cast<Index>(s), scratch);
+                        }
+                        blocks[block] = {scratch.boundaries, scratch.segment_ends};
+                      }
+                    });
   for (const Block& block : blocks) {
     const auto offset = static_cast<Index>(cells.segment_ends.size());
     for (RestrictedBoundary boundary : block.boundaries) {

@@ -19,9 +19,9 @@
 // three-edge-midpoint rule on a fan of each clipped polygon: exact for the
 // area and the first moment, and for the energy when rho is constant.
 
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
-#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 
@@ -43,10 +43,10 @@ struct RestrictedBoundary {
 };
 
 struct RestrictedCells {
-  std::vector<double> area;             ///< int dA
-  std::vector<double> mass;             ///< int rho dA
-  std::vector<Eigen::Vector3d> moment;  ///< int rho (x - s) dA, a 3D vector
-  std::vector<double> energy;           ///< int rho |x - s|^2 dA
+  std::vector<double> area;                    ///< int dA
+  std::vector<double> mass;                    ///< int rho dA
+  std::vector<Eigen::Vector3d> moment;         ///< int rho (x - s) dA, a 3D vector
+  std::vector<double> energy;                  ///< int rho |x - s|^2 dA
   std::vector<RestrictedBoundary> boundaries;  ///< sorted by site, then other
   std::vector<Eigen::Vector3d> segment_ends;
   double total_energy() const;

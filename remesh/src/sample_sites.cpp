@@ -4,8 +4,8 @@
 
 #include "geodual/remesh/sample_sites.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "boundary_sites.hpp"
+#include "geodual/mesh/error.hpp"
 #include "sampling_strategies.hpp"
 
 #include <algorithm>
@@ -73,9 +73,8 @@ std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
     minimum.push_back(component_minimum(loops_per_component[c]));
   }
   if (count < needed_by_loops) {
-    const std::string also = needed > needed_by_loops ? " (" + std::to_string(needed) +
-                                                            " to give every component at least 4 as well)"
-                                                      : "";
+    const std::string also =
+        needed > needed_by_loops ? " (" + std::to_string(needed) + " to give every component at least 4 as well)" : "";
     throw UsageError("site count " + std::to_string(count) + " is too small for the mesh's " +
                      plural(num_loops, "boundary loop") + ": at least " + std::to_string(needed_by_loops) +
                      " sites are needed, 3 per loop" + also + "; or turn sites on the boundary off");
@@ -205,11 +204,11 @@ SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const Sampling
   const TopologyMinimum minimum = topology_minimum(surface, loops_per_component);
   if (raise_for_topology && count < minimum.needed) {
     sampled.sites_added_for_topology = minimum.needed - count;
-    sampled.topology_reason =
-        "site count " + std::to_string(count) + " raised to " + std::to_string(minimum.needed) + ": the surface's " +
-        plural(minimum.components, "piece") + (minimum.loops > 0 ? " and " + plural(minimum.loops, "boundary loop") : "") +
-        " need at least 4 sites per piece" + (minimum.loops > 0 ? " and 3 per loop" : "") +
-        ", or the remesh would lose pieces" + (minimum.loops > 0 ? " or holes" : "");
+    sampled.topology_reason = "site count " + std::to_string(count) + " raised to " + std::to_string(minimum.needed) +
+                              ": the surface's " + plural(minimum.components, "piece") +
+                              (minimum.loops > 0 ? " and " + plural(minimum.loops, "boundary loop") : "") +
+                              " need at least 4 sites per piece" + (minimum.loops > 0 ? " and 3 per loop" : "") +
+                              ", or the remesh would lose pieces" + (minimum.loops > 0 ? " or holes" : "");
     count = minimum.needed;
     if (count > std::numeric_limits<Index>::max()) {
       throw UsageError(sampled.topology_reason + "; that is more than the " +

@@ -84,9 +84,9 @@ struct FarthestPointSampler::Impl {
 
   const SamplingSurface& surface;
   const TriangleMesh& mesh;
-  std::vector<Index> vertex_index;  ///< global vertex -> index in `positions`, -1 outside the component
-  std::vector<Index> vertices;      ///< the component's vertices, by first use
-  std::vector<SurfacePoint> points;  ///< candidates, then boundary sites
+  std::vector<Index> vertex_index;         ///< global vertex -> index in `positions`, -1 outside the component
+  std::vector<Index> vertices;             ///< the component's vertices, by first use
+  std::vector<SurfacePoint> points;        ///< candidates, then boundary sites
   std::vector<Eigen::Vector3d> positions;  ///< vertices, candidates, boundary sites
   /// Per node, its index in `positions`: nodes are numbered by the slots of
   /// a grid over the positions, so that neighbours in space are neighbours
@@ -160,8 +160,8 @@ void FarthestPointSampler::Impl::build_graph(const ComponentTask& task, Rng& rng
   for (const Index f : faces) {
     for (int k = 0; k < 3; ++k) {
       const Index a = vertex_node(mesh.faces(f, k)), b = vertex_node(mesh.faces(f, (k + 1) % 3));
-      arcs.push_back({std::min(a, b), std::max(a, b),
-                      static_cast<float>((grid.position(a) - grid.position(b)).norm())});
+      arcs.push_back(
+          {std::min(a, b), std::max(a, b), static_cast<float>((grid.position(a) - grid.position(b)).norm())});
     }
   }
   std::sort(arcs.begin(), arcs.end(), [](const Arc& x, const Arc& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });

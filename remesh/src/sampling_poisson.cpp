@@ -44,9 +44,7 @@ class EliminationHeap {
   void decreased(Index i) { sift_down(position_[i]); }
 
  private:
-  bool above(Index a, Index b) const {
-    return weight_[a] > weight_[b] || (weight_[a] == weight_[b] && a < b);
-  }
+  bool above(Index a, Index b) const { return weight_[a] > weight_[b] || (weight_[a] == weight_[b] && a < b); }
   void place(Index slot, Index item) {
     heap_[slot] = item;
     position_[item] = slot;

@@ -18,8 +18,8 @@ namespace {
 
 /// Groups `items` (face indices) by `key` (component) into CSR arrays, keeping
 /// the items' order within a group.
-void group_by_component(const std::vector<Index>& items, const std::vector<Index>& face_component,
-                        Index num_components, std::vector<Index>& begin, std::vector<Index>& grouped) {
+void group_by_component(const std::vector<Index>& items, const std::vector<Index>& face_component, Index num_components,
+                        std::vector<Index>& begin, std::vector<Index>& grouped) {
   begin.assign(static_cast<std::size_t>(num_components) + 1, 0);
   for (const Index f : items) ++begin[face_component[f] + 1];
   for (Index c = 0; c < num_components; ++c) begin[c + 1] += begin[c];

@@ -4,9 +4,9 @@
 // faces by area), and the boundary loops. Plus the portable random number
 // generator and the exact barycentric lattice all sites live on.
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/random.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 
@@ -113,8 +113,6 @@ struct SamplingSurface {
 SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_boundary_loops);
 
 /// A site's position exactly as SurfacePoint::position computes it.
-inline Eigen::Vector3d site_position(const TriangleMesh& mesh, const SurfacePoint& site) {
-  return site.position(mesh);
-}
+inline Eigen::Vector3d site_position(const TriangleMesh& mesh, const SurfacePoint& site) { return site.position(mesh); }
 
 }  // namespace geodual::remesh::detail

@@ -38,7 +38,8 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
   if (start.kind != SurfacePoint::Kind::face || !(length > 0) || !direction.allFinite()) return start;
   Index face = start.element;
   Eigen::Vector3d p = start.position(mesh);
-  Eigen::Vector3d normal = (corner(mesh, face, 1) - corner(mesh, face, 0)).cross(corner(mesh, face, 2) - corner(mesh, face, 0));
+  Eigen::Vector3d normal =
+      (corner(mesh, face, 1) - corner(mesh, face, 0)).cross(corner(mesh, face, 2) - corner(mesh, face, 0));
   if (!(normal.norm() > 0)) return start;
   normal.normalize();
   Eigen::Vector3d v = direction - normal * normal.dot(direction);
@@ -136,7 +137,8 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Ge
   // A vertex site steps from the corner of the face around it whose angle
   // holds the step's direction.
   VertexFans fans;
-  if (std::any_of(sites.begin(), sites.end(), [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+  if (std::any_of(sites.begin(), sites.end(),
+                  [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
     fans = vertex_fans(mesh, field);
   }
   auto as_face_point = [&](const SurfacePoint& site, const Eigen::Vector3d& step) {
@@ -160,16 +162,17 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Ge
   };
   // Each site's step is independent of the others: bit-identical for any
   // number of threads.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Eigen::Vector3d& step = steps[i];
-      const double length = step.norm();
-      if (!(length > 0)) continue;
-      const SurfacePoint site = as_face_point(sites[i], step);
-      if (site.kind != SurfacePoint::Kind::face) continue;
-      moved[i] = walk_on_surface(mesh, field, site, step, length);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size()),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const Eigen::Vector3d& step = steps[i];
+                        const double length = step.norm();
+                        if (!(length > 0)) continue;
+                        const SurfacePoint site = as_face_point(sites[i], step);
+                        if (site.kind != SurfacePoint::Kind::face) continue;
+                        moved[i] = walk_on_surface(mesh, field, site, step, length);
+                      }
+                    });
   std::vector<std::size_t> order(moved.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::vector<Eigen::Vector3d> position(moved.size());

@@ -4,9 +4,9 @@
 // by face. Crossing an edge keeps the angle to the edge (the two faces are
 // unfolded about it); the walk stops early at the mesh boundary.
 
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
-#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 

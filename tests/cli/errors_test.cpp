@@ -69,13 +69,9 @@ TEST(CliUsage, UnknownCommandIsAUsageError) {
   expect_error(run_cli({"frobnicate", "x.ply"}), exit_usage, "frobnicate");
 }
 
-TEST(CliUsage, MissingFileArgumentIsAUsageError) {
-  expect_error(run_cli({"info"}), exit_usage, "FILE");
-}
+TEST(CliUsage, MissingFileArgumentIsAUsageError) { expect_error(run_cli({"info"}), exit_usage, "FILE"); }
 
-TEST(CliUsage, ExtraArgumentIsAUsageError) {
-  expect_error(run_cli({"info", "a.ply", "b.ply"}), exit_usage, "b.ply");
-}
+TEST(CliUsage, ExtraArgumentIsAUsageError) { expect_error(run_cli({"info", "a.ply", "b.ply"}), exit_usage, "b.ply"); }
 
 class CliBadInput : public ::testing::Test {
  protected:

@@ -56,17 +56,17 @@ TEST(GeodesicCommand, WritesTheLibrarysFieldDeterministically) {
   const CliRun run = run_cli({"geodesic", small_mesh, "--sites", "12", "--seed", "5", "-o", out1.string(), "--json"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
-  for (const char* key : {"windows_created", "windows_stored", "peak_windows", "peak_window_bytes",
-                          "vertices_popped", "time_s"}) {
+  for (const char* key :
+       {"windows_created", "windows_stored", "peak_windows", "peak_window_bytes", "vertices_popped", "time_s"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_LE(json.at("windows_stored").get<std::int64_t>(), json.at("peak_windows").get<std::int64_t>());
   EXPECT_LE(json.at("peak_windows").get<std::int64_t>(), json.at("windows_created").get<std::int64_t>());
 
   ASSERT_EQ(run_cli({"geodesic", small_mesh, "--sites", "12", "--seed", "5", "-o", out2.string()}).exit_status, 0);
-  ASSERT_EQ(run_cli({"geodesic", small_mesh, "--sites", "12", "--seed", "5", "--no-rwr", "-o", out3.string()})
-                .exit_status,
-            0);
+  ASSERT_EQ(
+      run_cli({"geodesic", small_mesh, "--sites", "12", "--seed", "5", "--no-rwr", "-o", out3.string()}).exit_status,
+      0);
   const std::string bytes = slurp(out1);
   EXPECT_EQ(bytes, slurp(out2)) << "same input, options and seed must give the same bytes";
   EXPECT_EQ(bytes, slurp(out3)) << "RWR must not change distances or labels";

@@ -66,8 +66,7 @@ TEST(InfoCommand, JsonAgreesWithAnalyzeMesh) {
 TEST(InfoCommand, GenusIsNullWhereItMeansNothing) {
   // A bow tie: two triangles sharing one vertex, a pinch.
   const ScratchFolder folder;
-  const auto path = folder.write("bowtie.obj",
-                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
+  const auto path = folder.write("bowtie.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n");
   const CliRun run = run_cli({"info", path.string(), "--json"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
@@ -80,15 +79,14 @@ TEST(InfoCommand, TableShowsTheFigures) {
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_TRUE(run.err.empty()) << run.err;
   const auto rows = table_rows(run.out);
-  const std::map<std::string, std::string> expected{
-      {"vertices", "35,947"},
-      {"faces", "69,451"},
-      {"boundary loops", "5 (223 boundary edges)"},
-      {"unreferenced vertices", "1,113"},
-      {"non-manifold edges", "0"},
-      {"genus", "0"},
-      {"bbox diagonal", "0.250246"},
-      {"format", "PLY, binary_little_endian float32"}};
+  const std::map<std::string, std::string> expected{{"vertices", "35,947"},
+                                                    {"faces", "69,451"},
+                                                    {"boundary loops", "5 (223 boundary edges)"},
+                                                    {"unreferenced vertices", "1,113"},
+                                                    {"non-manifold edges", "0"},
+                                                    {"genus", "0"},
+                                                    {"bbox diagonal", "0.250246"},
+                                                    {"format", "PLY, binary_little_endian float32"}};
   for (const auto& [key, value] : expected) {
     ASSERT_EQ(rows.count(key), 1U) << "no row '" << key << "' in\n" << run.out;
     EXPECT_EQ(rows.at(key), value) << key;

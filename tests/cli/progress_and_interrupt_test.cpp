@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -19,7 +20,6 @@
 #include <fstream>
 #include <iterator>
 #include <string>
-#include <sys/wait.h>
 
 namespace geodual::cli_test {
 namespace {
@@ -108,8 +108,8 @@ ScratchFolder* LargeMeshes::folder_ = nullptr;
 
 TEST_F(LargeMeshes, CtrlCStopsStatsWithinASecond) {
   // 1.5 s in, while it measures the 2 x 10^8 sample distances (minutes).
-  const InterruptedRun run = interrupt_after(
-      1.5, "stats " + reference() + " " + candidate() + " --samples 100000000 --json");
+  const InterruptedRun run =
+      interrupt_after(1.5, "stats " + reference() + " " + candidate() + " --samples 100000000 --json");
   EXPECT_EQ(run.status, 3) << run.output;
   EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
   EXPECT_NE(run.output.find("cancelled"), std::string::npos) << run.output;
@@ -120,8 +120,7 @@ TEST_F(LargeMeshes, CtrlCStopsInfoWithinASecond) {
   const auto preview = output_folder_.path() / "preview.png";
   // 0.3 s in, while it reads or analyses the mesh (each takes longer), before
   // the preview.
-  const InterruptedRun run =
-      interrupt_after(0.3, "info " + large() + " --json --preview " + preview.string());
+  const InterruptedRun run = interrupt_after(0.3, "info " + large() + " --json --preview " + preview.string());
   EXPECT_EQ(run.status, 3) << run.output;
   EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
   EXPECT_EQ(run.output.find("faces"), std::string::npos) << run.output;  // no result printed
@@ -153,8 +152,8 @@ TEST(Progress, OnATerminalOnlyAndNotWithQuiet) {
   ASSERT_EQ(piped.exit_status, 0) << piped.err;
   EXPECT_EQ(piped.err, "");
   // On a pseudo-terminal (script(1) gives the command one): the stage line.
-  const std::string command = std::string(GEODUAL_CLI) + " remesh " + scan +
-                              " --sites 300 --lloyd 2 --samples -1 -o " + (folder.path() / "b.ply").string();
+  const std::string command = std::string(GEODUAL_CLI) + " remesh " + scan + " --sites 300 --lloyd 2 --samples -1 -o " +
+                              (folder.path() / "b.ply").string();
   const auto [status, terminal] = shell("script -qec '" + command + "' /dev/null");
   ASSERT_EQ(status, 0) << terminal;
   EXPECT_NE(terminal.find("geodual: relax"), std::string::npos) << terminal;
@@ -167,11 +166,12 @@ TEST(Progress, OnATerminalOnlyAndNotWithQuiet) {
 TEST(Threads, OneThreadGivesTheSameBytes) {
   ScratchFolder folder;
   const auto a = folder.path() / "a.ply", b = folder.path() / "b.ply";
-  ASSERT_EQ(run_cli({"remesh", scan, "--sites", "400", "--lloyd", "2", "--samples", "-1", "-o", a.string()}).exit_status, 0);
-  ASSERT_EQ(run_cli({"--threads", "1", "remesh", scan, "--sites", "400", "--lloyd", "2", "--samples", "-1", "-o",
-                     b.string()})
-                .exit_status,
-            0);
+  ASSERT_EQ(
+      run_cli({"remesh", scan, "--sites", "400", "--lloyd", "2", "--samples", "-1", "-o", a.string()}).exit_status, 0);
+  ASSERT_EQ(
+      run_cli({"--threads", "1", "remesh", scan, "--sites", "400", "--lloyd", "2", "--samples", "-1", "-o", b.string()})
+          .exit_status,
+      0);
   EXPECT_EQ(slurp(a), slurp(b));
 }
 
@@ -179,8 +179,8 @@ TEST(Interrupt, CtrlCExitsThreeAndWritesNothing) {
   ScratchFolder folder;
   const auto out = folder.path() / "out.glb";
   // SIGINT one second in, while the relaxation runs (it takes several).
-  const auto [status, output] = shell("timeout --preserve-status -s INT 1 " + std::string(GEODUAL_CLI) +
-                                      " remesh " + scan + " --sites 4000 --lloyd 20 -o " + out.string());
+  const auto [status, output] = shell("timeout --preserve-status -s INT 1 " + std::string(GEODUAL_CLI) + " remesh " +
+                                      scan + " --sites 4000 --lloyd 20 -o " + out.string());
   EXPECT_EQ(status, 3) << output;
   EXPECT_NE(output.find("cancelled"), std::string::npos) << output;
   EXPECT_TRUE(std::filesystem::is_empty(folder.path()));

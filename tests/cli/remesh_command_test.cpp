@@ -8,8 +8,8 @@
 #include "geodual/io/write_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -36,7 +36,8 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
   const MeshReport input = analyze_mesh(io::read_mesh(open_scan).mesh);
   for (const char* extension : {".glb", ".gltf", ".ply", ".obj"}) {
     const auto out = folder.path() / (std::string("bunny") + extension);
-    const CliRun run = run_cli({"remesh", open_scan, "--sites", "600", "--lloyd", "1", "--samples", "10000", "-o", out.string(), "--json"});
+    const CliRun run = run_cli(
+        {"remesh", open_scan, "--sites", "600", "--lloyd", "1", "--samples", "10000", "-o", out.string(), "--json"});
     ASSERT_EQ(run.exit_status, 0) << run.err;
     const nlohmann::json json = nlohmann::json::parse(run.out);
     const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
@@ -50,9 +51,9 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
     const std::size_t warm_started = json["warm_start_iterations"].get<int>() > 0 ? 1 : 0;
     ASSERT_EQ(energy.size(), json["lloyd_iterations"].get<std::size_t>() + 1 + warm_started);
     for (std::size_t i = 1; i < energy.size(); ++i) EXPECT_LE(energy[i], energy[i - 1]);
-    for (const char* key : {"sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s",
-                            "peak_memory_bytes", "q_min", "q_avg", "lloyd_iterations", "warm_start_iterations", "warm_start_s", "energy_history",
-                            "hausdorff_pct", "rms_pct", "relax_s", "statistics_s"}) {
+    for (const char* key : {"sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s", "peak_memory_bytes",
+                            "q_min", "q_avg", "lloyd_iterations", "warm_start_iterations", "warm_start_s",
+                            "energy_history", "hausdorff_pct", "rms_pct", "relax_s", "statistics_s"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
   }
@@ -61,7 +62,8 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
 TEST(RemeshCommand, SameInputSameBytesForEverySampling) {
   ScratchFolder folder;
   for (const char* sampling : {"random", "poisson", "fps"}) {
-    const auto a = folder.path() / (std::string(sampling) + "-a.ply"), b = folder.path() / (std::string(sampling) + "-b.ply");
+    const auto a = folder.path() / (std::string(sampling) + "-a.ply"),
+               b = folder.path() / (std::string(sampling) + "-b.ply");
     for (const auto& out : {a, b}) {
       const CliRun run = run_cli({"remesh", genus_four, "--sites", "700", "--sampling", sampling, "--seed", "3",
                                   "--lloyd", "1", "--samples", "-1", "-o", out.string()});
@@ -77,9 +79,11 @@ TEST(RemeshCommand, SameInputSameBytesInEveryFormat) {
   // memory) may leak into the bytes (glTF extras included).
   ScratchFolder folder;
   for (const char* extension : {".glb", ".gltf", ".ply", ".obj"}) {
-    const auto a = folder.path() / (std::string("a") + extension), b = folder.path() / (std::string("other-b") + extension);
+    const auto a = folder.path() / (std::string("a") + extension),
+               b = folder.path() / (std::string("other-b") + extension);
     for (const auto& out : {a, b}) {
-      const CliRun run = run_cli({"remesh", genus_four, "--sites", "500", "--lloyd", "1", "--samples", "2000", "-o", out.string()});
+      const CliRun run =
+          run_cli({"remesh", genus_four, "--sites", "500", "--lloyd", "1", "--samples", "2000", "-o", out.string()});
       ASSERT_EQ(run.exit_status, 0) << run.err;
     }
     EXPECT_EQ(slurp(a), slurp(b)) << extension;
@@ -122,7 +126,8 @@ TEST(RemeshCommand, LeftOutAreaIsReportedAndStrictRefusesIt) {
   const double scraps_pct = 100 * (lone * 0.0005) / (1 + lone * 0.0005);
 
   const auto out = folder.path() / "out.glb";
-  const CliRun run = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
+  const CliRun run = run_cli(
+      {"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["dropped_faces"].get<int>(), lone);
@@ -131,7 +136,8 @@ TEST(RemeshCommand, LeftOutAreaIsReportedAndStrictRefusesIt) {
   EXPECT_NE(run.err.find("grid-and-scraps.ply"), std::string::npos) << run.err;
 
   const auto strict_out = folder.path() / "strict.glb";
-  const CliRun strict = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1", "--strict", "-o", strict_out.string()});
+  const CliRun strict = run_cli({"remesh", input.string(), "--sites", "60", "--lloyd", "0", "--samples", "-1",
+                                 "--strict", "-o", strict_out.string()});
   EXPECT_NE(strict.exit_status, 0);
   EXPECT_NE(strict.err.find("strict"), std::string::npos) << strict.err;
   EXPECT_FALSE(std::filesystem::exists(strict_out));
@@ -140,9 +146,11 @@ TEST(RemeshCommand, LeftOutAreaIsReportedAndStrictRefusesIt) {
 TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
   ScratchFolder folder;
   auto remesh = [&](std::vector<std::string> extra) {
-    std::vector<std::string> arguments = {"remesh", open_scan, "--sites", "800", "--lloyd", "4", "--lloyd-tol", "0",
-                                          "--samples", "-1", "-o", (folder.path() / "out.ply").string(), "--json",
-                                          "--report", (folder.path() / "report.json").string()};
+    std::vector<std::string> arguments = {"remesh",      open_scan,  "--sites",
+                                          "800",         "--lloyd",  "4",
+                                          "--lloyd-tol", "0",        "--samples",
+                                          "-1",          "-o",       (folder.path() / "out.ply").string(),
+                                          "--json",      "--report", (folder.path() / "report.json").string()};
     arguments.insert(arguments.end(), extra.begin(), extra.end());
     const CliRun run = run_cli(arguments);
     EXPECT_EQ(run.exit_status, 0) << run.err;
@@ -165,9 +173,19 @@ TEST(RemeshCommand, NewtonStepsByDefaultPlainLloydOnRequest) {
 TEST(RemeshCommand, CurvatureAdaptationOnRequest) {
   ScratchFolder folder;
   auto remesh = [&](std::vector<std::string> extra) {
-    std::vector<std::string> arguments = {"remesh", open_scan, "--sites", "800", "--lloyd", "2", "--samples", "-1",
-                                          "-o", (folder.path() / "out.ply").string(), "--json",
-                                          "--report", (folder.path() / "report.json").string()};
+    std::vector<std::string> arguments = {"remesh",
+                                          open_scan,
+                                          "--sites",
+                                          "800",
+                                          "--lloyd",
+                                          "2",
+                                          "--samples",
+                                          "-1",
+                                          "-o",
+                                          (folder.path() / "out.ply").string(),
+                                          "--json",
+                                          "--report",
+                                          (folder.path() / "report.json").string()};
     arguments.insert(arguments.end(), extra.begin(), extra.end());
     const CliRun run = run_cli(arguments);
     EXPECT_EQ(run.exit_status, 0) << run.err;
@@ -191,15 +209,16 @@ TEST(RemeshCommand, FlagsAreNamedAfterTheOptionFieldsAndTheOldNamesStillWork) {
   ScratchFolder folder;
   auto report_of = [&](std::vector<std::string> flags) {
     const auto out = folder.path() / "out.ply", report = folder.path() / "report.json";
-    std::vector<std::string> arguments = {"remesh", genus_four, "--sites", "300", "-o", out.string(), "--report",
-                                          report.string()};
+    std::vector<std::string> arguments = {"remesh", genus_four,   "--sites",  "300",
+                                          "-o",     out.string(), "--report", report.string()};
     arguments.insert(arguments.end(), flags.begin(), flags.end());
     const CliRun run = run_cli(arguments);
     EXPECT_EQ(run.exit_status, 0) << run.err;
     return nlohmann::json::parse(slurp(report))["options"];
   };
-  const nlohmann::json now = report_of({"--lloyd-iterations", "1", "--lloyd-tolerance", "0.5", "--warm-start-iterations",
-                                        "3", "--no-newton", "--no-statistics", "--no-rwr", "--window-memory", "512"});
+  const nlohmann::json now =
+      report_of({"--lloyd-iterations", "1", "--lloyd-tolerance", "0.5", "--warm-start-iterations", "3", "--no-newton",
+                 "--no-statistics", "--no-rwr", "--window-memory", "512"});
   const nlohmann::json old = report_of({"--lloyd", "1", "--lloyd-tol", "0.5", "--warm-start", "3", "--plain-lloyd",
                                         "--samples", "-1", "--no-rwr", "--window-memory", "512"});
   EXPECT_EQ(now, old);
@@ -215,15 +234,14 @@ TEST(RemeshCommand, FlagsAreNamedAfterTheOptionFieldsAndTheOldNamesStillWork) {
 TEST(RemeshCommand, OutOfRangeValuesAreShortUsageErrors) {
   ScratchFolder folder;
   const std::string out = (folder.path() / "out.ply").string();
-  for (const std::vector<std::string>& flags :
-       std::vector<std::vector<std::string>>{{"--seed", "-1"},
-                                             {"--curvature-adaptation", "nan"},
-                                             {"--curvature-adaptation", "inf"},
-                                             {"--lloyd-tolerance", "-1"},
-                                             {"--lloyd-iterations", "-2"},
-                                             {"--window-memory", "0"},
-                                             {"--sites", "0"},
-                                             {"--sites", "2000000000"}}) {
+  for (const std::vector<std::string>& flags : std::vector<std::vector<std::string>>{{"--seed", "-1"},
+                                                                                     {"--curvature-adaptation", "nan"},
+                                                                                     {"--curvature-adaptation", "inf"},
+                                                                                     {"--lloyd-tolerance", "-1"},
+                                                                                     {"--lloyd-iterations", "-2"},
+                                                                                     {"--window-memory", "0"},
+                                                                                     {"--sites", "0"},
+                                                                                     {"--sites", "2000000000"}}) {
     std::vector<std::string> arguments = {"remesh", genus_four, "-o", out};
     if (flags[0] != "--sites") arguments.insert(arguments.end(), {"--sites", "100"});
     arguments.insert(arguments.end(), flags.begin(), flags.end());
@@ -316,9 +334,9 @@ TEST(RemeshCommand, ReportAndQualityColours) {
   ScratchFolder folder;
   const auto out = folder.path() / "coloured.glb", report = folder.path() / "report.json",
              picture = folder.path() / "quality.png";
-  const CliRun run = run_cli({"remesh", genus_four, "--sites", "500", "--lloyd", "2", "--samples", "5000", "--color",
-                              "quality", "--report", report.string(), "--preview", picture.string(), "-o",
-                              out.string()});
+  const CliRun run =
+      run_cli({"remesh", genus_four, "--sites", "500", "--lloyd", "2", "--samples", "5000", "--color", "quality",
+               "--report", report.string(), "--preview", picture.string(), "-o", out.string()});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(report));
   for (const char* key : {"options", "input", "stages", "energy_history", "sites_added", "result"}) {
@@ -378,7 +396,8 @@ std::string cubes_obj(int count, const std::string& extra_faces = "") {
                             {4, 8, 7}, {4, 7, 3}, {1, 5, 8}, {1, 8, 4}, {2, 3, 7}, {2, 7, 6}};
   for (int c = 0; c < count; ++c) {
     for (const auto& f : faces) {
-      text += "f " + std::to_string(f[0] + 8 * c) + " " + std::to_string(f[1] + 8 * c) + " " + std::to_string(f[2] + 8 * c) + "\n";
+      text += "f " + std::to_string(f[0] + 8 * c) + " " + std::to_string(f[1] + 8 * c) + " " +
+              std::to_string(f[2] + 8 * c) + "\n";
     }
   }
   return text + extra_faces;
@@ -389,7 +408,8 @@ TEST(RemeshCommand, SitesAddedForTopologyAreReported) {
   ScratchFolder folder;
   const auto input = folder.write("cubes.obj", cubes_obj(3));
   const auto out = folder.path() / "cubes.ply";
-  const CliRun run = run_cli({"remesh", input.string(), "--sites", "4", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  const CliRun run =
+      run_cli({"remesh", input.string(), "--sites", "4", "--samples", "-1", "-q", "--json", "-o", out.string()});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["sites"].get<std::int64_t>(), 12);
@@ -399,7 +419,8 @@ TEST(RemeshCommand, SitesAddedForTopologyAreReported) {
   EXPECT_EQ(output.components, 3);
   EXPECT_EQ(output.euler_characteristic, 6);
   // Enough sites: none added, nothing said.
-  const CliRun enough = run_cli({"remesh", input.string(), "--sites", "60", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  const CliRun enough =
+      run_cli({"remesh", input.string(), "--sites", "60", "--samples", "-1", "-q", "--json", "-o", out.string()});
   ASSERT_EQ(enough.exit_status, 0) << enough.err;
   EXPECT_EQ(nlohmann::json::parse(enough.out)["sites_added_for_topology"].get<std::int64_t>(), 0);
   EXPECT_EQ(enough.err.find("raised"), std::string::npos) << enough.err;
@@ -411,7 +432,8 @@ TEST(RemeshCommand, DuplicateFacesLoseNoSurface) {
   ScratchFolder folder;
   const auto input = folder.write("cube.obj", cubes_obj(1, "f 1 2 3\nf 1 4 3\n"));
   const auto out = folder.path() / "cube.ply";
-  const CliRun run = run_cli({"remesh", input.string(), "--sites", "40", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  const CliRun run =
+      run_cli({"remesh", input.string(), "--sites", "40", "--samples", "-1", "-q", "--json", "-o", out.string()});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["dropped_faces"].get<std::int64_t>(), 2);
@@ -448,7 +470,8 @@ TEST(RemeshCommand, LoopsMadeByTheCutAreNamedAsSuch) {
   for (int sheet = 0; sheet < 3; ++sheet) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
-        const int a = vertex(sheet, i, j), b = vertex(sheet, i + 1, j), c = vertex(sheet, i + 1, j + 1), d = vertex(sheet, i, j + 1);
+        const int a = vertex(sheet, i, j), b = vertex(sheet, i + 1, j), c = vertex(sheet, i + 1, j + 1),
+                  d = vertex(sheet, i, j + 1);
         obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n";
         obj += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
       }
@@ -457,7 +480,8 @@ TEST(RemeshCommand, LoopsMadeByTheCutAreNamedAsSuch) {
   ScratchFolder folder;
   const auto input = folder.write("hinge.obj", obj);
   const auto out = folder.path() / "hinge.ply";
-  const CliRun run = run_cli({"remesh", input.string(), "--sites", "4", "--samples", "-1", "-q", "--json", "-o", out.string()});
+  const CliRun run =
+      run_cli({"remesh", input.string(), "--sites", "4", "--samples", "-1", "-q", "--json", "-o", out.string()});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["sites_added_for_topology"].get<std::int64_t>(), 8);
   EXPECT_NE(run.err.find("3 boundary loops"), std::string::npos) << run.err;

@@ -24,12 +24,26 @@ constexpr const char* candidate_mesh = "tests/data/bunny_res2.ply";
 constexpr std::int64_t test_samples = 20000;
 
 /// The figures of one mesh, in the order the README documents them.
-const std::vector<std::string> mesh_keys = {
-    "vertices",        "faces",          "degenerate_faces",  "q_min",
-    "q_avg",           "theta_min_deg",  "theta_min_avg_deg", "pct_angles_lt30",
-    "p30",             "valence_histogram", "interior_vertices", "pct_valence6",
-    "euler_characteristic", "genus",     "components",        "boundary_loops",
-    "nonmanifold_edges", "bbox_diagonal", "area",             "volume"};
+const std::vector<std::string> mesh_keys = {"vertices",
+                                            "faces",
+                                            "degenerate_faces",
+                                            "q_min",
+                                            "q_avg",
+                                            "theta_min_deg",
+                                            "theta_min_avg_deg",
+                                            "pct_angles_lt30",
+                                            "p30",
+                                            "valence_histogram",
+                                            "interior_vertices",
+                                            "pct_valence6",
+                                            "euler_characteristic",
+                                            "genus",
+                                            "components",
+                                            "boundary_loops",
+                                            "nonmanifold_edges",
+                                            "bbox_diagonal",
+                                            "area",
+                                            "volume"};
 
 std::vector<std::string> keys_of(const nlohmann::ordered_json& json) {
   std::vector<std::string> keys;
@@ -61,18 +75,18 @@ void expect_one_error_line(const CliRun& run, int status, const std::string& men
 }
 
 TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
-  const CliRun run = run_cli({"stats", reference_mesh, candidate_mesh, "--json", "--samples",
-                              std::to_string(test_samples), "--seed", "3"});
+  const CliRun run = run_cli(
+      {"stats", reference_mesh, candidate_mesh, "--json", "--samples", std::to_string(test_samples), "--seed", "3"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_TRUE(run.err.empty()) << run.err;
   const nlohmann::ordered_json json = nlohmann::ordered_json::parse(run.out);
 
   std::vector<std::string> expected = {"reference", "candidate"};
   expected.insert(expected.end(), mesh_keys.begin(), mesh_keys.end());
-  for (const char* key : {"hausdorff", "rms", "hausdorff_pct", "rms_pct", "hausdorff_reference_to_candidate_pct",
-                          "hausdorff_candidate_to_reference_pct", "area_change_pct", "volume_change_pct",
-                          "samples_per_side", "seed", "reference_samples", "candidate_samples",
-                          "reference_quality", "read_s", "stats_s"}) {
+  for (const char* key :
+       {"hausdorff", "rms", "hausdorff_pct", "rms_pct", "hausdorff_reference_to_candidate_pct",
+        "hausdorff_candidate_to_reference_pct", "area_change_pct", "volume_change_pct", "samples_per_side", "seed",
+        "reference_samples", "candidate_samples", "reference_quality", "read_s", "stats_s"}) {
     expected.emplace_back(key);
   }
   EXPECT_EQ(keys_of(json), expected);
@@ -132,10 +146,26 @@ TEST(StatsCommand, TableShowsTheFigures) {
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_TRUE(run.err.empty()) << run.err;
   const auto rows = table_rows(run.out);
-  for (const char* key : {"reference", "candidate", "mesh", "faces", "Q min", "Q avg", "min angle",
-                          "mean min angle", "angles < 30 deg", "P30", "valence 6 (interior)",
-                          "euler characteristic", "genus", "boundary loops", "non-manifold edges", "hausdorff",
-                          "rms", "area change", "volume change", "samples"}) {
+  for (const char* key : {"reference",
+                          "candidate",
+                          "mesh",
+                          "faces",
+                          "Q min",
+                          "Q avg",
+                          "min angle",
+                          "mean min angle",
+                          "angles < 30 deg",
+                          "P30",
+                          "valence 6 (interior)",
+                          "euler characteristic",
+                          "genus",
+                          "boundary loops",
+                          "non-manifold edges",
+                          "hausdorff",
+                          "rms",
+                          "area change",
+                          "volume change",
+                          "samples"}) {
     EXPECT_EQ(rows.count(key), 1U) << "no row '" << key << "' in\n" << run.out;
   }
   ASSERT_EQ(rows.count("faces"), 1U);

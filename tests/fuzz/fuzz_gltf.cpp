@@ -6,8 +6,8 @@
 // The name is empty, so external buffers are refused and no input makes the
 // reader open files.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <cstddef>
 #include <cstdint>

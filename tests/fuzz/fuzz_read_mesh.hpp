@@ -4,8 +4,8 @@
 // a crash, a sanitizer report, another exception type, a leak, a hang, a huge
 // allocation -- is a bug the fuzzer reports.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -13,8 +13,7 @@
 
 namespace geodual::fuzz {
 
-inline int read_mesh_bytes(const std::uint8_t* data, std::size_t size, io::MeshFormat format,
-                           const char* name) {
+inline int read_mesh_bytes(const std::uint8_t* data, std::size_t size, io::MeshFormat format, const char* name) {
   try {
     io::read_mesh_from_memory(std::as_bytes(std::span(data, size)), format, name);
   } catch (const Error&) {

@@ -5,9 +5,9 @@
 //
 //   make_seed_corpus fuzz-corpus tests/data/woody.ply ...
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <algorithm>
 #include <bit>

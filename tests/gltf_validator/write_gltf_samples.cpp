@@ -9,8 +9,8 @@
 // a message when the writer refuses a scene (which is itself a failure: every
 // scene here is valid input).
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -135,7 +135,8 @@ GltfPointSet some_points(const TriangleMesh& mesh, int stride, bool with_colors)
 // fallback) and a triangle with a repeated index, as scans have them.
 TriangleMesh awkward_mesh() {
   TriangleMesh mesh;
-  mesh.vertices = VertexMatrix{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {5, 5, 5}, {2, 0, 0}, {3, 0, 0}, {-1, -1, -1}};
+  mesh.vertices =
+      VertexMatrix{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {5, 5, 5}, {2, 0, 0}, {3, 0, 0}, {-1, -1, -1}};
   mesh.faces = FaceMatrix{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {1, 5, 6}, {7, 7, 2}};
   return mesh;
 }
@@ -154,9 +155,12 @@ std::vector<Sample> samples() {
 
   out.push_back({"triangles_rgb_scalars", {}});
   out.back().scene.triangle_meshes.push_back(
-      {.name = "sphere", .mesh = sphere, .colors = colors_for(sphere.vertices, 3),
-       .scalars = {{.name = "_DISTANCE", .values = height_field(sphere.vertices)},
-                   {.name = "_CELL", .values = std::vector<float>(static_cast<std::size_t>(sphere.num_vertices()), 3.0F)}}});
+      {.name = "sphere",
+       .mesh = sphere,
+       .colors = colors_for(sphere.vertices, 3),
+       .scalars = {
+           {.name = "_DISTANCE", .values = height_field(sphere.vertices)},
+           {.name = "_CELL", .values = std::vector<float>(static_cast<std::size_t>(sphere.num_vertices()), 3.0F)}}});
 
   out.push_back({"triangles_rgba", {}});
   out.back().scene.triangle_meshes.push_back({.mesh = sphere, .colors = colors_for(sphere.vertices, 4)});
@@ -183,7 +187,8 @@ std::vector<Sample> samples() {
 
   out.push_back({"points_colored_single", {}});
   {
-    GltfPointSet one{.name = "one", .points = VertexMatrix{{0.1, -0.2, 0.3}}, .colors = ColorMatrix::Constant(1, 3, 1.0F)};
+    GltfPointSet one{
+        .name = "one", .points = VertexMatrix{{0.1, -0.2, 0.3}}, .colors = ColorMatrix::Constant(1, 3, 1.0F)};
     out.back().scene.point_sets.push_back(std::move(one));
   }
 
@@ -192,7 +197,8 @@ std::vector<Sample> samples() {
   out.push_back({"everything_extras", {}});
   {
     GltfScene& scene = out.back().scene;
-    scene.triangle_meshes.push_back({.name = "cells \xC3\xA9t\xC3\xA9", .mesh = sphere,
+    scene.triangle_meshes.push_back({.name = "cells \xC3\xA9t\xC3\xA9",
+                                     .mesh = sphere,
                                      .colors = colors_for(sphere.vertices, 3),
                                      .scalars = {{.name = "_DISTANCE", .values = height_field(sphere.vertices)}}});
     scene.triangle_meshes.push_back({.name = "bad \xFF\xFE utf8", .mesh = awkward_mesh()});

@@ -31,10 +31,11 @@ TEST(AtomicWrite, FailureMidwayLeavesNoFileAndNoTemporary) {
   EXPECT_THROW(write_file_atomically(dir / "out.ply", write_then_fail), Error);
   EXPECT_TRUE(dir.entries().empty());
   // Any exception type, not only geodual::Error.
-  EXPECT_THROW(write_file_atomically(dir / "out.ply", [](std::ostream& out) {
-                 out << "partial";
-                 throw std::runtime_error("boom");
-               }),
+  EXPECT_THROW(write_file_atomically(dir / "out.ply",
+                                     [](std::ostream& out) {
+                                       out << "partial";
+                                       throw std::runtime_error("boom");
+                                     }),
                std::runtime_error);
   EXPECT_TRUE(dir.entries().empty());
 }

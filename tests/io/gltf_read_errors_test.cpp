@@ -1,10 +1,10 @@
 // glTF reading of broken and hostile input: each case must end in a
 // geodual::Error whose message names the file and the problem.
 
-#include "geodual/mesh/error.hpp"
-#include "geodual/io/gltf.hpp"
-#include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
+#include "geodual/io/gltf.hpp"
+#include "geodual/mesh/error.hpp"
+#include "gltf_test_bytes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -104,8 +104,8 @@ TEST(GltfReadErrors, SquareFileIsValidAsBuilt) {
 
 TEST(GltfReadErrors, TruncatedGlb) {
   const std::vector<std::byte> glb = valid_glb();
-  for (const std::size_t length : {std::size_t{0}, std::size_t{3}, std::size_t{11}, std::size_t{12},
-                                   std::size_t{19}, std::size_t{40}, glb.size() - 4, glb.size() - 1}) {
+  for (const std::size_t length : {std::size_t{0}, std::size_t{3}, std::size_t{11}, std::size_t{12}, std::size_t{19},
+                                   std::size_t{40}, glb.size() - 4, glb.size() - 1}) {
     SCOPED_TRACE(length);
     expect_read_error(std::span(glb).first(length), true, "cut.glb", {"truncated"});
   }
@@ -164,47 +164,55 @@ TEST(GltfReadErrors, IndexOutOfRange) {
   std::vector<std::byte> buffer = square_positions;
   const std::vector<std::byte> bad = bytes_of<std::uint16_t>({0, 1, 2, 0, 2, 4});
   buffer.insert(buffer.end(), bad.begin(), bad.end());
-  const std::string json = square_json({{&SquareFile::buffer, R"({"byteLength":60,"uri":")" + data_uri(buffer) + "\"}"}});
-  expect_json_error(json, {"mesh 0 'sq' primitive 0", "indices accessor 1", "element 5 is vertex index 4", "only 4 vertices"});
+  const std::string json =
+      square_json({{&SquareFile::buffer, R"({"byteLength":60,"uri":")" + data_uri(buffer) + "\"}"}});
+  expect_json_error(
+      json, {"mesh 0 'sq' primitive 0", "indices accessor 1", "element 5 is vertex index 4", "only 4 vertices"});
 }
 
 TEST(GltfReadErrors, AccessorPastTheEndOfItsBufferView) {
-  const std::string json = square_json({{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3"},
+  const std::string json =
+      square_json({{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3"},
       {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}])"}});
   expect_json_error(json, {"POSITION accessor 0", "5 elements", "bufferView 0 has 48"});
 }
 
 TEST(GltfReadErrors, AccessorOffsetPastTheEndOfItsBufferView) {
-  const std::string json = square_json({{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
+  const std::string json =
+      square_json({{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
       {"bufferView":1,"byteOffset":4,"componentType":5123,"count":6,"type":"SCALAR"}])"}});
   expect_json_error(json, {"indices accessor 1", "byteOffset 4"});
 }
 
 TEST(GltfReadErrors, BufferViewPastTheEndOfItsBuffer) {
-  const std::string json =
-      square_json({{&SquareFile::buffer_views, R"([{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":52,"byteLength":12}])"}});
+  const std::string json = square_json(
+      {{&SquareFile::buffer_views, R"([{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":52,"byteLength":12}])"}});
   expect_json_error(json, {"bufferView 1", "run past the end of buffer 0"});
 }
 
 TEST(GltfReadErrors, HugeCountDoesNotOverflowTheBoundsCheck) {
   // count * 12 wraps around 2^64 for this count if computed naively.
-  const std::string json = square_json({{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":1537228672809129302,"type":"VEC3"},
+  const std::string json = square_json(
+      {{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":1537228672809129302,"type":"VEC3"},
       {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}])"}});
   expect_json_error(json, {"POSITION accessor 0", "at most 2^53"});
-  const std::string below_limit = square_json({{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":9007199254740992,"type":"VEC3"},
+  const std::string below_limit = square_json(
+      {{&SquareFile::accessors, R"([{"bufferView":0,"componentType":5126,"count":9007199254740992,"type":"VEC3"},
       {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}])"}});
   expect_json_error(below_limit, {"POSITION accessor 0", "bufferView 0 has 48"});
 }
 
 TEST(GltfReadErrors, ByteStrideShorterThanAnElement) {
   const std::string json =
-      square_json({{&SquareFile::buffer_views, R"([{"buffer":0,"byteLength":48,"byteStride":8},{"buffer":0,"byteOffset":48,"byteLength":12}])"}});
+      square_json({{&SquareFile::buffer_views,
+                    R"([{"buffer":0,"byteLength":48,"byteStride":8},{"buffer":0,"byteOffset":48,"byteLength":12}])"}});
   expect_json_error(json, {"bufferView 0", "'byteStride' 8 is shorter than one element"});
 }
 
 TEST(GltfReadErrors, ByteStrideOutOfRange) {
-  const std::string json =
-      square_json({{&SquareFile::buffer_views, R"([{"buffer":0,"byteLength":48,"byteStride":256},{"buffer":0,"byteOffset":48,"byteLength":12}])"}});
+  const std::string json = square_json(
+      {{&SquareFile::buffer_views,
+        R"([{"buffer":0,"byteLength":48,"byteStride":256},{"buffer":0,"byteOffset":48,"byteLength":12}])"}});
   expect_json_error(json, {"bufferView 0", "outside 4..252"});
 }
 
@@ -224,12 +232,14 @@ TEST(GltfReadErrors, BadComponentTypesAndShapes) {
                     {"indices accessor 1", "componentType FLOAT"});
   expect_json_error(with_accessors(good_position, R"({"bufferView":1,"componentType":5123,"count":0,"type":"SCALAR"})"),
                     {"indices accessor 1", "'count' must be at least 1"});
-  expect_json_error(with_accessors(good_position, R"({"bufferView":1,"componentType":5123,"count":-6,"type":"SCALAR"})"),
-                    {"indices accessor 1", "non-negative integer"});
+  expect_json_error(
+      with_accessors(good_position, R"({"bufferView":1,"componentType":5123,"count":-6,"type":"SCALAR"})"),
+      {"indices accessor 1", "non-negative integer"});
   expect_json_error(with_accessors(good_position, R"({"componentType":5123,"count":6,"type":"SCALAR"})"),
                     {"indices accessor 1", "no bufferView"});
   expect_json_error(
-      with_accessors(R"({"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","sparse":{"count":1}})", good_indices),
+      with_accessors(R"({"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","sparse":{"count":1}})",
+                     good_indices),
       {"POSITION accessor 0", "sparse"});
 }
 
@@ -237,7 +247,8 @@ TEST(GltfReadErrors, DanglingReferences) {
   expect_json_error(square_json({{&SquareFile::primitive, R"({"attributes":{"POSITION":7},"indices":1})"}}),
                     {"primitive 0: POSITION", "accessor 7", "has 2"});
   expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":3}])"}}), {"node 0", "mesh 3"});
-  expect_json_error(square_json({{&SquareFile::buffer_views, R"([{"buffer":2,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}])"}}),
+  expect_json_error(square_json({{&SquareFile::buffer_views,
+                                  R"([{"buffer":2,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}])"}}),
                     {"bufferView 0", "buffer 2"});
   expect_json_error(square_json({{&SquareFile::extra_members, R"(,"scene":4)"}}), {"scene 4"});
 }
@@ -255,28 +266,35 @@ TEST(GltfReadErrors, NodeWithTwoParentsOrInALoop) {
   // A loop through node 0: the scene's node is not a root.
   expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"children":[1]},{"children":[0]}])"}}),
                     {"scene 0", "node 0, which is a child of node 1"});
-  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"children":[1]},{}])"}, {&SquareFile::extra_members, R"(,"scenes":[{"nodes":[1]}])"}}),
+  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"children":[1]},{}])"},
+                                 {&SquareFile::extra_members, R"(,"scenes":[{"nodes":[1]}])"}}),
                     {"scene 0", "child of node 0"});
-  expect_json_error(square_json({{&SquareFile::extra_members, R"(,"scenes":[{"nodes":[0,0]}])"}}), {"scene 0", "twice"});
+  expect_json_error(square_json({{&SquareFile::extra_members, R"(,"scenes":[{"nodes":[0,0]}])"}}),
+                    {"scene 0", "twice"});
 }
 
 TEST(GltfReadErrors, BadTransforms) {
-  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1],"scale":[2,2,2]}])"}}),
-                    {"node 0", "both 'matrix' and"});
-  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"rotation":[0,0,0,0]}])"}}), {"node 0", "zero length"});
+  expect_json_error(
+      square_json({{&SquareFile::nodes, R"([{"mesh":0,"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1],"scale":[2,2,2]}])"}}),
+      {"node 0", "both 'matrix' and"});
+  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"rotation":[0,0,0,0]}])"}}),
+                    {"node 0", "zero length"});
   expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"matrix":[1,0,0,1,0,1,0,0,0,0,1,0,0,0,0,1]}])"}}),
                     {"node 0", "not affine"});
-  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"translation":[1,2]}])"}}), {"node 0", "'translation'"});
-  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"scale":[1e300,1,1],"children":[1]},{"mesh":0,"scale":[1e300,1,1]}])"}}),
-                    {"node 1", "non-finite"});
+  expect_json_error(square_json({{&SquareFile::nodes, R"([{"mesh":0,"translation":[1,2]}])"}}),
+                    {"node 0", "'translation'"});
+  expect_json_error(
+      square_json(
+          {{&SquareFile::nodes, R"([{"mesh":0,"scale":[1e300,1,1],"children":[1]},{"mesh":0,"scale":[1e300,1,1]}])"}}),
+      {"node 1", "non-finite"});
 }
 
 class GltfReadErrorFiles : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("geodual_gltf_errors_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
+           ("geodual_gltf_errors_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+            "_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "inner");
     const std::vector<std::byte> buffer = square_buffer();
@@ -338,7 +356,8 @@ TEST(GltfReadErrors, ExternalBufferFromMemoryWithoutName) {
 
 TEST(GltfReadErrors, BrokenDataUris) {
   const auto with_buffer = [](const std::string& buffer) { return square_json({{&SquareFile::buffer, buffer}}); };
-  expect_json_error(with_buffer(R"({"byteLength":60,"uri":"data:application/octet-stream,AAAA"})"), {"buffer 0", "not base64"});
+  expect_json_error(with_buffer(R"({"byteLength":60,"uri":"data:application/octet-stream,AAAA"})"),
+                    {"buffer 0", "not base64"});
   expect_json_error(with_buffer(R"({"byteLength":60,"uri":"data:application/octet-stream;base64,AA*A"})"),
                     {"buffer 0", "invalid base64"});
   expect_json_error(with_buffer(R"({"byteLength":60,"uri":"data:;base64,AAAA"})"), {"buffer 0", "3 bytes, fewer"});
@@ -367,8 +386,8 @@ TEST(GltfReadErrors, JsonThatIsNotGltf) {
 }
 
 TEST(GltfReadErrors, DeeplyNestedJsonIsAnErrorNotAStackOverflow) {
-  const std::string deep = R"({"asset":{"version":"2.0"},"extras":)" + std::string(100000, '[') +
-                           std::string(100000, ']') + "}";
+  const std::string deep =
+      R"({"asset":{"version":"2.0"},"extras":)" + std::string(100000, '[') + std::string(100000, ']') + "}";
   // Valid JSON, nothing to read: the reader returns an empty mesh (read_mesh
   // turns that into "no triangles"); the point is that it returns at all.
   EXPECT_EQ(detail::read_gltf(as_span(deep), false, "deep.gltf").mesh.num_faces(), 0);

@@ -1,8 +1,8 @@
 // glTF reading of hand-built files: buffer sources, node transforms,
 // instancing, primitive kinds and accessor layouts.
 
-#include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
+#include "gltf_test_bytes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -52,7 +52,8 @@ std::string square_gltf(const std::string& buffer_uri_member, const std::string&
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
-    "buffers":[{"byteLength":60)" + buffer_uri_member + "}]}";
+    "buffers":[{"byteLength":60)" +
+         buffer_uri_member + "}]}";
 }
 
 void expect_square(const TriangleMesh& mesh, double dx = 0.0) {
@@ -76,8 +77,8 @@ class GltfReadFiles : public ::testing::Test {
 
   void write(const fs::path& path, std::span<const std::byte> bytes) {
     fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                static_cast<std::streamsize>(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   }
 
   fs::path dir_;
@@ -108,8 +109,8 @@ TEST(GltfRead, DataUriBuffer) {
 }
 
 TEST(GltfRead, DataUriWithGltfBufferMediaTypeAndNoPadding) {
-  std::string uri = "data:application/gltf-buffer;base64," +
-                    gltf_test::base64(concat({square_positions, square_indices_u16}));
+  std::string uri =
+      "data:application/gltf-buffer;base64," + gltf_test::base64(concat({square_positions, square_indices_u16}));
   while (uri.back() == '=') uri.pop_back();
   expect_square(read_json(square_gltf(R"(,"uri":")" + uri + "\"")).mesh);
 }
@@ -124,8 +125,7 @@ TEST(GltfRead, GlbWithBinChunk) {
 }
 
 TEST(GltfRead, ContentDecidesBetweenGlbAndJson) {
-  const std::vector<std::byte> glb =
-      glb_of(square_gltf(""), concat({square_positions, square_indices_u16}));
+  const std::vector<std::byte> glb = glb_of(square_gltf(""), concat({square_positions, square_indices_u16}));
   const LoadedMesh glb_named_gltf = detail::read_gltf(glb, false, "misnamed.gltf");
   expect_square(glb_named_gltf.mesh);
   EXPECT_EQ(glb_named_gltf.info.format, MeshFormat::glb);
@@ -153,7 +153,8 @@ TEST(GltfRead, NestedNodesComposeTrsAndMatrixTransforms) {
   const double s = std::sqrt(0.5);
   const std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,2]}],
     "nodes":[{"name":"parent","translation":[1,2,3],"children":[1]},
-             {"name":"child","rotation":[0,0,)" + std::to_string(s) + "," + std::to_string(s) + R"(],"scale":[2,2,2],"mesh":0},
+             {"name":"child","rotation":[0,0,)" +
+                           std::to_string(s) + "," + std::to_string(s) + R"(],"scale":[2,2,2],"mesh":0},
              {"name":"matrix","matrix":[3,0,0,0, 0,1,0,0, 0,0,1,0, 10,20,30,1],"mesh":1}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]},
               {"primitives":[{"attributes":{"POSITION":2}}]}],
@@ -162,7 +163,8 @@ TEST(GltfRead, NestedNodesComposeTrsAndMatrixTransforms) {
                  {"bufferView":2,"componentType":5126,"count":3,"type":"VEC3"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12},
                    {"buffer":0,"byteOffset":60,"byteLength":36}],
-    "buffers":[{"byteLength":96,"uri":")" + uri + R"("}]})";
+    "buffers":[{"byteLength":96,"uri":")" +
+                           uri + R"("}]})";
   const LoadedMesh loaded = read_json(json);
   const TriangleMesh& mesh = loaded.mesh;
   ASSERT_EQ(mesh.num_vertices(), 7);
@@ -188,7 +190,8 @@ TEST(GltfRead, MeshInstancedByTwoNodesGivesTwoCopies) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
-    "buffers":[{"byteLength":60,"uri":")" + uri + R"("}]})";
+    "buffers":[{"byteLength":60,"uri":")" +
+                           uri + R"("}]})";
   const TriangleMesh mesh = read_json(json).mesh;
   ASSERT_EQ(mesh.num_vertices(), 8);
   ASSERT_EQ(mesh.num_faces(), 4);
@@ -200,8 +203,7 @@ TEST(GltfRead, MeshInstancedByTwoNodesGivesTwoCopies) {
 
 TEST(GltfRead, MirroringTransformFlipsWinding) {
   const std::string uri = data_uri(concat({square_positions, square_indices_u16}));
-  const TriangleMesh mesh =
-      read_json(square_gltf(R"(,"uri":")" + uri + "\"", R"([{"mesh":0,"scale":[-1,1,1]}])")).mesh;
+  const TriangleMesh mesh = read_json(square_gltf(R"(,"uri":")" + uri + "\"", R"([{"mesh":0,"scale":[-1,1,1]}])")).mesh;
   ASSERT_EQ(mesh.num_faces(), 2);
   EXPECT_EQ(mesh.vertices.row(1), Eigen::RowVector3d(-1, 0, 0));
   EXPECT_EQ(mesh.faces.row(0), Eigen::RowVector3i(0, 2, 1));
@@ -212,11 +214,13 @@ TEST(GltfRead, IdentityTransformKeepsCoordinatesBitExact) {
   // -0.0 and a value with all mantissa bits set: any arithmetic would disturb them.
   const std::vector<std::byte> positions =
       bytes_of<float>({-0.0F, 0.1F, 3.4e38F, std::nextafter(1.0F, 2.0F), -1e-38F, 0, 0, 1, 0});
-  const std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"translation":[0,0,0]}],
+  const std::string json =
+      R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"translation":[0,0,0]}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
     "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
     "bufferViews":[{"buffer":0,"byteLength":36}],
-    "buffers":[{"byteLength":36,"uri":")" + data_uri(positions) + R"("}]})";
+    "buffers":[{"byteLength":36,"uri":")" +
+      data_uri(positions) + R"("}]})";
   const TriangleMesh mesh = read_json(json).mesh;
   ASSERT_EQ(mesh.num_vertices(), 3);
   EXPECT_TRUE(std::signbit(mesh.vertices(0, 0)));
@@ -232,7 +236,8 @@ TEST(GltfRead, NonIndexedPrimitiveDrawsVerticesInOrder) {
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":4}]}],
     "accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3"}],
     "bufferViews":[{"buffer":0,"byteLength":72}],
-    "buffers":[{"byteLength":72,"uri":")" + data_uri(positions) + R"("}]})";
+    "buffers":[{"byteLength":72,"uri":")" +
+                           data_uri(positions) + R"("}]})";
   const TriangleMesh mesh = read_json(json).mesh;
   ASSERT_EQ(mesh.num_vertices(), 6);
   ASSERT_EQ(mesh.num_faces(), 2);
@@ -253,19 +258,20 @@ TEST_P(GltfReadIndexTypes, SameTrianglesFromEveryIndexWidth) {
   const std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
-                 {"bufferView":1,"componentType":)" + std::to_string(c.component_type) + R"(,"count":6,"type":"SCALAR"}],
+                 {"bufferView":1,"componentType":)" +
+                           std::to_string(c.component_type) + R"(,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":)" +
                            std::to_string(c.indices.size()) + R"(}],
-    "buffers":[{"byteLength":)" + std::to_string(48 + c.indices.size()) + R"(,"uri":")" +
+    "buffers":[{"byteLength":)" +
+                           std::to_string(48 + c.indices.size()) + R"(,"uri":")" +
                            data_uri(concat({square_positions, c.indices})) + R"("}]})";
   expect_square(read_json(json).mesh);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Widths, GltfReadIndexTypes,
-    ::testing::Values(IndexTypeCase{5121, bytes_of<std::uint8_t>({0, 1, 2, 0, 2, 3})},
-                      IndexTypeCase{5123, bytes_of<std::uint16_t>({0, 1, 2, 0, 2, 3})},
-                      IndexTypeCase{5125, bytes_of<std::uint32_t>({0, 1, 2, 0, 2, 3})}));
+INSTANTIATE_TEST_SUITE_P(Widths, GltfReadIndexTypes,
+                         ::testing::Values(IndexTypeCase{5121, bytes_of<std::uint8_t>({0, 1, 2, 0, 2, 3})},
+                                           IndexTypeCase{5123, bytes_of<std::uint16_t>({0, 1, 2, 0, 2, 3})},
+                                           IndexTypeCase{5125, bytes_of<std::uint32_t>({0, 1, 2, 0, 2, 3})}));
 
 TEST(GltfRead, LinesAndPointsPrimitivesAreSkippedAndCounted) {
   const std::vector<std::byte> line_indices = bytes_of<std::uint16_t>({0, 1, 1, 2});
@@ -278,7 +284,8 @@ TEST(GltfRead, LinesAndPointsPrimitivesAreSkippedAndCounted) {
                  {"bufferView":2,"componentType":5123,"count":4,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12},
                    {"buffer":0,"byteOffset":60,"byteLength":8}],
-    "buffers":[{"byteLength":68,"uri":")" + data_uri(concat({square_positions, square_indices_u16, line_indices})) + R"("}]})";
+    "buffers":[{"byteLength":68,"uri":")" +
+                           data_uri(concat({square_positions, square_indices_u16, line_indices})) + R"("}]})";
   const LoadedMesh loaded = read_json(json);
   expect_square(loaded.mesh);  // the triangle primitive, its POSITION accessor read once
   EXPECT_TRUE(has_note_containing(loaded.info, "skipped 2 non-triangle primitives (1 LINES, 1 POINTS)"));
@@ -294,21 +301,23 @@ TEST(GltfRead, PrimitivesSharingPositionsShareVerticesWithinAnInstance) {
                  {"bufferView":1,"byteOffset":8,"componentType":5123,"count":3,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":14}],
     "buffers":[{"byteLength":62,"uri":")" +
-                           data_uri(concat({square_positions, first, bytes_of<std::uint16_t>({9}), second})) + R"("}]})";
+                           data_uri(concat({square_positions, first, bytes_of<std::uint16_t>({9}), second})) +
+                           R"("}]})";
   expect_square(read_json(json).mesh);
 }
 
 TEST(GltfRead, InterleavedPositionsWithByteStride) {
   // position (12 bytes) + normal (12 bytes) per vertex, stride 24.
-  const std::vector<std::byte> interleaved = bytes_of<float>(
-      {0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1});
+  const std::vector<std::byte> interleaved =
+      bytes_of<float>({0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1});
   const std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":2},"indices":1}]}],
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"},
                  {"bufferView":0,"byteOffset":12,"componentType":5126,"count":4,"type":"VEC3"}],
     "bufferViews":[{"buffer":0,"byteLength":96,"byteStride":24},{"buffer":0,"byteOffset":96,"byteLength":12}],
-    "buffers":[{"byteLength":108,"uri":")" + data_uri(concat({interleaved, square_indices_u16})) + R"("}]})";
+    "buffers":[{"byteLength":108,"uri":")" +
+                           data_uri(concat({interleaved, square_indices_u16})) + R"("}]})";
   const TriangleMesh mesh = read_json(json).mesh;
   expect_square(mesh);
   EXPECT_EQ(mesh.vertices.row(3), Eigen::RowVector3d(0, 1, 0));
@@ -316,8 +325,7 @@ TEST(GltfRead, InterleavedPositionsWithByteStride) {
 }
 
 TEST(GltfRead, TriangleStripAndFanFollowTheSpecOrder) {
-  const std::vector<std::byte> positions =
-      bytes_of<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0});
+  const std::vector<std::byte> positions = bytes_of<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0});
   const std::vector<std::byte> strip = bytes_of<std::uint16_t>({0, 1, 2, 3, 4, 4});  // last index: a degenerate
   const std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":5},
@@ -325,7 +333,8 @@ TEST(GltfRead, TriangleStripAndFanFollowTheSpecOrder) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":60},{"buffer":0,"byteOffset":60,"byteLength":12}],
-    "buffers":[{"byteLength":72,"uri":")" + data_uri(concat({positions, strip})) + R"("}]})";
+    "buffers":[{"byteLength":72,"uri":")" +
+                           data_uri(concat({positions, strip})) + R"("}]})";
   const LoadedMesh loaded = read_json(json);
   const TriangleMesh& mesh = loaded.mesh;
   ASSERT_EQ(mesh.num_vertices(), 5);
@@ -350,7 +359,8 @@ TEST(GltfRead, DefaultSceneIsTheOneRead) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
-    "buffers":[{"byteLength":60,"uri":")" + uri + R"("}]})";
+    "buffers":[{"byteLength":60,"uri":")" +
+                           uri + R"("}]})";
   expect_square(read_json(json).mesh, 7.0);
 }
 
@@ -362,7 +372,8 @@ TEST(GltfRead, WithoutScenesEveryRootNodeIsRead) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
-    "buffers":[{"byteLength":60,"uri":")" + uri + R"("}]})";
+    "buffers":[{"byteLength":60,"uri":")" +
+                           uri + R"("}]})";
   const LoadedMesh loaded = read_json(json);
   ASSERT_EQ(loaded.mesh.num_vertices(), 8);
   EXPECT_EQ(loaded.mesh.vertices.row(2), Eigen::RowVector3d(2, 1, 0));  // node 2 under node 0
@@ -377,7 +388,8 @@ TEST(GltfRead, WithoutNodesEveryMeshIsReadOnce) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
-    "buffers":[{"byteLength":60,"uri":")" + uri + R"("}]})";
+    "buffers":[{"byteLength":60,"uri":")" +
+                           uri + R"("}]})";
   expect_square(read_json(json).mesh);
 }
 
@@ -390,7 +402,8 @@ TEST(GltfRead, QuantizedPositionsWithKhrMeshQuantization) {
     "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
     "accessors":[{"bufferView":0,"componentType":5122,"normalized":true,"count":3,"type":"VEC3"}],
     "bufferViews":[{"buffer":0,"byteLength":24,"byteStride":8}],
-    "buffers":[{"byteLength":24,"uri":")" + data_uri(positions) + R"("}]})";
+    "buffers":[{"byteLength":24,"uri":")" +
+                           data_uri(positions) + R"("}]})";
   const TriangleMesh mesh = read_json(json).mesh;
   ASSERT_EQ(mesh.num_vertices(), 3);
   EXPECT_EQ(mesh.vertices.row(1), Eigen::RowVector3d(1, 0, -1));
@@ -403,7 +416,8 @@ TEST(GltfRead, TrailingIndicesOfAnIncompleteTriangleAreIgnoredWithANote) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                  {"bufferView":1,"componentType":5123,"count":5,"type":"SCALAR"}],
     "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
-    "buffers":[{"byteLength":60,"uri":")" + data_uri(concat({square_positions, square_indices_u16})) + R"("}]})";
+    "buffers":[{"byteLength":60,"uri":")" +
+                           data_uri(concat({square_positions, square_indices_u16})) + R"("}]})";
   const LoadedMesh loaded = read_json(json);
   EXPECT_EQ(loaded.mesh.num_faces(), 1);
   EXPECT_TRUE(has_note_containing(loaded.info, "ignored 2 indices"));

@@ -58,7 +58,8 @@ void expect_bit_exact(const TriangleMesh& written, const TriangleMesh& read) {
   ASSERT_EQ(read.num_vertices(), written.num_vertices());
   ASSERT_EQ(read.num_faces(), written.num_faces());
   EXPECT_EQ(std::memcmp(read.vertices.data(), written.vertices.data(),
-                        sizeof(double) * static_cast<std::size_t>(written.vertices.size())), 0);
+                        sizeof(double) * static_cast<std::size_t>(written.vertices.size())),
+            0);
   EXPECT_EQ(read.faces, written.faces);
 }
 
@@ -106,7 +107,8 @@ TEST_P(GltfRoundTrip, SceneExtrasDoNotDisturbTheTriangles) {
   const TriangleMesh first = float_grid(4, 1);
   const TriangleMesh second = float_grid(3, 2);
   scene.triangle_meshes.push_back({.name = "a", .mesh = first, .colors = ColorMatrix::Zero(17, 3), .scalars = {}});
-  scene.triangle_meshes.push_back({.name = "b", .mesh = second, .scalars = {{.name = "_X", .values = std::vector<float>(10, 1.0F)}}});
+  scene.triangle_meshes.push_back(
+      {.name = "b", .mesh = second, .scalars = {{.name = "_X", .values = std::vector<float>(10, 1.0F)}}});
   GltfLineSet lines;
   lines.points = VertexMatrix{{0, 0, 0}, {1, 1, 1}};
   lines.segments = SegmentMatrix{{0, 1}};
@@ -124,9 +126,8 @@ TEST_P(GltfRoundTrip, SceneExtrasDoNotDisturbTheTriangles) {
   expected.faces.resize(first.num_faces() + second.num_faces(), 3);
   expected.faces << first.faces, (second.faces.array() + first.num_vertices()).matrix();
   expect_bit_exact(expected, loaded.mesh);
-  EXPECT_TRUE(std::any_of(loaded.info.notes.begin(), loaded.info.notes.end(), [](const std::string& note) {
-    return note.find("1 LINES, 1 POINTS") != std::string::npos;
-  }));
+  EXPECT_TRUE(std::any_of(loaded.info.notes.begin(), loaded.info.notes.end(),
+                          [](const std::string& note) { return note.find("1 LINES, 1 POINTS") != std::string::npos; }));
 }
 
 INSTANTIATE_TEST_SUITE_P(Containers, GltfRoundTrip, ::testing::Values(".glb", ".gltf"),

@@ -35,7 +35,8 @@ inline std::string base64(std::span<const std::byte> data) {
   for (std::size_t i = 0; i < data.size(); i += 3) {
     const std::size_t n = std::min<std::size_t>(3, data.size() - i);
     std::uint32_t group = 0;
-    for (std::size_t k = 0; k < 3; ++k) group = (group << 8) | (k < n ? std::to_integer<std::uint32_t>(data[i + k]) : 0);
+    for (std::size_t k = 0; k < 3; ++k)
+      group = (group << 8) | (k < n ? std::to_integer<std::uint32_t>(data[i + k]) : 0);
     for (std::size_t k = 0; k < 4; ++k) out += k <= n ? alphabet[(group >> (18 - 6 * k)) & 63] : '=';
   }
   return out;

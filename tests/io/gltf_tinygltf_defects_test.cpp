@@ -3,10 +3,10 @@
 // while the defect is there: when one fails, tinygltf was fixed and the
 // reader may hand that part to it.
 
-#include "geodual/mesh/error.hpp"
-#include "geodual/io/gltf.hpp"
-#include "gltf_test_bytes.hpp"
 #include "../../io/src/format_readers.hpp"
+#include "geodual/io/gltf.hpp"
+#include "geodual/mesh/error.hpp"
+#include "gltf_test_bytes.hpp"
 
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
@@ -21,9 +21,9 @@ namespace {
 
 std::vector<std::byte> triangle_glb() {
   GltfScene scene;
-  scene.triangle_meshes.push_back({.name = "t",
-                                   .mesh = {.vertices = VertexMatrix{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
-                                            .faces = FaceMatrix{{0, 1, 2}}}});
+  scene.triangle_meshes.push_back(
+      {.name = "t",
+       .mesh = {.vertices = VertexMatrix{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, .faces = FaceMatrix{{0, 1, 2}}}});
   return encode_gltf(scene, GltfContainer::glb);
 }
 
@@ -54,8 +54,8 @@ TEST(GltfTinygltfDefects, BinChunkMayRunEightBytesPastTheData) {
   tinygltf::Model model;
   std::string err;
   std::string warn;
-  const bool accepted = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(glb.data()),
-                                                    static_cast<unsigned int>(file_size));
+  const bool accepted = loader.LoadBinaryFromMemory(
+      &model, &err, &warn, reinterpret_cast<const unsigned char*>(glb.data()), static_cast<unsigned int>(file_size));
   EXPECT_TRUE(accepted) << err;
 
   // geodual's reader refuses it.
@@ -65,8 +65,8 @@ TEST(GltfTinygltfDefects, BinChunkMayRunEightBytesPastTheData) {
 TEST(GltfTinygltfDefectsDeathTest, DeeplyNestedExtrasOverflowTheStack) {
   // Valid JSON: tinygltf converts extras to its Value type recursively, one
   // stack frame per level, and crashes; geodual's reader returns.
-  const std::string deep = R"({"asset":{"version":"2.0"},"extras":)" + std::string(100000, '[') +
-                           std::string(100000, ']') + "}";
+  const std::string deep =
+      R"({"asset":{"version":"2.0"},"extras":)" + std::string(100000, '[') + std::string(100000, ']') + "}";
   EXPECT_DEATH(
       {
         tinygltf::TinyGLTF loader;

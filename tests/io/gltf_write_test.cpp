@@ -2,8 +2,8 @@
 // validator) requires, normals, colours and custom attributes, determinism,
 // input checks and atomic replacement.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/gltf.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -169,9 +169,9 @@ TEST(GltfWrite, NormalsAreAreaWeightedUnitVectors) {
   const double expected = 1.0 / std::sqrt(17.0);  // (1, 0, 4) / sqrt(17)
   EXPECT_NEAR(normals[0], expected, 1e-7);
   EXPECT_NEAR(normals[2], 4 * expected, 1e-7);
-  EXPECT_EQ(normals[5], 1.0F);                  // vertex 1: only the +z triangle
-  EXPECT_EQ(normals[9], 1.0F);                  // vertex 3: only the +x triangle
-  EXPECT_EQ(normals[15], 0.0F);                 // vertex 5: no triangle -> (0, 0, 1)
+  EXPECT_EQ(normals[5], 1.0F);   // vertex 1: only the +z triangle
+  EXPECT_EQ(normals[9], 1.0F);   // vertex 3: only the +x triangle
+  EXPECT_EQ(normals[15], 0.0F);  // vertex 5: no triangle -> (0, 0, 1)
   EXPECT_EQ(normals[17], 1.0F);
 }
 
@@ -238,7 +238,8 @@ TEST(GltfWrite, ColoursScalarsLinesPointsAndExtras) {
   const json& point_primitive = doc["meshes"][2]["primitives"][0];
   EXPECT_EQ(point_primitive["mode"], 0);
   EXPECT_FALSE(point_primitive.contains("indices"));
-  EXPECT_EQ(doc["accessors"][point_primitive["attributes"]["POSITION"].get<int>()]["max"], json::array({0.5, 0.5, 0.5}));
+  EXPECT_EQ(doc["accessors"][point_primitive["attributes"]["POSITION"].get<int>()]["max"],
+            json::array({0.5, 0.5, 0.5}));
 
   EXPECT_EQ(doc["asset"]["extras"]["sites"], 42);
   EXPECT_EQ(doc["asset"]["extras"]["energy"], json::array({1.5, 0.25}));
@@ -262,8 +263,9 @@ TEST(GltfWrite, EmbeddedGltfHoldsTheSameJsonAndADataUri) {
 TEST(GltfWrite, ExtrasAreWrittenVerbatim) {
   // Nulls, empty arrays and objects, integers beyond 32 bits, member order and
   // escapes survive; so do extras shorter than tinygltf's placeholder.
-  for (const std::string& extras : {std::string(R"({"sampling": null, "energy": [], "o": {}, "bytes": 3000000000, "q": 0.1, "s": "a\"b"})"),
-                                   std::string("{}"), std::string(R"({"a":1})")}) {
+  for (const std::string& extras :
+       {std::string(R"({"sampling": null, "energy": [], "o": {}, "bytes": 3000000000, "q": 0.1, "s": "a\"b"})"),
+        std::string("{}"), std::string(R"({"a":1})")}) {
     for (const GltfContainer container : {GltfContainer::glb, GltfContainer::gltf_embedded}) {
       SCOPED_TRACE(extras);
       GltfScene scene = one_mesh_scene(tetrahedron_and_lone_vertex());
@@ -341,7 +343,8 @@ TEST(GltfWrite, InvalidInputIsRefusedWithAClearMessage) {
     GltfScene scene = good;
     scene.triangle_meshes[0].scalars.push_back({.name = "DISTANCE", .values = {0, 1, 2, 3, 4}});
     expect_encode_error(scene, {"'DISTANCE'", "must start with '_'"});
-    scene.triangle_meshes[0].scalars = {{.name = "_D", .values = {0, 1, 2, 3, 4}}, {.name = "_D", .values = {0, 1, 2, 3, 4}}};
+    scene.triangle_meshes[0].scalars = {{.name = "_D", .values = {0, 1, 2, 3, 4}},
+                                        {.name = "_D", .values = {0, 1, 2, 3, 4}}};
     expect_encode_error(scene, {"'_D'", "twice"});
     scene.triangle_meshes[0].scalars = {{.name = "_D", .values = {0, 1, 2}}};
     expect_encode_error(scene, {"'_D'", "3 values for 5 vertices"});

@@ -3,8 +3,8 @@
 // folder per test, writing and reading whole files, catching the message of a
 // geodual::Error, and the shared real-scan folder.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -98,9 +98,7 @@ std::string error_message(Action&& action) {
 
 /// The real scans the tests read: tests/data relative to the repository root,
 /// where the tests run.
-inline fs::path test_mesh(std::string_view name) {
-  return fs::path("tests/data") / name;
-}
+inline fs::path test_mesh(std::string_view name) { return fs::path("tests/data") / name; }
 
 /// Builds binary file contents value by value in a chosen byte order.
 class ByteWriter {

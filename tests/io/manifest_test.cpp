@@ -51,9 +51,7 @@ std::vector<ManifestRow> read_manifest(const fs::path& path) {
   return rows;
 }
 
-std::int64_t integer(const ManifestRow& row, const std::string& column) {
-  return std::stoll(row.at(column));
-}
+std::int64_t integer(const ManifestRow& row, const std::string& column) { return std::stoll(row.at(column)); }
 
 class Manifest : public testing::Test {
  protected:
@@ -69,10 +67,9 @@ class Manifest : public testing::Test {
 
 TEST_F(Manifest, HasTheColumnsThisTestChecks) {
   ASSERT_GE(rows_.size(), 14U) << manifest_;
-  for (const char* column :
-       {"file", "vertices", "faces", "components", "boundary_loops", "nonmanifold_edges",
-        "nonmanifold_vertices", "degenerate_faces", "duplicate_vertices", "unreferenced_vertices",
-        "duplicate_triangles", "euler_characteristic", "genus", "bbox_diag"}) {
+  for (const char* column : {"file", "vertices", "faces", "components", "boundary_loops", "nonmanifold_edges",
+                             "nonmanifold_vertices", "degenerate_faces", "duplicate_vertices", "unreferenced_vertices",
+                             "duplicate_triangles", "euler_characteristic", "genus", "bbox_diag"}) {
     EXPECT_EQ(rows_.front().count(column), 1U) << "column " << column << " missing in " << manifest_;
   }
 }

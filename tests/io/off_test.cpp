@@ -30,8 +30,7 @@ TEST(OffReader, TrianglesAndPolygonsWithCommentsAndFaceColours) {
                                           "4 4 3 2 1 255 0 0\n"
                                           "3 0 1 4 0.5 0.5 0.5 1.0\n");
   EXPECT_EQ(loaded.mesh.num_vertices(), 6);  // vertex 5 is unused and stays
-  EXPECT_EQ(face_list(loaded.mesh),
-            (std::vector<Index>{0, 1, 2, 0, 2, 3, 0, 3, 4, 4, 3, 2, 4, 2, 1, 0, 1, 4}));
+  EXPECT_EQ(face_list(loaded.mesh), (std::vector<Index>{0, 1, 2, 0, 2, 3, 0, 3, 4, 4, 3, 2, 4, 2, 1, 0, 1, 4}));
   EXPECT_EQ(loaded.info.polygons_split, 2);
   EXPECT_EQ(loaded.info.format, io::MeshFormat::off);
   EXPECT_EQ(loaded.mesh.vertices(5, 2), 7.0);
@@ -39,8 +38,7 @@ TEST(OffReader, TrianglesAndPolygonsWithCommentsAndFaceColours) {
 
 TEST(OffReader, CountsOnTheHeaderLineAndCrlf) {
   TempDir dir;
-  const io::LoadedMesh loaded =
-      read_text(dir, "inline.off", "OFF 3 1 3\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+  const io::LoadedMesh loaded = read_text(dir, "inline.off", "OFF 3 1 3\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
   EXPECT_EQ(face_list(loaded.mesh), (std::vector<Index>{0, 1, 2}));
   EXPECT_EQ(loaded.mesh.vertices(1, 0), 1.0);
 }
@@ -58,8 +56,7 @@ TEST(OffReader, ColourAndNormalVariantsIgnoreTheExtraValues) {
                                         "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n"
                                         "3 0 1 2\n");
   EXPECT_EQ(vertex_list(coff.mesh), (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
-  const io::LoadedMesh noff = read_text(dir, "n.off",
-                                        "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
+  const io::LoadedMesh noff = read_text(dir, "n.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
   EXPECT_EQ(vertex_list(noff.mesh), (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
   EXPECT_EQ(face_list(noff.mesh), (std::vector<Index>{0, 1, 2}));
 }

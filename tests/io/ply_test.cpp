@@ -60,13 +60,13 @@ TEST(PlyReader, AsciiValuesTakeTheDeclaredType) {
   const std::string rest =
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0.1 -2.5e-3 +7\n1 0 0\n0 1 0\n3 0 1 2\n";
-  const auto as_double = read_text(dir, "d.ply",
-                                   header_start + "property double x\nproperty double y\nproperty double z\n" + rest);
+  const auto as_double =
+      read_text(dir, "d.ply", header_start + "property double x\nproperty double y\nproperty double z\n" + rest);
   EXPECT_EQ(as_double.mesh.vertices(0, 0), 0.1);
   EXPECT_EQ(as_double.mesh.vertices(0, 1), -2.5e-3);
   EXPECT_EQ(as_double.mesh.vertices(0, 2), 7.0);
-  const auto as_float = read_text(dir, "f.ply",
-                                  header_start + "property float x\nproperty float y\nproperty float z\n" + rest);
+  const auto as_float =
+      read_text(dir, "f.ply", header_start + "property float x\nproperty float y\nproperty float z\n" + rest);
   EXPECT_EQ(as_float.mesh.vertices(0, 0), static_cast<double>(0.1f));
   EXPECT_EQ(as_float.mesh.vertices(0, 1), static_cast<double>(-2.5e-3f));
 }
@@ -156,26 +156,27 @@ std::string binary_with_extras(std::endian order) {
   ByteWriter file(order);
   file.text("ply\nformat ")
       .text(order == std::endian::little ? "binary_little_endian" : "binary_big_endian")
-      .text(" 1.0\n"
-            "obj_info scanner 3000\n"
-            "element material 2\n"
-            "property list uchar float coefficients\n"
-            "property int id\n"
-            "element vertex 3\n"
-            "property uchar red\n"
-            "property double x\n"
-            "property float confidence\n"
-            "property double y\n"
-            "property double z\n"
-            "property short label\n"
-            "element face 1\n"
-            "property int flags\n"
-            "property list ushort uint vertex_indices\n"
-            "property list uchar float texcoord\n"
-            "element edge 2\n"
-            "property list int int ends\n"
-            "property uchar crease\n"
-            "end_header\n");
+      .text(
+          " 1.0\n"
+          "obj_info scanner 3000\n"
+          "element material 2\n"
+          "property list uchar float coefficients\n"
+          "property int id\n"
+          "element vertex 3\n"
+          "property uchar red\n"
+          "property double x\n"
+          "property float confidence\n"
+          "property double y\n"
+          "property double z\n"
+          "property short label\n"
+          "element face 1\n"
+          "property int flags\n"
+          "property list ushort uint vertex_indices\n"
+          "property list uchar float texcoord\n"
+          "element edge 2\n"
+          "property list int int ends\n"
+          "property uchar crease\n"
+          "end_header\n");
   // material: two records with lists of 3 and 0 floats.
   file.put<std::uint8_t>(3).put(1.0f).put(2.0f).put(3.0f).put<std::int32_t>(7);
   file.put<std::uint8_t>(0).put<std::int32_t>(8);
@@ -238,8 +239,9 @@ TEST(PlyReader, AsciiExtraPropertiesAndElementsAreSkipped) {
 TEST(PlyReader, FaceElementBeforeVertexElement) {
   TempDir dir;
   ByteWriter file;
-  file.text("ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
-            "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n");
+  file.text(
+      "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n");
   file.put<std::uint8_t>(3).put<std::int32_t>(0).put<std::int32_t>(2).put<std::int32_t>(1);
   for (int i = 0; i < 9; ++i) {
     file.put(static_cast<float>(i));

@@ -205,7 +205,7 @@ TEST(PolygonTriangulation, ClockwisePolygonKeepsItsOrientation) {
   std::vector<Point2> reversed(c_shape.rbegin(), c_shape.rend());
   const auto corners = in_plane_z0(reversed);
   const io::LoadedMesh loaded = read_text(dir, "clockwise.obj", obj_polygon(corners));
-  ASSERT_LT(newell_normal(corners).z(), 0);  // seen from +z, the polygon winds clockwise
+  ASSERT_LT(newell_normal(corners).z(), 0);     // seen from +z, the polygon winds clockwise
   expect_exact_triangulation(loaded, corners);  // every triangle winds like the polygon
   EXPECT_NEAR(0.5 * newell_normal(corners).norm(), 7.0, 1e-12);
 }
@@ -303,7 +303,8 @@ TEST(PolygonTriangulation, OffPlyAndAsciiStlSplitPolygonsTheSameWay) {
   const std::string ply_header =
       "element vertex 10\nproperty double x\nproperty double y\nproperty double z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  const io::LoadedMesh ply_ascii = read_text(dir, "star.ply", "ply\nformat ascii 1.0\n" + ply_header + vertices + face + "\n");
+  const io::LoadedMesh ply_ascii =
+      read_text(dir, "star.ply", "ply\nformat ascii 1.0\n" + ply_header + vertices + face + "\n");
   EXPECT_EQ(face_list(ply_ascii.mesh), face_list(obj.mesh));
   ByteWriter binary;
   binary.text("ply\nformat binary_little_endian 1.0\n" + ply_header);

@@ -6,9 +6,9 @@
 
 #include "io_test_files.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/preview.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -57,7 +57,8 @@ struct Image {
   std::vector<std::uint8_t> rgb;
 
   Rgb at(int x, int y) const {
-    const std::size_t k = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
+    const std::size_t k =
+        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
     return {rgb[k], rgb[k + 1], rgb[k + 2]};
   }
   int count_not(const Rgb& color) const {
@@ -89,8 +90,7 @@ Image decode(const std::vector<std::uint8_t>& png) {
   int width = 0;
   int height = 0;
   int channels = 0;
-  unsigned char* data =
-      stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &width, &height, &channels, 3);
+  unsigned char* data = stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &width, &height, &channels, 3);
   if (data == nullptr) {
     ADD_FAILURE() << "stb_image cannot decode the PNG: " << stbi_failure_reason();
     return {};
@@ -106,7 +106,9 @@ int srgb_byte(double linear) {
   return static_cast<int>(std::lround(255.0 * s));
 }
 
-Rgb srgb(const Eigen::Vector3f& linear) { return {srgb_byte(linear.x()), srgb_byte(linear.y()), srgb_byte(linear.z())}; }
+Rgb srgb(const Eigen::Vector3f& linear) {
+  return {srgb_byte(linear.x()), srgb_byte(linear.y()), srgb_byte(linear.z())};
+}
 
 void expect_near(const Rgb& actual, const Rgb& expected, int tolerance, const std::string& where) {
   EXPECT_LE(std::abs(actual.r - expected.r), tolerance) << where << ": " << actual << " vs " << expected;
@@ -128,9 +130,7 @@ TriangleMesh make_mesh(std::vector<Eigen::Vector3d> vertices, std::vector<Eigen:
 }
 
 // The unit right triangle in z = 0.
-TriangleMesh unit_triangle() {
-  return make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
-}
+TriangleMesh unit_triangle() { return make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}); }
 
 // Camera along -Z, +Y up: x to the right, y up on the picture.
 PreviewOptions front_view() {
@@ -259,7 +259,8 @@ TEST(Preview, VertexColoursAreInterpolated) {
     const double cx = (px + 0.5 - 600.0) / kUnitScale + 0.5;
     const double cy = 0.5 - (py + 0.5 - 450.0) / kUnitScale;
     const Rgb expected{srgb_byte(1.0 - cx - cy), srgb_byte(cx), srgb_byte(cy)};
-    expect_near(image.at(px, py), expected, 2, "vertex colours at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+    expect_near(image.at(px, py), expected, 2,
+                "vertex colours at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
   }
 }
 
@@ -305,7 +306,8 @@ TEST(Preview, WireframeDarkensEdgePixelsOnly) {
 
 TEST(Preview, NearerTriangleHidesFartherOneWhateverTheOrder) {
   // Two triangles with the same outline (symmetric under x -> -x), one at z = 0, one at z = -1.
-  const std::vector<Eigen::Vector3d> vertices = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-1, -1, -1}, {1, -1, -1}, {0, 1, -1}};
+  const std::vector<Eigen::Vector3d> vertices = {{-1, -1, 0},  {1, -1, 0},  {0, 1, 0},
+                                                 {-1, -1, -1}, {1, -1, -1}, {0, 1, -1}};
   const TriangleMesh near_first = make_mesh(vertices, {{0, 1, 2}, {3, 4, 5}});
   const TriangleMesh far_first = make_mesh(vertices, {{3, 4, 5}, {0, 1, 2}});
   const Eigen::Vector3f red(0.9f, 0.05f, 0.05f);
@@ -330,8 +332,9 @@ TEST(Preview, NearerTriangleHidesFartherOneWhateverTheOrder) {
 
 TEST(Preview, HiddenEdgesAreHidden) {
   // A small triangle behind a big one: its wireframe must not show through.
-  const TriangleMesh mesh = make_mesh({{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-0.3, -0.5, -0.2}, {0.3, -0.5, -0.2}, {0, 0.2, -0.2}},
-                                      {{0, 1, 2}, {3, 4, 5}});
+  const TriangleMesh mesh =
+      make_mesh({{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-0.3, -0.5, -0.2}, {0.3, -0.5, -0.2}, {0, 0.2, -0.2}},
+                {{0, 1, 2}, {3, 4, 5}});
   PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = true;
@@ -375,9 +378,9 @@ TEST(Preview, PointsAndPolylinesAreDrawnWhereTheyProjectAndDepthTested) {
   PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = false;
-  scene.points = {{0.25, 0.25, 0.0}, {0.1, 0.5, -0.5}};          // on the surface; behind it
-  scene.polylines = {{{0.1, 0.6, 0.0}, {0.3, 0.6, 0.0}},          // on the surface
-                     {{0.5, 0.1, -0.5}, {0.5, 0.3, -0.5}}};       // behind it
+  scene.points = {{0.25, 0.25, 0.0}, {0.1, 0.5, -0.5}};      // on the surface; behind it
+  scene.polylines = {{{0.1, 0.6, 0.0}, {0.3, 0.6, 0.0}},     // on the surface
+                     {{0.5, 0.1, -0.5}, {0.5, 0.3, -0.5}}};  // behind it
   scene.polyline_color = {0.0f, 0.5f, 0.0f};
   PreviewOptions options = front_view();
   options.point_color = {0.0f, 0.0f, 1.0f};
@@ -402,8 +405,8 @@ TEST(Preview, PointsAndPolylinesAreDrawnWhereTheyProjectAndDepthTested) {
 TEST(Preview, DegenerateFacesAndUnreferencedVerticesChangeNothing) {
   const TriangleMesh clean = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0, 0}}, {{0, 1, 2}});
   // A far unreferenced vertex (not framed), a repeated index and a zero-area face.
-  const TriangleMesh messy = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0, 0}, {1e6, -1e6, 3e5}},
-                                       {{0, 1, 2}, {1, 1, 2}, {0, 3, 1}});
+  const TriangleMesh messy =
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0, 0}, {1e6, -1e6, 3e5}}, {{0, 1, 2}, {1, 1, 2}, {0, 3, 1}});
   PreviewScene scene;
   scene.mesh = &clean;
   const std::vector<std::uint8_t> expected = io::render_preview_png(scene);
@@ -483,7 +486,8 @@ TEST(Preview, BadRequestsAreErrors) {
   scene.mesh = &mesh;
   PreviewOptions options;
   options.width = 799;
-  EXPECT_NE(error_message([&] { io::render_preview_png(scene, options); }).find("at least 800 x 600"), std::string::npos);
+  EXPECT_NE(error_message([&] { io::render_preview_png(scene, options); }).find("at least 800 x 600"),
+            std::string::npos);
   options.width = 800;
   options.height = 599;
   EXPECT_NE(error_message([&] { io::render_preview_png(scene, options); }).find("(got 800 x 599)"), std::string::npos);
@@ -513,7 +517,8 @@ TEST(Preview, BadRequestsAreErrors) {
   EXPECT_NE(error_message([&] { io::render_preview_png(scene); }).find("face 0 refers to vertex 3"), std::string::npos);
   scene.mesh = &mesh;
   scene.face_colors = {{1, 0, 0}, {0, 1, 0}};
-  EXPECT_NE(error_message([&] { io::render_preview_png(scene); }).find("2 face colours for 1 faces"), std::string::npos);
+  EXPECT_NE(error_message([&] { io::render_preview_png(scene); }).find("2 face colours for 1 faces"),
+            std::string::npos);
   scene.face_colors.clear();
   scene.vertex_colors = {{1, 0, 0}};
   EXPECT_THROW(io::render_preview_png(scene), Error);
@@ -542,8 +547,7 @@ TEST(Preview, WritesPngFilesAtomicallyAndOnlyThose) {
   EXPECT_EQ(written, std::string(expected.begin(), expected.end()));
 
   for (const char* name : {"view.jpg", "view", "view.png.tmp", ".png"}) {
-    EXPECT_NE(error_message([&] { io::write_preview_png(dir / name, scene); }).find(".png"), std::string::npos)
-        << name;
+    EXPECT_NE(error_message([&] { io::write_preview_png(dir / name, scene); }).find(".png"), std::string::npos) << name;
   }
   // A failed render writes nothing.
   PreviewOptions too_small;

@@ -42,8 +42,8 @@ constexpr std::string_view ply_triangle_header =
 std::string binary_fan(std::uint32_t vertices) {
   ByteWriter file;
   file.text("ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertices) +
-            "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-            std::to_string(vertices - 2) + "\nproperty list uchar int vertex_indices\nend_header\n");
+            "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(vertices - 2) +
+            "\nproperty list uchar int vertex_indices\nend_header\n");
   for (std::uint32_t i = 0; i < vertices; ++i) {
     file.put(static_cast<float>(i)).put(0.f).put(0.f);
   }
@@ -198,12 +198,14 @@ TEST(ReadMeshErrors, HugeCountsAreRefusedBeforeAllocating) {
   expect_read_error(dir, "huge_binary.ply",
                     "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\n"
                     "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                    "end_header\n" + std::string(100, '\0'),
+                    "end_header\n" +
+                        std::string(100, '\0'),
                     {"truncated binary data: vertex 8 of 100000000 ends past the end of the file"});
   expect_read_error(dir, "huge_faces.ply",
                     "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
                     "property float y\nproperty float z\nelement face 2000000000\n"
-                    "property list uchar int vertex_indices\nend_header\n" + std::string(100, '\0'),
+                    "property list uchar int vertex_indices\nend_header\n" +
+                        std::string(100, '\0'),
                     {"truncated binary data: face 64 of 2000000000 ends past the end of the file"});
   expect_read_error(dir, "huge_ascii.ply",
                     "ply\nformat ascii 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\n"
@@ -222,8 +224,7 @@ TEST(ReadMeshErrors, MalformedPlyHeaderLines) {
   TempDir dir;
   const std::string start = "ply\nformat ascii 1.0\n";
   expect_read_error(dir, "magic.ply", "plx\nformat ascii 1.0\nend_header\n", {"not a PLY file"});
-  expect_read_error(dir, "format.ply", "ply\nformat binary 1.0\nend_header\n",
-                    {"line 2: unknown PLY format 'binary'"});
+  expect_read_error(dir, "format.ply", "ply\nformat binary 1.0\nend_header\n", {"line 2: unknown PLY format 'binary'"});
   expect_read_error(dir, "noformat.ply", "ply\nelement vertex 1\nend_header\n", {"no format line"});
   expect_read_error(dir, "element.ply", start + "element vertex\nend_header\n", {"line 3: malformed element line"});
   expect_read_error(dir, "count.ply", start + "element vertex -5\nend_header\n",
@@ -238,8 +239,9 @@ TEST(ReadMeshErrors, MalformedPlyHeaderLines) {
   expect_read_error(dir, "nox.ply", start + "element vertex 1\nproperty float y\nproperty float z\nend_header\n",
                     {"line 3: element 'vertex' has no property 'x'"});
   expect_read_error(dir, "nolist.ply",
-                    start + "element vertex 0\nproperty float x\nproperty float y\nproperty float z\n"
-                            "element face 0\nproperty int vertex_indices\nend_header\n",
+                    start +
+                        "element vertex 0\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 0\nproperty int vertex_indices\nend_header\n",
                     {"line 7: face property 'vertex_indices' is not a list"});
   expect_read_error(dir, "twice.ply", start + "element vertex 1\nproperty float x\nproperty float x\nend_header\n",
                     {"line 5: property 'x' of element 'vertex' is declared twice"});
@@ -255,16 +257,16 @@ TEST(ReadMeshErrors, UnsupportedPlyPropertyTypes) {
   expect_read_error(dir, "float_count.ply", start + "property list float int values\nend_header\n",
                     {"line 4: list property 'values' has a length of type 'float'"});
   expect_read_error(dir, "float_index.ply",
-                    start + "property float x\nproperty float y\nproperty float z\nelement face 1\n"
-                            "property list uchar float vertex_indices\nend_header\n",
+                    start +
+                        "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                        "property list uchar float vertex_indices\nend_header\n",
                     {"line 7: face property 'vertex_indices' holds items of type float"});
 }
 
 TEST(ReadMeshErrors, MalformedPlyBodies) {
   TempDir dir;
   const std::string header(ply_triangle_header);
-  expect_read_error(dir, "few.ply", header + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n",
-                    {"line 11: too few values for vertex 1"});
+  expect_read_error(dir, "few.ply", header + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", {"line 11: too few values for vertex 1"});
   expect_read_error(dir, "word.ply", header + "0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n", {"line 11: 'zero' is not a number"});
   expect_read_error(dir, "extra.ply", header + "0 0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", {"line 10: more values than the 3"});
   expect_read_error(dir, "short.ply", header + "0 0 0\n1 0 0\n", {"the file ends after 2 of 3 'vertex' records"});
@@ -274,9 +276,10 @@ TEST(ReadMeshErrors, MalformedPlyBodies) {
                     {"face 0 of 1 has 2 corners; a face needs at least 3"});
   // A negative list length in a binary file (count type char).
   ByteWriter binary;
-  binary.text("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-              "property float z\nelement face 1\nproperty list char int vertex_indices\nelement extra 1\n"
-              "property list char int values\nend_header\n");
+  binary.text(
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list char int vertex_indices\nelement extra 1\n"
+      "property list char int values\nend_header\n");
   for (int i = 0; i < 9; ++i) binary.put(static_cast<float>(i));
   binary.put<std::int8_t>(3).put<std::int32_t>(0).put<std::int32_t>(1).put<std::int32_t>(2);
   binary.put<std::int8_t>(-2);
@@ -311,8 +314,9 @@ TEST(ReadMeshErrors, MalformedOffAndStl) {
                     {"line 5: unexpected 'vortex' in ASCII STL (inside a facet)"});
   expect_read_error(dir, "open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n",
                     {"the file ends inside the facet that begins on line 2"});
-  expect_read_error(dir, "two.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
-                                    "endfacet\nendsolid x\n",
+  expect_read_error(dir, "two.stl",
+                    "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
+                    "endfacet\nendsolid x\n",
                     {"line 7: facet has 2 vertices"});
   expect_read_error(dir, "tiny.stl", "hello", {"not an STL file"});
 }

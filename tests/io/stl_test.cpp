@@ -115,12 +115,11 @@ TEST(StlReader, OnlyExactlyEqualPositionsAreWelded) {
 TEST(StlReader, WeldNoteCountsEveryCorner) {
   // A tetrahedron: 4 triangles, 12 corners at 4 positions, 8 of them repeats.
   const std::array<std::array<float, 3>, 4> p = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  const std::vector<Triangle> tetrahedron = {
-      Triangle{{p[0], p[2], p[1]}}, Triangle{{p[0], p[1], p[3]}},
-      Triangle{{p[1], p[2], p[3]}}, Triangle{{p[2], p[0], p[3]}}};
+  const std::vector<Triangle> tetrahedron = {Triangle{{p[0], p[2], p[1]}}, Triangle{{p[0], p[1], p[3]}},
+                                             Triangle{{p[1], p[2], p[3]}}, Triangle{{p[2], p[0], p[3]}}};
   TempDir dir;
-  for (const auto& [name, bytes] : {std::pair{"binary.stl", binary_stl(tetrahedron, "t")},
-                                    std::pair{"ascii.stl", ascii_stl(tetrahedron)}}) {
+  for (const auto& [name, bytes] :
+       {std::pair{"binary.stl", binary_stl(tetrahedron, "t")}, std::pair{"ascii.stl", ascii_stl(tetrahedron)}}) {
     const io::LoadedMesh loaded = read_text(dir, name, bytes);
     EXPECT_EQ(loaded.mesh.num_vertices(), 4);
     EXPECT_EQ(loaded.info.welded_corners, 8);

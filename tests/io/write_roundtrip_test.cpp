@@ -29,10 +29,10 @@ using io::read_mesh;
 TriangleMesh awkward_mesh() {
   TriangleMesh mesh;
   mesh.vertices.resize(5, 3);
-  mesh.vertices << 0.1, 1.0 / 3.0, -0.0,                                            //
-      std::numbers::pi, -1e300, 4.9406564584124654e-324,                            //
+  mesh.vertices << 0.1, 1.0 / 3.0, -0.0,                                               //
+      std::numbers::pi, -1e300, 4.9406564584124654e-324,                               //
       std::numeric_limits<double>::max(), std::numeric_limits<double>::min(), 1e-310,  //
-      0.1 + 0.2, -123456789.123456789, 2.0 / 3.0,                                    //
+      0.1 + 0.2, -123456789.123456789, 2.0 / 3.0,                                      //
       1e22, 5e-324, -7.0;
   mesh.faces.resize(3, 3);
   mesh.faces << 0, 1, 2, 2, 3, 4, 4, 4, 0;  // the last one degenerate
@@ -144,13 +144,11 @@ TEST(WriteRoundTrip, PlyVertexPropertiesAreWrittenAsDeclared) {
   io::write_ply(dir / "props.ply", mesh, properties);
   const std::string file = read_file(dir / "props.ply");
 
-  EXPECT_EQ(header_lines(file), (std::vector<std::string>{"ply", "format binary_little_endian 1.0",
-                                                          "comment written by geodual", "element vertex 5",
-                                                          "property double x", "property double y",
-                                                          "property double z", "property double distance",
-                                                          "property float weight", "property int site",
-                                                          "element face 3", "property list uchar int vertex_indices",
-                                                          "end_header"}));
+  EXPECT_EQ(header_lines(file),
+            (std::vector<std::string>{"ply", "format binary_little_endian 1.0", "comment written by geodual",
+                                      "element vertex 5", "property double x", "property double y", "property double z",
+                                      "property double distance", "property float weight", "property int site",
+                                      "element face 3", "property list uchar int vertex_indices", "end_header"}));
   const std::size_t body = file.find("end_header\n") + 11;
   constexpr std::size_t record = 3 * 8 + 8 + 4 + 4;
   ASSERT_EQ(file.size(), body + 5 * record + 3 * 13);

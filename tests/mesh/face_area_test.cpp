@@ -34,8 +34,7 @@ TEST(FaceArea, ImpossibleAndNanLengthsHaveNoArea) {
 }
 
 TEST(FaceArea, RepeatedCornersAndCollinearCornersHaveNoArea) {
-  const TriangleMesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}},
-                                      {{0, 1, 1}, {0, 1, 2}, {0, 1, 3}});
+  const TriangleMesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}}, {{0, 1, 1}, {0, 1, 2}, {0, 1, 3}});
   EXPECT_TRUE(has_repeated_corner(mesh, 0));
   EXPECT_FALSE(has_repeated_corner(mesh, 1));
   EXPECT_FALSE(has_positive_area(mesh, 0));

@@ -25,8 +25,7 @@ void add_face(TriangleMesh& mesh, Index a, Index b, Index c) {
 }
 
 TriangleMesh tetrahedron() {
-  return make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
-                   {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
+  return make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
 }
 
 /// A rows x cols grid of quads, two triangles each, on the unit square;
@@ -41,8 +40,8 @@ TriangleMesh grid(int rows, int cols, bool wrap) {
       if (wrap) {  // a torus in space, so that no two vertices coincide
         const double u = 2 * std::numbers::pi * i / rows;
         const double w = 2 * std::numbers::pi * j / cols;
-        mesh.vertices.row(i * vertex_cols + j) << (2 + std::cos(w)) * std::cos(u),
-            (2 + std::cos(w)) * std::sin(u), std::sin(w);
+        mesh.vertices.row(i * vertex_cols + j) << (2 + std::cos(w)) * std::cos(u), (2 + std::cos(w)) * std::sin(u),
+            std::sin(w);
       } else {
         mesh.vertices.row(i * vertex_cols + j) << j, i, 0;
       }
@@ -109,8 +108,8 @@ TEST(MeshReport, LargerOpenGridStillHasOneLoop) {
 }
 
 TEST(MeshReport, TwoDisjointTrianglesAreTwoComponents) {
-  const MeshReport report = analyze_mesh(make_mesh(
-      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}}, {{0, 1, 2}, {3, 4, 5}}));
+  const MeshReport report = analyze_mesh(
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}}, {{0, 1, 2}, {3, 4, 5}}));
   EXPECT_EQ(report.components, 2);
   EXPECT_EQ(report.boundary_loops, 2);
   EXPECT_EQ(report.boundary_edges, 6);
@@ -121,11 +120,11 @@ TEST(MeshReport, TwoDisjointTrianglesAreTwoComponents) {
 
 TEST(MeshReport, BowTiePinchVertexIsNonManifold) {
   // Two triangles that share only vertex 0.
-  const MeshReport report = analyze_mesh(make_mesh(
-      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}));
+  const MeshReport report =
+      analyze_mesh(make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}));
   EXPECT_EQ(report.nonmanifold_vertices, 1);
   EXPECT_EQ(report.nonmanifold_edges, 0);
-  EXPECT_EQ(report.components, 1);      // joined at the pinch vertex
+  EXPECT_EQ(report.components, 1);  // joined at the pinch vertex
   EXPECT_EQ(report.boundary_edges, 6);
   EXPECT_EQ(report.boundary_loops, 1);  // one figure eight through the pinch
   EXPECT_EQ(report.euler_characteristic, 1);
@@ -134,10 +133,9 @@ TEST(MeshReport, BowTiePinchVertexIsNonManifold) {
 
 TEST(MeshReport, TwoFansOfAClosedSurfaceTouchingAtAVertex) {
   // Two tetrahedra glued at one vertex (vertex 0): two closed fans there.
-  TriangleMesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0},
-                                 {0, -1, 0}, {0, 0, -1}},
-                                {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3},
-                                 {0, 5, 4}, {0, 4, 6}, {0, 6, 5}, {4, 5, 6}});
+  TriangleMesh mesh =
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},
+                {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 5, 4}, {0, 4, 6}, {0, 6, 5}, {4, 5, 6}});
   const MeshReport report = analyze_mesh(mesh);
   EXPECT_EQ(report.nonmanifold_vertices, 1);
   EXPECT_EQ(report.components, 1);
@@ -148,8 +146,8 @@ TEST(MeshReport, TwoFansOfAClosedSurfaceTouchingAtAVertex) {
 
 TEST(MeshReport, FinEdgeIsNonManifoldButItsVerticesAreNot) {
   // Three triangles on edge (0, 1).
-  const MeshReport report = analyze_mesh(make_mesh(
-      {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}));
+  const MeshReport report = analyze_mesh(
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}));
   EXPECT_EQ(report.nonmanifold_edges, 1);
   EXPECT_EQ(report.nonmanifold_vertices, 0);
   EXPECT_EQ(report.edges, 7);
@@ -179,8 +177,8 @@ TEST(MeshReport, EachRepeatOfAFaceCounts) {
 
 TEST(MeshReport, ZeroAreaFaceIsDegenerate) {
   // Vertex 4 lies on the segment from vertex 0 to vertex 1.
-  TriangleMesh mesh = make_mesh({{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}},
-                                {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
+  TriangleMesh mesh =
+      make_mesh({{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
   add_face(mesh, 0, 4, 1);
   const MeshReport report = analyze_mesh(mesh);
   EXPECT_EQ(report.degenerate_faces, 1);
@@ -221,8 +219,7 @@ TEST(MeshReport, UnreferencedVertexIsCountedAndLeftOutOfTheBox) {
 }
 
 TEST(MeshReport, DuplicateVerticesCompareExactPositions) {
-  TriangleMesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-0.0, 0, 0}, {1, 0, 1e-300}},
-                                {{0, 1, 2}});
+  TriangleMesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-0.0, 0, 0}, {1, 0, 1e-300}}, {{0, 1, 2}});
   // -0 equals +0; 1e-300 differs from 0.
   EXPECT_EQ(analyze_mesh(mesh).duplicate_vertices, 1);
 }

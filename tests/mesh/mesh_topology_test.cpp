@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <initializer_list>
 #include <string>
@@ -72,8 +72,8 @@ TEST(MeshTopology, ClosedSurfaceHasNoBoundary) {
 
 TEST(MeshTopology, PinchVertexHasTwoFans) {
   const MeshTopology t = build_mesh_topology(bowtie());
-  EXPECT_EQ(t.num_components(), 1);  // joined through the shared vertex
-  EXPECT_EQ(t.num_fans(), 6);        // vertex 2 has two
+  EXPECT_EQ(t.num_components(), 1);             // joined through the shared vertex
+  EXPECT_EQ(t.num_fans(), 6);                   // vertex 2 has two
   EXPECT_NE(t.corner_fan[2], t.corner_fan[3]);  // corner 2 of face 0, corner 0 of face 1
   EXPECT_EQ(t.fan_vertex[t.corner_fan[2]], 2);
   EXPECT_EQ(t.fan_vertex[t.corner_fan[3]], 2);
@@ -92,9 +92,9 @@ TEST(MeshTopology, NonManifoldEdgeSplitsFans) {
 }
 
 TEST(MeshTopology, DegenerateFacesAndUnreferencedVerticesTakeNoPart) {
-  const MeshTopology t = build_mesh_topology(make_mesh(
-      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 5}, {9, 0, 0}, {9, 1, 0}, {10, 0, 0}},
-      {{0, 1, 1}, {4, 6, 5}, {0, 1, 2}}));
+  const MeshTopology t =
+      build_mesh_topology(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 5}, {9, 0, 0}, {9, 1, 0}, {10, 0, 0}},
+                                    {{0, 1, 1}, {4, 6, 5}, {0, 1, 2}}));
   EXPECT_EQ(t.face_edges[0], (std::array<Index, 3>{-1, -1, -1}));
   EXPECT_EQ(t.face_component[0], -1);
   EXPECT_EQ(t.corner_fan[0], -1);

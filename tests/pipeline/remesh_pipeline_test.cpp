@@ -1,8 +1,8 @@
 // The C++ pipeline: every stage timed in order, the result holds every
 // intermediate, and the progress callback can cancel.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Random and file sites for the command line.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/sites.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,8 +85,8 @@ TEST(ReadSiteFile, ErrorsNameFileAndLine) {
     std::string text, expected;
   };
   for (const Case& c : {Case{"1\nbanana\n", ":2: expected"}, Case{"99\n", ":1: vertex 99 is out of range"},
-                        Case{"f 8 0.3 0.3 0.4\n", ":1: face 8 is out of range"},
-                        Case{"f 1 0.3 0.3\n", ":1: expected"}, Case{"# nothing\n", "holds no sites"}}) {
+                        Case{"f 8 0.3 0.3 0.4\n", ":1: face 8 is out of range"}, Case{"f 1 0.3 0.3\n", ":1: expected"},
+                        Case{"# nothing\n", "holds no sites"}}) {
     const fs::path path = write_temp("bad.txt", c.text);
     try {
       read_site_file(path, mesh);

@@ -6,15 +6,15 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
 #include <CGAL/Simple_cartesian.h>
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
@@ -154,7 +154,8 @@ double brute_distance(const Vec& p, const TriangleMesh& mesh) {
   const auto point = [](const Vec& v) { return Kernel::Point_3(v.x(), v.y(), v.z()); };
   double best = std::numeric_limits<double>::infinity();
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
-    const Kernel::Triangle_3 triangle(point(mesh.vertices.row(mesh.faces(f, 0))), point(mesh.vertices.row(mesh.faces(f, 1))),
+    const Kernel::Triangle_3 triangle(point(mesh.vertices.row(mesh.faces(f, 0))),
+                                      point(mesh.vertices.row(mesh.faces(f, 1))),
                                       point(mesh.vertices.row(mesh.faces(f, 2))));
     best = std::min(best, CGAL::squared_distance(point(p), triangle));
   }
@@ -201,8 +202,8 @@ TEST(TriangleQuality, RightIsoscelesAndThinTriangles) {
   // Beside it, a thin right triangle with legs 1 and 0.2: one angle of
   // atan(0.2) = 11.31 degrees. One angle in six is below 30 degrees, and one
   // face in two, so P30 = 100 * 1 / (3 * 2).
-  const TriangleMesh both = make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0), Vec(5, 0, 1), Vec(6, 0, 1), Vec(5, 0, 1.2)},
-                                      {{0, 1, 2}, {3, 4, 5}});
+  const TriangleMesh both = make_mesh(
+      {Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0), Vec(5, 0, 1), Vec(6, 0, 1), Vec(5, 0, 1.2)}, {{0, 1, 2}, {3, 4, 5}});
   const TriangleQuality q2 = triangle_quality(both);
   const double thin_q = heron_quality(1, 0.2, std::sqrt(1.04));
   EXPECT_NEAR(q2.q_min, thin_q, 1e-14);
@@ -219,8 +220,9 @@ TEST(TriangleQuality, DegenerateFacesCountAsZero) {
   // An equilateral triangle, a face with a repeated index, and a face of three
   // collinear points: the last two have Q = 0 and angles (0, 0, 180).
   const double h = std::sqrt(3.0) / 2;
-  const TriangleMesh mesh = make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(0.5, h, 0), Vec(3, 0, 0), Vec(4, 0, 0), Vec(5, 0, 0)},
-                                      {{0, 1, 2}, {3, 4, 4}, {3, 4, 5}});
+  const TriangleMesh mesh =
+      make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(0.5, h, 0), Vec(3, 0, 0), Vec(4, 0, 0), Vec(5, 0, 0)},
+                {{0, 1, 2}, {3, 4, 4}, {3, 4, 5}});
   const TriangleQuality q = triangle_quality(mesh);
   EXPECT_EQ(q.degenerate_faces, 2);
   EXPECT_EQ(q.degenerate_faces, analyze_mesh(mesh).degenerate_faces);
@@ -289,8 +291,8 @@ TEST(TriangleQuality, OpenSquareGrid) {
 
 TEST(TriangleQuality, NonManifoldEdgeHasNoInteriorVertex) {
   // Three triangles on the edge (0, 1).
-  const TriangleMesh mesh =
-      make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0), Vec(0, -1, 0), Vec(0, 0, 1)}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
+  const TriangleMesh mesh = make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0), Vec(0, -1, 0), Vec(0, 0, 1)},
+                                      {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
   const TriangleQuality q = triangle_quality(mesh);
   EXPECT_EQ(q.nonmanifold_edges, 1);
   EXPECT_FALSE(q.genus.has_value());
@@ -388,7 +390,7 @@ TEST(CompareMeshes, ScaledCubeAreaVolumeAndDistances) {
   const QualityReport report = compare_meshes(cube, doubled, samples(5000));
   EXPECT_NEAR(report.area_change_pct, 300.0, 1e-12);
   EXPECT_NEAR(report.volume_change_pct.value_or(0), 700.0, 1e-12);
-  EXPECT_NEAR(report.hausdorff_reference_to_candidate, 0.5, 1e-12);  // every point is 0.5 inside
+  EXPECT_NEAR(report.hausdorff_reference_to_candidate, 0.5, 1e-12);                 // every point is 0.5 inside
   EXPECT_NEAR(report.hausdorff_candidate_to_reference, std::sqrt(3.0) / 2, 1e-12);  // corner to corner
   EXPECT_NEAR(report.hausdorff, std::sqrt(3.0) / 2, 1e-12);
   EXPECT_NEAR(report.hausdorff_pct, 100 * 0.5, 1e-10);  // diagonal sqrt(3)
@@ -401,9 +403,9 @@ TEST(CompareMeshes, VerticesOnlyMatchBruteForce) {
   // the candidate, so that the nearest points fall on faces, edges and
   // vertices alike.
   TriangleMesh a = combined(test::icosphere(3), transformed(plane_grid(7), 2.0, Vec::Zero(), Vec(1.2, -1.0, 0.3)));
-  TriangleMesh b = combined(test::icosphere(1), make_mesh({Vec(1.5, 0, 0), Vec(2.5, 0, 0), Vec(2.5, 1e-6, 0), Vec(1.4, 0.2, 0.1),
-                                                     Vec(3.3, 0.4, -0.1), Vec(2.0, 0.5, 0.0)},
-                                                    {{0, 1, 2}, {3, 4, 5}}));
+  TriangleMesh b = combined(test::icosphere(1), make_mesh({Vec(1.5, 0, 0), Vec(2.5, 0, 0), Vec(2.5, 1e-6, 0),
+                                                           Vec(1.4, 0.2, 0.1), Vec(3.3, 0.4, -0.1), Vec(2.0, 0.5, 0.0)},
+                                                          {{0, 1, 2}, {3, 4, 5}}));
   for (Index v = 0; v < 642; ++v) a.vertices.row(v) *= 1.0 + 0.05 * std::sin(3.0 * v);
   for (Index v = 0; v < 42; ++v) {
     b.vertices.row(v) = b.vertices.row(v) * (1.0 + 0.04 * std::cos(5.0 * v)) + Eigen::RowVector3d(0.01, -0.02, 0.03);
@@ -435,7 +437,8 @@ TEST(CompareMeshes, SamplesAreAreaUniform) {
   // 1/576; candidate points are on the reference (d = 0).
   const TriangleMesh square = make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(1, 1, 0), Vec(0, 1, 0), Vec(0.9, 0.05, 0)},
                                         {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
-  const TriangleMesh half = make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(1, 0.5, 0), Vec(0, 0.5, 0)}, {{0, 1, 2}, {0, 2, 3}});
+  const TriangleMesh half =
+      make_mesh({Vec(0, 0, 0), Vec(1, 0, 0), Vec(1, 0.5, 0), Vec(0, 0.5, 0)}, {{0, 1, 2}, {0, 2, 3}});
   const std::int64_t n = 200000;
   const QualityReport report = compare_meshes(square, half, samples(n));
   EXPECT_NEAR(report.hausdorff_reference_to_candidate, 0.5, 1e-15);  // the corners (0, 1) and (1, 1)

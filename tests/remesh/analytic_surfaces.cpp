@@ -9,7 +9,8 @@
 #include <vector>
 
 namespace geodual::test {
-TriangleMesh mesh_from_lists(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<Index, 3>>& faces) {
+TriangleMesh mesh_from_lists(const std::vector<Eigen::Vector3d>& vertices,
+                             const std::vector<std::array<Index, 3>>& faces) {
   TriangleMesh mesh;
   mesh.vertices.resize(static_cast<Index>(vertices.size()), 3);
   for (std::size_t i = 0; i < vertices.size(); ++i) mesh.vertices.row(static_cast<Index>(i)) = vertices[i].transpose();
@@ -48,8 +49,8 @@ void add_torus(double R, double r, int n, int m, double centre_x, Cut cut, std::
 
 TriangleMesh icosphere(int levels) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Eigen::Vector3d> vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Eigen::Vector3d> vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (auto& v : vertices) v.normalize();
   std::vector<std::array<Index, 3>> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                              {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -80,7 +81,8 @@ TriangleMesh icosphere(int levels) {
 TriangleMesh torus(double R, double r, int n, int m, double centre_x) {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<Index, 3>> faces;
-  add_torus(R, r, n, m, centre_x, [](int, int) { return false; }, vertices, faces);
+  add_torus(
+      R, r, n, m, centre_x, [](int, int) { return false; }, vertices, faces);
   return mesh_from_lists(vertices, faces);
 }
 
@@ -128,7 +130,9 @@ TriangleMesh disk(int rings, int segments) {
       vertices.emplace_back(radius * std::cos(a), radius * std::sin(a), 0);
     }
   }
-  auto id = [&](int ring, int s) { return ring == 0 ? Index{0} : static_cast<Index>(1 + (ring - 1) * segments + (s + segments) % segments); };
+  auto id = [&](int ring, int s) {
+    return ring == 0 ? Index{0} : static_cast<Index>(1 + (ring - 1) * segments + (s + segments) % segments);
+  };
   std::vector<std::array<Index, 3>> faces;
   for (int s = 0; s < segments; ++s) faces.push_back({0, id(1, s), id(1, s + 1)});
   for (int ring = 1; ring < rings; ++ring) {

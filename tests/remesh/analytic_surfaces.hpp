@@ -11,7 +11,8 @@
 namespace geodual::test {
 
 /// A TriangleMesh from lists of points and corner triples.
-TriangleMesh mesh_from_lists(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<Index, 3>>& faces);
+TriangleMesh mesh_from_lists(const std::vector<Eigen::Vector3d>& vertices,
+                             const std::vector<std::array<Index, 3>>& faces);
 
 /// The icosahedron split 1-to-4 `levels` times, vertices on the unit sphere
 /// (genus 0, chi = 2).

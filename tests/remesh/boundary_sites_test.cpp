@@ -4,8 +4,8 @@
 // (a rectangle, a disk's rim, a Möbius strip's edge), and loops the walk
 // runs partly against their faces' orientation.
 
-#include "remesh/analytic_surfaces.hpp"
 #include "../../remesh/src/boundary_sites.hpp"
+#include "remesh/analytic_surfaces.hpp"
 
 #include <gtest/gtest.h>
 

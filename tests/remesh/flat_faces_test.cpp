@@ -7,13 +7,13 @@
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
-#include "geodual/mesh/face_area.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <string>
 #include <vector>

@@ -3,12 +3,12 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/lloyd.hpp"
-#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
@@ -18,8 +18,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <string>
 #include <numbers>
+#include <string>
 
 namespace geodual {
 namespace {
@@ -35,10 +35,12 @@ TEST(Lloyd, EnergyNeverRisesAndQualityImprovesOnAScan) {
   const remesh::RemeshResult before = remesh::remesh_from_sites(mesh, sites, none);
   const remesh::RemeshResult after = remesh::remesh_from_sites(mesh, sites, some);
   ASSERT_GE(after.relaxation.energy.size(), 3u);
-  for (std::size_t i = 1; i < after.relaxation.energy.size(); ++i) EXPECT_LE(after.relaxation.energy[i], after.relaxation.energy[i - 1]);
+  for (std::size_t i = 1; i < after.relaxation.energy.size(); ++i)
+    EXPECT_LE(after.relaxation.energy[i], after.relaxation.energy[i - 1]);
   EXPECT_LT(after.relaxation.energy.back(), 0.8 * after.relaxation.energy.front());
   EXPECT_DOUBLE_EQ(after.relaxation.energy.front(), before.relaxation.energy.front());
-  const quality::TriangleQuality q0 = quality::triangle_quality(before.dual.mesh), q1 = quality::triangle_quality(after.dual.mesh);
+  const quality::TriangleQuality q0 = quality::triangle_quality(before.dual.mesh),
+                                 q1 = quality::triangle_quality(after.dual.mesh);
   EXPECT_GT(q1.q_avg, q0.q_avg + 0.1);
   EXPECT_GT(q1.theta_min_deg, q0.theta_min_deg);
   EXPECT_LT(q1.pct_angles_lt30, q0.pct_angles_lt30);
@@ -123,9 +125,10 @@ TEST(Lloyd, NewtonStepsConvergeMuchFasterThanLloydOnAPlane) {
   const remesh::LloydResult by_lloyd = remesh::lloyd_relax(disk, start.sites, lloyd);
   const double after_newton = largest_interior_lloyd_step(disk, by_newton);
   const double after_lloyd = largest_interior_lloyd_step(disk, by_lloyd);
-  std::printf("largest distance to the centroid %.3g; after 5 Newton steps %.3g (energy %.9g, %d diagrams), "
-              "after 5 Lloyd steps %.3g (energy %.9g)\n",
-              before, after_newton, by_newton.energy.back(), by_newton.diagrams, after_lloyd, by_lloyd.energy.back());
+  std::printf(
+      "largest distance to the centroid %.3g; after 5 Newton steps %.3g (energy %.9g, %d diagrams), "
+      "after 5 Lloyd steps %.3g (energy %.9g)\n",
+      before, after_newton, by_newton.energy.back(), by_newton.diagrams, after_lloyd, by_lloyd.energy.back());
   EXPECT_LT(after_newton, 0.5 * before);
   EXPECT_GT(after_lloyd, 0.8 * before);
   const double e0 = start.energy.back();
@@ -134,7 +137,8 @@ TEST(Lloyd, NewtonStepsConvergeMuchFasterThanLloydOnAPlane) {
 
 TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   const TriangleMesh mesh = scan("bunny.ply");
-  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
+  const std::vector<SurfacePoint> sites =
+      remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
   remesh::RemeshOptions newton;
   newton.lloyd.iterations = 6;
   newton.lloyd.warm_start_iterations = 0;  // the geodesic steps alone
@@ -144,7 +148,8 @@ TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   const remesh::RemeshResult by_newton = remesh::remesh_from_sites(mesh, sites, newton);
   const remesh::RemeshResult by_lloyd = remesh::remesh_from_sites(mesh, sites, lloyd);
   EXPECT_EQ(by_newton.relaxation.iterations, 6);
-  for (std::size_t i = 1; i < by_newton.relaxation.energy.size(); ++i) EXPECT_LT(by_newton.relaxation.energy[i], by_newton.relaxation.energy[i - 1]);
+  for (std::size_t i = 1; i < by_newton.relaxation.energy.size(); ++i)
+    EXPECT_LT(by_newton.relaxation.energy[i], by_newton.relaxation.energy[i - 1]);
   // Lloyd's energy above the CVT's decays slowly; Newton's steps go further
   // down in as many iterations.
   EXPECT_LT(by_newton.relaxation.energy.back(), by_lloyd.relaxation.energy.back());
@@ -232,7 +237,8 @@ TEST(Lloyd, VertexSitesMoveToo) {
     EXPECT_EQ(relaxed.energy.size(), warm_start > 0 ? 5u : 4u);
     EXPECT_LT(relaxed.energy.back(), 0.9 * relaxed.energy.front());
     int moved = 0;
-    for (std::size_t i = 0; i < sites.size(); ++i) moved += relaxed.sites[i].position(sphere) != sites[i].position(sphere);
+    for (std::size_t i = 0; i < sites.size(); ++i)
+      moved += relaxed.sites[i].position(sphere) != sites[i].position(sphere);
     EXPECT_GT(moved, static_cast<int>(sites.size()) / 2);
   }
 }
@@ -262,7 +268,8 @@ TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
   // geodesic iterations start from a lower energy, and as many of them end
   // lower and with better triangles than without.
   const TriangleMesh mesh = scan("bunny.ply");
-  const std::vector<SurfacePoint> sites = remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
+  const std::vector<SurfacePoint> sites =
+      remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
   remesh::RemeshOptions cold, warm;
   cold.lloyd.iterations = warm.lloyd.iterations = 3;
   cold.lloyd.tolerance = warm.lloyd.tolerance = 0;
@@ -273,10 +280,13 @@ TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
   EXPECT_EQ(from_warm.relaxation.warm_start_iterations, 15);
   ASSERT_EQ(from_warm.relaxation.energy.size(), 5u);  // the given sites, the warm start, three iterations
   EXPECT_EQ(from_warm.relaxation.energy[0], from_cold.relaxation.energy[0]);
-  for (std::size_t i = 1; i < from_warm.relaxation.energy.size(); ++i) EXPECT_LT(from_warm.relaxation.energy[i], from_warm.relaxation.energy[i - 1]);
-  EXPECT_LT(from_warm.relaxation.energy[1], from_cold.relaxation.energy.back());  // the warm start alone beats three geodesic iterations
+  for (std::size_t i = 1; i < from_warm.relaxation.energy.size(); ++i)
+    EXPECT_LT(from_warm.relaxation.energy[i], from_warm.relaxation.energy[i - 1]);
+  EXPECT_LT(from_warm.relaxation.energy[1],
+            from_cold.relaxation.energy.back());  // the warm start alone beats three geodesic iterations
   EXPECT_LT(from_warm.relaxation.energy.back(), from_cold.relaxation.energy.back());
-  EXPECT_GT(quality::triangle_quality(from_warm.dual.mesh).q_avg, quality::triangle_quality(from_cold.dual.mesh).q_avg + 0.01);
+  EXPECT_GT(quality::triangle_quality(from_warm.dual.mesh).q_avg,
+            quality::triangle_quality(from_cold.dual.mesh).q_avg + 0.01);
 }
 
 }  // namespace

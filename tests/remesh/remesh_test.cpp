@@ -3,12 +3,12 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
-#include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
@@ -279,8 +279,7 @@ TEST(ManifoldCut, PinchVerticesAreCutApartAndRemeshed) {
   // The remesh of the bowtie: two disks.
   remesh::RemeshOptions options;
   options.lloyd.iterations = 2;
-  const remesh::RemeshResult result =
-      remesh::remesh_from_sites(mesh, remesh::sample_sites(cut.mesh, 200), options);
+  const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, remesh::sample_sites(cut.mesh, 200), options);
   EXPECT_EQ(result.vertices_split, 1);
   const MeshReport out = analyze_mesh(result.dual.mesh);
   EXPECT_EQ(out.components, 2);

@@ -2,8 +2,8 @@
 // geodesic diagram (an independent computation from the exact geodesics),
 // its cells tile a closed surface, and threads do not change it.
 
-#include "remesh/analytic_surfaces.hpp"
 #include "../../remesh/src/restricted_voronoi.hpp"
+#include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
@@ -35,9 +35,11 @@ TEST(RestrictedVoronoi, IsTheGeodesicDiagramOnAPlane) {
   // engine's exact diagram and the restricted one must agree: cell areas,
   // first moments, energies and the length of each shared boundary.
   const TriangleMesh disk = test::disk(24, 96);
-  const std::vector<SurfacePoint> sites = remesh::sample_sites(disk, 150, {.strategy = remesh::SamplingStrategy::poisson});
+  const std::vector<SurfacePoint> sites =
+      remesh::sample_sites(disk, 150, {.strategy = remesh::SamplingStrategy::poisson});
   const voronoi::VoronoiDiagram geodesic = voronoi::compute_voronoi(disk, sites);
-  const remesh::detail::RestrictedCells restricted = remesh::detail::restricted_voronoi(disk, geodesic.field, sites, {});
+  const remesh::detail::RestrictedCells restricted =
+      remesh::detail::restricted_voronoi(disk, geodesic.field, sites, {});
   const double area = surface_area(disk);
   for (std::size_t s = 0; s < sites.size(); ++s) {
     SCOPED_TRACE(s);

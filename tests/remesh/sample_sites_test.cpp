@@ -6,18 +6,18 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -28,8 +28,7 @@
 namespace geodual::remesh {
 namespace {
 
-constexpr SamplingStrategy kStrategies[] = {SamplingStrategy::random, SamplingStrategy::poisson,
-                                            SamplingStrategy::fps};
+constexpr SamplingStrategy kStrategies[] = {SamplingStrategy::random, SamplingStrategy::poisson, SamplingStrategy::fps};
 
 // ---------------------------------------------------------------- meshes
 
@@ -435,11 +434,16 @@ TEST(SampleSites, SquareBoundaryGetsEvenlySpacedSites) {
         EXPECT_TRUE(loop_of.contains(edge)) << "a site with a zero barycentric off the boundary";
         const Eigen::Vector3d p = site.position(mesh);
         const double x = p.x(), y = p.y();
-        if (y == 0) arc.push_back(x);
-        else if (x == 1) arc.push_back(1 + y);
-        else if (y == 1) arc.push_back(3 - x);
-        else if (x == 0) arc.push_back(4 - y);
-        else ADD_FAILURE() << "boundary site off the square's sides at " << x << ", " << y;
+        if (y == 0)
+          arc.push_back(x);
+        else if (x == 1)
+          arc.push_back(1 + y);
+        else if (y == 1)
+          arc.push_back(3 - x);
+        else if (x == 0)
+          arc.push_back(4 - y);
+        else
+          ADD_FAILURE() << "boundary site off the square's sides at " << x << ", " << y;
       }
       const auto k = static_cast<std::int64_t>(arc.size());
       const std::int64_t expected = std::clamp<std::int64_t>(std::llround(4 / hexagonal_spacing(1, n)), 3, n - 1);
@@ -538,8 +542,8 @@ TEST(SampleSites, ComponentsShareSitesByArea) {
     SCOPED_TRACE(sampling_strategy_name(strategy));
     const auto sites = sample_sites(mesh, 500, options_for(strategy, 1, false));
     expect_valid_sites(mesh, sites, 500);
-    const auto on_small = std::count_if(sites.begin(), sites.end(),
-                                        [&](const SurfacePoint& s) { return s.element < small.num_faces(); });
+    const auto on_small =
+        std::count_if(sites.begin(), sites.end(), [&](const SurfacePoint& s) { return s.element < small.num_faces(); });
     EXPECT_EQ(on_small, 50);
     // With 6 sites, 4 on each square is impossible: the larger one gets its
     // 4 first, the small one the remaining 2.

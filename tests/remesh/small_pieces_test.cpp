@@ -19,11 +19,14 @@ namespace geodual::remesh {
 namespace {
 
 TriangleMesh tetrahedron() {
-  return test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
+  return test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                               {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
 }
 
 /// A square of two triangles (one boundary loop).
-TriangleMesh square() { return test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}); }
+TriangleMesh square() {
+  return test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+}
 
 /// `b` appended to `a`, moved by `offset`.
 TriangleMesh beside(const TriangleMesh& a, const TriangleMesh& b, const Eigen::Vector3d& offset) {

@@ -26,8 +26,8 @@ TEST(SurfaceWalk, NeverEndsInAZeroAreaFace) {
   // neighbour's centre towards the flat face's corners and points along it,
   // of lengths that end short of, inside and past the flat face.
   const TriangleMesh mesh = remesh::cut_to_manifold(io::read_mesh("tests/data/ogre.ply").mesh).mesh;
-  const voronoi::GeodesicField field =
-      voronoi::compute_geodesic_field(mesh, std::vector<SurfacePoint>{SurfacePoint::in_face(0, 1.0 / 3, 1.0 / 3, 1.0 / 3)});
+  const voronoi::GeodesicField field = voronoi::compute_geodesic_field(
+      mesh, std::vector<SurfacePoint>{SurfacePoint::in_face(0, 1.0 / 3, 1.0 / 3, 1.0 / 3)});
   int flat_faces = 0, walks = 0, through_flat = 0;
   for (Index flat = 0; flat < mesh.num_faces(); ++flat) {
     if (face_area(mesh, flat) > 0 || field.face_edges[flat][0] < 0) continue;
@@ -44,7 +44,8 @@ TEST(SurfaceWalk, NeverEndsInAZeroAreaFace) {
                                          along * Eigen::Vector3d(mesh.vertices.row(mesh.faces(flat, (c + 1) % 3)));
           const double distance = (target - origin).norm();
           for (const double scale : {0.9, 1.0, 1.0001, 1.1, 2.0}) {
-            const SurfacePoint end = remesh::detail::walk_on_surface(mesh, field, start, target - origin, scale * distance);
+            const SurfacePoint end =
+                remesh::detail::walk_on_surface(mesh, field, start, target - origin, scale * distance);
             ++walks;
             through_flat += end.element == from ? 0 : 1;
             ASSERT_TRUE(end.barycentric.allFinite()) << "from face " << from << " towards flat face " << flat;

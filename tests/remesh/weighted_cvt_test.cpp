@@ -3,8 +3,8 @@
 
 #include "remesh/analytic_surfaces.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/lloyd.hpp"
@@ -55,7 +55,8 @@ TEST(CurvatureDensity, FlatIsUniformAndBentIsDenser) {
   EXPECT_LT(rim, 1.05);
 
   // Stronger means denser; the cap holds; strength 0 is uniform.
-  const std::vector<double> strong = remesh::curvature_density(mesh, {.strength = 8, .spacing = spacing, .max_ratio = 3});
+  const std::vector<double> strong =
+      remesh::curvature_density(mesh, {.strength = 8, .spacing = spacing, .max_ratio = 3});
   const std::vector<double> none = remesh::curvature_density(mesh, {.strength = 0, .spacing = spacing});
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     EXPECT_LE(strong[v], 3.0);
@@ -157,7 +158,8 @@ TEST(WeightedLloyd, CurvatureAdaptedRemeshKeepsCountTopologyAndShrinksEdgesWhere
   options.curvature_adaptation = 1;
   const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, sites, options);
   EXPECT_EQ(result.dual.mesh.num_vertices(), count + result.dual.sites_added);
-  for (std::size_t i = 1; i < result.relaxation.energy.size(); ++i) EXPECT_LE(result.relaxation.energy[i], result.relaxation.energy[i - 1]);
+  for (std::size_t i = 1; i < result.relaxation.energy.size(); ++i)
+    EXPECT_LE(result.relaxation.energy[i], result.relaxation.energy[i - 1]);
   const MeshReport in = analyze_mesh(mesh), out = analyze_mesh(result.dual.mesh);
   EXPECT_EQ(out.euler_characteristic, in.euler_characteristic);
   EXPECT_EQ(out.boundary_loops, in.boundary_loops);
@@ -165,7 +167,8 @@ TEST(WeightedLloyd, CurvatureAdaptedRemeshKeepsCountTopologyAndShrinksEdgesWhere
   // Mean edge length around the remesh's vertices where the density is in
   // its top and bottom quarters (rho at the site's face, mean of its corners).
   const std::vector<double> rho = remesh::curvature_density(mesh, {.spacing = remesh::uniform_spacing(mesh, count)});
-  std::vector<double> at(result.dual.sites.size()), length(result.dual.sites.size(), 0), edges(result.dual.sites.size(), 0);
+  std::vector<double> at(result.dual.sites.size()), length(result.dual.sites.size(), 0),
+      edges(result.dual.sites.size(), 0);
   for (std::size_t i = 0; i < result.dual.sites.size(); ++i) {
     const SurfacePoint& s = result.dual.sites[i];
     at[i] = s.kind == SurfacePoint::Kind::vertex

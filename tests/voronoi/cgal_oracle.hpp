@@ -7,8 +7,8 @@
 // accepted by a manifold halfedge structure (throws std::runtime_error
 // otherwise). Unreferenced vertices are allowed (they get +inf and -1).
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <span>
 #include <vector>

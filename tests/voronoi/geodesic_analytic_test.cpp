@@ -10,8 +10,8 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "voronoi/test_meshes.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -32,8 +32,8 @@ using test::Rng;
 using ExactDistance = std::function<double(const SurfacePoint& site, const SurfacePoint& point)>;
 
 struct AnalyticReport {
-  double max_vertex_error = 0;   ///< relative to the size
-  double max_query_error = 0;    ///< in valid faces (all faces with RWR off), relative
+  double max_vertex_error = 0;  ///< relative to the size
+  double max_query_error = 0;   ///< in valid faces (all faces with RWR off), relative
   int vertices_checked = 0;
   int queries_exact_checked = 0;
   int queries_bound_checked = 0;
@@ -101,10 +101,9 @@ AnalyticReport check_field(const std::string& name, const TriangleMesh& mesh, co
       ok = std::abs(exact(sites[static_cast<std::size_t>(label)], SurfacePoint::at_vertex(v)) - best) <= tol;
     }
     if (!ok && reported++ < 10) {
-      ADD_FAILURE() << name << (rwr ? " (RWR on)" : " (RWR off)") << ": vertex " << v << " at ("
-                    << mesh.vertices.row(v) << "): ours " << d << " label " << label << ", exact " << best
-                    << " nearest site " << argmin << " (second best " << second << "), error " << error / size
-                    << " of the size";
+      ADD_FAILURE() << name << (rwr ? " (RWR on)" : " (RWR off)") << ": vertex " << v << " at (" << mesh.vertices.row(v)
+                    << "): ours " << d << " label " << label << ", exact " << best << " nearest site " << argmin
+                    << " (second best " << second << "), error " << error / size << " of the size";
     }
   }
   EXPECT_EQ(reported, 0) << name << ": vertices with a wrong distance or label";
@@ -137,19 +136,18 @@ AnalyticReport check_field(const std::string& name, const TriangleMesh& mesh, co
       ++report.queries_bound_checked;
     }
     if (!ok && query_failures++ < 10) {
-      ADD_FAILURE() << name << (rwr ? " (RWR on)" : " (RWR off)") << ": query in face " << p.element
-                    << " barycentric (" << p.barycentric.transpose() << ")"
-                    << (must_be_exact ? " [must be exact]" : " [upper bound]") << ": ours " << q.distance
-                    << " site " << q.site << ", exact " << best << " site " << argmin;
+      ADD_FAILURE() << name << (rwr ? " (RWR on)" : " (RWR off)") << ": query in face " << p.element << " barycentric ("
+                    << p.barycentric.transpose() << ")" << (must_be_exact ? " [must be exact]" : " [upper bound]")
+                    << ": ours " << q.distance << " site " << q.site << ", exact " << best << " site " << argmin;
     }
   }
   EXPECT_EQ(query_failures, 0) << name << ": wrong query() results";
 
   std::cout << "[analytic] " << name << (rwr ? " RWR on " : " RWR off") << ": " << mesh.num_faces() << " faces, "
             << sites.size() << " sites, max vertex error " << report.max_vertex_error << ", max query error "
-            << report.max_query_error << " (relative to the size; " << report.queries_exact_checked
-            << " exact / " << report.queries_bound_checked << " bound-only queries), peak windows "
-            << field.stats.peak_windows << ", pseudo-sources " << field.stats.pseudo_sources << "\n";
+            << report.max_query_error << " (relative to the size; " << report.queries_exact_checked << " exact / "
+            << report.queries_bound_checked << " bound-only queries), peak windows " << field.stats.peak_windows
+            << ", pseudo-sources " << field.stats.pseudo_sources << "\n";
   return report;
 }
 
@@ -182,7 +180,7 @@ TEST(GeodesicAnalytic, FlatSquareSeveralSites) {
   std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 5, 14);
   for (const SurfacePoint& s : test::random_vertex_sites(mesh, 4, 15)) sites.push_back(s);
   sites.push_back(SurfacePoint::in_face(600, 0.4, 0.6, 0.0));  // on an edge
-  sites.push_back(SurfacePoint::at_vertex(0));                  // a boundary corner
+  sites.push_back(SurfacePoint::at_vertex(0));                 // a boundary corner
   check_both("flat square, 11 sites", mesh, sites, [&](const SurfacePoint& s, const SurfacePoint& p) {
     return (s.position(mesh) - p.position(mesh)).norm();
   });
@@ -209,9 +207,9 @@ TEST(GeodesicAnalytic, ZeroAreaFaceNextToTheSite) {
   const ExactDistance exact = [&](const SurfacePoint& s, const SurfacePoint& p) {
     return (s.position(mesh) - p.position(mesh)).norm();
   };
-  for (const SurfacePoint& site : {SurfacePoint::at_vertex(4), SurfacePoint::in_face(0, 0.5, 0.0, 0.5),
-                                   SurfacePoint::in_face(1, 0.5, 0.0, 0.5), SurfacePoint::in_face(0, 0.2, 0.2, 0.6),
-                                   SurfacePoint::at_vertex(1)}) {
+  for (const SurfacePoint& site :
+       {SurfacePoint::at_vertex(4), SurfacePoint::in_face(0, 0.5, 0.0, 0.5), SurfacePoint::in_face(1, 0.5, 0.0, 0.5),
+        SurfacePoint::in_face(0, 0.2, 0.2, 0.6), SurfacePoint::at_vertex(1)}) {
     std::ostringstream name;
     name << "minimal zero-area square, site " << (site.kind == SurfacePoint::Kind::vertex ? "vertex " : "face ")
          << site.element << " (" << site.barycentric.transpose() << ")";

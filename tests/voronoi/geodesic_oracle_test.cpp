@@ -44,9 +44,7 @@ struct OracleCase {
 struct Timer {
   std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
   std::clock_t cpu = std::clock();
-  double wall_seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
-  }
+  double wall_seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count(); }
   double cpu_seconds() const { return static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC; }
 };
 
@@ -105,8 +103,8 @@ void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCas
     }
     if (!(error <= tol) && distance_failures++ < 10) {
       ADD_FAILURE() << "vertex " << v << " at (" << mesh.vertices.row(v) << "): ours " << std::setprecision(17) << ours
-                    << " (site " << field.nearest_site[v] << "), CGAL " << theirs << " (site "
-                    << cgal.nearest_site[v] << "), error " << error / diag << " of the diagonal";
+                    << " (site " << field.nearest_site[v] << "), CGAL " << theirs << " (site " << cgal.nearest_site[v]
+                    << "), error " << error / diag << " of the diagonal";
     }
   }
   EXPECT_EQ(distance_failures, 0) << "vertices farther than " << kRelativeTolerance << " * diagonal from CGAL";
@@ -185,10 +183,10 @@ void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCas
   }
 
   std::cout << std::setprecision(3) << "[oracle] " << file << " seed " << c.seed << ": " << sites.size() << " sites ("
-            << c.vertex_sites << " vertex, " << c.face_sites << " face, " << c.edge_sites << " edge), max |ours - CGAL| = " << max_error / diag
-            << " of the diagonal (vertex " << worst << "), max query error " << max_query_error
-            << " over " << exact_queries << " valid-face points, " << differing_vertices
-            << " vertices / " << differing_query_count << " queries with a tied label; ours "
+            << c.vertex_sites << " vertex, " << c.face_sites << " face, " << c.edge_sites
+            << " edge), max |ours - CGAL| = " << max_error / diag << " of the diagonal (vertex " << worst
+            << "), max query error " << max_query_error << " over " << exact_queries << " valid-face points, "
+            << differing_vertices << " vertices / " << differing_query_count << " queries with a tied label; ours "
             << field.stats.total_seconds << " s (wall " << ours_wall << ", cpu " << ours_cpu << "), CGAL "
             << cgal.solve_seconds << " s (wall " << cgal_wall << ", cpu " << cgal_cpu << "); peak windows "
             << field.stats.peak_windows << ", stored " << field.stats.windows_stored << "\n";
@@ -214,9 +212,8 @@ TEST(GeodesicOracle, CgalMatchesClosedForms) {
   cases.push_back({"L plate", plate, [&](const SurfacePoint& a, const SurfacePoint& b) {
                      return test::l_shape_distance(a.position(plate), b.position(plate));
                    }});
-  cases.push_back({"saddle cone", cone.mesh, [&](const SurfacePoint& a, const SurfacePoint& b) {
-                     return cone.distance(a, b);
-                   }});
+  cases.push_back(
+      {"saddle cone", cone.mesh, [&](const SurfacePoint& a, const SurfacePoint& b) { return cone.distance(a, b); }});
   cases.push_back({"cube", cube.mesh, [&](const SurfacePoint& a, const SurfacePoint& b) {
                      return cube.distance(a.position(cube.mesh), b.position(cube.mesh));
                    }});
@@ -235,8 +232,9 @@ TEST(GeodesicOracle, CgalMatchesClosedForms) {
       for (Index v = 0; v < c.mesh.num_vertices(); ++v) {
         worst = std::max(worst, std::abs(r.distance[v] - c.exact(site, SurfacePoint::at_vertex(v))));
       }
-      EXPECT_LE(worst, tol) << c.name << ": CGAL from " << (site.kind == SurfacePoint::Kind::vertex ? "vertex " : "face ")
-                            << site.element << " (" << site.barycentric.transpose() << ")";
+      EXPECT_LE(worst, tol) << c.name << ": CGAL from "
+                            << (site.kind == SurfacePoint::Kind::vertex ? "vertex " : "face ") << site.element << " ("
+                            << site.barycentric.transpose() << ")";
     }
   }
 }

@@ -6,8 +6,8 @@
 // off. Plus the error contract: bad sites, the window memory limit and
 // cancellation through the progress callback.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "voronoi/test_meshes.hpp"
 
@@ -31,15 +31,13 @@ namespace {
 // that the folder holds no other mesh, so that a new file is not silently skipped.
 const std::vector<std::string>& manifest_meshes() {
   static const std::vector<std::string> files = {
-      "armadillo_86k.ply", "bunny.ply",    "bunny_res2.ply",     "cheburashka.ply", "dragon_100k.ply",
-      "fandisk.ply",       "fertility.ply", "homer.ply",         "horse.ply",       "nefertiti_100k.ply",
-      "ogre.ply",          "rocker_arm.ply", "spot.ply",         "woody.ply"};
+      "armadillo_86k.ply", "bunny.ply",      "bunny_res2.ply", "cheburashka.ply", "dragon_100k.ply",
+      "fandisk.ply",       "fertility.ply",  "homer.ply",      "horse.ply",       "nefertiti_100k.ply",
+      "ogre.ply",          "rocker_arm.ply", "spot.ply",       "woody.ply"};
   return files;
 }
 
-TEST(GeodesicRobustness, EveryTestMeshIsCovered) {
-  EXPECT_EQ(test::test_mesh_files(), manifest_meshes());
-}
+TEST(GeodesicRobustness, EveryTestMeshIsCovered) { EXPECT_EQ(test::test_mesh_files(), manifest_meshes()); }
 
 struct FieldSummary {
   int finite = 0;
@@ -49,15 +47,15 @@ struct FieldSummary {
 /// Checks the invariants of one field; returns a summary for the report.
 FieldSummary check_invariants(const std::string& what, const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
                               const GeodesicField& field, const std::vector<Index>& component,
-                              const std::vector<bool>& referenced,
-                              const std::vector<std::array<Index, 2>>& edges) {
+                              const std::vector<bool>& referenced, const std::vector<std::array<Index, 2>>& edges) {
   SCOPED_TRACE(what);
   FieldSummary summary;
   const Index nv = mesh.num_vertices();
   const Index num_sites = static_cast<Index>(sites.size());
   EXPECT_EQ(field.distance.size(), static_cast<std::size_t>(nv));
   EXPECT_EQ(field.nearest_site.size(), static_cast<std::size_t>(nv));
-  if (field.distance.size() != static_cast<std::size_t>(nv) || field.nearest_site.size() != static_cast<std::size_t>(nv)) {
+  if (field.distance.size() != static_cast<std::size_t>(nv) ||
+      field.nearest_site.size() != static_cast<std::size_t>(nv)) {
     return summary;
   }
   std::set<Index> site_components;
@@ -92,8 +90,8 @@ FieldSummary check_invariants(const std::string& what, const TriangleMesh& mesh,
     if (length > 0) summary.max_lipschitz_excess = std::max(summary.max_lipschitz_excess, jump / length - 1);
     if (!(jump <= length * (1 + 1e-9)) && lipschitz_failures++ < 10) {
       ADD_FAILURE() << std::setprecision(17) << "edge " << a << "-" << b << " of length " << length << ": distances "
-                    << da << " (site " << field.nearest_site[a] << ") and " << db << " (site "
-                    << field.nearest_site[b] << ") differ by more than the length";
+                    << da << " (site " << field.nearest_site[a] << ") and " << db << " (site " << field.nearest_site[b]
+                    << ") differ by more than the length";
     }
   }
   EXPECT_EQ(lipschitz_failures, 0) << "edges where the distance is not 1-Lipschitz";
@@ -145,17 +143,17 @@ FieldSummary check_invariants(const std::string& what, const TriangleMesh& mesh,
     for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
       const EdgeWindow& w = field.windows[static_cast<std::size_t>(i)];
       auto value = [&](double x) { return w.sigma + std::hypot(x - w.source_x, w.source_y); };
-      bool ok = w.b0 >= -tol && w.b1 <= length + tol && w.b0 <= w.b1 && w.b0 >= previous_end - tol &&
-                w.sigma >= 0 && w.site >= 0 && w.site < num_sites;
+      bool ok = w.b0 >= -tol && w.b1 <= length + tol && w.b0 <= w.b1 && w.b0 >= previous_end - tol && w.sigma >= 0 &&
+                w.site >= 0 && w.site < num_sites;
       for (double x : {w.b0, 0.5 * (w.b0 + w.b1), w.b1}) {
         ok = ok && value(x) >= field.distance[v0] - x - tol && value(x) >= field.distance[v1] - (length - x) - tol;
       }
       previous_end = w.b1;
       if (!ok && window_failures++ < 5) {
         ADD_FAILURE() << std::setprecision(17) << "edge " << e << " (" << v0 << "-" << v1 << ", length " << length
-                      << ", distances " << field.distance[v0] << ", " << field.distance[v1] << ") window " << i
-                      << ": [" << w.b0 << ", " << w.b1 << "] source (" << w.source_x << ", " << w.source_y
-                      << ") sigma " << w.sigma << " site " << w.site;
+                      << ", distances " << field.distance[v0] << ", " << field.distance[v1] << ") window " << i << ": ["
+                      << w.b0 << ", " << w.b1 << "] source (" << w.source_x << ", " << w.source_y << ") sigma "
+                      << w.sigma << " site " << w.site;
       }
     }
   }
@@ -177,7 +175,8 @@ TEST_P(SharedMesh, RandomVertexSites) {
   const int usable = static_cast<int>(std::count(referenced.begin(), referenced.end(), true));
   for (int wanted : {1, 30, 1000}) {
     const int count = std::min(wanted, usable / 2);  // woody has only 694 vertices
-    const std::vector<SurfacePoint> sites = test::random_vertex_sites(mesh, count, seed + static_cast<std::uint64_t>(count));
+    const std::vector<SurfacePoint> sites =
+        test::random_vertex_sites(mesh, count, seed + static_cast<std::uint64_t>(count));
     const std::string what = file + ", " + std::to_string(count) + " vertex sites, seed " +
                              std::to_string(seed + static_cast<std::uint64_t>(count));
     GeodesicOptions on, off;
@@ -217,9 +216,8 @@ TEST_P(SharedMesh, RandomVertexSites) {
               << " reached vertices, max Lipschitz excess " << summary.max_lipschitz_excess << "; RWR on "
               << with_rwr.stats.total_seconds << " s, peak windows " << with_rwr.stats.peak_windows << ", stored "
               << with_rwr.stats.windows_stored << " | off " << without_rwr.stats.total_seconds << " s, peak "
-              << without_rwr.stats.peak_windows << "; on/off: " << different_distances
-              << " distances differ (max " << max_relative << " of the diagonal), " << different_labels
-              << " labels differ\n";
+              << without_rwr.stats.peak_windows << "; on/off: " << different_distances << " distances differ (max "
+              << max_relative << " of the diagonal), " << different_labels << " labels differ\n";
   }
 }
 

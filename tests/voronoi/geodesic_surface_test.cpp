@@ -2,8 +2,8 @@
 // are bit for bit those computed from the mesh, call after call, and share
 // its topology instead of copying it.
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 #include "test_meshes.hpp"
 

@@ -41,7 +41,7 @@ TEST(LongEdge, ThousandsOfCellsAlongOneEdgeBesideAFineGrid) {
     const double x = i + 0.5, y = i % 2 ? 0.3 : 0.7;
     if (y < x / length) {  // face 0: (0,0) + u (n,0) + v (n,1) - ...
       sites.push_back(SurfacePoint::in_face(0, 1 - x / length, x / length - y, y));
-    } else {               // face 1: (0,0) + u (n,1) + v (0,1)
+    } else {  // face 1: (0,0) + u (n,1) + v (0,1)
       sites.push_back(SurfacePoint::in_face(1, 1 - y, x / length, y - x / length));
     }
   }

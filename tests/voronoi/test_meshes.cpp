@@ -28,7 +28,8 @@ Eigen::Vector3d vertex(const TriangleMesh& mesh, Index v) { return mesh.vertices
 TriangleMesh to_mesh(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<Index, 3>>& tris) {
   TriangleMesh mesh;
   mesh.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) mesh.vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    mesh.vertices.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
   mesh.faces.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (std::size_t i = 0; i < tris.size(); ++i) {
     for (int c = 0; c < 3; ++c) mesh.faces(static_cast<Eigen::Index>(i), c) = tris[i][static_cast<std::size_t>(c)];
@@ -78,7 +79,8 @@ std::filesystem::path test_mesh_path(const std::string& file) { return test_mesh
 std::vector<std::string> test_mesh_files() {
   std::vector<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(test_mesh_dir())) {
-    if (entry.is_regular_file() && entry.path().extension() == ".ply") files.push_back(entry.path().filename().string());
+    if (entry.is_regular_file() && entry.path().extension() == ".ply")
+      files.push_back(entry.path().filename().string());
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -111,9 +113,12 @@ TriangleMesh read_test_ply(const std::filesystem::path& path) {
     } else if (keyword == "element") {
       std::int64_t count = 0;
       words >> current >> count;
-      if (current == "vertex") num_vertices = count;
-      else if (current == "face") num_faces = count;
-      else fail("unexpected element " + current);
+      if (current == "vertex")
+        num_vertices = count;
+      else if (current == "face")
+        num_faces = count;
+      else
+        fail("unexpected element " + current);
     } else if (keyword == "property") {
       std::string type, name;
       words >> type;
@@ -142,7 +147,8 @@ TriangleMesh read_test_ply(const std::filesystem::path& path) {
   if (!in) fail("truncated vertex data");
   for (std::int64_t v = 0; v < num_vertices; ++v) {
     for (int c = 0; c < 3; ++c) {
-      const char* at = buffer.data() + (static_cast<std::size_t>(v) * 3 + static_cast<std::size_t>(c)) * static_cast<std::size_t>(coord_bytes);
+      const char* at = buffer.data() + (static_cast<std::size_t>(v) * 3 + static_cast<std::size_t>(c)) *
+                                           static_cast<std::size_t>(coord_bytes);
       double value = 0;
       if (coord_bytes == 4) {
         float f = 0;
@@ -295,7 +301,8 @@ TriangleMesh flat_square(int n, double jitter, std::uint64_t seed) {
   }
   std::vector<std::array<Index, 3>> tris;
   for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) add_quad(tris, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 0);
+    for (int i = 0; i < n; ++i)
+      add_quad(tris, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 0);
   }
   return to_mesh(points, tris);
 }
@@ -543,7 +550,8 @@ Prism prism(int sides, int rings, double radius, double height, double jitter, s
 
 Eigen::Vector2d Prism::unroll(const SurfacePoint& p) const {
   const Eigen::Vector3d x = p.position(mesh);
-  if (p.kind == SurfacePoint::Kind::vertex) return {column_s[static_cast<std::size_t>(vertex_column[p.element])], x.z()};
+  if (p.kind == SurfacePoint::Kind::vertex)
+    return {column_s[static_cast<std::size_t>(vertex_column[p.element])], x.z()};
   const Index k = face_side[p.element];
   const Index sides = static_cast<Index>(column_s.size());
   const Eigen::Vector2d a = mesh.vertices.row(k).head<2>().transpose();
@@ -657,7 +665,7 @@ double Cube::distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const 
   };
 
   std::function<void(int, const Unfold&, const Eigen::Vector2d&)> visit = [&](int f, const Unfold& map,
-                                                                             const Eigen::Vector2d& s2) {
+                                                                              const Eigen::Vector2d& s2) {
     const Square& sq = squares[static_cast<std::size_t>(f)];
     if (sq.contains(b)) {
       const Eigen::Vector2d t2 = map(b);
@@ -733,8 +741,10 @@ Cube cube(int n, double jitter, std::uint64_t seed) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         const Index a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-        if (outward) add_quad(tris, a, b, c, d, (i + j + s) % 2 == 0);
-        else add_quad(tris, a, d, c, b, (i + j + s) % 2 == 0);
+        if (outward)
+          add_quad(tris, a, b, c, d, (i + j + s) % 2 == 0);
+        else
+          add_quad(tris, a, d, c, b, (i + j + s) % 2 == 0);
         out.face_square.push_back(s);
         out.face_square.push_back(s);
       }
@@ -768,8 +778,10 @@ Cone cone(int rulings, int rings, double radius, double apex_angle, double jitte
   for (int k = 0; k < rulings; ++k) {
     const double step = angle_between(out.ruling_dir[static_cast<std::size_t>(k)],
                                       out.ruling_dir[static_cast<std::size_t>((k + 1) % rulings)]);
-    if (k + 1 < rulings) out.ruling_phi[static_cast<std::size_t>(k) + 1] = out.ruling_phi[static_cast<std::size_t>(k)] + step;
-    else out.total_angle = out.ruling_phi[static_cast<std::size_t>(k)] + step;
+    if (k + 1 < rulings)
+      out.ruling_phi[static_cast<std::size_t>(k) + 1] = out.ruling_phi[static_cast<std::size_t>(k)] + step;
+    else
+      out.total_angle = out.ruling_phi[static_cast<std::size_t>(k)] + step;
   }
 
   std::vector<Eigen::Vector3d> points{Eigen::Vector3d::Zero()};

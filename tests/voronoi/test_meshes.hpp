@@ -42,7 +42,7 @@ TriangleMesh read_test_ply(const std::filesystem::path& path);
 class Rng : public SplitMix64 {
  public:
   using SplitMix64::SplitMix64;
-  using SplitMix64::uniform;                  ///< [0, 1)
+  using SplitMix64::uniform;  ///< [0, 1)
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   /// [0, n)
   std::int64_t below(std::int64_t n) {
@@ -108,8 +108,8 @@ struct NonManifold {
   TriangleMesh mesh;
   std::vector<Index> vertex_page;  ///< -1 for the shared vertices (spine or pinch)
   std::vector<Index> face_page;
-  std::vector<Index> shared;       ///< the spine or pinch vertices
-  bool spine = false;              ///< book: every point of the x axis is shared
+  std::vector<Index> shared;  ///< the spine or pinch vertices
+  bool spine = false;         ///< book: every point of the x axis is shared
   double distance(const SurfacePoint& a, const SurfacePoint& b) const;
 };
 NonManifold book(int pages, int n, int m, double height, double jitter, std::uint64_t seed);
@@ -129,10 +129,10 @@ double l_shape_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 /// isometrically onto a periodic strip.
 struct Prism {
   TriangleMesh mesh;
-  std::vector<Index> face_side;       ///< side (rectangle) of each face
-  std::vector<Index> vertex_column;   ///< polygon corner of each vertex
-  std::vector<double> column_s;       ///< unrolled abscissa of each corner (column_s[0] = 0)
-  double perimeter = 0;               ///< unrolled period
+  std::vector<Index> face_side;      ///< side (rectangle) of each face
+  std::vector<Index> vertex_column;  ///< polygon corner of each vertex
+  std::vector<double> column_s;      ///< unrolled abscissa of each corner (column_s[0] = 0)
+  double perimeter = 0;              ///< unrolled period
   /// Unrolled (s, z) of a point.
   Eigen::Vector2d unroll(const SurfacePoint& p) const;
   double distance(const SurfacePoint& a, const SurfacePoint& b) const;
@@ -145,7 +145,7 @@ Prism prism(int sides, int rings, double radius, double height, double jitter, s
 /// vertices and enter each face at most once).
 struct Cube {
   TriangleMesh mesh;
-  std::vector<int> face_square;       ///< cube face (0..5) of each mesh face
+  std::vector<int> face_square;  ///< cube face (0..5) of each mesh face
   double distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
 };
 Cube cube(int n, double jitter, std::uint64_t seed);
@@ -160,11 +160,11 @@ Cube cube(int n, double jitter, std::uint64_t seed);
 /// delta < pi, else r1 + r2 through the apex.
 struct Cone {
   TriangleMesh mesh;
-  std::vector<Index> face_sector;     ///< sector k lies between rulings k and k + 1 (mod count)
-  std::vector<Index> vertex_ruling;   ///< -1 for the apex
-  std::vector<double> ruling_phi;     ///< intrinsic angle of each ruling
+  std::vector<Index> face_sector;    ///< sector k lies between rulings k and k + 1 (mod count)
+  std::vector<Index> vertex_ruling;  ///< -1 for the apex
+  std::vector<double> ruling_phi;    ///< intrinsic angle of each ruling
   std::vector<Eigen::Vector3d> ruling_dir;
-  double total_angle = 0;             ///< the apex angle sum, from the built coordinates
+  double total_angle = 0;                              ///< the apex angle sum, from the built coordinates
   Eigen::Vector2d polar(const SurfacePoint& p) const;  ///< (r, phi)
   double distance(const SurfacePoint& a, const SurfacePoint& b) const;
 };

@@ -6,9 +6,9 @@
 
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -122,11 +122,12 @@ TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
         const Eigen::Vector2d pa = planar[a], pb = planar[b], pc = planar[c];
         const double d = 2 * (pa.x() * (pb.y() - pc.y()) + pb.x() * (pc.y() - pa.y()) + pc.x() * (pa.y() - pb.y()));
         if (std::abs(d) < 1e-15) continue;
-        const Eigen::Vector2d centre(
-            (pa.squaredNorm() * (pb.y() - pc.y()) + pb.squaredNorm() * (pc.y() - pa.y()) +
-             pc.squaredNorm() * (pa.y() - pb.y())) / d,
-            (pa.squaredNorm() * (pc.x() - pb.x()) + pb.squaredNorm() * (pa.x() - pc.x()) +
-             pc.squaredNorm() * (pb.x() - pa.x())) / d);
+        const Eigen::Vector2d centre((pa.squaredNorm() * (pb.y() - pc.y()) + pb.squaredNorm() * (pc.y() - pa.y()) +
+                                      pc.squaredNorm() * (pa.y() - pb.y())) /
+                                         d,
+                                     (pa.squaredNorm() * (pc.x() - pb.x()) + pb.squaredNorm() * (pa.x() - pc.x()) +
+                                      pc.squaredNorm() * (pb.x() - pa.x())) /
+                                         d);
         if (centre.minCoeff() <= 0 || centre.maxCoeff() >= 1) continue;
         const double r = (centre - pa).norm();
         bool empty = true;
@@ -167,8 +168,8 @@ TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
     for (std::size_t k = 1; k + 1 < cell.size(); ++k) {
       const Eigen::Vector2d &p = cell[0], &q = cell[k], &r = cell[k + 1];
       const double area = 0.5 * ((q - p).x() * (r - p).y() - (q - p).y() * (r - p).x());
-      for (const Eigen::Vector2d& m : {Eigen::Vector2d(0.5 * (p + q)), Eigen::Vector2d(0.5 * (q + r)),
-                                       Eigen::Vector2d(0.5 * (r + p))}) {
+      for (const Eigen::Vector2d& m :
+           {Eigen::Vector2d(0.5 * (p + q)), Eigen::Vector2d(0.5 * (q + r)), Eigen::Vector2d(0.5 * (r + p))}) {
         energy += area / 3 * (m - planar[i]).squaredNorm();
         moment += area / 3 * (m - planar[i]);
       }
@@ -250,7 +251,8 @@ void expect_matches_cgal(const std::string& file, int face_sites, int vertex_sit
         if (p.barycentric[c] != 0) continue;
         for (const int end : {(c + 1) % 3, (c + 2) % 3}) {
           const Index v = mesh.faces(p.element, end);
-          cgal[s][q] = std::min(cgal[s][q], oracle.distance[v] + (p.position(mesh) - mesh.vertices.row(v).transpose()).norm());
+          cgal[s][q] =
+              std::min(cgal[s][q], oracle.distance[v] + (p.position(mesh) - mesh.vertices.row(v).transpose()).norm());
         }
       }
     }

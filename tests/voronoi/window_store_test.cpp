@@ -86,7 +86,10 @@ TEST(WindowStore, CompactKeepsEveryEdgesWindows) {
   store.compact();
   fill_edge(store, 5, 20);
   for (Index e = 0; e < kEdges; ++e) {
-    const std::uint32_t count = e == 1 ? kPageWindows + 100 : e == 5 ? 20 : e % 3 == 2 ? 0 : 1 + static_cast<std::uint32_t>(e % 7);
+    const std::uint32_t count = e == 1       ? kPageWindows + 100
+                                : e == 5     ? 20
+                                : e % 3 == 2 ? 0
+                                             : 1 + static_cast<std::uint32_t>(e % 7);
     expect_filled(store, e, store.on_edge(e), count);
   }
 }

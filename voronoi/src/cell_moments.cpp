@@ -73,8 +73,8 @@ CellIntegrals CellMoments::integrate(Index site, std::span<const Eigen::Vector2d
     const Eigen::Vector2d &p = polygon[0], &q = polygon[i], &r = polygon[i + 1];
     const double area = 0.5 * ((q - p).x() * (r - p).y() - (q - p).y() * (r - p).x());
     if (area == 0) continue;
-    for (const Eigen::Vector2d& x : {Eigen::Vector2d(0.5 * (p + q)), Eigen::Vector2d(0.5 * (q + r)),
-                                     Eigen::Vector2d(0.5 * (r + p))}) {
+    for (const Eigen::Vector2d& x :
+         {Eigen::Vector2d(0.5 * (p + q)), Eigen::Vector2d(0.5 * (q + r)), Eigen::Vector2d(0.5 * (r + p))}) {
       Eigen::Vector2d direction;
       const double d = distance(x, direction);
       if (!std::isfinite(d)) continue;
@@ -126,10 +126,10 @@ CellIntegrals CellMoments::face_from_corners(Index site) const {
   // their gradient.
   const double twice_area = (c[1] - c[0]).x() * (c[2] - c[0]).y() - (c[1] - c[0]).y() * (c[2] - c[0]).x();
   if (!(twice_area > 0)) return {};
-  const Eigen::Vector2d gradient =
-      (d[0] * Eigen::Vector2d(c[1].y() - c[2].y(), c[2].x() - c[1].x()) +
-       d[1] * Eigen::Vector2d(c[2].y() - c[0].y(), c[0].x() - c[2].x()) +
-       d[2] * Eigen::Vector2d(c[0].y() - c[1].y(), c[1].x() - c[0].x())) / twice_area;
+  const Eigen::Vector2d gradient = (d[0] * Eigen::Vector2d(c[1].y() - c[2].y(), c[2].x() - c[1].x()) +
+                                    d[1] * Eigen::Vector2d(c[2].y() - c[0].y(), c[0].x() - c[2].x()) +
+                                    d[2] * Eigen::Vector2d(c[0].y() - c[1].y(), c[1].x() - c[0].x())) /
+                                   twice_area;
   const Eigen::Vector2d unit = gradient.norm() > 0 ? Eigen::Vector2d(gradient.normalized()) : Eigen::Vector2d::Zero();
   return integrate(site, triangle, [&](const Eigen::Vector2d& x, Eigen::Vector2d& direction) {
     direction = unit;

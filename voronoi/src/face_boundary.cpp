@@ -142,9 +142,9 @@ bool FaceBoundaryTracer::may_hold_boundary(Index face) const {
   if (s0 != field_.nearest_site[mesh_.faces(face, 1)] || s0 != field_.nearest_site[mesh_.faces(face, 2)]) {
     return true;
   }
-  const auto it = std::lower_bound(
-      field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
-      [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  const auto it =
+      std::lower_bound(field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
+                       [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return it != field_.face_point_sources.end() && it->face == face;
 }
 
@@ -230,7 +230,8 @@ void FaceBoundaryTracer::drop_zero_width_stretches() {
     const SiteChange& a = changes_[i];
     const SiteChange& b = changes_[i + 1];
     if (a.from == b.to && b.t - a.t < zero_width) {
-      changes_.erase(changes_.begin() + static_cast<std::ptrdiff_t>(i), changes_.begin() + static_cast<std::ptrdiff_t>(i + 2));
+      changes_.erase(changes_.begin() + static_cast<std::ptrdiff_t>(i),
+                     changes_.begin() + static_cast<std::ptrdiff_t>(i + 2));
       i = i > 0 ? i - 1 : 0;
     } else {
       ++i;
@@ -239,8 +240,7 @@ void FaceBoundaryTracer::drop_zero_width_stretches() {
 }
 
 void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p,
-                                           const Eigen::Vector2d& q, double t0, double t1, Index site0,
-                                           Index site1) {
+                                           const Eigen::Vector2d& q, double t0, double t1, Index site0, Index site1) {
   // Where the two sites are equally far, found on the difference of their
   // distances, is the change when they are the nearest on either side of it.
   const Eigen::Vector2d a = p + t0 * (q - p), b = p + t1 * (q - p);
@@ -314,9 +314,9 @@ void FaceBoundaryTracer::trace_face(Index face, TracedChunk& out) {
   moments_.set_face(face, layout_);
   face_sites_.clear();
   face_site_ids_.clear();
-  const auto first = std::lower_bound(
-      field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
-      [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  const auto first =
+      std::lower_bound(field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
+                       [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   for (auto it = first; it != field_.face_point_sources.end() && it->face == face; ++it) {
     if (it->sigma == 0) {  // a site itself, not a pseudo-source seen through a neighbour
       face_sites_.push_back(layout_.point(it->barycentric));
@@ -338,8 +338,8 @@ void FaceBoundaryTracer::trace_face(Index face, TracedChunk& out) {
     side.crossing_begin = static_cast<Index>(crossings_.size());
     auto add = [&](const EdgeCrossing& c, bool forward) {
       const auto reference = edge_crossing_reference(static_cast<Index>(&c - store_.crossings.data()));
-      crossings_.push_back({frame.origin + c.x * frame.direction, forward ? c.from : c.to, forward ? c.to : c.from,
-                            reference});
+      crossings_.push_back(
+          {frame.origin + c.x * frame.direction, forward ? c.from : c.to, forward ? c.to : c.from, reference});
     };
     if (frame.forward) {
       for (const EdgeCrossing& c : along) add(c, true);
@@ -502,8 +502,9 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
 
   // 4. Commit: the vertex and the pieces.
   auto piece_span = [&](std::size_t piece) {
-    return std::span<const Eigen::Vector2d>(piece_points_.data() + piece_offsets_[piece],
-                                            static_cast<std::size_t>(piece_offsets_[piece + 1] - piece_offsets_[piece]));
+    return std::span<const Eigen::Vector2d>(
+        piece_points_.data() + piece_offsets_[piece],
+        static_cast<std::size_t>(piece_offsets_[piece + 1] - piece_offsets_[piece]));
   };
   for (std::size_t c = 0; c < caps_.size(); ++c) {
     const Crossing& into = cycle_[caps_[c][0]].crossing;
@@ -582,7 +583,8 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
 }
 
 void FaceBoundaryTracer::add_part(Index site, std::span<const Eigen::Vector2d> polygon) {
-  out_->contributions.push_back({site, std::max(0.0, signed_area(polygon)), moments_.polygon(site, polygon, envelope_)});
+  out_->contributions.push_back(
+      {site, std::max(0.0, signed_area(polygon)), moments_.polygon(site, polygon, envelope_)});
 }
 
 bool FaceBoundaryTracer::inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const {
@@ -618,8 +620,8 @@ void FaceBoundaryTracer::commit_piece(Index from, Index to, Index left, Index ri
   graph_->pieces.push_back(piece);
 }
 
-double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left,
-                                          Index right, const SubTriangle& triangle, int depth) {
+double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen::Vector2d& q, Index left, Index right,
+                                          const SubTriangle& triangle, int depth) {
   const Eigen::Vector2d chord = q - p;
   const double length = chord.norm();
   if (depth >= max_polyline_depth || !(length > tolerance_)) return 0;
@@ -765,8 +767,7 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
   drop_zero_width_stretches();
   for (const SiteChange& change : changes_) {
     const Eigen::Vector2d crossing = start + change.t * (end - start);
-    crossings_.push_back(
-        {crossing, change.from, change.to, add_node(crossing, BoundaryNode::Kind::inner_crossing)});
+    crossings_.push_back({crossing, change.from, change.to, add_node(crossing, BoundaryNode::Kind::inner_crossing)});
   }
   side.crossing_end = static_cast<Index>(crossings_.size());
   sides_.push_back(side);

@@ -150,7 +150,7 @@ class FaceBoundaryTracer {
   };
   struct SubTriangle {
     std::array<Eigen::Vector2d, 3> corner;
-    std::array<Index, 3> site;  ///< nearest site at each corner
+    std::array<Index, 3> site;    ///< nearest site at each corner
     std::array<SideUse, 3> side;  ///< side k runs from corner k to corner k + 1
   };
   /// A crossing met walking a sub-triangle's boundary counter-clockwise, with
@@ -229,19 +229,19 @@ class FaceBoundaryTracer {
   std::vector<Index> face_site_ids_;
   std::vector<Side> sides_;
   std::vector<Crossing> crossings_;
-  std::vector<CycleCrossing> cycle_;         ///< scratch: the boundary walk of one sub-triangle
+  std::vector<CycleCrossing> cycle_;           ///< scratch: the boundary walk of one sub-triangle
   std::vector<Eigen::Vector2d> piece_points_;  ///< scratch: polylines of the pieces being traced
   std::vector<Index> piece_offsets_;
-  std::vector<Eigen::Vector2d> polygon_;     ///< scratch: one cell's part of a sub-triangle
-  std::vector<Index> remaining_;             ///< scratch: crossings not explained by caps
-  std::vector<std::array<Index, 2>> caps_;   ///< scratch: (into, out of) crossing pairs
-  std::vector<Index> star_sites_;            ///< scratch: the sites of a Voronoi vertex
+  std::vector<Eigen::Vector2d> polygon_;    ///< scratch: one cell's part of a sub-triangle
+  std::vector<Index> remaining_;            ///< scratch: crossings not explained by caps
+  std::vector<std::array<Index, 2>> caps_;  ///< scratch: (into, out of) crossing pairs
+  std::vector<Index> star_sites_;           ///< scratch: the sites of a Voronoi vertex
   struct VertexTerm {
     double distance = 0;
     Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
   };
-  std::vector<VertexTerm> at_x_, trial_;     ///< scratch: solve_vertex's site distances
-  std::vector<std::array<Index, 3>> jump_;   ///< scratch: per crossing, the inside path from it
+  std::vector<VertexTerm> at_x_, trial_;    ///< scratch: solve_vertex's site distances
+  std::vector<std::array<Index, 3>> jump_;  ///< scratch: per crossing, the inside path from it
   std::vector<std::uint8_t> visited_;
   bool trace_valid_ = true;
   bool face_refined_ = false;

@@ -14,9 +14,9 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 /// The sites' point sources that lie in `face`: face_point_sources is sorted by face.
 std::pair<const FacePointSource*, const FacePointSource*> point_sources_in(const GeodesicField& field, Index face) {
-  const auto range = std::equal_range(
-      field.face_point_sources.begin(), field.face_point_sources.end(), FacePointSource{face},
-      [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  const auto range =
+      std::equal_range(field.face_point_sources.begin(), field.face_point_sources.end(), FacePointSource{face},
+                       [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return {field.face_point_sources.data() + (range.first - field.face_point_sources.begin()),
           field.face_point_sources.data() + (range.second - field.face_point_sources.begin())};
 }
@@ -169,8 +169,8 @@ double ConeEnvelope::difference(Index site_a, Index site_b, const Eigen::Vector2
   return da - db;
 }
 
-void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index face,
-                         const FaceLayout& layout, ConeEnvelope& envelope) {
+void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index face, const FaceLayout& layout,
+                         ConeEnvelope& envelope) {
   envelope.clear();
   for (int c = 0; c < 3; ++c) {
     const Index v = mesh.faces(face, c);
@@ -232,8 +232,8 @@ void ConeEnvelope::add_moved(const ConeEnvelope& other, const Eigen::Vector2d& o
   }
 }
 
-void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge,
-                         ConeEnvelope& envelope, ConeEnvelope& scratch) {
+void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge, ConeEnvelope& envelope,
+                         ConeEnvelope& scratch) {
   envelope.clear();
   for (Index i = field.window_begin[edge]; i < field.window_begin[edge + 1]; ++i) {
     const EdgeWindow& w = field.windows[i];

@@ -93,15 +93,15 @@ class ConeEnvelope {
 
 /// Builds the envelopes valid inside `face` (laid out as `layout`): its
 /// corners, the sites in it, and the windows entering it through its edges.
-void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index face,
-                         const FaceLayout& layout, ConeEnvelope& envelope);
+void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index face, const FaceLayout& layout,
+                         ConeEnvelope& envelope);
 
 /// Builds the envelopes valid on edge `edge`, laid out along the x axis from
 /// edge_vertices[edge][0] at 0 to the other end at edge_length[edge]: the
 /// windows on the edge and its end vertices; on a boundary edge, where the
 /// engine keeps only some windows, also its face's envelope. `scratch` is
 /// working space.
-void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge,
-                         ConeEnvelope& envelope, ConeEnvelope& scratch);
+void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, Index edge, ConeEnvelope& envelope,
+                         ConeEnvelope& scratch);
 
 }  // namespace geodual::voronoi::detail

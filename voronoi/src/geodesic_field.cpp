@@ -1,7 +1,7 @@
 #include "geodual/voronoi/geodesic_field.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
+#include "geodual/mesh/error.hpp"
 #include "prepared_surface.hpp"
 #include "window_vtp.hpp"
 
@@ -21,9 +21,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string site_name(std::size_t i) { return "site " + std::to_string(i); }
 
@@ -46,9 +44,8 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       }
       Eigen::Vector3d& b = site.barycentric;
       if (!b.allFinite() || b.minCoeff() < -1e-12 || std::abs(b.sum() - 1) > 1e-9) {
-        throw Error(site_name(i) + ": barycentric coordinates (" + std::to_string(b[0]) + ", " +
-                    std::to_string(b[1]) + ", " + std::to_string(b[2]) +
-                    ") must be non-negative and sum to 1");
+        throw Error(site_name(i) + ": barycentric coordinates (" + std::to_string(b[0]) + ", " + std::to_string(b[1]) +
+                    ", " + std::to_string(b[2]) + ") must be non-negative and sum to 1");
       }
       for (int c = 0; c < 3; ++c) b[c] = b[c] < 1e-14 ? 0.0 : b[c];
       b /= b.sum();
@@ -84,8 +81,8 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
   std::sort(order.begin(), order.end(), less);
   for (std::size_t i = 1; i < order.size(); ++i) {
     if (positions[order[i]] == positions[order[i - 1]]) {
-      throw Error(site_name(std::min(order[i], order[i - 1])) + " and " +
-                  site_name(std::max(order[i], order[i - 1])) + " are at the same point");
+      throw Error(site_name(std::min(order[i], order[i - 1])) + " and " + site_name(std::max(order[i], order[i - 1])) +
+                  " are at the same point");
     }
   }
   return result;
@@ -170,7 +167,8 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   field.sites = validated_sites(mesh, pm, order, sites);
   std::vector<SurfacePoint> local_sites = field.sites;
   for (SurfacePoint& site : local_sites) {
-    site.element = site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
+    site.element =
+        site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
   }
   if (disposable != nullptr) {
     // Only the maps back to the caller's numbering are needed from here on.
@@ -192,7 +190,8 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
     surface.propagation.fan_offsets = decltype(surface.propagation.fan_offsets)();
     surface.propagation.extra_fans = std::vector<std::array<Index, 2>>();
     surface.propagation.is_pseudo_source = std::vector<std::uint8_t>();
-    if (!topology) topology = std::make_shared<const SurfaceTopology>(detail::caller_topology(surface.propagation, surface.order));
+    if (!topology)
+      topology = std::make_shared<const SurfaceTopology>(detail::caller_topology(surface.propagation, surface.order));
     disposable->reset();
   }
   field.topology = std::move(topology);
@@ -246,8 +245,8 @@ PointDistance query(const GeodesicField& field, const TriangleMesh& mesh, const 
       std::equal_range(field.face_point_sources.begin(), field.face_point_sources.end(), FacePointSource{f},
                        [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   for (auto it = first; it != last; ++it) {
-    const Eigen::Vector3d q = SurfacePoint::in_face(f, it->barycentric[0], it->barycentric[1], it->barycentric[2])
-                                  .position(mesh);
+    const Eigen::Vector3d q =
+        SurfacePoint::in_face(f, it->barycentric[0], it->barycentric[1], it->barycentric[2]).position(mesh);
     consider(it->sigma + (q - p).norm(), it->site);
   }
   // Through the windows entering the face: lay the face out on each edge's

@@ -59,11 +59,11 @@ GeodesicSurface::GeodesicSurface(const TriangleMesh& mesh) : mesh_(&mesh) {
 std::size_t GeodesicSurface::memory_bytes() const {
   const detail::PropagationMesh& pm = prepared_->propagation;
   const detail::LocalityOrder& order = prepared_->order;
-  return bytes_of(pm.face_records) + bytes_of(pm.edge_faces) + bytes_of(pm.edge_length_storage) + bytes_of(pm.vertex_face) +
-         bytes_of(pm.fan_offsets) + bytes_of(pm.extra_fans) + bytes_of(pm.is_pseudo_source) +
-         bytes_of(order.new_face) + bytes_of(order.old_face) + bytes_of(order.new_vertex) +
-         bytes_of(order.old_vertex) + bytes_of(topology_->edge_vertices) + bytes_of(topology_->edge_faces) +
-         bytes_of(topology_->edge_length) + bytes_of(topology_->face_edges);
+  return bytes_of(pm.face_records) + bytes_of(pm.edge_faces) + bytes_of(pm.edge_length_storage) +
+         bytes_of(pm.vertex_face) + bytes_of(pm.fan_offsets) + bytes_of(pm.extra_fans) + bytes_of(pm.is_pseudo_source) +
+         bytes_of(order.new_face) + bytes_of(order.old_face) + bytes_of(order.new_vertex) + bytes_of(order.old_vertex) +
+         bytes_of(topology_->edge_vertices) + bytes_of(topology_->edge_faces) + bytes_of(topology_->edge_length) +
+         bytes_of(topology_->face_edges);
 }
 
 }  // namespace geodual::voronoi

@@ -58,9 +58,9 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
   const double scale = extent > 0 && std::isfinite(extent) ? kCells / extent : 0.0;
   std::vector<std::uint64_t> code(static_cast<std::size_t>(num_faces));
   for (Index f = 0; f < num_faces; ++f) {
-    const Eigen::RowVector3d c =
-        (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) + mesh.vertices.row(mesh.faces(f, 2))) /
-        3.0;
+    const Eigen::RowVector3d c = (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
+                                  mesh.vertices.row(mesh.faces(f, 2))) /
+                                 3.0;
     std::array<std::uint64_t, 3> cell;
     for (int axis = 0; axis < 3; ++axis) {
       const double q = (c[axis] - lo[axis]) * scale;

@@ -13,7 +13,7 @@
 namespace geodual::voronoi::detail {
 
 struct LocalityOrder {
-  TriangleMesh mesh;  ///< the renumbered copy (corner order of each face kept)
+  TriangleMesh mesh;                          ///< the renumbered copy (corner order of each face kept)
   std::vector<Index> new_face, old_face;      ///< old -> new and new -> old
   std::vector<Index> new_vertex, old_vertex;  ///< unreferenced vertices come last
 };

@@ -1,7 +1,7 @@
 #include "propagation_mesh.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/detail/vertex_pair_sort.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -71,8 +71,9 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     }
   }
   // By vertex pair; equal pairs keep their order (the input's, by face and corner).
-  sort_by_vertex_pair(half_edges, num_vertices, [](const HalfEdge& h) { return static_cast<Index>(h.key >> 32); },
-                      [](const HalfEdge& h) { return static_cast<Index>(h.key & 0xffffffffu); });
+  sort_by_vertex_pair(
+      half_edges, num_vertices, [](const HalfEdge& h) { return static_cast<Index>(h.key >> 32); },
+      [](const HalfEdge& h) { return static_cast<Index>(h.key & 0xffffffffu); });
   // Runs of equal keys: two half-edges make one edge; a boundary or
   // non-manifold edge gives each of its faces its own copy.
   auto run_end = [&](std::size_t i) {

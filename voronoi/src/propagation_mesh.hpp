@@ -52,8 +52,8 @@ inline EdgeLayout layout_on_edge(const std::array<double, 3>& length, int k) {
 /// it the face is on and whether the face runs along it against the edge's
 /// direction.
 struct FaceRecord {
-  static constexpr std::uint32_t kSide1 = std::uint32_t{1} << 30;    ///< the face is edge_faces[e][1]
-  static constexpr std::uint32_t kReversed = std::uint32_t{1} << 31; ///< and runs from v1 to v0
+  static constexpr std::uint32_t kSide1 = std::uint32_t{1} << 30;     ///< the face is edge_faces[e][1]
+  static constexpr std::uint32_t kReversed = std::uint32_t{1} << 31;  ///< and runs from v1 to v0
   static constexpr std::uint32_t kEdgeMask = kSide1 - 1;
   static constexpr std::uint32_t kNoEdge = ~std::uint32_t{0};
   std::array<Index, 3> vertex{-1, -1, -1};
@@ -157,9 +157,7 @@ struct PropagationMesh {
   }
 
   /// Face `face` laid out for its local edge `k` using intrinsic edge lengths.
-  EdgeLayout layout(Index face, int k) const {
-    return layout_on_edge(face_lengths(face_records[face]), k);
-  }
+  EdgeLayout layout(Index face, int k) const { return layout_on_edge(face_lengths(face_records[face]), k); }
   /// Which side of edge e face `face` is on: 0 or 1.
   int side_of(Index edge, Index face) const { return edge_faces[edge][0] == face ? 0 : 1; }
   /// The corner of `face` at vertex v (which must be one of its corners).

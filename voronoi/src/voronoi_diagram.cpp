@@ -1,7 +1,7 @@
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
-#include "geodual/mesh/detail/trim_heap.hpp"
 #include "face_boundary.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -379,42 +379,37 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   const Index num_chunks = chunk_count(num_faces, faces_per_chunk);
   tbb::parallel_pipeline(
       live_chunks,
-      tbb::make_filter<void, Work*>(tbb::filter_mode::serial_in_order,
-                                    [&](tbb::flow_control& control) -> Work* {
-                                      if (next_chunk == num_chunks) {
-                                        control.stop();
-                                        return nullptr;
-                                      }
-                                      const std::lock_guard lock(idle_mutex);
-                                      Work* work = idle.back();
-                                      idle.pop_back();
-                                      work->chunk = next_chunk++;
-                                      return work;
-                                    }) &
-          tbb::make_filter<Work*, Work*>(tbb::filter_mode::parallel,
-                                         [&](Work* work) {
-                                           FaceBoundaryTracer& tracer = tracers.local();
-                                           TracedChunk& out = work->traced;
-                                           out.clear();
-                                           const Index begin = work->chunk * faces_per_chunk;
-                                           const Index end = std::min(num_faces, begin + faces_per_chunk);
-                                           for (Index face = begin; face < end; ++face) {
-                                             if (f.face_edges[face][0] < 0) continue;
-                                             if (traced[face]) {
-                                               tracer.trace_face(face, out);
-                                             } else if (const Index site = f.nearest_site[mesh.faces(face, 0)];
-                                                        site >= 0) {
-                                               tracer.add_inner_face(face, site, out);
-                                             }
-                                           }
-                                           return work;
-                                         }) &
-          tbb::make_filter<Work*, void>(tbb::filter_mode::serial_in_order, [&](Work* work) {
-            merger.append(work->traced, f);
-            add_contributions(work->traced, diagram);
-            const std::lock_guard lock(idle_mutex);
-            idle.push_back(work);
-          }));
+      tbb::make_filter<void, Work*>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) -> Work* {
+        if (next_chunk == num_chunks) {
+          control.stop();
+          return nullptr;
+        }
+        const std::lock_guard lock(idle_mutex);
+        Work* work = idle.back();
+        idle.pop_back();
+        work->chunk = next_chunk++;
+        return work;
+      }) & tbb::make_filter<Work*, Work*>(tbb::filter_mode::parallel, [&](Work* work) {
+        FaceBoundaryTracer& tracer = tracers.local();
+        TracedChunk& out = work->traced;
+        out.clear();
+        const Index begin = work->chunk * faces_per_chunk;
+        const Index end = std::min(num_faces, begin + faces_per_chunk);
+        for (Index face = begin; face < end; ++face) {
+          if (f.face_edges[face][0] < 0) continue;
+          if (traced[face]) {
+            tracer.trace_face(face, out);
+          } else if (const Index site = f.nearest_site[mesh.faces(face, 0)]; site >= 0) {
+            tracer.add_inner_face(face, site, out);
+          }
+        }
+        return work;
+      }) & tbb::make_filter<Work*, void>(tbb::filter_mode::serial_in_order, [&](Work* work) {
+        merger.append(work->traced, f);
+        add_contributions(work->traced, diagram);
+        const std::lock_guard lock(idle_mutex);
+        idle.push_back(work);
+      }));
 
   // The graph holds the crossings' nodes now: the crossings, the tracers'
   // scratch and the face marks go before the arcs are built beside it.
@@ -426,8 +421,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   graph = BoundaryGraph{};
   collect_adjacency(diagram);
   if (release_memory) trim_heap();  // the graph and the tracing's scratch
-  diagram.stats.extraction_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  diagram.stats.extraction_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return diagram;
 }
 

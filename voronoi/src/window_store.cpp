@@ -1,7 +1,7 @@
 #include "window_store.hpp"
 
-#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <algorithm>
 #include <array>
@@ -252,7 +252,8 @@ void WindowStore::repack() {
         cursor = (cursor | (kPageWindows - 1)) + 1;
       }
     }
-    if (cursor != begin && slot.count > 0) std::memmove(window_at(cursor), window_at(begin), slot.count * sizeof(Window));
+    if (cursor != begin && slot.count > 0)
+      std::memmove(window_at(cursor), window_at(begin), slot.count * sizeof(Window));
     slot.begin = cursor;
     cursor += size;
   }
@@ -297,7 +298,8 @@ std::vector<Index> WindowStore::edges_by_address(Holding holding) const {
       keyed.push_back(std::uint64_t{slots_[*it].begin} << 32 | static_cast<std::uint32_t>(*it));
     }
     std::sort(keyed.begin(), keyed.end());
-    for (std::size_t i = 0; i < keyed.size(); ++i) first[static_cast<std::ptrdiff_t>(i)] = static_cast<Index>(keyed[i] & 0xffffffffu);
+    for (std::size_t i = 0; i < keyed.size(); ++i)
+      first[static_cast<std::ptrdiff_t>(i)] = static_cast<Index>(keyed[i] & 0xffffffffu);
   }
   return edges;
 }
@@ -324,15 +326,16 @@ void WindowStore::slide_down(std::span<const Index> edges) {
     if (cursor != slot.begin) std::memmove(window_at(cursor), window_at(slot.begin), count * sizeof(Window));
     slot.begin = cursor;
     slot.block_class = kNoBlock;  // exactly full: growing moves it, freeing keeps nothing
-    for (std::uint32_t page = cursor >> kPageShift; page <= (cursor + count - 1) >> kPageShift; ++page) page_used[page] = 1;
+    for (std::uint32_t page = cursor >> kPageShift; page <= (cursor + count - 1) >> kPageShift; ++page)
+      page_used[page] = 1;
     cursor += count;
   }
   // Allocations none of whose pages hold windows any more go back.
   for (std::size_t a = 0; a < allocations_.size(); ++a) {
     if (!allocations_[a]) continue;
     const std::uint32_t first = allocation_first_page_[a];
-    const std::uint32_t end = a + 1 < allocations_.size() ? allocation_first_page_[a + 1]
-                                                          : static_cast<std::uint32_t>(page_of_.size());
+    const std::uint32_t end =
+        a + 1 < allocations_.size() ? allocation_first_page_[a + 1] : static_cast<std::uint32_t>(page_of_.size());
     if (std::any_of(page_used.begin() + first, page_used.begin() + end, [](std::uint8_t used) { return used != 0; })) {
       continue;
     }

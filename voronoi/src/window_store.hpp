@@ -196,12 +196,12 @@ class WindowStore {
   using PageMemory = std::unique_ptr<Window[], PageRelease>;
   static PageMemory map_pages(std::size_t windows);
 
-  std::vector<PageMemory> allocations_;                 ///< a page, or the pages of one large block
-  std::vector<std::uint32_t> allocation_first_page_;    ///< of each allocation
-  std::vector<Window*> page_of_;                        ///< by page number; null once given back
+  std::vector<PageMemory> allocations_;               ///< a page, or the pages of one large block
+  std::vector<std::uint32_t> allocation_first_page_;  ///< of each allocation
+  std::vector<Window*> page_of_;                      ///< by page number; null once given back
   std::int64_t held_pages_ = 0;
-  std::uint32_t next_free_ = 0;                         ///< unused from here to the end of the pages
-  std::int64_t free_windows_ = 0;                       ///< capacity of the free blocks
+  std::uint32_t next_free_ = 0;    ///< unused from here to the end of the pages
+  std::int64_t free_windows_ = 0;  ///< capacity of the free blocks
   /// Repack rather than add a page once the free blocks hold 1/kRepackFraction of the pages.
   static constexpr std::int64_t kRepackFraction = 16;
   std::int64_t repacks_ = 0;

@@ -383,7 +383,8 @@ void WindowVtp::push_face_key(Index face) {
   const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
   const double key = d_min + std::max({lengths[0], lengths[1], lengths[2]});
   float rounded_up = static_cast<float>(key);
-  if (static_cast<double>(rounded_up) < key) rounded_up = std::nextafter(rounded_up, std::numeric_limits<float>::infinity());
+  if (static_cast<double>(rounded_up) < key)
+    rounded_up = std::nextafter(rounded_up, std::numeric_limits<float>::infinity());
   face_events_.push({rounded_up, face});
 }
 
@@ -438,9 +439,8 @@ void WindowVtp::remove_redundant_windows(double lower_bound) {
 
 void WindowVtp::report_progress() {
   if (!options_.progress || (++steps_ & 1023) != 0) return;
-  const double fraction = pm_.num_included_faces > 0
-                              ? static_cast<double>(faces_traversed_) / pm_.num_included_faces
-                              : 1.0;
+  const double fraction =
+      pm_.num_included_faces > 0 ? static_cast<double>(faces_traversed_) / pm_.num_included_faces : 1.0;
   if (!options_.progress(fraction)) throw Cancelled("geodesic computation cancelled");
 }
 

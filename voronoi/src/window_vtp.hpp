@@ -12,8 +12,8 @@
 // the first queue is inactive (Proposition 3.1) and, if redundant, its edges'
 // windows are freed (Procedure 1, Step 4).
 
-#include "geodual/voronoi/geodesic_field.hpp"
 #include "event_queue.hpp"
+#include "geodual/voronoi/geodesic_field.hpp"
 #include "propagation_mesh.hpp"
 #include "window_store.hpp"
 
@@ -69,8 +69,8 @@ class WindowVtp {
   void add_face_site(Index face, const Eigen::Vector3d& barycentric, Index site);
   /// Windows from a point source at `source` (in the face's planar layout
   /// `plane`) onto the face's edges other than local edge `skip_local_edge`.
-  void emit_from_point_in_face(Index face, const FaceInPlane& plane, const Eigen::Vector2d& source,
-                               int skip_local_edge, double sigma, Index site, int depth);
+  void emit_from_point_in_face(Index face, const FaceInPlane& plane, const Eigen::Vector2d& source, int skip_local_edge,
+                               double sigma, Index site, int depth);
   /// A point source on local edge k of `face`, at abscissa x_face of the
   /// face's frame for that edge: windows into the face on the other side.
   void emit_across_edge(Index face, int k, double x_face, double sigma, Index site, int depth);

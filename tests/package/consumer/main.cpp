@@ -8,14 +8,14 @@
 //   pipeline the library's version is the package's version.
 // Prints one line per check; exit status 0 when all pass, 1 otherwise.
 
-#include <geodual/mesh/error.hpp>
 #include <geodual/io/gltf.hpp>
 #include <geodual/io/read_mesh.hpp>
+#include <geodual/mesh/error.hpp>
+#include <geodual/mesh/triangle_mesh.hpp>
 #include <geodual/pipeline/version.hpp>
 #include <geodual/quality/quality_stats.hpp>
 #include <geodual/remesh/remesh.hpp>
 #include <geodual/remesh/sample_sites.hpp>
-#include <geodual/mesh/triangle_mesh.hpp>
 #include <geodual/voronoi/geodesic_field.hpp>
 
 #include <cmath>
@@ -64,8 +64,8 @@ geodual::TriangleMesh sphere(int rings, int segments) {
     const double theta = std::numbers::pi * i / rings;
     for (int j = 0; j < segments; ++j) {
       const double phi = 2 * std::numbers::pi * j / segments;
-      mesh.vertices.row((i - 1) * segments + j) << std::sin(theta) * std::cos(phi),
-          std::sin(theta) * std::sin(phi), std::cos(theta);
+      mesh.vertices.row((i - 1) * segments + j) << std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+          std::cos(theta);
     }
   }
   const int north = ring_vertices, south = ring_vertices + 1;
@@ -80,7 +80,8 @@ geodual::TriangleMesh sphere(int rings, int segments) {
     }
   }
   mesh.faces.resize(static_cast<Eigen::Index>(faces.size() / 3), 3);
-  for (std::size_t k = 0; k < faces.size(); ++k) mesh.faces(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3)) = faces[k];
+  for (std::size_t k = 0; k < faces.size(); ++k)
+    mesh.faces(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3)) = faces[k];
   return mesh;
 }
 
@@ -101,7 +102,8 @@ void run_checks() {
   const auto field = geodual::voronoi::compute_geodesic_field(flat, std::vector{site});
   double worst = 0;
   for (int v = 0; v < flat.num_vertices(); ++v) {
-    worst = std::max(worst, std::abs(field.distance[v] - (flat.vertices.row(v) - flat.vertices.row(site.element)).norm()));
+    worst =
+        std::max(worst, std::abs(field.distance[v] - (flat.vertices.row(v) - flat.vertices.row(site.element)).norm()));
   }
   check(worst < 1e-9, "voronoi: geodesic distances on a plane are Euclidean (max error " + std::to_string(worst) + ")");
 

@@ -28,7 +28,6 @@ void refuse_to_overwrite_inputs(const std::filesystem::path& output,
 /// Calls `write` on a binary stream to a temporary file in output's folder,
 /// flushes and checks it, then renames it over `output`. On any exception the
 /// temporary file is removed and `output` is left untouched.
-void write_file_atomically(const std::filesystem::path& output,
-                           const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::filesystem::path& output, const std::function<void(std::ostream&)>& write);
 
 }  // namespace geodual::io

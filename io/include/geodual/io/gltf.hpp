@@ -44,10 +44,10 @@ struct GltfVertexScalar {
 
 /// A triangle mesh (a TRIANGLES primitive).
 struct GltfTriangleMesh {
-  std::string name{};                        ///< node and mesh name; empty: none
-  TriangleMesh mesh{};                       ///< at least one triangle
-  ColorMatrix colors{};                      ///< COLOR_0: empty, or one row per vertex
-  std::vector<GltfVertexScalar> scalars{};   ///< one value per vertex each
+  std::string name{};                       ///< node and mesh name; empty: none
+  TriangleMesh mesh{};                      ///< at least one triangle
+  ColorMatrix colors{};                     ///< COLOR_0: empty, or one row per vertex
+  std::vector<GltfVertexScalar> scalars{};  ///< one value per vertex each
 };
 
 /// Line segments between points (a LINES primitive), e.g. polylines such as

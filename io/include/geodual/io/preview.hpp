@@ -42,10 +42,10 @@ namespace geodual::io {
 
 /// What to draw: plain data, nothing owned but the overlays.
 struct PreviewScene {
-  const TriangleMesh* mesh = nullptr;  ///< may be null when only lines or points are drawn
-  std::vector<Eigen::Vector3f> face_colors;    ///< optional, one per face, linear 0..1
-  std::vector<Eigen::Vector3f> vertex_colors;  ///< optional, one per vertex (used if face_colors is empty)
-  bool wireframe = true;                       ///< draw the mesh edges
+  const TriangleMesh* mesh = nullptr;                   ///< may be null when only lines or points are drawn
+  std::vector<Eigen::Vector3f> face_colors;             ///< optional, one per face, linear 0..1
+  std::vector<Eigen::Vector3f> vertex_colors;           ///< optional, one per vertex (used if face_colors is empty)
+  bool wireframe = true;                                ///< draw the mesh edges
   std::vector<std::vector<Eigen::Vector3d>> polylines;  ///< optional extra lines (e.g. Voronoi boundaries)
   Eigen::Vector3f polyline_color{0.05f, 0.05f, 0.05f};
   std::vector<Eigen::Vector3d> points;  ///< optional points (e.g. sites), drawn as small discs
@@ -74,7 +74,7 @@ struct PreviewOptions {
   Eigen::Vector3f background_color{1.0f, 1.0f, 1.0f};
   /// Colour of the surface when the scene has neither face nor vertex colours.
   Eigen::Vector3f surface_color{0.62f, 0.66f, 0.74f};
-  float ambient = 0.2f;  ///< in [0, 1]: light that faces turned away from the camera still get
+  float ambient = 0.2f;        ///< in [0, 1]: light that faces turned away from the camera still get
   bool smooth_shading = true;  ///< interpolated vertex normals; false: flat per face
 
   Eigen::Vector3f wireframe_color{0.04f, 0.04f, 0.06f};
@@ -104,8 +104,7 @@ struct PreviewOptions {
 /// that do not match the faces / vertices, non-finite coordinates or colours.
 /// Degenerate faces and unreferenced vertices are fine. Throws
 /// geodual::Cancelled when options.progress says stop.
-std::vector<std::uint8_t> render_preview_png(const PreviewScene& scene,
-                                             const PreviewOptions& options = {});
+std::vector<std::uint8_t> render_preview_png(const PreviewScene& scene, const PreviewOptions& options = {});
 
 /// Renders and writes the PNG atomically (see atomic_file.hpp). The path must
 /// end in .png (any case); anything else is a geodual::Error, raised before

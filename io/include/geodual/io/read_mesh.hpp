@@ -22,9 +22,9 @@ struct ReadInfo {
   /// float32", "ascii float64"; STL: "binary" or "ascii"; OBJ, OFF: "ascii".
   std::string encoding;
   std::uintmax_t file_bytes = 0;
-  std::int64_t polygons_split = 0;    ///< polygons with more than 3 corners split into triangles
-  std::int64_t welded_corners = 0;    ///< STL: triangle corners merged into shared vertices
-  std::vector<std::string> notes;     ///< human-readable remarks: welding, what was ignored
+  std::int64_t polygons_split = 0;  ///< polygons with more than 3 corners split into triangles
+  std::int64_t welded_corners = 0;  ///< STL: triangle corners merged into shared vertices
+  std::vector<std::string> notes;   ///< human-readable remarks: welding, what was ignored
 };
 
 struct LoadedMesh {
@@ -42,7 +42,6 @@ LoadedMesh read_mesh(const std::filesystem::path& path);
 
 /// Reads from a buffer already in memory. `name` is used in error messages and,
 /// for .gltf, to resolve relative external buffers (empty: none may be external).
-LoadedMesh read_mesh_from_memory(std::span<const std::byte> data, MeshFormat format,
-                                 const std::filesystem::path& name);
+LoadedMesh read_mesh_from_memory(std::span<const std::byte> data, MeshFormat format, const std::filesystem::path& name);
 
 }  // namespace geodual::io

@@ -34,8 +34,7 @@ Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh)
 /// A PNG picture of the input coloured by cell with the boundaries and sites.
 /// `progress` as io::PreviewOptions::progress (false: Cancelled, nothing written).
 void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                           const voronoi::VoronoiDiagram& diagram,
-                           const std::function<bool(double)>& progress = {});
+                           const voronoi::VoronoiDiagram& diagram, const std::function<bool(double)>& progress = {});
 
 /// A PNG picture of a mesh, shaded with its wireframe (coloured per vertex
 /// when `vertex_colors` has a row per vertex); `progress` as above.

@@ -20,8 +20,8 @@
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
-#include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
@@ -47,18 +47,18 @@ std::string_view stage_name(Stage stage);
 using ProgressCallback = std::function<bool(Stage stage, double fraction)>;
 
 struct RemeshPipelineOptions {
-  std::int64_t sites = 4000;            ///< sites sampled on the input (ignored if given_sites is set)
+  std::int64_t sites = 4000;                             ///< sites sampled on the input (ignored if given_sites is set)
   std::optional<std::vector<SurfacePoint>> given_sites;  ///< use these sites instead of sampling
   /// Blue noise (Poisson disk), seed 1, sites on boundary loops: the relaxation
   /// converges from evenly spread sites in fewer steps than from random ones.
   remesh::SamplingOptions sampling{.strategy = remesh::SamplingStrategy::poisson};
-  remesh::RemeshOptions remesh;         ///< 10 Lloyd iterations, up to 10 repair rounds
+  remesh::RemeshOptions remesh;  ///< 10 Lloyd iterations, up to 10 repair rounds
   /// Fail (geodual::Error, before the relaxation) when more than
   /// `max_dropped_area_pct` of the input's area is left out; false: report it only.
   bool strict = false;
   double max_dropped_area_pct = 0.1;
-  bool statistics = true;               ///< compare the remesh with the input (quality, Hausdorff)
-  quality::QualityOptions quality;       ///< 10^6 samples per side
+  bool statistics = true;           ///< compare the remesh with the input (quality, Hausdorff)
+  quality::QualityOptions quality;  ///< 10^6 samples per side
   ProgressCallback progress;
 };
 
@@ -92,8 +92,9 @@ struct RemeshPipelineResult {
   /// boundary loops need them (remesh::sample_sites_for_topology), and why.
   std::int64_t sites_added_for_topology = 0;
   std::string sites_added_reason;
-  remesh::LloydResult relaxation;  ///< the relax stage: relaxed sites, energy history (its diagram moved on to `remesh`)
-  remesh::RepairedDual remesh;     ///< the dual stage: the remeshed mesh, final sites and diagram
+  /// The relax stage: relaxed sites, energy history (its diagram moved on to `remesh`).
+  remesh::LloydResult relaxation;
+  remesh::RepairedDual remesh;  ///< the dual stage: the remeshed mesh, final sites and diagram
   std::optional<quality::QualityReport> statistics;
   std::vector<StageTiming> timings;
 };

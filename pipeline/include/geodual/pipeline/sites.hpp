@@ -1,8 +1,8 @@
 #pragma once
 // Sites for the command line: drawn at random, or read from a site file.
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
 #include <filesystem>

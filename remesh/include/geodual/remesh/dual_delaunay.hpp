@@ -8,8 +8,8 @@
 // dual_delaunay checks the result against the input's topology, per
 // connected component, and says where to add sites when it falls short.
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <cstdint>

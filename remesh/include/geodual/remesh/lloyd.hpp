@@ -6,8 +6,8 @@
 //   auto relaxed = geodual::remesh::lloyd_relax(mesh, sites, {.iterations = 10});
 //   relaxed.energy  // CVT energy before and after each accepted iteration, never increasing
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
@@ -65,13 +65,13 @@ struct LloydResult {
   /// after the warm start when it ran (warm_start_iterations > 0), then after
   /// each accepted iteration.
   std::vector<double> energy;
-  int iterations = 0;               ///< iterations accepted
-  int warm_start_iterations = 0;    ///< warm-start steps taken (0: none, or not kept)
-  int diagrams = 0;                 ///< geodesic diagrams computed (the warm start's result and rejected steps cost one each)
-  double warm_start_seconds = 0;    ///< the warm start's steps (its geodesic diagram counts below)
-  double geodesic_seconds = 0;      ///< all diagrams
+  int iterations = 0;             ///< iterations accepted
+  int warm_start_iterations = 0;  ///< warm-start steps taken (0: none, or not kept)
+  int diagrams = 0;  ///< geodesic diagrams computed (the warm start's result and rejected steps cost one each)
+  double warm_start_seconds = 0;  ///< the warm start's steps (its geodesic diagram counts below)
+  double geodesic_seconds = 0;    ///< all diagrams
   double diagram_seconds = 0;
-  double move_seconds = 0;          ///< centroid steps
+  double move_seconds = 0;  ///< centroid steps
 };
 
 /// Relaxes sites on `surface`'s mesh; every diagram reuses the prepared

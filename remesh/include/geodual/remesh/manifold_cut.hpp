@@ -39,11 +39,11 @@ struct ManifoldCutOptions {
 };
 
 struct ManifoldCut {
-  TriangleMesh mesh;                    ///< same faces, vertices split per fan
-  std::vector<Index> original_vertex;   ///< per vertex of `mesh`, the input vertex it copies
-  std::int64_t vertices_split = 0;      ///< input vertices that got more than one copy
-  std::int64_t faces_disabled = 0;      ///< faces of scraps and duplicates (see ManifoldCutOptions)
-  std::int64_t duplicates_disabled = 0; ///< of faces_disabled, the copies of an earlier face
+  TriangleMesh mesh;                     ///< same faces, vertices split per fan
+  std::vector<Index> original_vertex;    ///< per vertex of `mesh`, the input vertex it copies
+  std::int64_t vertices_split = 0;       ///< input vertices that got more than one copy
+  std::int64_t faces_disabled = 0;       ///< faces of scraps and duplicates (see ManifoldCutOptions)
+  std::int64_t duplicates_disabled = 0;  ///< of faces_disabled, the copies of an earlier face
   /// Per face: the earlier face it copies (and was disabled for), -1 for the
   /// others; empty when duplicates are kept.
   std::vector<Index> copy_of;

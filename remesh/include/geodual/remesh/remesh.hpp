@@ -7,11 +7,11 @@
 //   auto result = geodual::remesh::remesh_from_sites(mesh, sites);  // 10 Lloyd iterations first
 //   result.dual.mesh  // one vertex per site, oriented like the input
 
+#include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/lloyd.hpp"
-#include "geodual/mesh/triangle_mesh.hpp"
-#include "geodual/mesh/surface_point.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
@@ -38,7 +38,7 @@ struct RepairedDual {
   int repair_rounds = 0;
   double geodesic_seconds = 0;  ///< the repair rounds' diagrams
   double diagram_seconds = 0;
-  double dual_seconds = 0;      ///< building and checking the duals
+  double dual_seconds = 0;  ///< building and checking the duals
 };
 
 /// The dual of `diagram` (of `sites` on `surface`'s mesh, a 2-manifold such

@@ -3,8 +3,8 @@
 // area, as blue noise (Poisson disk), or by farthest point sampling, with
 // sites placed along the boundary loops so that the dual keeps them.
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
 #include <string>

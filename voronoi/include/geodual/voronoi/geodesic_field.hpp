@@ -19,8 +19,8 @@
 // but may pass through its end points (every boundary or non-manifold vertex is
 // a pseudo-source, as every saddle vertex is).
 
-#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
 
 #include <array>
@@ -52,15 +52,18 @@ struct GeodesicOptions {
 };
 
 struct GeodesicStats {
-  std::int64_t windows_created = 0;   ///< windows that survived insertion on an edge
-  std::int64_t windows_stored = 0;    ///< windows held at the end
-  std::int64_t peak_windows = 0;      ///< most windows held at one time
-  std::int64_t peak_window_bytes = 0; ///< peak bytes of window storage (live windows, unused block capacity and freed blocks awaiting reuse); window_memory_limit_bytes is checked against the same figure
-  std::int64_t vertices_popped = 0;   ///< vertices taken from the priority queue to expand
-  std::int64_t pseudo_sources = 0;    ///< saddle / boundary vertices that emitted windows
-  std::int64_t faces_inactive = 0;    ///< faces that reached the inactive region
-  double setup_seconds = 0;           ///< checking the sites; with a mesh rather than a GeodesicSurface, preparing it too
-  double propagation_seconds = 0;     ///< window-VTP including RWR
+  std::int64_t windows_created = 0;  ///< windows that survived insertion on an edge
+  std::int64_t windows_stored = 0;   ///< windows held at the end
+  std::int64_t peak_windows = 0;     ///< most windows held at one time
+  /// Peak bytes of window storage (live windows, unused block capacity and
+  /// freed blocks awaiting reuse); window_memory_limit_bytes is checked
+  /// against the same figure.
+  std::int64_t peak_window_bytes = 0;
+  std::int64_t vertices_popped = 0;  ///< vertices taken from the priority queue to expand
+  std::int64_t pseudo_sources = 0;   ///< saddle / boundary vertices that emitted windows
+  std::int64_t faces_inactive = 0;   ///< faces that reached the inactive region
+  double setup_seconds = 0;        ///< checking the sites; with a mesh rather than a GeodesicSurface, preparing it too
+  double propagation_seconds = 0;  ///< window-VTP including RWR
   double total_seconds = 0;
 };
 
@@ -81,8 +84,8 @@ struct EdgeWindow {
 struct FacePointSource {
   Index face = -1;
   Index site = -1;
-  double sigma = 0;                                          ///< distance of the point itself
-  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();     ///< in `face`
+  double sigma = 0;                                       ///< distance of the point itself
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();  ///< in `face`
 };
 
 /// The result of compute_geodesic_field: plain data.

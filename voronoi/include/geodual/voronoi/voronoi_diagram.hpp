@@ -15,10 +15,10 @@
 // Voronoi vertices are solved to machine precision; between them, arcs are
 // traced as polylines that stay within `boundary_tolerance` of the exact curve.
 
+#include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
-#include "geodual/mesh/surface_point.hpp"
 
 #include <Eigen/Core>
 
@@ -44,7 +44,7 @@ struct VoronoiOptions {
 struct VoronoiVertex {
   SurfacePoint location;  ///< a face point (barycentric; on an edge if a coordinate is 0)
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  double distance = 0;    ///< geodesic distance to each of its sites
+  double distance = 0;  ///< geodesic distance to each of its sites
   /// Its sites are vertex_sites[site_begin .. site_begin + degree), in
   /// counter-clockwise order as seen with the input's orientation; they are
   /// the corners of the dual triangle(s).
@@ -92,7 +92,7 @@ struct VoronoiDiagram {
   std::vector<VoronoiVertex> vertices;
   std::vector<Index> vertex_sites;
   std::vector<VoronoiArc> arcs;
-  std::vector<Eigen::Vector3d> points;  ///< polyline points of all arcs
+  std::vector<Eigen::Vector3d> points;        ///< polyline points of all arcs
   std::vector<SurfacePoint> point_locations;  ///< the same points as face points
   /// Per site: the area of its cell. Cells of sites on components that no
   /// other site reaches are whole components.
