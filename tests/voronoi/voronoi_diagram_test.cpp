@@ -4,6 +4,7 @@
 #include "voronoi/cgal_oracle.hpp"
 #include "voronoi/test_meshes.hpp"
 
+#include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <gtest/gtest.h>
@@ -22,6 +23,7 @@ namespace {
 
 using voronoi::VoronoiArc;
 using voronoi::VoronoiDiagram;
+using voronoi::VoronoiOptions;
 
 double mesh_area(const TriangleMesh& mesh) {
   double area = 0;
@@ -301,6 +303,32 @@ bool same_points(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen:
     if (std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 3) != 0) return false;
   }
   return true;
+}
+
+TEST(VoronoiDiagram, ExtractionAsksTheProgressAndCanBeCancelled) {
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path("fertility.ply"));
+  const std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 2000, 77);
+  // The field ends with one call at 1; the extraction goes on asking at 1.
+  VoronoiOptions watched;
+  int asked_at_one = 0;
+  watched.geodesic.progress = [&](double fraction) {
+    if (fraction == 1.0) ++asked_at_one;
+    return true;
+  };
+  const VoronoiDiagram plain = voronoi::compute_voronoi(mesh, sites);
+  const VoronoiDiagram asked = voronoi::compute_voronoi(mesh, sites, watched);
+  EXPECT_GT(asked_at_one, 10);
+  EXPECT_EQ(asked.vertices.size(), plain.vertices.size());
+  EXPECT_EQ(asked.arcs.size(), plain.arcs.size());
+  // Refused once the field is done: Cancelled, from the extraction.
+  for (const std::size_t threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    VoronoiOptions cancelling;
+    int calls_at_one = 0;
+    cancelling.geodesic.progress = [&](double fraction) { return fraction < 1.0 || ++calls_at_one < 3; };
+    EXPECT_THROW((void)voronoi::compute_voronoi(mesh, sites, cancelling), Cancelled) << threads << " threads";
+    EXPECT_EQ(calls_at_one, 3);
+  }
 }
 
 TEST(VoronoiDiagram, ExtractionIsTheSameForAnyThreadCount) {

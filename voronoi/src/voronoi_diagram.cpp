@@ -2,6 +2,7 @@
 
 #include "face_boundary.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -10,8 +11,11 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <functional>
 #include <mutex>
+#include <thread>
 #include <utility>
 
 namespace geodual::voronoi {
@@ -34,11 +38,40 @@ using Tracers = tbb::enumerable_thread_specific<FaceBoundaryTracer>;
 
 Index chunk_count(Index items, Index per_chunk) { return (items + per_chunk - 1) / per_chunk; }
 
+/// GeodesicOptions::progress during the extraction: asked with 1 (every face
+/// is reached by now) on the calling thread only, every 64th time it comes
+/// here; other threads see a refusal through a flag. Work stops at the next
+/// edge or face, and stop_if_refused() throws geodual::Cancelled.
+class CancelCheck {
+ public:
+  explicit CancelCheck(const std::function<bool(double)>& progress)
+      : progress_(progress), caller_(std::this_thread::get_id()) {}
+
+  /// False once refused.
+  bool keep_going() {
+    if (refused_.load(std::memory_order_relaxed)) return false;
+    if (!progress_ || std::this_thread::get_id() != caller_ || ++calls_ % 64 != 0) return true;
+    if (progress_(1.0)) return true;
+    refused_.store(true, std::memory_order_relaxed);
+    return false;
+  }
+
+  void stop_if_refused() const {
+    if (refused_.load(std::memory_order_relaxed)) throw Cancelled("Voronoi diagram extraction cancelled");
+  }
+
+ private:
+  const std::function<bool(double)>& progress_;
+  std::thread::id caller_;
+  std::uint64_t calls_ = 0;  ///< on the calling thread only
+  std::atomic<bool> refused_{false};
+};
+
 /// Computes in parallel the crossings of every edge marked in `needed` that
 /// `store` lacks, and appends them to it.
 /// With `release_memory`, hands the merged chunks' memory back as it goes.
 void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tracers, EdgeCrossingStore& store,
-                            bool release_memory) {
+                            bool release_memory, CancelCheck& cancel) {
   struct Found {
     std::vector<Index> edges, counts;
     std::vector<detail::EdgeCrossing> crossings;
@@ -52,6 +85,7 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
     const Index end = std::min(num_edges, begin + edges_per_chunk);
     for (Index e = begin; e < end; ++e) {
       if (!needed[e] || store.computed(e)) continue;
+      if (!cancel.keep_going()) return;
       const std::size_t before = out.crossings.size();
       tracer.find_edge_crossings(e, out.crossings);
       out.edges.push_back(e);
@@ -60,6 +94,7 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
     // Every chunk waits for the merge: without the slack of its growth.
     out.crossings.shrink_to_fit();
   });
+  cancel.stop_if_refused();
   // Sized once (a doubling array would hold up to twice the crossings and
   // leave its outgrown copies behind); the chunks are freed as they are
   // merged, and their memory handed back now and then, so that the lists
@@ -304,6 +339,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   diagram.field = std::move(field);
   const GeodesicField& f = diagram.field;
   const bool release_memory = options.geodesic.release_memory_between_phases;
+  CancelCheck cancel(options.geodesic.progress);
   diagram.stats.geodesic_seconds = f.stats.total_seconds;
   diagram.cell_area.assign(f.sites.size(), 0.0);
 
@@ -329,7 +365,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     if (!traced[face]) continue;
     for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
-  compute_edge_crossings(needed, tracers, store, release_memory);
+  compute_edge_crossings(needed, tracers, store, release_memory, cancel);
   // Nearly every node of the graph is an edge crossing, found by now but for
   // the few of the faces next to these (2, below); the rest are Voronoi
   // vertices (two per cell) and the crossings inside refined faces, fewer
@@ -348,6 +384,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
   FaceBoundaryTracer& serial_tracer = tracers.local();
   for (Index face = 0; face < num_faces; ++face) {
     if (traced[face] || f.face_edges[face][0] < 0) continue;
+    if (!cancel.keep_going()) cancel.stop_if_refused();
     for (const Index e : f.face_edges[face]) {
       for (const Index neighbour : f.edge_faces[e]) {
         if (neighbour >= 0 && neighbour != face && traced[neighbour] && !merger.crossings(e, serial_tracer).empty()) {
@@ -360,7 +397,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
     if (traced[face] != 2) continue;
     for (const Index e : f.face_edges[face]) needed[e] = 1;
   }
-  compute_edge_crossings(needed, tracers, store, release_memory);
+  compute_edge_crossings(needed, tracers, store, release_memory, cancel);
   std::vector<std::uint8_t>().swap(needed);
 
   // Trace the faces chunk by chunk in parallel; merge the chunks in order.
@@ -395,7 +432,7 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
         out.clear();
         const Index begin = work->chunk * faces_per_chunk;
         const Index end = std::min(num_faces, begin + faces_per_chunk);
-        for (Index face = begin; face < end; ++face) {
+        for (Index face = begin; face < end && cancel.keep_going(); ++face) {
           if (f.face_edges[face][0] < 0) continue;
           if (traced[face]) {
             tracer.trace_face(face, out);
@@ -405,12 +442,13 @@ VoronoiDiagram extract_voronoi(const TriangleMesh& mesh, GeodesicField field, co
         }
         return work;
       }) & tbb::make_filter<Work*, void>(tbb::filter_mode::serial_in_order, [&](Work* work) {
-        merger.append(work->traced, f);
+        if (cancel.keep_going()) merger.append(work->traced, f);
         add_contributions(work->traced, diagram);
         const std::lock_guard lock(idle_mutex);
         idle.push_back(work);
       }));
 
+  cancel.stop_if_refused();
   // The graph holds the crossings' nodes now: the crossings, the tracers'
   // scratch and the face marks go before the arcs are built beside it.
   store = EdgeCrossingStore(0);
