@@ -109,6 +109,7 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   };
   if (options.given_sites) {
     result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
+    remesh::require_a_site_on_every_piece(result.surface.mesh, result.initial_sites);
   } else {
     remesh::SampledSites sampled =
         remesh::sample_sites_for_topology(result.surface.mesh, options.sites, options.sampling);

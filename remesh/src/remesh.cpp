@@ -3,6 +3,7 @@
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
+#include "geodual/remesh/sample_sites.hpp"
 
 #include <algorithm>
 #include <array>
@@ -84,6 +85,7 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   result.faces_disabled = cut.faces_disabled;
   const bool changed = cut.vertices_split > 0 || cut.faces_disabled > 0;
   if (changed) sites = points_on_cut(cut, std::move(sites));
+  require_a_site_on_every_piece(changed ? cut.mesh : mesh, sites);
   if (!changed) cut.mesh = TriangleMesh{};  // the input itself is remeshed: no second copy held
   const bool release_memory = options.lloyd.voronoi.geodesic.release_memory_between_phases;
   if (release_memory) trim_heap();  // the cut's scratch (a sorted list of all half-edges)

@@ -6,6 +6,8 @@
 
 #include "boundary_sites.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 #include "sampling_strategies.hpp"
 
 #include <algorithm>
@@ -288,6 +290,40 @@ std::string sampling_strategy_name(SamplingStrategy strategy) {
     case SamplingStrategy::fps: return "fps";
   }
   throw UsageError("unknown sampling strategy value " + std::to_string(static_cast<int>(strategy)));
+}
+
+void require_a_site_on_every_piece(const TriangleMesh& surface, std::span<const SurfacePoint> sites) {
+  const MeshTopology topology = build_mesh_topology(surface);
+  std::vector<std::uint8_t> has_site(static_cast<std::size_t>(topology.num_components()), 0);
+  for (const SurfacePoint& site : sites) {
+    const bool face = site.kind == SurfacePoint::Kind::face;
+    const std::vector<Index>& component_of = face ? topology.face_component : topology.vertex_component;
+    if (site.element < 0 || static_cast<std::size_t>(site.element) >= component_of.size()) continue;
+    const Index piece = component_of[static_cast<std::size_t>(site.element)];
+    if (piece >= 0) has_site[static_cast<std::size_t>(piece)] = 1;
+  }
+  // Pieces without area can take no site: they are left out of every remesh.
+  std::vector<std::uint8_t> has_area(has_site.size(), 0);
+  for (Index f = 0; f < surface.num_faces(); ++f) {
+    const Index piece = topology.face_component[static_cast<std::size_t>(f)];
+    if (piece >= 0 && has_positive_area(surface, f)) has_area[static_cast<std::size_t>(piece)] = 1;
+  }
+  std::int64_t missing = 0;
+  Index first = -1;
+  for (Index piece = 0; piece < topology.num_components(); ++piece) {
+    if (has_site[static_cast<std::size_t>(piece)] || !has_area[static_cast<std::size_t>(piece)]) continue;
+    if (missing++ == 0) first = piece;
+  }
+  if (missing == 0) return;
+  const auto vertex =
+      static_cast<Index>(std::find(topology.vertex_component.begin(), topology.vertex_component.end(), first) -
+                         topology.vertex_component.begin());
+  throw Error(std::to_string(missing) + " of " + std::to_string(topology.num_components()) +
+              " pieces of the surface hold no site, so the remesh would leave them out (the first: the piece with "
+              "vertex " +
+              std::to_string(vertex) + ", " +
+              std::to_string(topology.components[static_cast<std::size_t>(first)].faces) +
+              " faces); give sites on every piece, or let geodual sample them");
 }
 
 }  // namespace geodual::remesh

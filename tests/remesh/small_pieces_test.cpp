@@ -82,6 +82,25 @@ TEST(SmallPieces, ASmallPieceBesideALargeOneIsAScrap) {
   EXPECT_EQ(cut_to_manifold(beside(sphere, small, {3, 0, 0})).faces_disabled, 0);
 }
 
+TEST(SmallPieces, GivenSitesMustReachEveryPiece) {
+  // Two spheres side by side; sites on the first only. The second would
+  // vanish from the remesh without a word.
+  const TriangleMesh sphere = test::icosphere(3);
+  const TriangleMesh two = beside(sphere, sphere, Eigen::Vector3d(3, 0, 0));
+  std::vector<SurfacePoint> sites = sample_sites(sphere, 100);
+  EXPECT_NO_THROW(require_a_site_on_every_piece(sphere, sites));
+  try {
+    (void)remesh_from_sites(two, sites);
+    ADD_FAILURE() << "a piece without sites was left out silently";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("1 of 2 pieces of the surface hold no site"), std::string::npos)
+        << error.what();
+  }
+  // A vertex site on the second sphere is enough to pass the check.
+  sites.push_back(SurfacePoint::at_vertex(static_cast<Index>(sphere.vertices.rows())));
+  EXPECT_NO_THROW(require_a_site_on_every_piece(two, sites));
+}
+
 TEST(SmallPieces, ATetrahedronRemeshes) {
   const TriangleMesh mesh = tetrahedron();
   for (const std::int64_t count : {4, 20, 200}) {

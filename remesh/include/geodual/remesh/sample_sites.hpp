@@ -7,6 +7,7 @@
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,6 +60,13 @@ struct SampledSites {
 /// does otherwise.
 SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count,
                                        const SamplingOptions& options = {});
+
+/// Checks that every connected piece of `surface` (faces with three distinct
+/// corners, joined through shared vertices) holds one of `sites` at least: a
+/// piece without one would be left out of the remesh without a trace. For
+/// sites not sampled here (a site file). \throw Error naming how many pieces
+/// have none and the first of them.
+void require_a_site_on_every_piece(const TriangleMesh& surface, std::span<const SurfacePoint> sites);
 
 /// "random", "poisson", "fps" -> the strategy; anything else throws
 /// geodual::UsageError naming the accepted values.
