@@ -194,26 +194,24 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   }
   constexpr double infinity = std::numeric_limits<double>::infinity();
   // Each repair site keeps others at most this far away (see the filter
-  // below): half its distance to the sites, so that where cells are small (a
-  // feature thinner than the sites' spacing) repairs come as close as they.
+  // below); infinity: the default spacing.
   std::vector<double> repair_apart;
-  auto repair_at = [&](const SurfacePoint& p, double distance_to_sites, double apart_at_most) {
+  auto repair_at = [&](const SurfacePoint& p, double apart_at_most) {
     check.repair_sites.push_back(p);
-    repair_apart.push_back(std::min(0.5 * distance_to_sites, apart_at_most));
+    repair_apart.push_back(apart_at_most);
   };
   auto repair_far_from = [&](Index site) {
     if (site < 0) return;
     if (farthest_vertex[site] >= 0) {
-      const double distance = field.distance[farthest_vertex[site]];
-      if (distance > 0) repair_at(SurfacePoint::at_vertex(farthest_vertex[site]), distance, infinity);
+      if (field.distance[farthest_vertex[site]] > 0) {
+        repair_at(SurfacePoint::at_vertex(farthest_vertex[site]), infinity);
+      }
     } else if (farthest_voronoi_vertex[site] >= 0) {
-      const voronoi::VoronoiVertex& vertex = diagram.vertices[farthest_voronoi_vertex[site]];
-      repair_at(vertex.location, vertex.distance, infinity);
+      repair_at(diagram.vertices[farthest_voronoi_vertex[site]].location, infinity);
     }
   };
   auto repair_on_arc = [&](const voronoi::VoronoiArc& arc) {
-    const SurfacePoint& p = diagram.point_locations[(arc.point_begin + arc.point_end) / 2];
-    repair_at(p, voronoi::query(field, input, p).distance, infinity);
+    repair_at(diagram.point_locations[(arc.point_begin + arc.point_end) / 2], infinity);
   };
   // A closed boundary (a cell enclosed by another) girdles a protrusion or a
   // tube thinner than the sites' spacing: one site on it would only stack
@@ -228,8 +226,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     int placed = 0;
     for (std::size_t i = 0; i < line.size() && placed < 3; ++i) {
       if (walked >= placed * length / 3) {
-        const SurfacePoint& p = diagram.point_locations[arc.point_begin + static_cast<Index>(i)];
-        repair_at(p, voronoi::query(field, input, p).distance, length / 6);
+        repair_at(diagram.point_locations[arc.point_begin + static_cast<Index>(i)], length / 6);
         ++placed;
       }
       walked += (line[(i + 1) % line.size()] - line[i]).norm();
