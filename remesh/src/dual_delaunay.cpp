@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -91,6 +92,48 @@ std::map<Index, ComponentCounts> field_topology(const TriangleMesh& mesh, const 
   });
 }
 
+/// Per face of the surface the field lies on: whether to reverse it so that
+/// faces joined by an edge use it once each way (a consistent orientation),
+/// taking in each connected piece the orientation most of its faces have.
+/// In a piece that cannot be oriented (a Moebius band) some pairs stay at odds.
+std::vector<std::uint8_t> faces_to_reverse(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
+  const Index num_faces = static_cast<Index>(mesh.faces.rows());
+  std::vector<std::uint8_t> reverse(static_cast<std::size_t>(num_faces), 0);
+  std::vector<std::uint8_t> seen(static_cast<std::size_t>(num_faces), 0);
+  auto forward = [&](Index face, int side) {
+    return mesh.faces(face, side) == field.edge_vertices[field.face_edges[face][side]][0];
+  };
+  std::vector<Index> piece;  // breadth-first: the faces of one piece
+  for (Index start = 0; start < num_faces; ++start) {
+    if (seen[start] || has_repeated_corner(mesh, start)) continue;
+    piece.assign(1, start);
+    seen[start] = 1;
+    std::size_t reversed = 0;
+    for (std::size_t i = 0; i < piece.size(); ++i) {
+      const Index face = piece[i];
+      for (int side = 0; side < 3; ++side) {
+        const Index edge = field.face_edges[face][side];
+        if (edge < 0) continue;
+        const auto [f0, f1] = field.edge_faces[edge];
+        const Index other = f0 == face ? f1 : f0;
+        if (other < 0 || other == face || seen[other]) continue;
+        int other_side = 0;
+        while (other_side < 2 && field.face_edges[other][other_side] != edge) ++other_side;
+        // Consistent when the two run along the edge in opposite directions.
+        const bool same_direction = (forward(face, side) != (reverse[face] != 0)) == forward(other, other_side);
+        reverse[other] = same_direction ? 1 : 0;
+        reversed += reverse[other];
+        seen[other] = 1;
+        piece.push_back(other);
+      }
+    }
+    if (2 * reversed > piece.size()) {
+      for (const Index face : piece) reverse[face] ^= 1;
+    }
+  }
+  return reverse;
+}
+
 Index vertex_of(const TriangleMesh& mesh, const SurfacePoint& p) {
   return p.kind == SurfacePoint::Kind::vertex ? p.element : mesh.faces(p.element, 0);
 }
@@ -108,12 +151,22 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (Index s = 0; s < num_sites; ++s) dual.mesh.vertices.row(s) = field.sites[s].position(input).transpose();
   std::vector<std::array<Index, 3>> triangles;
   triangles.reserve(diagram.vertices.size());
+  // Each Voronoi vertex orders its sites as its face is oriented; faces at
+  // odds with their neighbours (an input not oriented consistently) would
+  // give triangles at odds with theirs.
+  const std::vector<std::uint8_t> reverse = faces_to_reverse(input, field);
+  std::vector<Index> corners;
   for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
-    const auto sites = diagram.sites_of(vertex);
-    const std::size_t k = sites.size();
-    const std::size_t apex = static_cast<std::size_t>(std::min_element(sites.begin(), sites.end()) - sites.begin());
+    const auto ordered = diagram.sites_of(vertex);
+    corners.assign(ordered.begin(), ordered.end());
+    if (vertex.location.kind == SurfacePoint::Kind::face && reverse[vertex.location.element]) {
+      std::reverse(corners.begin(), corners.end());
+    }
+    const std::size_t k = corners.size();
+    const std::size_t apex =
+        static_cast<std::size_t>(std::min_element(corners.begin(), corners.end()) - corners.begin());
     for (std::size_t i = 1; i + 1 < k; ++i) {
-      triangles.push_back({sites[apex], sites[(apex + i) % k], sites[(apex + i + 1) % k]});
+      triangles.push_back({corners[apex], corners[(apex + i) % k], corners[(apex + i + 1) % k]});
     }
   }
   dual.mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
@@ -122,20 +175,62 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   }
 
   // Where to add sites: far from a site, at the vertex of its cell farthest
-  // from it; between two cells, halfway along an arc.
+  // from it, or in a cell that holds no mesh vertex (sites denser than the
+  // mesh's vertices), at its farthest Voronoi vertex; between two cells,
+  // halfway along an arc.
   std::vector<Index> farthest_vertex(num_sites, -1);
   for (Index v = 0; v < static_cast<Index>(field.distance.size()); ++v) {
     const Index s = field.nearest_site[v];
     if (s < 0) continue;
     if (farthest_vertex[s] < 0 || field.distance[v] > field.distance[farthest_vertex[s]]) farthest_vertex[s] = v;
   }
+  std::vector<Index> farthest_voronoi_vertex(num_sites, -1);
+  for (std::size_t v = 0; v < diagram.vertices.size(); ++v) {
+    const double distance = diagram.vertices[v].distance;
+    for (const Index s : diagram.sites_of(diagram.vertices[v])) {
+      Index& farthest = farthest_voronoi_vertex[s];
+      if (farthest < 0 || distance > diagram.vertices[farthest].distance) farthest = static_cast<Index>(v);
+    }
+  }
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  // Each repair site keeps others at most this far away (see the filter
+  // below); infinity: the default spacing.
+  std::vector<double> repair_apart;
+  auto repair_at = [&](const SurfacePoint& p, double apart_at_most) {
+    check.repair_sites.push_back(p);
+    repair_apart.push_back(apart_at_most);
+  };
   auto repair_far_from = [&](Index site) {
-    if (site >= 0 && farthest_vertex[site] >= 0 && field.distance[farthest_vertex[site]] > 0) {
-      check.repair_sites.push_back(SurfacePoint::at_vertex(farthest_vertex[site]));
+    if (site < 0) return;
+    if (farthest_vertex[site] >= 0) {
+      if (field.distance[farthest_vertex[site]] > 0) {
+        repair_at(SurfacePoint::at_vertex(farthest_vertex[site]), infinity);
+      }
+    } else if (farthest_voronoi_vertex[site] >= 0) {
+      repair_at(diagram.vertices[farthest_voronoi_vertex[site]].location, infinity);
     }
   };
   auto repair_on_arc = [&](const voronoi::VoronoiArc& arc) {
-    check.repair_sites.push_back(diagram.point_locations[(arc.point_begin + arc.point_end) / 2]);
+    repair_at(diagram.point_locations[(arc.point_begin + arc.point_end) / 2], infinity);
+  };
+  // A closed boundary (a cell enclosed by another) girdles a protrusion or a
+  // tube thinner than the sites' spacing: one site on it would only stack
+  // another band of cells there, so three go around it, a third of its length
+  // apart, and cells meet at Voronoi vertices across it.
+  auto repair_around_loop = [&](const voronoi::VoronoiArc& arc) {
+    const auto line = diagram.polyline(arc);
+    if (line.empty()) return;
+    double length = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) length += (line[(i + 1) % line.size()] - line[i]).norm();
+    double walked = 0;
+    int placed = 0;
+    for (std::size_t i = 0; i < line.size() && placed < 3; ++i) {
+      if (walked >= placed * length / 3) {
+        repair_at(diagram.point_locations[arc.point_begin + static_cast<Index>(i)], length / 6);
+        ++placed;
+      }
+      walked += (line[(i + 1) % line.size()] - line[i]).norm();
+    }
   };
 
   // Triangles: degenerate, duplicated; edges: at most two triangles, opposite.
@@ -214,7 +309,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (const voronoi::VoronoiArc& arc : diagram.arcs) {
     if (arc.closed) {
       ++check.closed_arcs;
-      repair_on_arc(arc);
+      repair_around_loop(arc);
     }
   }
 
@@ -311,14 +406,19 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   }
   // Repair sites are few (a round adds tens to hundreds): each is compared
   // with those kept before it.
+  // Two are kept apart by the smaller of their own separations.
   std::vector<SurfacePoint> repairs;
-  std::vector<Eigen::Vector3d> kept;
-  for (const SurfacePoint& p : check.repair_sites) {
+  std::vector<std::pair<Eigen::Vector3d, double>> kept;
+  for (std::size_t i = 0; i < check.repair_sites.size(); ++i) {
+    const SurfacePoint& p = check.repair_sites[i];
     const Eigen::Vector3d x = p.position(input);
-    auto near_kept = [&](const Eigen::Vector3d& y) { return (x - y).norm() <= apart; };
+    const double own = std::min(apart, repair_apart[i]);
+    auto near_kept = [&](const std::pair<Eigen::Vector3d, double>& y) {
+      return (x - y.first).norm() <= std::min(own, y.second);
+    };
     if (taken(x) || std::any_of(kept.begin(), kept.end(), near_kept)) continue;
     grid[cell_of(x)].push_back(x);
-    kept.push_back(x);
+    kept.emplace_back(x, own);
     repairs.push_back(p);
   }
   check.repair_sites = std::move(repairs);
