@@ -32,7 +32,7 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_report.hpp"
-#include "geodual/mesh/union_find.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
@@ -163,30 +163,6 @@ std::vector<SweepMesh> sweep_meshes(const Options& options) {
   return chosen;
 }
 
-/// Per vertex, a component id (union of the corners of faces with three
-/// distinct corners); -1 for a vertex no such face uses. Ids are 0..count-1.
-std::vector<Index> vertex_components(const TriangleMesh& mesh, Index& count) {
-  UnionFind pieces(static_cast<std::size_t>(mesh.num_vertices()));
-  std::vector<bool> used(pieces.size(), false);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (!is_proper_face(mesh, f)) continue;
-    for (int c = 0; c < 3; ++c) {
-      used[static_cast<std::size_t>(mesh.faces(f, c))] = true;
-      pieces.unite(mesh.faces(f, 0), mesh.faces(f, c));
-    }
-  }
-  std::vector<Index> component(pieces.size(), -1);
-  std::vector<Index> id_of_root(pieces.size(), -1);
-  count = 0;
-  for (Index v = 0; v < mesh.num_vertices(); ++v) {
-    if (!used[static_cast<std::size_t>(v)]) continue;
-    Index& id = id_of_root[static_cast<std::size_t>(pieces.find(v))];
-    if (id < 0) id = count++;
-    component[static_cast<std::size_t>(v)] = id;
-  }
-  return component;
-}
-
 /// The faces of `mesh` given by `faces` (all vertices kept: analyze_mesh counts referenced ones only).
 TriangleMesh with_faces(const TriangleMesh& mesh, const std::vector<Index>& faces) {
   TriangleMesh part;
@@ -257,8 +233,9 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   figures.dropped_faces = result.dropped.faces;
   figures.dropped_area_pct = result.dropped.area_pct;
 
-  Index components = 0;
-  const std::vector<Index> surface_component = vertex_components(surface, components);
+  const MeshTopology surface_topology = build_mesh_topology(surface);
+  const std::vector<Index>& surface_component = surface_topology.vertex_component;
+  const Index components = surface_topology.num_components();
   std::vector<Index> site_component;
   for (const SurfacePoint& site : result.remesh.sites) {
     const Index elements = site.kind == SurfacePoint::Kind::vertex ? surface.num_vertices() : surface.num_faces();

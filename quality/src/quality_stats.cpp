@@ -6,6 +6,7 @@
 #include "geodual/quality/quality_stats.hpp"
 
 #include "geodual/mesh/detail/morton_code.hpp"
+#include "geodual/mesh/detail/progress_from_threads.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/random.hpp"
@@ -27,7 +28,6 @@
 #include <functional>
 #include <limits>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -41,13 +41,11 @@ using TriangleIterator = std::vector<Triangle>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-/// QualityOptions::progress, asked on the calling thread only; worker threads
-/// see its answer through an atomic flag. Each phase of compare_meshes covers
-/// a share of [0, 1].
+/// QualityOptions::progress, asked on the calling thread only (see
+/// ProgressFromThreads). Each phase of compare_meshes covers a share of [0, 1].
 class ProgressCheck {
  public:
-  explicit ProgressCheck(const std::function<bool(double)>& callback)
-      : callback_(callback), caller_(std::this_thread::get_id()) {}
+  explicit ProgressCheck(const std::function<bool(double)>& callback) : progress_(callback) {}
 
   /// The next calls report within [from, from + share).
   void phase(double from, double share) {
@@ -58,13 +56,10 @@ class ProgressCheck {
   /// Asks the callback with `done` of the current phase (on the calling
   /// thread; elsewhere it only reads the flag); false once cancelled.
   bool keep_going(double done) {
-    if (stopped_.load(std::memory_order_relaxed)) return false;
-    if (!callback_ || std::this_thread::get_id() != caller_) return true;
+    if (!progress_.asks()) return !progress_.refused();
     // Never backwards, not even by the rounding of from + share at a phase's end.
     reported_ = std::max(reported_, from_ + share_ * std::clamp(done, 0.0, 1.0));
-    if (callback_(reported_)) return true;
-    stopped_.store(true, std::memory_order_relaxed);
-    return false;
+    return progress_.keep_going(reported_);
   }
 
   /// keep_going, throwing geodual::Cancelled when not.
@@ -73,10 +68,8 @@ class ProgressCheck {
   }
 
  private:
-  const std::function<bool(double)>& callback_;
-  std::thread::id caller_;
+  ProgressFromThreads progress_;
   double reported_ = 0;  ///< the last fraction reported
-  std::atomic<bool> stopped_{false};
   double from_ = 0.0;
   double share_ = 0.0;
 };

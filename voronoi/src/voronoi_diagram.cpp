@@ -1,6 +1,7 @@
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include "face_boundary.hpp"
+#include "geodual/mesh/detail/progress_from_threads.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 
@@ -11,11 +12,9 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <functional>
 #include <mutex>
-#include <thread>
 #include <utility>
 
 namespace geodual::voronoi {
@@ -39,32 +38,26 @@ using Tracers = tbb::enumerable_thread_specific<FaceBoundaryTracer>;
 Index chunk_count(Index items, Index per_chunk) { return (items + per_chunk - 1) / per_chunk; }
 
 /// GeodesicOptions::progress during the extraction: asked with 1 (every face
-/// is reached by now) on the calling thread only, every 64th time it comes
-/// here; other threads see a refusal through a flag. Work stops at the next
-/// edge or face, and stop_if_refused() throws geodual::Cancelled.
+/// is reached by now) on the calling thread only (see ProgressFromThreads),
+/// every 64th time it comes here. Work stops at the next edge or face, and
+/// stop_if_refused() throws geodual::Cancelled.
 class CancelCheck {
  public:
-  explicit CancelCheck(const std::function<bool(double)>& progress)
-      : progress_(progress), caller_(std::this_thread::get_id()) {}
+  explicit CancelCheck(const std::function<bool(double)>& progress) : progress_(progress) {}
 
   /// False once refused.
   bool keep_going() {
-    if (refused_.load(std::memory_order_relaxed)) return false;
-    if (!progress_ || std::this_thread::get_id() != caller_ || ++calls_ % 64 != 0) return true;
-    if (progress_(1.0)) return true;
-    refused_.store(true, std::memory_order_relaxed);
-    return false;
+    if (!progress_.asks() || ++calls_ % 64 != 0) return !progress_.refused();
+    return progress_.keep_going(1.0);
   }
 
   void stop_if_refused() const {
-    if (refused_.load(std::memory_order_relaxed)) throw Cancelled("Voronoi diagram extraction cancelled");
+    if (progress_.refused()) throw Cancelled("Voronoi diagram extraction cancelled");
   }
 
  private:
-  const std::function<bool(double)>& progress_;
-  std::thread::id caller_;
+  ProgressFromThreads progress_;
   std::uint64_t calls_ = 0;  ///< on the calling thread only
-  std::atomic<bool> refused_{false};
 };
 
 /// Computes in parallel the crossings of every edge marked in `needed` that
