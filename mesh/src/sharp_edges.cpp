@@ -1,0 +1,53 @@
+#include "geodual/mesh/sharp_edges.hpp"
+
+#include "geodual/mesh/face_area.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace geodual {
+namespace {
+
+Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int k) { return mesh.vertices.row(mesh.faces(f, k)); }
+
+/// Whether face f runs the edge from a to b (a, then b, in its corner cycle).
+bool runs(const TriangleMesh& mesh, Index f, Index a, Index b) {
+  for (int k = 0; k < 3; ++k) {
+    if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+double normal_turn_degrees(const TriangleMesh& mesh, const MeshTopology& topology, Index e) {
+  const auto faces = topology.edge_faces(e);
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  if (faces.size() != 2 || !has_positive_area(mesh, faces[0]) || !has_positive_area(mesh, faces[1])) return nan;
+  Eigen::Vector3d normal[2];
+  for (int i = 0; i < 2; ++i) {
+    const Index f = faces[i];
+    normal[i] = (corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0));
+    if (!(normal[i].norm() > 0)) return nan;
+    normal[i].normalize();
+  }
+  const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+  if (runs(mesh, faces[0], a, b) == runs(mesh, faces[1], a, b)) normal[1] = -normal[1];
+  // atan2 of sine and cosine: accurate near 0 and 180 degrees alike.
+  const double angle = std::atan2(normal[0].cross(normal[1]).norm(), normal[0].dot(normal[1]));
+  return angle * 180 / std::numbers::pi;
+}
+
+std::vector<Index> sharp_edges(const TriangleMesh& mesh, const MeshTopology& topology, double angle_degrees) {
+  std::vector<Index> sharp;
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (normal_turn_degrees(mesh, topology, e) >= angle_degrees) sharp.push_back(e);
+  }
+  return sharp;
+}
+
+}  // namespace geodual
