@@ -244,12 +244,13 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   for (std::size_t s = 0; s < result.remesh.sites.size(); ++s) {
     const SurfacePoint& site = result.remesh.sites[s];
     const bool at_vertex = site.kind == SurfacePoint::Kind::vertex;
-    const Index elements =
-        at_vertex ? (cut_vertex.empty() ? surface.num_vertices() : static_cast<Index>(cut_vertex.size()))
-                  : surface.num_faces();
+    const Index elements = at_vertex
+                               ? (cut_vertex.empty() ? surface.num_vertices() : static_cast<Index>(cut_vertex.size()))
+                               : surface.num_faces();
     if (site.element < 0 || site.element >= elements) continue;
-    const Index vertex = at_vertex ? (cut_vertex.empty() ? site.element : cut_vertex[static_cast<std::size_t>(site.element)])
-                                   : surface.faces(site.element, 0);
+    const Index vertex = at_vertex
+                             ? (cut_vertex.empty() ? site.element : cut_vertex[static_cast<std::size_t>(site.element)])
+                             : surface.faces(site.element, 0);
     const std::size_t v = vertex_of_site.empty() ? s : static_cast<std::size_t>(vertex_of_site[s]);
     vertex_component[v] = surface_component[static_cast<std::size_t>(vertex)];
   }

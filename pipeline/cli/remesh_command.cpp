@@ -142,6 +142,11 @@ class RemeshCommand final : public Command {
     const remesh::LloydResult& relaxation = run.relaxation;
     const quality::TriangleQuality quality =
         run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
+    if (!run.features_dropped_reason.empty()) {
+      std::cerr << "geodual remesh: warning: " << mesh_path_
+                << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
+                << "\n";
+    }
     if (run.sites_added_for_topology > 0) {
       std::cerr << "geodual remesh: note: " << mesh_path_ << ": " << run.sites_added_reason << "\n";
     }
@@ -172,6 +177,9 @@ class RemeshCommand final : public Command {
     figures["feature_corners"] = run.features.corners.size();
     figures["feature_length"] = run.features.sharp_length;
     figures["feature_sites"] = run.feature_sites;
+    figures["features_dropped_reason"] = run.features_dropped_reason.empty()
+                                             ? nlohmann::ordered_json(nullptr)
+                                             : nlohmann::ordered_json(run.features_dropped_reason);
     figures["lloyd_iterations"] = relaxation.iterations;
     figures["warm_start_iterations"] = relaxation.warm_start_iterations;
     figures["lloyd_diagrams"] = relaxation.diagrams;

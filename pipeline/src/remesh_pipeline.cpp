@@ -83,11 +83,10 @@ RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, con
   return result;
 }
 
-RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
-  RemeshPipelineResult result;
-  result.input = std::move(input);
-  result.input_report = analyze_mesh(result.input.mesh);
+namespace {
 
+/// The stages after `load` on result.input, filling in `result`.
+void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -117,9 +116,10 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     std::optional<remesh::FeatureSites> feature_sites;
     if (options.remesh.sharp_angle > 0 && options.sites >= 4) {
       const double spacing = remesh::uniform_spacing(manifold, options.sites);
-      result.features = remesh::detect_features(
-          manifold,
-          {.sharp_angle = options.remesh.sharp_angle, .min_chain_length = options.remesh.min_feature_length * spacing});
+      result.features =
+          remesh::detect_features(manifold, {.sharp_angle = options.remesh.sharp_angle,
+                                             .scale = 0.5 * spacing,
+                                             .min_chain_length = options.remesh.min_feature_length * spacing});
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
         // Chords within 0.05 % of the diagonal: the statistics' feature recall tolerance is 0.1 %.
@@ -205,6 +205,30 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     result.statistics = quality::compare_meshes(result.input.mesh, result.remesh.mesh, quality_options);
     statistics_clock.stop();
     report(options.progress, Stage::statistics, 1.0);
+  }
+}
+
+}  // namespace
+
+RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
+  RemeshPipelineResult result;
+  result.input = std::move(input);
+  result.input_report = analyze_mesh(result.input.mesh);
+  try {
+    run_stages(result, options);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    if (result.features.empty()) throw;
+    // The features could not be kept: the remesh without them, and why.
+    result.features_dropped_reason = e.what();
+    result.features = {};
+    result.feature_cut = {};
+    result.feature_sites = result.site_twins = 0;
+    result.timings.clear();
+    RemeshPipelineOptions without = options;
+    without.remesh.sharp_angle = 0;
+    run_stages(result, without);
   }
   return result;
 }

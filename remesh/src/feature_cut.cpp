@@ -243,15 +243,17 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     }
     segments.push_back(n);
   }
-  // Round a corner, the first site of every chain at one distance, the
-  // smallest of their spacings: in a narrow wedge between two chains, the
-  // corner's cell then meets both first sites' cells at a Voronoi vertex
-  // (with unequal distances the nearer site's cell can cut the corner off).
+  // Round a corner, the first site of every chain at one distance d: the
+  // smallest of their spacings and half their lengths. In a wedge of angle
+  // theta between two chains, the corner's cell meets the cells of the first
+  // sites at distances d1 <= d2 at a Voronoi vertex only if d1 >= d2 cos(theta)
+  // (the bisectors must cross inside the wedge); equal distances meet in any
+  // wedge. Half the length leaves room for the chain's other end.
   std::map<Index, double> corner_distance;
   for (std::size_t c = 0; c < walks.size(); ++c) {
     const FeatureChain& chain = features.chains[c];
     if (chain.closed) continue;
-    const double own = walks[c].length() / static_cast<double>(segments[c]);
+    const double own = std::min(walks[c].length() / static_cast<double>(segments[c]), 0.5 * walks[c].length());
     for (const Index end : {chain.vertices.front(), chain.vertices.back()}) {
       const auto [it, inserted] = corner_distance.try_emplace(end, own);
       if (!inserted) it->second = std::min(it->second, own);
@@ -275,11 +277,10 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
       for (std::int64_t k = 0; k < segments[c]; ++k) add_at(walks[c], own * static_cast<double>(k));
       continue;
     }
-    if (segments[c] < 2) continue;
     // From the first site to the last, evenly at most `own` apart.
     const double first = corner_distance.at(chain.vertices.front());
     const double last = length - corner_distance.at(chain.vertices.back());
-    if (last - first < 0.25 * own) {
+    if (last - first < 0.25 * std::min(first, length - last)) {
       add_at(walks[c], 0.5 * (first + last));
       continue;
     }

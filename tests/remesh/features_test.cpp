@@ -40,9 +40,9 @@ TEST(Features, BoxHasTwelveCreasesAndEightCorners) {
 
 TEST(Features, SmoothSphereHasNoneAndShortNetworksAreDropped) {
   EXPECT_TRUE(remesh::detect_features(test::icosphere(3)).empty());
-  // The box's creases form one network 12 long.
-  EXPECT_FALSE(remesh::detect_features(cube(4), {.min_chain_length = 11.9}).empty());
-  EXPECT_TRUE(remesh::detect_features(cube(4), {.min_chain_length = 12.1}).empty());
+  // The box's creases are chains 1 long, corner to corner.
+  EXPECT_EQ(remesh::detect_features(cube(4), {.min_chain_length = 0.99}).sharp_chains, 12);
+  EXPECT_TRUE(remesh::detect_features(cube(4), {.min_chain_length = 1.01}).empty());
   EXPECT_TRUE(remesh::detect_features(cube(4), {.sharp_angle = 91}).empty());
   EXPECT_TRUE(remesh::detect_features(cube(4), {.sharp_angle = 0}).empty());
 }

@@ -98,6 +98,9 @@ struct RemeshPipelineResult {
   /// Of initial_sites, the second (third...) copies of a feature point, one
   /// per further side of its chain: initial_sites.size() - site_twins points.
   std::int64_t site_twins = 0;
+  /// Why the features were not kept, where the remesh that keeps them
+  /// failed and the remesh was made without them (empty otherwise).
+  std::string features_dropped_reason;
   std::vector<SurfacePoint> initial_sites;
   /// Sites sampled beyond options.sites because the surface's pieces and
   /// boundary loops need them (remesh::sample_sites_for_topology), and why.

@@ -6,8 +6,8 @@
 // (feature_cut.hpp), so that no Voronoi cell straddles one, puts sites along
 // them and welds the dual back together.
 //
-//   auto features = geodual::remesh::detect_features(surface, {.sharp_angle = 60, .min_chain_length = h});
-//   features.chains[0].vertices  // a polyline of surface vertices, corner to corner
+//   auto features = geodual::remesh::detect_features(surface, {.sharp_angle = 60, .scale = h / 2, .min_chain_length =
+//   h}); features.chains[0].vertices  // a polyline of surface vertices, corner to corner
 
 #include "geodual/mesh/triangle_mesh.hpp"
 
@@ -21,8 +21,16 @@ struct FeatureOptions {
   /// An edge is sharp where its faces' normals turn by at least this many
   /// degrees; 0: no sharp features.
   double sharp_angle = 60;
-  /// Networks of sharp edges (joined at shared vertices) shorter than this in
-  /// all are dropped: scan noise and details below the remesh's resolution.
+  /// The radius at which an edge's sharpness is judged (0: its two faces
+  /// only). An edge stays sharp when the faces within this distance of its
+  /// midpoint on either side, reached without crossing a sharp edge, are two
+  /// separate regions whose mean normals still turn by sharp_angle: a lone
+  /// noisy edge, which the faces round its ends join across, is dropped.
+  double scale = 0;
+  /// Chains of sharp edges (corner to corner) shorter than this are dropped,
+  /// again and again until none is left (chains that met at a dropped one may
+  /// join into a longer one): scan noise and details below the remesh's
+  /// resolution.
   double min_chain_length = 0;
   /// A chain that turns by at least this many degrees at a vertex has a corner there.
   double corner_angle = 60;

@@ -68,11 +68,12 @@ struct RemeshOptions {
   int max_repair_rounds = 10;
   /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
   /// pipeline when it samples the sites: creases where the normals turn by at
-  /// least this many degrees, in networks at least min_feature_length
-  /// spacings long, are cut open, lined with sites and welded in the dual.
-  /// 0: none.
-  double sharp_angle = 60;
-  double min_feature_length = 1;
+  /// least this many degrees at half the remesh's spacing, in chains at least
+  /// min_feature_length spacings long, are cut open, lined with sites and
+  /// welded in the dual. 0: none (the default until it keeps the organic
+  /// scans' quality: see docs/algorithms.md#sharp-features).
+  double sharp_angle = 0;
+  double min_feature_length = 0.5;
 };
 
 /// The Lloyd options remesh_from_sites relaxes `site_count` sites on
