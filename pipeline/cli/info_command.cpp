@@ -1,6 +1,7 @@
 // geodual info FILE [--json]: what a mesh file holds and what is wrong with it.
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "progress_bar.hpp"
 #include "text_table.hpp"
 
@@ -11,6 +12,8 @@
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/report_json.hpp"
+#include "geodual/remesh/features.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -34,6 +37,15 @@ class InfoCommand final : public Command {
     command.add_option("FILE", path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
     command.add_flag("--json", json_, "Print one JSON object instead of a table");
     command.add_option("--preview", preview_path_, "Also render a picture of the mesh: .png");
+    command
+        .add_option("--sharp-angle", sharp_angle_,
+                    "Report the sharp features a remesh with --sharp-angle would keep: creases where the normals "
+                    "turn by at least this many degrees (0: none)")
+        ->capture_default_str()
+        ->check(number_between(0, 180));
+    command.add_option("--sites", sites_, "The remesh's site count, whose spacing sets the features' scale")
+        ->capture_default_str()
+        ->check(integer_between(4, 2147483647));
     command.footer("Example:\n  geodual info scan.ply --json\n  geodual info scan.ply --preview scan.png");
     return command;
   }
@@ -50,14 +62,21 @@ class InfoCommand final : public Command {
     stop_if_interrupted();
     const auto analysis_start = std::chrono::steady_clock::now();
     const MeshReport report = analyze_mesh(loaded.mesh);
+    stop_if_interrupted();
+    // The features on the surface a remesh sees: the input cut to a manifold.
+    remesh::FeatureSet features;
+    if (sharp_angle_ > 0 && report.faces > 0) {
+      const TriangleMesh surface = remesh::cut_to_manifold(loaded.mesh).mesh;
+      features = remesh::detect_features(surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_, 0.5));
+    }
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, loaded.mesh, {}, still_wanted);
 
     if (json_) {
-      print_json(loaded.info, report, read_seconds, analysis_seconds);
+      print_json(loaded.info, report, features, read_seconds, analysis_seconds);
     } else {
-      print_table(loaded.info, report, read_seconds, analysis_seconds);
+      print_table(loaded.info, report, features, read_seconds, analysis_seconds);
     }
     return 0;
   }
@@ -68,20 +87,24 @@ class InfoCommand final : public Command {
     if (interrupted()) throw Cancelled("info cancelled");
   }
 
-  void print_json(const io::ReadInfo& info, const MeshReport& report, double read_seconds,
-                  double analysis_seconds) const {
+  void print_json(const io::ReadInfo& info, const MeshReport& report, const remesh::FeatureSet& features,
+                  double read_seconds, double analysis_seconds) const {
     nlohmann::ordered_json json;
     json["file"] = path_;
     json.update(pipeline::read_info_json(info));
     json["read_seconds"] = read_seconds;
     json["analysis_seconds"] = analysis_seconds;
     json.update(pipeline::mesh_report_json(report));
+    json["sharp_angle_deg"] = sharp_angle_;
+    json["feature_chains"] = features.sharp_chains;
+    json["feature_corners"] = features.corners.size();
+    json["feature_length"] = features.sharp_length;
     // Paths and notes need not be UTF-8: replace what is not rather than fail.
     std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
   }
 
-  void print_table(const io::ReadInfo& info, const MeshReport& report, double read_seconds,
-                   double analysis_seconds) const {
+  void print_table(const io::ReadInfo& info, const MeshReport& report, const remesh::FeatureSet& features,
+                   double read_seconds, double analysis_seconds) const {
     KeyValueTable table;
     table.add("file", path_);
     table.add("format",
@@ -108,6 +131,13 @@ class InfoCommand final : public Command {
     table.add("euler characteristic", with_thousands(report.euler_characteristic));
     table.add("genus", report.genus ? significant(*report.genus) : "not defined (not an orientable 2-manifold)");
     table.add("oriented", report.oriented ? "yes" : "no (some edge is used twice in one direction)");
+    if (sharp_angle_ > 0) {
+      table.add("sharp features", with_thousands(features.sharp_chains) + " chains, " +
+                                      with_thousands(static_cast<std::int64_t>(features.corners.size())) +
+                                      " corners, length " + significant(features.sharp_length) + " (" +
+                                      significant(sharp_angle_, 3) + " deg at the scale of " + with_thousands(sites_) +
+                                      " sites)");
+    }
     table.add("bounding box", point(report.bbox_min) + " to " + point(report.bbox_max));
     table.add("bbox diagonal", significant(report.bbox_diagonal));
     table.add("analysis time", duration(analysis_seconds));
@@ -117,6 +147,8 @@ class InfoCommand final : public Command {
   std::string path_;
   bool json_ = false;
   std::string preview_path_;
+  double sharp_angle_ = 60;
+  std::int64_t sites_ = 4000;
 };
 
 }  // namespace

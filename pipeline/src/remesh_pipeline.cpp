@@ -116,10 +116,9 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     std::optional<remesh::FeatureSites> feature_sites;
     if (options.remesh.sharp_angle > 0 && options.sites >= 4) {
       const double spacing = remesh::uniform_spacing(manifold, options.sites);
-      result.features =
-          remesh::detect_features(manifold, {.sharp_angle = options.remesh.sharp_angle,
-                                             .scale = 0.5 * spacing,
-                                             .min_chain_length = options.remesh.min_feature_length * spacing});
+      result.features = remesh::detect_features(
+          manifold, remesh::remesh_feature_options(manifold, options.sites, options.remesh.sharp_angle,
+                                                   options.remesh.min_feature_length));
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
         // Chords within 0.05 % of the diagonal: the statistics' feature recall tolerance is 0.1 %.

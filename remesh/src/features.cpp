@@ -3,6 +3,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/sharp_edges.hpp"
+#include "geodual/remesh/curvature_density.hpp"
 
 #include <Eigen/Geometry>
 
@@ -187,6 +188,12 @@ Chains walk_chains(const TriangleMesh& surface, const FeatureGraph& graph, doubl
 }
 
 }  // namespace
+
+FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
+                                      double min_length) {
+  const double spacing = uniform_spacing(surface, sites);
+  return {.sharp_angle = sharp_angle, .scale = 0.5 * spacing, .min_chain_length = min_length * spacing};
+}
 
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {
   FeatureSet features;

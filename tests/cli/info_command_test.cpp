@@ -74,6 +74,29 @@ TEST(InfoCommand, GenusIsNullWhereItMeansNothing) {
   EXPECT_EQ(json.at("nonmanifold_vertices").get<int>(), 1);
 }
 
+TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
+  // A unit cube of 12 triangles: 12 creases of length 1 meeting at 8 corners;
+  // the diagonals of its sides are flat.
+  const ScratchFolder folder;
+  const auto path = folder.write("cube.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                 "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+                                 "f 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n");
+  CliRun run = run_cli({"info", path.string(), "--json"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["feature_chains"], 12);
+  EXPECT_EQ(json["feature_corners"], 8);
+  EXPECT_NEAR(json["feature_length"].get<double>(), 12.0, 1e-12);
+  // Creases turning by 90 degrees are not sharp at 91.
+  run = run_cli({"info", path.string(), "--json", "--sharp-angle", "91"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["feature_chains"], 0);
+  run = run_cli({"info", path.string()});
+  EXPECT_NE(run.out.find("12 chains, 8 corners"), std::string::npos) << run.out;
+  EXPECT_EQ(run_cli({"info", path.string(), "--sharp-angle", "nan"}).exit_status, 2);
+}
+
 TEST(InfoCommand, TableShowsTheFigures) {
   const CliRun run = run_cli({"info", bundled_scan});
   ASSERT_EQ(run.exit_status, 0) << run.err;

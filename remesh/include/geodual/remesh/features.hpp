@@ -59,6 +59,12 @@ struct FeatureSet {
   bool empty() const { return sharp_edges.empty(); }
 };
 
+/// The options the remesh pipeline detects features with for `sites` sites
+/// on `surface`: sharpness judged at half the remesh's spacing, chains at
+/// least min_length spacings long.
+FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
+                                      double min_length);
+
 /// The features of `surface`, a 2-manifold (such as cut_to_manifold's
 /// mesh): sharp edges have exactly two faces. Deterministic.
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options = {});
