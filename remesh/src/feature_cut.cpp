@@ -223,25 +223,12 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     if (held.size() > before) ++result.points;
   };
   for (const Index v : features.corners) add({v, v, 0});
-  // Each chain's own spacing: even, at most options.spacing, closer where the
-  // chord error asks.
+  // Each chain's own spacing: even, about options.spacing.
   std::vector<ChainWalk> walks;
   std::vector<std::int64_t> segments;
   for (const FeatureChain& chain : features.chains) {
     const ChainWalk& walk = walks.emplace_back(surface, chain);
-    const double length = walk.length();
-    const std::int64_t edges = static_cast<std::int64_t>(chain.vertices.size()) - 1;
-    std::int64_t n = std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(std::ceil(length / options.spacing)));
-    while (options.max_chord_error > 0 && n < 4 * edges) {
-      bool fits = true;
-      for (std::int64_t k = 0; k < n && fits; ++k) {
-        fits = walk.within(length * static_cast<double>(k) / static_cast<double>(n),
-                           length * static_cast<double>(k + 1) / static_cast<double>(n), options.max_chord_error);
-      }
-      if (fits) break;
-      ++n;
-    }
-    segments.push_back(n);
+    segments.push_back(std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(walk.length() / options.spacing)));
   }
   // Round a corner, the first site of every chain at one distance d: the
   // smallest of their spacings and half their lengths. In a wedge of angle
@@ -269,25 +256,53 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     }
     add({a, b, lattice_parameter(t)});
   };
+  // A stretch whose chord leaves the chain by more than the chord error is
+  // split evenly into the fewest parts that keep to it (at most 16): the
+  // chain gets denser where it bends, there only.
+  std::vector<double> at;
+  const auto refine = [&](const ChainWalk& walk, double from, double to) {
+    if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return;
+    int parts = 2;
+    for (; parts < 16; ++parts) {
+      bool fits = true;
+      for (int k = 0; k < parts && fits; ++k) {
+        fits =
+            walk.within(from + (to - from) * k / parts, from + (to - from) * (k + 1) / parts, options.max_chord_error);
+      }
+      if (fits) break;
+    }
+    for (int k = 1; k < parts; ++k) at.push_back(from + (to - from) * k / parts);
+  };
   for (std::size_t c = 0; c < walks.size(); ++c) {
     const FeatureChain& chain = features.chains[c];
     const double length = walks[c].length(), own = length / static_cast<double>(segments[c]);
     if (!(length > 0)) continue;
+    // The stretch ends: evenly round a closed chain; on an open one, from the
+    // corners' first sites, evenly about `own` apart in between.
+    std::vector<double> ends;
     if (chain.closed) {
-      for (std::int64_t k = 0; k < segments[c]; ++k) add_at(walks[c], own * static_cast<double>(k));
-      continue;
+      for (std::int64_t k = 0; k <= segments[c]; ++k) ends.push_back(own * static_cast<double>(k));
+    } else {
+      const double first = corner_distance.at(chain.vertices.front());
+      const double last = length - corner_distance.at(chain.vertices.back());
+      ends.push_back(0);
+      if (last - first < 0.25 * std::min(first, length - last)) {
+        ends.push_back(0.5 * (first + last));
+      } else {
+        const auto gaps = std::max<std::int64_t>(1, std::llround((last - first) / own));
+        for (std::int64_t k = 0; k <= gaps; ++k) {
+          ends.push_back(first + (last - first) * static_cast<double>(k) / static_cast<double>(gaps));
+        }
+      }
+      ends.push_back(length);
     }
-    // From the first site to the last, evenly at most `own` apart.
-    const double first = corner_distance.at(chain.vertices.front());
-    const double last = length - corner_distance.at(chain.vertices.back());
-    if (last - first < 0.25 * std::min(first, length - last)) {
-      add_at(walks[c], 0.5 * (first + last));
-      continue;
+    at.clear();
+    for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+      if (k > 0) at.push_back(ends[k]);
+      refine(walks[c], ends[k], ends[k + 1]);
     }
-    const auto gaps = std::max<std::int64_t>(1, std::llround(std::ceil((last - first) / own)));
-    for (std::int64_t k = 0; k <= gaps; ++k) {
-      add_at(walks[c], first + (last - first) * static_cast<double>(k) / static_cast<double>(gaps));
-    }
+    if (chain.closed) at.push_back(0);  // the closing end is a site too (the open ends are corners)
+    for (const double s : at) add_at(walks[c], s);
   }
   return result;
 }
@@ -422,7 +437,7 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
         nearest = point_on_edge(surface, f, lo, hi, lattice_parameter(along));
       }
     }
-    if (best < std::numeric_limits<double>::infinity()) welded.sites_needed.push_back(nearest);
+    if (best < std::numeric_limits<double>::infinity()) welded.site_moves.emplace_back(s, nearest);
   }
   return welded;
 }
@@ -441,17 +456,15 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     dual_seconds += result.dual_seconds;
     const auto start = std::chrono::steady_clock::now();
     WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
-    std::vector<SurfacePoint> more = missing_twins(surface, features, result.sites);
+    for (const auto& [site, point] : welded.site_moves) result.sites[site] = point;
+    const std::vector<SurfacePoint> more = missing_twins(surface, features, result.sites);
     if (welded.cracked_edges == 0 && more.empty()) {
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);
       break;
     }
-    more.insert(more.end(), welded.sites_needed.begin(), welded.sites_needed.end());
-    std::vector<SurfacePoint> twins = missing_twins(surface, features, more);
-    more.insert(more.end(), twins.begin(), twins.end());
     dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (round >= options.max_rounds || more.empty()) {
+    if (round >= options.max_rounds || (more.empty() && welded.site_moves.empty())) {
       throw Error("the remesh does not close along the sharp features after " + std::to_string(round) +
                   " rounds: " + std::to_string(welded.cracked_edges) +
                   " edges of its boundary leave the surface's creases and boundary; try more sites, or a larger "

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace geodual::remesh {
@@ -61,22 +62,24 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
 struct WeldedDual {
   TriangleMesh mesh;                  ///< twins merged into one vertex
   std::vector<Index> vertex_of_site;  ///< per site, its vertex in `mesh`
-  /// Sites on boundaries of the cut surface (twins included) that would close
-  /// the cracks left: the weld is a remesh only when this is empty.
-  std::vector<SurfacePoint> sites_needed;
+  /// Sites inside a piece that reached its boundary, each with the point of
+  /// that boundary nearest it: moved there (and given twins), they close the
+  /// cracks. The weld is a remesh only when there are none.
+  std::vector<std::pair<std::size_t, SurfacePoint>> site_moves;
   std::int64_t cracked_edges = 0;  ///< boundary edges of `mesh` off the surface's boundary
 };
 
 /// Welds `dual` (vertex i is sites[i], on cut.mesh) along the chains. A
 /// boundary edge of the welded mesh with an end off the surface's boundary is
-/// a crack: some piece's dual left the boundary there for a site inside; the
-/// point of the boundary nearest that site is asked for in sites_needed.
+/// a crack: some piece's dual left the boundary there for a site inside,
+/// which site_moves moves onto the boundary.
 WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                const TriangleMesh& dual, std::span<const SurfacePoint> sites);
 
 /// dual_with_repair on the prepared cut surface, then the weld; while it
-/// cracks, the sites it needs (and the twins of repair sites on chains) are
-/// added and everything recomputed. The result's mesh is the welded remesh
+/// cracks, the sites inside that reached a boundary move onto it, the twins
+/// of sites on chains are added (repair sites among them) and everything is
+/// recomputed. The result's mesh is the welded remesh
 /// (vertex_of_site filled in). \throw geodual::Error as dual_with_repair, or
 /// when the cracks persist after options.max_rounds.
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
