@@ -219,7 +219,7 @@ void compare_topology(const TriangleMesh& surface, const TriangleMesh& remesh,
 RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   const TriangleMesh& input = result.input.mesh;
   const TriangleMesh& surface = result.surface.mesh;  // same faces as the input, vertices split
-  const TriangleMesh& remesh = result.remesh.mesh;    // vertex i is result.remesh.sites[i]
+  const TriangleMesh& remesh = result.remesh.mesh;    // vertex i is result.remesh.sites[i] unless welded
   RunFigures figures;
   figures.input_faces = input.num_faces();
   figures.remesh_vertices = remesh.num_vertices();
@@ -236,17 +236,25 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   const MeshTopology surface_topology = build_mesh_topology(surface);
   const std::vector<Index>& surface_component = surface_topology.vertex_component;
   const Index components = surface_topology.num_components();
-  std::vector<Index> site_component;
-  for (const SurfacePoint& site : result.remesh.sites) {
-    const Index elements = site.kind == SurfacePoint::Kind::vertex ? surface.num_vertices() : surface.num_faces();
-    if (site.element < 0 || site.element >= elements) {
-      site_component.push_back(-1);
-      continue;
-    }
-    const Index vertex = site.kind == SurfacePoint::Kind::vertex ? site.element : surface.faces(site.element, 0);
-    site_component.push_back(surface_component[static_cast<std::size_t>(vertex)]);
+  // Per remesh vertex, the surface component of its site. Sites at vertices
+  // of the surface cut along its features name that cut's vertices.
+  const std::vector<Index>& cut_vertex = result.feature_cut.original_vertex;
+  const std::vector<Index>& vertex_of_site = result.remesh.vertex_of_site;
+  std::vector<Index> vertex_component(static_cast<std::size_t>(remesh.num_vertices()), -1);
+  for (std::size_t s = 0; s < result.remesh.sites.size(); ++s) {
+    const SurfacePoint& site = result.remesh.sites[s];
+    const bool at_vertex = site.kind == SurfacePoint::Kind::vertex;
+    const Index elements = at_vertex
+                               ? (cut_vertex.empty() ? surface.num_vertices() : static_cast<Index>(cut_vertex.size()))
+                               : surface.num_faces();
+    if (site.element < 0 || site.element >= elements) continue;
+    const Index vertex = at_vertex
+                             ? (cut_vertex.empty() ? site.element : cut_vertex[static_cast<std::size_t>(site.element)])
+                             : surface.faces(site.element, 0);
+    const std::size_t v = vertex_of_site.empty() ? s : static_cast<std::size_t>(vertex_of_site[s]);
+    vertex_component[v] = surface_component[static_cast<std::size_t>(vertex)];
   }
-  compare_topology(surface, remesh, surface_component, components, site_component, figures);
+  compare_topology(surface, remesh, surface_component, components, vertex_component, figures);
   return figures;
 }
 

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
 
 namespace geodual::cli {
 namespace {
@@ -37,6 +38,19 @@ CLI::Validator finite_non_negative() {
         return {};
       },
       "NUMBER >= 0");
+}
+
+CLI::Validator number_between(double low, double high) {
+  std::ostringstream text;
+  text << '[' << low << ", " << high << ']';
+  const std::string range = text.str();
+  return CLI::Validator(
+      [low, high, range](std::string& text) -> std::string {
+        double value = 0;
+        if (!parse_double(text, value) || !(value >= low && value <= high)) return "must be a number in " + range;
+        return {};
+      },
+      "NUMBER in " + range);
 }
 
 CLI::Validator finite_positive() {

@@ -75,6 +75,12 @@ class RemeshCommand final : public Command {
         ->capture_default_str()
         ->check(finite_non_negative());
     command
+        .add_option("--sharp-angle", options_.sharp_angle,
+                    "Keep creases where the normals turn by at least this many degrees (in networks at least one "
+                    "remesh spacing long) as chains of edges, corners included (0: none; ignored with --sites-file)")
+        ->capture_default_str()
+        ->check(number_between(0, 180));
+    command
         .add_option("--max-repair-rounds", options_.max_repair_rounds,
                     "Rounds of adding sites where the dual fails before giving up")
         ->capture_default_str()
@@ -137,6 +143,11 @@ class RemeshCommand final : public Command {
     const remesh::LloydResult& relaxation = run.relaxation;
     const quality::TriangleQuality quality =
         run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
+    if (!run.features_dropped_reason.empty()) {
+      std::cerr << "geodual remesh: warning: " << mesh_path_
+                << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
+                << "\n";
+    }
     if (run.sites_added_for_topology > 0) {
       std::cerr << "geodual remesh: note: " << mesh_path_ << ": " << run.sites_added_reason << "\n";
     }
@@ -160,8 +171,16 @@ class RemeshCommand final : public Command {
     figures["sampling"] =
         sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     figures["seed"] = sites_.seed();
-    figures["sites"] = run.initial_sites.size();
+    figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
     figures["sites_added_for_topology"] = run.sites_added_for_topology;
+    figures["sharp_angle_deg"] = options_.sharp_angle;
+    figures["feature_chains"] = run.features.sharp_chains;
+    figures["feature_corners"] = run.features.corners.size();
+    figures["feature_length"] = run.features.sharp_length;
+    figures["feature_sites"] = run.feature_sites;
+    figures["features_dropped_reason"] = run.features_dropped_reason.empty()
+                                             ? nlohmann::ordered_json(nullptr)
+                                             : nlohmann::ordered_json(run.features_dropped_reason);
     figures["lloyd_iterations"] = relaxation.iterations;
     figures["warm_start_iterations"] = relaxation.warm_start_iterations;
     figures["lloyd_diagrams"] = relaxation.diagrams;
@@ -238,10 +257,16 @@ class RemeshCommand final : public Command {
                                          : std::string()) +
                   ")");
     table.add("sites",
-              with_thousands(static_cast<std::int64_t>(run.initial_sites.size())) +
+              with_thousands(static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins) +
                   (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                          : " (" + sites_.file() + ")") +
                   (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
+    if (!run.features.empty()) {
+      table.add("features", with_thousands(run.features.sharp_chains) + " sharp chains (" +
+                                significant(options_.sharp_angle, 3) + " deg), " +
+                                with_thousands(static_cast<std::int64_t>(run.features.corners.size())) +
+                                " corners, lined with " + with_thousands(run.feature_sites) + " of the sites");
+    }
     if (!relaxation.energy.empty()) {
       table.add("lloyd", std::to_string(relaxation.iterations) + " iterations" +
                              (relaxation.warm_start_iterations > 0

@@ -5,6 +5,7 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
+#include "geodual/remesh/curvature_density.hpp"
 
 #include <Eigen/Geometry>
 
@@ -82,11 +83,10 @@ RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, con
   return result;
 }
 
-RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
-  RemeshPipelineResult result;
-  result.input = std::move(input);
-  result.input_report = analyze_mesh(result.input.mesh);
+namespace {
 
+/// The stages after `load` on result.input, filling in `result`.
+void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -111,8 +111,30 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
     remesh::require_a_site_on_every_piece(result.surface.mesh, result.initial_sites);
   } else {
+    // Sharp features: cut open and lined with sites, the rest sampled around them.
+    const TriangleMesh& manifold = result.surface.mesh;
+    std::optional<remesh::FeatureSites> feature_sites;
+    if (options.remesh.sharp_angle > 0 && options.sites >= 4) {
+      const double spacing = remesh::uniform_spacing(manifold, options.sites);
+      result.features =
+          remesh::detect_features(manifold, {.sharp_angle = options.remesh.sharp_angle,
+                                             .scale = 0.5 * spacing,
+                                             .min_chain_length = options.remesh.min_feature_length * spacing});
+      if (!result.features.empty()) {
+        result.feature_cut = remesh::cut_along_features(manifold, result.features);
+        // Chords within 0.05 % of the diagonal: the statistics' feature recall tolerance is 0.1 %.
+        feature_sites =
+            remesh::feature_sites(manifold, result.features, result.feature_cut,
+                                  {.spacing = spacing, .max_chord_error = 5e-4 * result.input_report.bbox_diagonal});
+        result.feature_sites = feature_sites->points;
+        result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
+      }
+    }
     remesh::SampledSites sampled =
-        remesh::sample_sites_for_topology(result.surface.mesh, options.sites, options.sampling);
+        feature_sites ? remesh::sample_sites_around(result.feature_cut.mesh,
+                                                    std::max<std::int64_t>(0, options.sites - feature_sites->points),
+                                                    feature_sites->sites, options.sampling)
+                      : remesh::sample_sites_for_topology(manifold, options.sites, options.sampling);
     result.initial_sites = std::move(sampled.sites);
     result.sites_added_for_topology = sampled.sites_added_for_topology;
     result.sites_added_reason = sampled.topology_reason;
@@ -123,7 +145,8 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
 
   // Relaxation: the geodesic engine reports the fraction of faces reached in
   // each diagram; Lloyd's accepted iterations split the stage.
-  const TriangleMesh& surface = result.surface.mesh;
+  const bool features = !result.features.empty();
+  const TriangleMesh& surface = features ? result.feature_cut.mesh : result.surface.mesh;
   remesh::LloydOptions lloyd =
       remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
   const int diagrams = lloyd.iterations + 1;
@@ -154,14 +177,17 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   StageClock dual_clock(result.timings, Stage::dual);
   // The relaxed diagram moves on to the dual (its first round's diagram).
   try {
-    result.remesh = remesh::dual_with_repair(*geodesic_surface, result.relaxation.sites,
-                                             std::move(result.relaxation.diagram), repair);
+    result.remesh = features ? remesh::welded_dual_with_repair(*geodesic_surface, result.surface.mesh, result.features,
+                                                               result.feature_cut, result.relaxation.sites,
+                                                               std::move(result.relaxation.diagram), repair)
+                             : remesh::dual_with_repair(*geodesic_surface, result.relaxation.sites,
+                                                        std::move(result.relaxation.diagram), repair);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
     // The message names the surface's pieces and loops: say where loops the
     // input does not have come from.
-    const std::string note = loops_from_cut(build_mesh_topology(surface).num_boundary_loops);
+    const std::string note = loops_from_cut(build_mesh_topology(result.surface.mesh).num_boundary_loops);
     if (note.empty()) throw;
     throw Error(e.what() + note);
   }
@@ -179,6 +205,30 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     result.statistics = quality::compare_meshes(result.input.mesh, result.remesh.mesh, quality_options);
     statistics_clock.stop();
     report(options.progress, Stage::statistics, 1.0);
+  }
+}
+
+}  // namespace
+
+RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
+  RemeshPipelineResult result;
+  result.input = std::move(input);
+  result.input_report = analyze_mesh(result.input.mesh);
+  try {
+    run_stages(result, options);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    if (result.features.empty()) throw;
+    // The features could not be kept: the remesh without them, and why.
+    result.features_dropped_reason = e.what();
+    result.features = {};
+    result.feature_cut = {};
+    result.feature_sites = result.site_twins = 0;
+    result.timings.clear();
+    RemeshPipelineOptions without = options;
+    without.remesh.sharp_angle = 0;
+    run_stages(result, without);
   }
   return result;
 }

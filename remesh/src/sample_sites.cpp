@@ -43,15 +43,19 @@ struct TopologyMinimum {
   std::int64_t loops = 0;
 };
 
-std::int64_t component_minimum(std::int64_t loops) { return std::max<std::int64_t>(4, 3 * loops); }
+/// A component holding given sites needs only 3 per loop of its own.
+std::int64_t component_minimum(std::int64_t loops, bool has_given) {
+  return has_given ? 3 * loops : std::max<std::int64_t>(4, 3 * loops);
+}
 
-TopologyMinimum topology_minimum(const SamplingSurface& surface, const std::vector<std::int64_t>& loops_per_component) {
+TopologyMinimum topology_minimum(const SamplingSurface& surface, const std::vector<std::int64_t>& loops_per_component,
+                                 const std::vector<std::int64_t>& given_per_component) {
   TopologyMinimum minimum;
   for (Index c = 0; c < surface.num_components; ++c) {
     if (!(surface.component_area[c] > 0)) continue;
     ++minimum.components;
     minimum.loops += loops_per_component[c];
-    minimum.needed += component_minimum(loops_per_component[c]);
+    minimum.needed += component_minimum(loops_per_component[c], given_per_component[c] > 0);
     minimum.needed_by_loops += 3 * loops_per_component[c];
   }
   return minimum;
@@ -60,6 +64,7 @@ TopologyMinimum topology_minimum(const SamplingSurface& surface, const std::vect
 /// Sites per component (0 for components without area).
 std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
                                               const std::vector<std::int64_t>& loops_per_component,
+                                              const std::vector<std::int64_t>& given_per_component,
                                               std::int64_t count) {
   std::vector<Index> with_area;
   for (Index c = 0; c < surface.num_components; ++c) {
@@ -67,12 +72,12 @@ std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
   }
   std::vector<double> areas;
   std::vector<std::int64_t> minimum, loop_minimum;
-  const TopologyMinimum total = topology_minimum(surface, loops_per_component);
+  const TopologyMinimum total = topology_minimum(surface, loops_per_component, given_per_component);
   const std::int64_t needed = total.needed, needed_by_loops = total.needed_by_loops, num_loops = total.loops;
   for (const Index c : with_area) {
     areas.push_back(surface.component_area[c]);
     loop_minimum.push_back(3 * loops_per_component[c]);
-    minimum.push_back(component_minimum(loops_per_component[c]));
+    minimum.push_back(component_minimum(loops_per_component[c], given_per_component[c] > 0));
   }
   if (count < needed_by_loops) {
     const std::string also =
@@ -127,7 +132,10 @@ std::vector<std::int64_t> sites_per_loop(const std::vector<const BoundaryLoop*>&
 /// Moves sites that sit exactly on a corner of their face or on another
 /// site's position (the later one moves): interior sites to a new random
 /// point of their face, boundary sites a little along their edge.
-void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoint>& sites, std::uint64_t seed) {
+/// Sites before `first_movable` (placed by the caller) stay where they are,
+/// whatever they coincide with.
+void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoint>& sites, std::size_t first_movable,
+                               std::uint64_t seed) {
   Rng rng(seed, stream(-1, repair));
   std::vector<Eigen::Vector3d> positions(sites.size());
   std::vector<std::size_t> order(sites.size());
@@ -137,6 +145,7 @@ void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
     bad.clear();
     for (std::size_t i = 0; i < sites.size(); ++i) {
       positions[i] = detail::site_position(mesh, sites[i]);
+      if (i < first_movable) continue;
       for (int k = 0; k < 3; ++k) {
         if (positions[i] == mesh.vertices.row(mesh.faces(sites[i].element, k)).transpose()) {
           bad.push_back(i);
@@ -154,7 +163,8 @@ void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
     };
     std::sort(order.begin(), order.end(), less);
     for (std::size_t i = 1; i < order.size(); ++i) {
-      if (positions[order[i]] == positions[order[i - 1]]) bad.push_back(order[i]);
+      // Of two at one position, the later moves (the caller's twins stay).
+      if (positions[order[i]] == positions[order[i - 1]] && order[i] >= first_movable) bad.push_back(order[i]);
     }
     if (bad.empty()) return;
     std::sort(bad.begin(), bad.end());
@@ -178,32 +188,86 @@ void separate_coincident_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
               " sites at distinct positions off the vertices (the faces are too small for their coordinates)");
 }
 
+/// Per boundary loop of `surface`, whether one of `sites` lies on it: on one
+/// of its edges (a barycentric 0) or at one of its vertices.
+std::vector<std::uint8_t> loops_holding(const TriangleMesh& mesh, const SamplingSurface& surface,
+                                        std::span<const SurfacePoint> sites) {
+  std::vector<std::uint8_t> holds(surface.boundary_loops.size(), 0);
+  if (sites.empty()) return holds;
+  std::vector<Index> loop_of_edge(3 * static_cast<std::size_t>(mesh.num_faces()), -1);
+  std::vector<Index> loop_of_vertex(static_cast<std::size_t>(mesh.vertices.rows()), -1);
+  for (std::size_t l = 0; l < surface.boundary_loops.size(); ++l) {
+    for (const detail::BoundaryEdge& edge : surface.boundary_loops[l].edges) {
+      loop_of_edge[3 * static_cast<std::size_t>(edge.face) + static_cast<std::size_t>(edge.corner)] =
+          static_cast<Index>(l);
+      for (const int k : {edge.corner, (edge.corner + 1) % 3}) {
+        loop_of_vertex[mesh.faces(edge.face, k)] = static_cast<Index>(l);
+      }
+    }
+  }
+  for (const SurfacePoint& site : sites) {
+    Index loop = -1;
+    if (site.kind == SurfacePoint::Kind::vertex) {
+      loop = loop_of_vertex[site.element];
+    } else {
+      for (int k = 0; k < 3 && loop < 0; ++k) {
+        if (site.barycentric[k] == 1) loop = loop_of_vertex[mesh.faces(site.element, k)];
+        if (site.barycentric[k] == 0) loop = loop_of_edge[3 * static_cast<std::size_t>(site.element) + (k + 1) % 3];
+      }
+    }
+    if (loop >= 0) holds[static_cast<std::size_t>(loop)] = 1;
+  }
+  return holds;
+}
+
 /// sample_sites, with the count raised to the topology's minimum first when
 /// `raise_for_topology`.
 SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options,
-                    bool raise_for_topology) {
-  if (count < 4) {
+                    bool raise_for_topology, std::span<const SurfacePoint> given = {}) {
+  if (count < 4 && given.empty()) {
     throw UsageError("site count " + std::to_string(count) + " is too small: at least 4 sites are needed");
   }
   if (count > std::numeric_limits<Index>::max()) {
     throw UsageError("site count " + std::to_string(count) + " is too large: at most " +
                      std::to_string(std::numeric_limits<Index>::max()) + " sites");
   }
+  if (count < 0) throw UsageError("site count " + std::to_string(count) + " is negative");
   const SamplingSurface surface = detail::build_sampling_surface(mesh, options.sites_on_boundary);
   if (std::none_of(surface.component_area.begin(), surface.component_area.end(), [](double a) { return a > 0; })) {
     throw Error(
         "sample_sites: the mesh has no face with positive area and three distinct corners: nowhere to put sites");
   }
 
+  // The given sites, per component; the loops holding one are theirs.
+  std::vector<std::int64_t> given_per_component(static_cast<std::size_t>(surface.num_components), 0);
+  const std::vector<std::uint8_t> loop_given = loops_holding(mesh, surface, given);
+  std::vector<Index> vertex_component;
+  if (!given.empty()) {
+    vertex_component.assign(static_cast<std::size_t>(mesh.vertices.rows()), -1);
+    for (Index f = 0; f < mesh.num_faces(); ++f) {
+      if (surface.face_component[f] < 0) continue;
+      for (int k = 0; k < 3; ++k) vertex_component[mesh.faces(f, k)] = surface.face_component[f];
+    }
+  }
+  const auto given_component = [&](const SurfacePoint& site) {
+    return site.kind == SurfacePoint::Kind::face ? surface.face_component[site.element]
+                                                 : vertex_component[site.element];
+  };
+  for (const SurfacePoint& site : given) {
+    const Index c = given_component(site);
+    if (c >= 0) ++given_per_component[c];
+  }
   std::vector<std::vector<const BoundaryLoop*>> loops(static_cast<std::size_t>(surface.num_components));
   std::vector<std::int64_t> loops_per_component(loops.size(), 0);
-  for (const BoundaryLoop& loop : surface.boundary_loops) {
+  for (std::size_t l = 0; l < surface.boundary_loops.size(); ++l) {
+    if (loop_given[l]) continue;
+    const BoundaryLoop& loop = surface.boundary_loops[l];
     loops[loop.component].push_back(&loop);
     ++loops_per_component[loop.component];
   }
   SampledSites sampled;
   sampled.boundary_loops = static_cast<std::int64_t>(surface.boundary_loops.size());
-  const TopologyMinimum minimum = topology_minimum(surface, loops_per_component);
+  const TopologyMinimum minimum = topology_minimum(surface, loops_per_component, given_per_component);
   if (raise_for_topology && count < minimum.needed) {
     sampled.sites_added_for_topology = minimum.needed - count;
     sampled.topology_reason = "site count " + std::to_string(count) + " raised to " + std::to_string(minimum.needed) +
@@ -217,26 +281,36 @@ SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const Sampling
                        std::to_string(std::numeric_limits<Index>::max()) + " sites allowed");
     }
   }
-  const std::vector<std::int64_t> sites = sites_per_component(surface, loops_per_component, count);
+  const std::vector<std::int64_t> sites = sites_per_component(surface, loops_per_component, given_per_component, count);
 
+  // Per component, its given sites first in its boundary sites.
+  std::vector<std::vector<SurfacePoint>> given_in(static_cast<std::size_t>(surface.num_components));
+  for (const SurfacePoint& site : given) {
+    const Index c = given_component(site);
+    if (c >= 0) given_in[c].push_back(site);
+  }
   std::vector<SurfacePoint> boundary_sites, interior_sites;
-  boundary_sites.reserve(static_cast<std::size_t>(count));
+  boundary_sites.reserve(static_cast<std::size_t>(count) + given.size());
   interior_sites.reserve(static_cast<std::size_t>(count));
   std::optional<detail::FarthestPointSampler> fps;
   if (options.strategy == SamplingStrategy::fps) fps.emplace(surface);
   for (Index c = 0; c < surface.num_components; ++c) {
     if (sites[c] == 0) continue;
-    const std::size_t first_boundary = boundary_sites.size();
+    // The component's boundary sites: the given ones, then those placed on its other loops.
+    std::vector<SurfacePoint>& component_boundary = given_in[c];
+    const std::size_t first_placed = component_boundary.size();
     if (!loops[c].empty()) {
       const std::vector<std::int64_t> per_loop = sites_per_loop(loops[c], surface.component_area[c], sites[c]);
       const double spacing = detail::hexagonal_spacing(surface.component_area[c], sites[c]);
-      detail::place_boundary_sites(mesh, loops[c], per_loop, spacing, boundary_sites);
+      detail::place_boundary_sites(mesh, loops[c], per_loop, spacing, component_boundary);
     }
+    boundary_sites.insert(boundary_sites.end(), component_boundary.begin() + static_cast<std::ptrdiff_t>(first_placed),
+                          component_boundary.end());
     detail::ComponentTask task;
     task.component = c;
-    task.boundary_sites = std::span<const SurfacePoint>(boundary_sites).subspan(first_boundary);
-    task.total = sites[c];
-    task.interior = sites[c] - static_cast<std::int64_t>(task.boundary_sites.size());
+    task.boundary_sites = component_boundary;
+    task.total = sites[c] + given_per_component[c];
+    task.interior = task.total - static_cast<std::int64_t>(task.boundary_sites.size());
     switch (options.strategy) {
       case SamplingStrategy::random: {
         Rng rng(options.seed, stream(c, interior_random));
@@ -255,13 +329,15 @@ SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const Sampling
       }
     }
   }
-  std::vector<SurfacePoint> result = std::move(boundary_sites);
+  // The given sites first, as given; then the others, boundary ones first.
+  std::vector<SurfacePoint> result(given.begin(), given.end());
+  result.insert(result.end(), boundary_sites.begin(), boundary_sites.end());
   result.insert(result.end(), interior_sites.begin(), interior_sites.end());
-  if (static_cast<std::int64_t>(result.size()) != count) {
+  if (static_cast<std::int64_t>(result.size()) != count + static_cast<std::int64_t>(given.size())) {
     throw Error("sample_sites: internal error: placed " + std::to_string(result.size()) + " sites instead of " +
-                std::to_string(count));
+                std::to_string(count + static_cast<std::int64_t>(given.size())));
   }
-  separate_coincident_sites(mesh, result, options.seed);
+  separate_coincident_sites(mesh, result, given.size(), options.seed);
   sampled.sites = std::move(result);
   return sampled;
 }
@@ -274,6 +350,11 @@ std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t co
 
 SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
   return sample(mesh, count, options, true);
+}
+
+SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
+                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options) {
+  return sample(mesh, count, options, true, boundary_sites);
 }
 
 SamplingStrategy parse_sampling_strategy(std::string_view name) {

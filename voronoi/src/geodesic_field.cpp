@@ -6,6 +6,7 @@
 #include "window_vtp.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -24,6 +25,22 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string site_name(std::size_t i) { return "site " + std::to_string(i); }
+
+/// The vertices of the smallest element holding a site (its vertex, the edge
+/// or the face it lies inside), increasing, -1 for the rest.
+std::array<Index, 3> carrier(const TriangleMesh& mesh, const SurfacePoint& site) {
+  std::array<Index, 3> vertices = {-1, -1, -1};
+  if (site.kind == SurfacePoint::Kind::vertex) {
+    vertices[0] = site.element;
+    return vertices;
+  }
+  int n = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (site.barycentric[c] > 0) vertices[static_cast<std::size_t>(n++)] = mesh.faces(site.element, c);
+  }
+  std::sort(vertices.begin(), vertices.begin() + n);
+  return vertices;
+}
 
 /// Checks every site and brings it to a canonical form: a face point with two
 /// zero barycentric coordinates becomes a vertex site.
@@ -69,18 +86,28 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       throw Error(site_name(i) + ": vertex " + std::to_string(site.element) + " is used by no triangle");
     }
   }
-  // Two sites at the same point would have no cell between them.
+  // Two sites at the same point would have no cell between them. The same
+  // position is the same point only on the same vertex, edge or face: two
+  // sides of a cut (a slit, a crease cut open) meet in space but not on the
+  // surface.
   std::vector<std::size_t> order(result.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::vector<Eigen::Vector3d> positions(result.size());
-  for (std::size_t i = 0; i < result.size(); ++i) positions[i] = result[i].position(mesh);
+  std::vector<std::array<Index, 3>> carriers(result.size());
+  for (std::size_t i = 0; i < result.size(); ++i) {
+    positions[i] = result[i].position(mesh);
+    carriers[i] = carrier(mesh, result[i]);
+  }
   auto less = [&](std::size_t a, std::size_t b) {
     const Eigen::Vector3d &p = positions[a], &q = positions[b];
-    return p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : p.z() != q.z() ? p.z() < q.z() : a < b;
+    if (p.x() != q.x()) return p.x() < q.x();
+    if (p.y() != q.y()) return p.y() < q.y();
+    if (p.z() != q.z()) return p.z() < q.z();
+    return carriers[a] != carriers[b] ? carriers[a] < carriers[b] : a < b;
   };
   std::sort(order.begin(), order.end(), less);
   for (std::size_t i = 1; i < order.size(); ++i) {
-    if (positions[order[i]] == positions[order[i - 1]]) {
+    if (positions[order[i]] == positions[order[i - 1]] && carriers[order[i]] == carriers[order[i - 1]]) {
       throw Error(site_name(std::min(order[i], order[i - 1])) + " and " + site_name(std::max(order[i], order[i - 1])) +
                   " are at the same point");
     }

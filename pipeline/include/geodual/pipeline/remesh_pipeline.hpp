@@ -21,6 +21,8 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "geodual/remesh/feature_cut.hpp"
+#include "geodual/remesh/features.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
@@ -87,6 +89,18 @@ struct RemeshPipelineResult {
   /// The surface remeshed: the input cut apart at non-manifold vertices.
   remesh::ManifoldCut surface;
   DroppedSurface dropped;  ///< what the cut left out
+  /// The sharp features kept (options.remesh.sharp_angle; none with given
+  /// sites), and the surface cut open along them, which the relaxation and
+  /// the dual work on (empty when there are none).
+  remesh::FeatureSet features;
+  remesh::FeatureCut feature_cut;
+  std::int64_t feature_sites = 0;  ///< distinct points of the remesh placed on the features
+  /// Of initial_sites, the second (third...) copies of a feature point, one
+  /// per further side of its chain: initial_sites.size() - site_twins points.
+  std::int64_t site_twins = 0;
+  /// Why the features were not kept, where the remesh that keeps them
+  /// failed and the remesh was made without them (empty otherwise).
+  std::string features_dropped_reason;
   std::vector<SurfacePoint> initial_sites;
   /// Sites sampled beyond options.sites because the surface's pieces and
   /// boundary loops need them (remesh::sample_sites_for_topology), and why.

@@ -30,8 +30,11 @@ struct RepairOptions {
 
 /// The dual-with-repair stage's result: the remesh.
 struct RepairedDual {
-  TriangleMesh mesh;                ///< vertex i is sites[i]
+  TriangleMesh mesh;                ///< vertex i is sites[i] (unless vertex_of_site says otherwise)
   std::vector<SurfacePoint> sites;  ///< the given sites, then those added by repair
+  /// Per site, its vertex in `mesh` where twins along sharp chains were
+  /// welded into one (feature_cut.hpp); empty: vertex i is sites[i].
+  std::vector<Index> vertex_of_site;
   voronoi::VoronoiDiagram diagram;  ///< of the final sites
   DualCheck check;                  ///< of the final dual (valid)
   std::int64_t sites_added = 0;
@@ -63,6 +66,14 @@ struct RemeshOptions {
   double curvature_max_ratio = CurvatureDensityOptions{}.max_ratio;
   /// Rounds of "add sites where the dual fails, recompute" (RepairOptions::max_rounds).
   int max_repair_rounds = 10;
+  /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
+  /// pipeline when it samples the sites: creases where the normals turn by at
+  /// least this many degrees at half the remesh's spacing, in chains at least
+  /// min_feature_length spacings long, are cut open, lined with sites and
+  /// welded in the dual. 0: none (the default until it keeps the organic
+  /// scans' quality: see docs/algorithms.md#sharp-features).
+  double sharp_angle = 0;
+  double min_feature_length = 0.5;
 };
 
 /// The Lloyd options remesh_from_sites relaxes `site_count` sites on

@@ -61,6 +61,14 @@ struct SampledSites {
 SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count,
                                        const SamplingOptions& options = {});
 
+/// sample_sites_for_topology around sites the caller placed on boundary
+/// loops (feature_sites: along sharp chains cut open): they come first, as
+/// given (never moved, twins at one position allowed), the loops they lie on
+/// get no other boundary sites, and a component holding one needs no minimum
+/// of its own; `count` (>= 0) more sites are placed.
+SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
+                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options = {});
+
 /// Checks that every connected piece of `surface` (faces with three distinct
 /// corners, joined through shared vertices) holds one of `sites` at least: a
 /// piece without one would be left out of the remesh without a trace. For

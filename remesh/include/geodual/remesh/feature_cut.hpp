@@ -1,0 +1,86 @@
+#pragma once
+// A surface cut open along its sharp chains (features.hpp), so that the
+// geodesic Voronoi diagram sees each chain as a boundary on both sides: no
+// cell straddles a crease, and sites on a chain carry it into the dual.
+// Every point of a chain becomes one site per side ("twins", at the same
+// position on different faces); the dual of the cut surface is welded back
+// along the chains by merging twins into one vertex.
+//
+//   auto features = detect_features(surface, {.min_chain_length = h});
+//   auto cut = cut_along_features(surface, features);
+//   auto sites = feature_sites(surface, features, cut, {.spacing = h});  // fixed sites, twins included
+//   ... sample the rest on cut.mesh, relax, dual_with_repair on cut.mesh ...
+//   auto welded = weld_along_features(surface, features, cut, dual.mesh, dual.sites);
+
+#include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/remesh/features.hpp"
+#include "geodual/remesh/remesh.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace geodual::remesh {
+
+struct FeatureCut {
+  /// The surface's faces, in the same order, with vertices split along the
+  /// sharp chains: one copy of a vertex per sector between chains.
+  TriangleMesh mesh;
+  std::vector<Index> original_vertex;  ///< per vertex of `mesh`, the surface vertex it copies
+};
+
+/// \pre surface is a 2-manifold and features were detected on it.
+FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& features);
+
+struct FeatureSiteOptions {
+  double spacing = 0;  ///< the remesh's edge length (> 0)
+  /// Sites are added along a curved chain until its polyline stays within
+  /// this distance of the chords between consecutive sites.
+  double max_chord_error = 0;
+};
+
+struct FeatureSites {
+  /// On cut.mesh: every corner at each of its copies (vertex sites), and the
+  /// points along each chain on the faces of each side.
+  std::vector<SurfacePoint> sites;
+  std::int64_t points = 0;  ///< distinct points: vertices of the welded remesh
+};
+
+/// Sites along every chain, evenly by arc length between its corners (a
+/// closed chain at least 3), at most options.spacing apart and closer where
+/// the chord error asks for it.
+FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                           const FeatureSiteOptions& options);
+
+/// The twins `sites` lack: for each site on a sharp edge, the same point on
+/// the edge's other face, where no site holds it.
+std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features,
+                                        std::span<const SurfacePoint> sites);
+
+struct WeldedDual {
+  TriangleMesh mesh;                  ///< twins merged into one vertex
+  std::vector<Index> vertex_of_site;  ///< per site, its vertex in `mesh`
+  /// Sites on boundaries of the cut surface (twins included) that would close
+  /// the cracks left: the weld is a remesh only when this is empty.
+  std::vector<SurfacePoint> sites_needed;
+  std::int64_t cracked_edges = 0;  ///< boundary edges of `mesh` off the surface's boundary
+};
+
+/// Welds `dual` (vertex i is sites[i], on cut.mesh) along the chains. A
+/// boundary edge of the welded mesh with an end off the surface's boundary is
+/// a crack: some piece's dual left the boundary there for a site inside; the
+/// point of the boundary nearest that site is asked for in sites_needed.
+WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                               const TriangleMesh& dual, std::span<const SurfacePoint> sites);
+
+/// dual_with_repair on the prepared cut surface, then the weld; while it
+/// cracks, the sites it needs (and the twins of repair sites on chains) are
+/// added and everything recomputed. The result's mesh is the welded remesh
+/// (vertex_of_site filled in). \throw geodual::Error as dual_with_repair, or
+/// when the cracks persist after options.max_rounds.
+RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
+                                     const FeatureSet& features, const FeatureCut& cut, std::vector<SurfacePoint> sites,
+                                     voronoi::VoronoiDiagram diagram, const RepairOptions& options = {});
+
+}  // namespace geodual::remesh

@@ -1,0 +1,66 @@
+#pragma once
+// The sharp features of a surface, for a remesh that keeps them: chains of
+// sharp edges (mesh/sharp_edges.hpp) long at the remesh's scale, the
+// boundary loops they run into, and the corners where chains meet, end or
+// turn sharply. The remesher cuts the surface along the chains
+// (feature_cut.hpp), so that no Voronoi cell straddles one, puts sites along
+// them and welds the dual back together.
+//
+//   auto features = geodual::remesh::detect_features(surface, {.sharp_angle = 60, .scale = h / 2, .min_chain_length =
+//   h}); features.chains[0].vertices  // a polyline of surface vertices, corner to corner
+
+#include "geodual/mesh/triangle_mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace geodual::remesh {
+
+struct FeatureOptions {
+  /// An edge is sharp where its faces' normals turn by at least this many
+  /// degrees; 0: no sharp features.
+  double sharp_angle = 60;
+  /// The radius at which an edge's sharpness is judged (0: its two faces
+  /// only). An edge stays sharp when the faces within this distance of its
+  /// midpoint on either side, reached without crossing a sharp edge, are two
+  /// separate regions whose mean normals still turn by sharp_angle: a lone
+  /// noisy edge, which the faces round its ends join across, is dropped.
+  double scale = 0;
+  /// Chains of sharp edges (corner to corner) shorter than this are dropped,
+  /// again and again until none is left (chains that met at a dropped one may
+  /// join into a longer one): scan noise and details below the remesh's
+  /// resolution.
+  double min_chain_length = 0;
+  /// A chain that turns by at least this many degrees at a vertex has a corner there.
+  double corner_angle = 60;
+};
+
+/// A polyline of mesh vertices between two corners (first and last), or a
+/// closed loop without one (first == last).
+struct FeatureChain {
+  std::vector<Index> vertices;
+  bool closed = false;
+  /// A stretch of a boundary loop (one side), not a crease between two faces.
+  bool on_boundary = false;
+  double length = 0;
+};
+
+struct FeatureSet {
+  /// The sharp edges kept, as vertex pairs (smaller index first), sorted:
+  /// where the remesher cuts the surface.
+  std::vector<std::array<Index, 2>> sharp_edges;
+  /// The sharp chains first, then the stretches of the boundary loops that
+  /// sharp chains run into (loops without one keep their usual sampling).
+  std::vector<FeatureChain> chains;
+  std::vector<Index> corners;  ///< vertices, increasing
+  std::int64_t sharp_chains = 0;
+  double sharp_length = 0;  ///< of the sharp chains
+  bool empty() const { return sharp_edges.empty(); }
+};
+
+/// The features of `surface`, a 2-manifold (such as cut_to_manifold's
+/// mesh): sharp edges have exactly two faces. Deterministic.
+FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options = {});
+
+}  // namespace geodual::remesh

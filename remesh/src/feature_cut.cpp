@@ -1,0 +1,474 @@
+#include "geodual/remesh/feature_cut.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/union_find.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <string>
+#include <tuple>
+
+namespace geodual::remesh {
+namespace {
+
+/// Site barycentrics along an edge are multiples of 2^-32 (as sample_sites
+/// makes them), kept 2^-20 off the edge's ends, so that a twin's
+/// coordinates, 1 - t on the other face, are exact.
+constexpr double kLattice = 0x1p32;
+double lattice_parameter(double t) {
+  constexpr double kMargin = 0x1p-20;
+  return std::round(std::clamp(t, kMargin, 1 - kMargin) * kLattice) / kLattice;
+}
+
+bool is_sharp(const FeatureSet& features, Index a, Index b) {
+  const std::array<Index, 2> key = {std::min(a, b), std::max(a, b)};
+  return std::binary_search(features.sharp_edges.begin(), features.sharp_edges.end(), key);
+}
+
+/// The point at t from a to b (t at b) on face f of the surface, whose
+/// corners include a and b.
+SurfacePoint point_on_edge(const TriangleMesh& surface, Index f, Index a, Index b, double t) {
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (surface.faces(f, k) == a) barycentric[k] = 1 - t;
+    if (surface.faces(f, k) == b) barycentric[k] = t;
+  }
+  return SurfacePoint::in_face(f, barycentric[0], barycentric[1], barycentric[2]);
+}
+
+/// Where a site lies on the surface, in terms the twins share: a vertex
+/// (lo == hi), a point of edge (lo, hi) at t towards hi, or inside a face
+/// (lo == -1).
+struct SiteKey {
+  Index lo = -1, hi = -1;
+  double t = 0;
+  auto tie() const { return std::tie(lo, hi, t); }
+  bool operator<(const SiteKey& other) const { return tie() < other.tie(); }
+  bool operator==(const SiteKey& other) const { return tie() == other.tie(); }
+};
+
+SiteKey site_key(const TriangleMesh& surface, const FeatureCut& cut, const SurfacePoint& site) {
+  if (site.kind == SurfacePoint::Kind::vertex) {
+    const Index v = cut.original_vertex[static_cast<std::size_t>(site.element)];
+    return {v, v, 0};
+  }
+  int zeros = 0, zero = -1, one = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (site.barycentric[k] == 0) zeros++, zero = k;
+    if (site.barycentric[k] == 1) one = k;
+  }
+  if (one >= 0) {
+    const Index v = surface.faces(site.element, one);
+    return {v, v, 0};
+  }
+  if (zeros != 1) return {};
+  int i = (zero + 1) % 3, j = (zero + 2) % 3;
+  if (surface.faces(site.element, i) > surface.faces(site.element, j)) std::swap(i, j);
+  return {surface.faces(site.element, i), surface.faces(site.element, j), site.barycentric[j]};
+}
+
+/// Appends to `out` the point `key` on each face of its edge (at each copy
+/// of its vertex), unless `held` (sorted) has it already; then holds it.
+void add_twins(const TriangleMesh& surface, const MeshTopology& topology, std::span<const Index> copy_begin,
+               std::span<const Index> copies, const SiteKey& key, std::vector<SiteKey>& held,
+               std::vector<SurfacePoint>& out) {
+  if (key.lo < 0) return;
+  if (std::binary_search(held.begin(), held.end(), key)) return;
+  if (key.lo == key.hi) {
+    for (Index i = copy_begin[key.lo]; i < copy_begin[key.lo + 1]; ++i)
+      out.push_back(SurfacePoint::at_vertex(copies[i]));
+  } else {
+    const auto edge = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(),
+                                       std::array<Index, 2>{key.lo, key.hi});
+    if (edge == topology.edge_vertices.end() || *edge != std::array<Index, 2>{key.lo, key.hi}) return;
+    for (const Index f : topology.edge_faces(static_cast<Index>(edge - topology.edge_vertices.begin()))) {
+      out.push_back(point_on_edge(surface, f, key.lo, key.hi, key.t));
+    }
+  }
+  held.insert(std::upper_bound(held.begin(), held.end(), key), key);
+}
+
+/// Per surface vertex, its copies in cut.mesh that faces use (CSR).
+void vertex_copies(const FeatureCut& cut, Index num_vertices, std::vector<Index>& begin, std::vector<Index>& copies) {
+  std::vector<std::uint8_t> used(cut.original_vertex.size(), 0);
+  for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
+    if (has_repeated_corner(cut.mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(cut.mesh.faces(f, k))] = 1;
+  }
+  begin.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
+  for (std::size_t w = 0; w < used.size(); ++w) {
+    if (used[w]) ++begin[static_cast<std::size_t>(cut.original_vertex[w]) + 1];
+  }
+  for (Index v = 0; v < num_vertices; ++v) begin[v + 1] += begin[v];
+  copies.resize(static_cast<std::size_t>(begin.back()));
+  std::vector<Index> next(begin.begin(), begin.end() - 1);
+  for (std::size_t w = 0; w < used.size(); ++w) {
+    if (used[w]) copies[static_cast<std::size_t>(next[cut.original_vertex[w]]++)] = static_cast<Index>(w);
+  }
+}
+
+/// Whether every vertex of the chain between arc lengths [from, to] lies
+/// within `error` of the chord between the chain's points there.
+struct ChainWalk {
+  const TriangleMesh& surface;
+  const FeatureChain& chain;
+  std::vector<double> at;  // arc length at each vertex
+
+  ChainWalk(const TriangleMesh& mesh, const FeatureChain& c) : surface(mesh), chain(c), at(c.vertices.size(), 0.0) {
+    for (std::size_t i = 1; i < at.size(); ++i) {
+      at[i] = at[i - 1] + (mesh.vertices.row(c.vertices[i]) - mesh.vertices.row(c.vertices[i - 1])).norm();
+    }
+  }
+  double length() const { return at.back(); }
+  /// The edge (index i: vertices i, i + 1) at arc length s, and t along it.
+  std::size_t locate(double s, double& t) const {
+    const auto upper = std::upper_bound(at.begin(), at.end(), s);
+    std::size_t i = upper == at.begin() ? 0 : static_cast<std::size_t>(upper - at.begin()) - 1;
+    i = std::min(i, at.size() - 2);
+    const double edge = at[i + 1] - at[i];
+    t = edge > 0 ? std::clamp((s - at[i]) / edge, 0.0, 1.0) : 0.0;
+    return i;
+  }
+  Eigen::Vector3d point(double s) const {
+    double t = 0;
+    const std::size_t i = locate(s, t);
+    return (1 - t) * surface.vertices.row(chain.vertices[i]).transpose() +
+           t * surface.vertices.row(chain.vertices[i + 1]).transpose();
+  }
+  bool within(double from, double to, double error) const {
+    const Eigen::Vector3d p = point(from), q = point(to);
+    const Eigen::Vector3d d = q - p;
+    const double dd = d.squaredNorm();
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      if (at[i] <= from || at[i] >= to) continue;
+      const Eigen::Vector3d x = surface.vertices.row(chain.vertices[i]).transpose() - p;
+      const double s = dd > 0 ? std::clamp(x.dot(d) / dd, 0.0, 1.0) : 0.0;
+      if ((x - s * d).norm() > error) return false;
+    }
+    return true;
+  }
+};
+
+}  // namespace
+
+FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& features) {
+  const MeshTopology topology = build_mesh_topology(surface);
+  const Index num_faces = surface.num_faces(), num_vertices = static_cast<Index>(surface.vertices.rows());
+  // Corners at one vertex stay together across every edge with two faces
+  // that is not sharp: one class per sector between the chains.
+  UnionFind sector(static_cast<std::size_t>(3 * num_faces));
+  const auto corner_at = [&](Index f, Index v) {
+    for (int k = 0; k < 3; ++k) {
+      if (surface.faces(f, k) == v) return 3 * f + k;
+    }
+    return Index{-1};
+  };
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto faces = topology.edge_faces(e);
+    const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+    if (faces.size() != 2 || is_sharp(features, a, b)) continue;
+    for (const Index v : {a, b}) sector.unite(corner_at(faces[0], v), corner_at(faces[1], v));
+  }
+  FeatureCut cut;
+  cut.mesh.faces = surface.faces;
+  std::vector<Index> vertex_of_sector(static_cast<std::size_t>(3 * num_faces), -1);
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0);
+  std::vector<Index> extra;
+  for (Index f = 0; f < num_faces; ++f) {
+    if (has_repeated_corner(surface, f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index root = sector.find(3 * f + k), v = surface.faces(f, k);
+      if (vertex_of_sector[root] < 0) {
+        if (!taken[v]) {
+          taken[v] = 1;
+          vertex_of_sector[root] = v;
+        } else {
+          vertex_of_sector[root] = num_vertices + static_cast<Index>(extra.size());
+          extra.push_back(v);
+        }
+      }
+      cut.mesh.faces(f, k) = vertex_of_sector[root];
+    }
+  }
+  cut.mesh.vertices.resize(num_vertices + static_cast<Index>(extra.size()), 3);
+  cut.mesh.vertices.topRows(num_vertices) = surface.vertices;
+  cut.original_vertex.resize(static_cast<std::size_t>(num_vertices) + extra.size());
+  std::iota(cut.original_vertex.begin(), cut.original_vertex.begin() + num_vertices, Index{0});
+  for (std::size_t i = 0; i < extra.size(); ++i) {
+    cut.mesh.vertices.row(num_vertices + static_cast<Index>(i)) = surface.vertices.row(extra[i]);
+    cut.original_vertex[static_cast<std::size_t>(num_vertices) + i] = extra[i];
+  }
+  return cut;
+}
+
+FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                           const FeatureSiteOptions& options) {
+  if (!(options.spacing > 0)) throw UsageError("feature_sites: the spacing must be positive");
+  const MeshTopology topology = build_mesh_topology(surface);
+  std::vector<Index> copy_begin, copies;
+  vertex_copies(cut, static_cast<Index>(surface.vertices.rows()), copy_begin, copies);
+  FeatureSites result;
+  std::vector<SiteKey> held;
+  const auto add = [&](const SiteKey& key) {
+    const std::size_t before = held.size();
+    add_twins(surface, topology, copy_begin, copies, key, held, result.sites);
+    if (held.size() > before) ++result.points;
+  };
+  for (const Index v : features.corners) add({v, v, 0});
+  // Each chain's own spacing: even, at most options.spacing, closer where the
+  // chord error asks.
+  std::vector<ChainWalk> walks;
+  std::vector<std::int64_t> segments;
+  for (const FeatureChain& chain : features.chains) {
+    const ChainWalk& walk = walks.emplace_back(surface, chain);
+    const double length = walk.length();
+    const std::int64_t edges = static_cast<std::int64_t>(chain.vertices.size()) - 1;
+    std::int64_t n = std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(std::ceil(length / options.spacing)));
+    while (options.max_chord_error > 0 && n < 4 * edges) {
+      bool fits = true;
+      for (std::int64_t k = 0; k < n && fits; ++k) {
+        fits = walk.within(length * static_cast<double>(k) / static_cast<double>(n),
+                           length * static_cast<double>(k + 1) / static_cast<double>(n), options.max_chord_error);
+      }
+      if (fits) break;
+      ++n;
+    }
+    segments.push_back(n);
+  }
+  // Round a corner, the first site of every chain at one distance d: the
+  // smallest of their spacings and half their lengths. In a wedge of angle
+  // theta between two chains, the corner's cell meets the cells of the first
+  // sites at distances d1 <= d2 at a Voronoi vertex only if d1 >= d2 cos(theta)
+  // (the bisectors must cross inside the wedge); equal distances meet in any
+  // wedge. Half the length leaves room for the chain's other end.
+  std::map<Index, double> corner_distance;
+  for (std::size_t c = 0; c < walks.size(); ++c) {
+    const FeatureChain& chain = features.chains[c];
+    if (chain.closed) continue;
+    const double own = std::min(walks[c].length() / static_cast<double>(segments[c]), 0.5 * walks[c].length());
+    for (const Index end : {chain.vertices.front(), chain.vertices.back()}) {
+      const auto [it, inserted] = corner_distance.try_emplace(end, own);
+      if (!inserted) it->second = std::min(it->second, own);
+    }
+  }
+  const auto add_at = [&](const ChainWalk& walk, double at) {
+    double t = 0;
+    const std::size_t i = walk.locate(at, t);
+    Index a = walk.chain.vertices[i], b = walk.chain.vertices[i + 1];
+    if (a > b) {
+      std::swap(a, b);
+      t = 1 - t;
+    }
+    add({a, b, lattice_parameter(t)});
+  };
+  for (std::size_t c = 0; c < walks.size(); ++c) {
+    const FeatureChain& chain = features.chains[c];
+    const double length = walks[c].length(), own = length / static_cast<double>(segments[c]);
+    if (!(length > 0)) continue;
+    if (chain.closed) {
+      for (std::int64_t k = 0; k < segments[c]; ++k) add_at(walks[c], own * static_cast<double>(k));
+      continue;
+    }
+    // From the first site to the last, evenly at most `own` apart.
+    const double first = corner_distance.at(chain.vertices.front());
+    const double last = length - corner_distance.at(chain.vertices.back());
+    if (last - first < 0.25 * std::min(first, length - last)) {
+      add_at(walks[c], 0.5 * (first + last));
+      continue;
+    }
+    const auto gaps = std::max<std::int64_t>(1, std::llround(std::ceil((last - first) / own)));
+    for (std::int64_t k = 0; k <= gaps; ++k) {
+      add_at(walks[c], first + (last - first) * static_cast<double>(k) / static_cast<double>(gaps));
+    }
+  }
+  return result;
+}
+
+std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features,
+                                        std::span<const SurfacePoint> sites) {
+  std::vector<SurfacePoint> missing;
+  if (features.empty()) return missing;
+  const MeshTopology topology = build_mesh_topology(surface);
+  // Per sharp-edge point held: the faces holding it.
+  std::vector<std::pair<SiteKey, Index>> held;
+  const FeatureCut none;  // site keys of face points need no cut
+  for (const SurfacePoint& site : sites) {
+    if (site.kind != SurfacePoint::Kind::face) continue;
+    const SiteKey key = site_key(surface, none, site);
+    if (key.lo >= 0 && key.lo != key.hi && is_sharp(features, key.lo, key.hi)) held.push_back({key, site.element});
+  }
+  std::sort(held.begin(), held.end(), [](const auto& x, const auto& y) {
+    return x.first < y.first || (x.first == y.first && x.second < y.second);
+  });
+  for (std::size_t i = 0; i < held.size();) {
+    std::size_t j = i;
+    while (j < held.size() && held[j].first == held[i].first) ++j;
+    const SiteKey& key = held[i].first;
+    const auto edge = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(),
+                                       std::array<Index, 2>{key.lo, key.hi});
+    for (const Index f : topology.edge_faces(static_cast<Index>(edge - topology.edge_vertices.begin()))) {
+      const bool has =
+          std::any_of(held.begin() + static_cast<std::ptrdiff_t>(i), held.begin() + static_cast<std::ptrdiff_t>(j),
+                      [&](const auto& h) { return h.second == f; });
+      if (!has) missing.push_back(point_on_edge(surface, f, key.lo, key.hi, key.t));
+    }
+    i = j;
+  }
+  return missing;
+}
+
+WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                               const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
+  WeldedDual welded;
+  const std::size_t n = sites.size();
+  std::vector<SiteKey> keys(n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = site_key(surface, cut, sites[i]);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+  // Vertices numbered in the order of their first site.
+  std::vector<std::size_t> first_of(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = order[k];
+    first_of[i] = (k > 0 && keys[i].lo >= 0 && keys[i] == keys[order[k - 1]]) ? first_of[order[k - 1]] : i;
+  }
+  welded.vertex_of_site.assign(n, -1);
+  std::vector<std::size_t> site_of_vertex;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (first_of[i] == i) {
+      welded.vertex_of_site[i] = static_cast<Index>(site_of_vertex.size());
+      site_of_vertex.push_back(i);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) welded.vertex_of_site[i] = welded.vertex_of_site[first_of[i]];
+  welded.mesh.vertices.resize(static_cast<Index>(site_of_vertex.size()), 3);
+  for (std::size_t v = 0; v < site_of_vertex.size(); ++v) {
+    welded.mesh.vertices.row(static_cast<Index>(v)) = dual.vertices.row(static_cast<Index>(site_of_vertex[v]));
+  }
+  welded.mesh.faces.resize(dual.num_faces(), 3);
+  Index kept = 0;
+  for (Index f = 0; f < dual.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) welded.mesh.faces(kept, k) = welded.vertex_of_site[dual.faces(f, k)];
+    if (!has_repeated_corner(welded.mesh, kept)) ++kept;
+  }
+  welded.mesh.faces.conservativeResize(kept, 3);
+
+  // Cracks: boundary edges of the weld with an end off the surface's boundary.
+  const MeshTopology surface_topology = build_mesh_topology(surface);
+  const auto on_surface_boundary = [&](std::size_t site) {
+    const SiteKey& key = keys[site];
+    if (key.lo < 0) return false;
+    if (key.lo == key.hi) return surface_topology.vertex_on_boundary[key.lo] != 0;
+    const auto edge = std::lower_bound(surface_topology.edge_vertices.begin(), surface_topology.edge_vertices.end(),
+                                       std::array<Index, 2>{key.lo, key.hi});
+    return edge != surface_topology.edge_vertices.end() && *edge == std::array<Index, 2>{key.lo, key.hi} &&
+           surface_topology.is_boundary_edge(static_cast<Index>(edge - surface_topology.edge_vertices.begin()));
+  };
+  const MeshTopology topology = build_mesh_topology(welded.mesh);
+  std::vector<std::uint8_t> needs(n, 0);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (!topology.is_boundary_edge(e)) continue;
+    const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+    const std::size_t sa = site_of_vertex[a], sb = site_of_vertex[b];
+    if (on_surface_boundary(sa) && on_surface_boundary(sb)) continue;
+    ++welded.cracked_edges;
+    // The ends inside a piece of the cut surface (not on any of its
+    // boundaries) need a site on the boundary.
+    for (const std::size_t s : {sa, sb}) {
+      const SiteKey& key = keys[s];
+      const bool on_cut_boundary =
+          key.lo >= 0 && (key.lo == key.hi || is_sharp(features, key.lo, key.hi) || on_surface_boundary(s));
+      if (!on_cut_boundary) needs[s] = 1;
+    }
+  }
+  if (welded.cracked_edges == 0) return welded;
+
+  // The nearest point of the cut surface's boundary in the site's piece.
+  const MeshTopology cut_topology = build_mesh_topology(cut.mesh);
+  std::vector<Index> boundary_edges;
+  for (Index e = 0; e < cut_topology.num_edges(); ++e) {
+    if (cut_topology.is_boundary_edge(e) && has_positive_area(cut.mesh, cut_topology.edge_faces(e)[0])) {
+      boundary_edges.push_back(e);
+    }
+  }
+  for (std::size_t s = 0; s < n; ++s) {
+    if (!needs[s]) continue;
+    const Index piece = cut_topology.face_component[static_cast<std::size_t>(sites[s].element)];
+    const Eigen::Vector3d x = sites[s].position(cut.mesh);
+    double best = std::numeric_limits<double>::infinity();
+    SurfacePoint nearest;
+    for (const Index e : boundary_edges) {
+      const Index f = cut_topology.edge_faces(e)[0];
+      if (cut_topology.face_component[static_cast<std::size_t>(f)] != piece) continue;
+      const auto [p, q] = cut_topology.edge_vertices[static_cast<std::size_t>(e)];
+      const Eigen::Vector3d a = cut.mesh.vertices.row(p), b = cut.mesh.vertices.row(q);
+      const Eigen::Vector3d d = b - a;
+      const double t = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double distance = (a + t * d - x).norm();
+      if (distance < best) {
+        best = distance;
+        // As a point of the surface's edge, lattice-rounded like every edge site.
+        Index lo = cut.original_vertex[p], hi = cut.original_vertex[q];
+        double along = t;
+        if (lo > hi) std::swap(lo, hi), along = 1 - t;
+        nearest = point_on_edge(surface, f, lo, hi, lattice_parameter(along));
+      }
+    }
+    if (best < std::numeric_limits<double>::infinity()) welded.sites_needed.push_back(nearest);
+  }
+  return welded;
+}
+
+RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
+                                     const FeatureSet& features, const FeatureCut& cut, std::vector<SurfacePoint> sites,
+                                     voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
+  RepairedDual result;
+  std::int64_t sites_added = 0;
+  double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
+  for (int round = 0;; ++round) {
+    result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), options);
+    sites_added += result.sites_added;
+    geodesic_seconds += result.geodesic_seconds;
+    diagram_seconds += result.diagram_seconds;
+    dual_seconds += result.dual_seconds;
+    const auto start = std::chrono::steady_clock::now();
+    WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
+    std::vector<SurfacePoint> more = missing_twins(surface, features, result.sites);
+    if (welded.cracked_edges == 0 && more.empty()) {
+      result.mesh = std::move(welded.mesh);
+      result.vertex_of_site = std::move(welded.vertex_of_site);
+      break;
+    }
+    more.insert(more.end(), welded.sites_needed.begin(), welded.sites_needed.end());
+    std::vector<SurfacePoint> twins = missing_twins(surface, features, more);
+    more.insert(more.end(), twins.begin(), twins.end());
+    dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (round >= options.max_rounds || more.empty()) {
+      throw Error("the remesh does not close along the sharp features after " + std::to_string(round) +
+                  " rounds: " + std::to_string(welded.cracked_edges) +
+                  " edges of its boundary leave the surface's creases and boundary; try more sites, or a larger "
+                  "sharp angle");
+    }
+    sites = std::move(result.sites);
+    sites_added += static_cast<std::int64_t>(more.size());
+    sites.insert(sites.end(), more.begin(), more.end());
+    diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
+    geodesic_seconds += diagram.stats.geodesic_seconds;
+    diagram_seconds += diagram.stats.extraction_seconds;
+  }
+  result.sites_added = sites_added;
+  result.geodesic_seconds = geodesic_seconds;
+  result.diagram_seconds = diagram_seconds;
+  result.dual_seconds = dual_seconds;
+  return result;
+}
+
+}  // namespace geodual::remesh

@@ -1,0 +1,257 @@
+#include "geodual/remesh/features.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/sharp_edges.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace geodual::remesh {
+namespace {
+
+/// The graph of feature edges: per vertex, its edges (CSR over `edges`).
+struct FeatureGraph {
+  std::vector<std::array<Index, 2>> edges;
+  std::vector<std::uint8_t> edge_on_boundary;
+  std::vector<Index> begin;      // per vertex + 1
+  std::vector<Index> incidence;  // edge indices
+  std::span<const Index> edges_at(Index v) const {
+    return {incidence.data() + begin[v], incidence.data() + begin[v + 1]};
+  }
+  Index degree(Index v) const { return begin[v + 1] - begin[v]; }
+  Index other_end(Index e, Index v) const { return edges[e][0] == v ? edges[e][1] : edges[e][0]; }
+};
+
+FeatureGraph build_graph(Index num_vertices, std::vector<std::array<Index, 2>> edges,
+                         std::vector<std::uint8_t> on_boundary) {
+  FeatureGraph graph;
+  graph.edges = std::move(edges);
+  graph.edge_on_boundary = std::move(on_boundary);
+  graph.begin.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
+  for (const auto& [a, b] : graph.edges) {
+    ++graph.begin[a + 1];
+    ++graph.begin[b + 1];
+  }
+  for (Index v = 0; v < num_vertices; ++v) graph.begin[v + 1] += graph.begin[v];
+  graph.incidence.resize(2 * graph.edges.size());
+  std::vector<Index> next(graph.begin.begin(), graph.begin.end() - 1);
+  for (Index e = 0; e < static_cast<Index>(graph.edges.size()); ++e) {
+    for (const Index v : graph.edges[e]) graph.incidence[next[v]++] = e;
+  }
+  return graph;
+}
+
+/// Whether face f runs from a to b (a, then b, in its corner cycle).
+bool runs(const TriangleMesh& mesh, Index f, Index a, Index b) {
+  for (int k = 0; k < 3; ++k) {
+    if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
+  }
+  return false;
+}
+
+double edge_length(const TriangleMesh& mesh, Index a, Index b) {
+  return (mesh.vertices.row(a) - mesh.vertices.row(b)).norm();
+}
+
+/// The angle in degrees between the directions a -> v and v -> b (0: straight on).
+double turn_degrees(const TriangleMesh& mesh, Index a, Index v, Index b) {
+  const Eigen::Vector3d in = mesh.vertices.row(v) - mesh.vertices.row(a);
+  const Eigen::Vector3d out = mesh.vertices.row(b) - mesh.vertices.row(v);
+  return std::atan2(in.cross(out).norm(), in.dot(out)) * 180 / std::numbers::pi;
+}
+
+/// Sharp edges that stay sharp at `scale` (FeatureOptions::scale): the faces
+/// within that distance of each one's midpoint, on each side, reached across
+/// edges with two faces that are not sharp, must not join up, and their
+/// area-weighted normals must turn by at least `angle` degrees.
+std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& topology,
+                                  const std::vector<Index>& sharp, double angle, double scale) {
+  const Index num_faces = mesh.num_faces();
+  std::vector<std::uint8_t> is_sharp(static_cast<std::size_t>(topology.num_edges()), 0);
+  for (const Index e : sharp) is_sharp[e] = 1;
+  std::vector<Eigen::Vector3d> centroid(static_cast<std::size_t>(num_faces)),
+      normal(static_cast<std::size_t>(num_faces));
+  for (Index f = 0; f < num_faces; ++f) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+                          c = mesh.vertices.row(mesh.faces(f, 2));
+    centroid[f] = (a + b + c) / 3;
+    normal[f] = (b - a).cross(c - a);  // twice the area times the unit normal
+  }
+  constexpr std::size_t kMaxFaces = 1 << 14;  // per side: beyond this, the region is judged as reached so far
+  std::vector<std::int64_t> seen(static_cast<std::size_t>(num_faces), -1);
+  std::vector<Index> queue;
+  std::vector<Index> kept;
+  const double min_cos = std::cos(angle * std::numbers::pi / 180);
+  for (std::size_t i = 0; i < sharp.size(); ++i) {
+    const Index e = sharp[i];
+    const auto faces = topology.edge_faces(e);
+    const Eigen::Vector3d middle =
+        0.5 *
+        (mesh.vertices.row(topology.edge_vertices[e][0]) + mesh.vertices.row(topology.edge_vertices[e][1])).transpose();
+    // Region growing from each side; stamp 2 i + side marks the faces reached.
+    Eigen::Vector3d mean[2];
+    bool joined = false;
+    for (int side = 0; side < 2 && !joined; ++side) {
+      const std::int64_t stamp = 2 * static_cast<std::int64_t>(i) + side;
+      mean[side] = Eigen::Vector3d::Zero();
+      queue.assign(1, faces[side]);
+      seen[faces[side]] = stamp;
+      for (std::size_t head = 0; head < queue.size() && queue.size() < kMaxFaces; ++head) {
+        const Index f = queue[head];
+        mean[side] += normal[f];
+        for (const Index edge : topology.face_edges[f]) {
+          if (is_sharp[edge] || topology.edge_faces(edge).size() != 2) continue;
+          for (const Index g : topology.edge_faces(edge)) {
+            if (seen[g] == stamp || (centroid[g] - middle).norm() > scale) continue;
+            if (side == 1 && seen[g] == stamp - 1) joined = true;  // side 0 reached it: one region
+            seen[g] = stamp;
+            queue.push_back(g);
+          }
+        }
+      }
+    }
+    if (joined) continue;
+    // Faces that run the edge the same way are misoriented: one side's normals count flipped.
+    const auto [a, b] = topology.edge_vertices[e];
+    if (runs(mesh, faces[0], a, b) == runs(mesh, faces[1], a, b)) mean[1] = -mean[1];
+    if (mean[0].norm() > 0 && mean[1].norm() > 0 && mean[0].normalized().dot(mean[1].normalized()) > min_cos) continue;
+    kept.push_back(e);
+  }
+  return kept;
+}
+
+/// Corners and chains of a feature graph (FeatureSet's, with the edge
+/// indices of each chain).
+struct Chains {
+  std::vector<Index> corners;
+  std::vector<FeatureChain> chains;
+  std::vector<std::vector<Index>> chain_edges;
+};
+
+Chains walk_chains(const TriangleMesh& surface, const FeatureGraph& graph, double corner_angle) {
+  const Index num_vertices = static_cast<Index>(graph.begin.size()) - 1;
+  Chains result;
+  // Corners: ends and junctions (degree other than 2), and sharp turns.
+  std::vector<std::uint8_t> corner(static_cast<std::size_t>(num_vertices), 0);
+  for (Index v = 0; v < num_vertices; ++v) {
+    const Index degree = graph.degree(v);
+    if (degree == 0) continue;
+    if (degree != 2) {
+      corner[v] = 1;
+    } else {
+      const auto at = graph.edges_at(v);
+      corner[v] = turn_degrees(surface, graph.other_end(at[0], v), v, graph.other_end(at[1], v)) >= corner_angle;
+    }
+    if (corner[v]) result.corners.push_back(v);
+  }
+  // Chains: walks from each corner along each of its edges to the next
+  // corner; what is left are closed loops without one. Sharp chains first.
+  std::vector<std::uint8_t> walked(graph.edges.size(), 0);
+  auto walk = [&](Index start, Index first_edge) {
+    FeatureChain chain;
+    std::vector<Index> edges;
+    chain.on_boundary = graph.edge_on_boundary[first_edge] != 0;
+    chain.vertices.push_back(start);
+    Index v = start, e = first_edge;
+    while (true) {
+      walked[e] = 1;
+      edges.push_back(e);
+      const Index next = graph.other_end(e, v);
+      chain.length += edge_length(surface, v, next);
+      chain.vertices.push_back(next);
+      v = next;
+      if (corner[v] || v == start) break;
+      const auto at = graph.edges_at(v);  // degree 2, no corner: go on along its other edge
+      e = at[0] == e ? at[1] : at[0];
+      if (walked[e]) break;
+    }
+    chain.closed = chain.vertices.front() == chain.vertices.back();
+    result.chains.push_back(std::move(chain));
+    result.chain_edges.push_back(std::move(edges));
+  };
+  for (const int boundary : {0, 1}) {
+    for (const Index v : result.corners) {
+      for (const Index e : graph.edges_at(v)) {
+        if (!walked[e] && graph.edge_on_boundary[e] == boundary) walk(v, e);
+      }
+    }
+    for (Index e = 0; e < static_cast<Index>(graph.edges.size()); ++e) {
+      if (!walked[e] && graph.edge_on_boundary[e] == boundary) walk(graph.edges[e][0], e);
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {
+  FeatureSet features;
+  if (!(options.sharp_angle > 0)) return features;
+  const MeshTopology topology = build_mesh_topology(surface);
+  std::vector<Index> sharp = sharp_edges(surface, topology, options.sharp_angle);
+  if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
+  const Index num_vertices = static_cast<Index>(surface.vertices.rows());
+
+  // Chains shorter than min_chain_length go, until none is left: the chains
+  // they ended at may join up into longer ones.
+  std::vector<std::array<Index, 2>> edges;
+  for (const Index e : sharp) edges.push_back(topology.edge_vertices[e]);
+  while (!edges.empty()) {
+    const FeatureGraph graph = build_graph(num_vertices, edges, std::vector<std::uint8_t>(edges.size(), 0));
+    const Chains chains = walk_chains(surface, graph, options.corner_angle);
+    std::vector<std::uint8_t> drop(edges.size(), 0);
+    bool dropped = false;
+    // A lone edge whose ends are on no other sharp edge and off the boundary
+    // cannot be cut open (its faces still share both ends): it goes too.
+    const auto lone_end = [&](Index v) { return graph.degree(v) == 1 && !topology.vertex_on_boundary[v]; };
+    for (std::size_t c = 0; c < chains.chains.size(); ++c) {
+      const FeatureChain& chain = chains.chains[c];
+      const bool lone =
+          chain.vertices.size() == 2 && lone_end(chain.vertices.front()) && lone_end(chain.vertices.back());
+      if (chain.length >= options.min_chain_length && !lone) continue;
+      for (const Index e : chains.chain_edges[c]) drop[e] = 1;
+      dropped = true;
+    }
+    if (!dropped) break;
+    std::vector<std::array<Index, 2>> kept;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (!drop[e]) kept.push_back(edges[e]);
+    }
+    edges = std::move(kept);
+  }
+  if (edges.empty()) return features;
+  features.sharp_edges = edges;  // in edge order: sorted by vertex pair
+  std::vector<std::uint8_t> touched(static_cast<std::size_t>(num_vertices), 0);
+  for (const auto& [a, b] : edges) {
+    touched[a] = touched[b] = 1;
+    features.sharp_length += edge_length(surface, a, b);
+  }
+
+  // The boundary loops that the chains run into join the graph.
+  std::vector<std::uint8_t> on_boundary(edges.size(), 0);
+  std::vector<std::uint8_t> loop_touched(static_cast<std::size_t>(topology.num_boundary_loops), 0);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const Index loop = topology.edge_boundary_loop[e];
+    if (loop < 0) continue;
+    const auto [a, b] = topology.edge_vertices[e];
+    if (touched[a] || touched[b]) loop_touched[loop] = 1;
+  }
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const Index loop = topology.edge_boundary_loop[e];
+    if (loop < 0 || !loop_touched[loop]) continue;
+    edges.push_back(topology.edge_vertices[e]);
+    on_boundary.push_back(1);
+  }
+  const FeatureGraph graph = build_graph(num_vertices, std::move(edges), std::move(on_boundary));
+  Chains chains = walk_chains(surface, graph, options.corner_angle);
+  features.corners = std::move(chains.corners);
+  features.chains = std::move(chains.chains);
+  for (const FeatureChain& chain : features.chains) features.sharp_chains += chain.on_boundary ? 0 : 1;
+  return features;
+}
+
+}  // namespace geodual::remesh

@@ -1,0 +1,146 @@
+// Sharp features: detect_features on a box (12 creases, 8 corners) and a
+// sphere (none), the length filter, the cut along the creases, the sites
+// lining them (twins at one position) and the weld of a dual back together.
+
+#include "hard_cases.hpp"
+#include "remesh/analytic_surfaces.hpp"
+
+#include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/remesh/feature_cut.hpp"
+#include "geodual/remesh/features.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+namespace geodual {
+namespace {
+
+/// The unit cube, n x n cells per side, two triangles per cell.
+TriangleMesh cube(int n) {
+  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, n + 1);
+  return bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+}
+
+TEST(Features, BoxHasTwelveCreasesAndEightCorners) {
+  const TriangleMesh box = cube(6);
+  const remesh::FeatureSet features = remesh::detect_features(box);
+  EXPECT_EQ(features.sharp_chains, 12);
+  EXPECT_EQ(features.corners.size(), 8u);
+  EXPECT_NEAR(features.sharp_length, 12.0, 1e-12);
+  EXPECT_EQ(features.sharp_edges.size(), 12u * 6u);
+  for (const remesh::FeatureChain& chain : features.chains) {
+    EXPECT_FALSE(chain.closed);
+    EXPECT_FALSE(chain.on_boundary);
+    EXPECT_NEAR(chain.length, 1.0, 1e-12);
+    EXPECT_EQ(chain.vertices.size(), 7u);
+  }
+}
+
+TEST(Features, SmoothSphereHasNoneAndShortNetworksAreDropped) {
+  EXPECT_TRUE(remesh::detect_features(test::icosphere(3)).empty());
+  // The box's creases are chains 1 long, corner to corner.
+  EXPECT_EQ(remesh::detect_features(cube(4), {.min_chain_length = 0.99}).sharp_chains, 12);
+  EXPECT_TRUE(remesh::detect_features(cube(4), {.min_chain_length = 1.01}).empty());
+  EXPECT_TRUE(remesh::detect_features(cube(4), {.sharp_angle = 91}).empty());
+  EXPECT_TRUE(remesh::detect_features(cube(4), {.sharp_angle = 0}).empty());
+}
+
+TEST(Features, BoundaryLoopsThatCreasesRunIntoBecomeChains) {
+  // The box without its top: the rim meets four vertical creases.
+  TriangleMesh open = cube(4);
+  // Drop the faces of the top side (z = 1).
+  std::vector<Index> kept;
+  for (Index f = 0; f < open.num_faces(); ++f) {
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && open.vertices(open.faces(f, k), 2) == 1.0;
+    if (!top) kept.push_back(f);
+  }
+  FaceMatrix faces(static_cast<Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) faces.row(static_cast<Index>(i)) = open.faces.row(kept[i]);
+  open.faces = faces;
+  const remesh::FeatureSet features = remesh::detect_features(open);
+  EXPECT_EQ(features.sharp_chains, 8);  // 4 vertical, 4 round the floor
+  std::int64_t boundary_chains = 0;
+  double rim = 0;
+  for (const remesh::FeatureChain& chain : features.chains) {
+    if (chain.on_boundary) ++boundary_chains, rim += chain.length;
+  }
+  EXPECT_EQ(boundary_chains, 4);  // the rim, split at the four creases' ends
+  EXPECT_NEAR(rim, 4.0, 1e-12);
+  EXPECT_EQ(features.corners.size(), 8u);
+}
+
+TEST(FeatureCut, BoxFallsIntoSixSidesAndSitesComeInTwins) {
+  const TriangleMesh box = cube(6);
+  const remesh::FeatureSet features = remesh::detect_features(box);
+  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
+  const MeshTopology topology = build_mesh_topology(cut.mesh);
+  ASSERT_EQ(topology.num_components(), 6);
+  for (const ComponentCounts& side : topology.components) {
+    EXPECT_EQ(side.euler_characteristic(), 1);  // a disk
+    EXPECT_EQ(side.boundary_loops, 1);
+  }
+  // Corners: 3 copies; other crease vertices: 2.
+  EXPECT_EQ(cut.mesh.vertices.rows(), box.vertices.rows() + 8 * 2 + 12 * 5);
+
+  const remesh::FeatureSites sites = remesh::feature_sites(box, features, cut, {.spacing = 0.26});
+  // 8 corners and 3 points inside each crease (4 stretches of 0.25).
+  EXPECT_EQ(sites.points, 8 + 12 * 3);
+  EXPECT_EQ(sites.sites.size(), 8u * 3 + 12u * 3 * 2);
+  std::map<std::array<double, 3>, int> at;
+  for (const SurfacePoint& site : sites.sites) {
+    const Eigen::Vector3d p = site.position(cut.mesh);
+    ++at[{p.x(), p.y(), p.z()}];
+    // On a crease: two coordinates are 0 or 1.
+    int on_faces = 0;
+    for (int d = 0; d < 3; ++d) on_faces += p[d] == 0.0 || p[d] == 1.0;
+    EXPECT_GE(on_faces, 2);
+  }
+  EXPECT_EQ(at.size(), static_cast<std::size_t>(sites.points));  // twins at exactly one position
+  EXPECT_TRUE(remesh::missing_twins(box, features, sites.sites).empty());
+  // One side's site alone lacks its twin.
+  const std::vector<SurfacePoint> one = {sites.sites.back()};
+  EXPECT_EQ(remesh::missing_twins(box, features, one).size(), 1u);
+}
+
+TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
+  // Sites at the corners, the crease midpoints and each side's centre: the
+  // sides' duals must weld into one closed surface.
+  const TriangleMesh box = cube(8);
+  const remesh::FeatureSet features = remesh::detect_features(box);
+  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
+  remesh::FeatureSites sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5});
+  // A site at each side's centre.
+  const voronoi::GeodesicSurface surface(cut.mesh);
+  std::vector<SurfacePoint> all = sites.sites;
+  const MeshTopology topology = build_mesh_topology(cut.mesh);
+  std::set<Index> seen;
+  for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
+    const Eigen::Vector3d centre = SurfacePoint::in_face(f, 1.0 / 3, 1.0 / 3, 1.0 / 3).position(cut.mesh);
+    int at_middle = 0;
+    for (int d = 0; d < 3; ++d) at_middle += std::abs(centre[d] - 0.5) < 0.07;
+    if (at_middle == 2 && seen.insert(topology.face_component[static_cast<std::size_t>(f)]).second) {
+      all.push_back(SurfacePoint::in_face(f, 1.0 / 3, 1.0 / 3, 1.0 / 3));
+    }
+  }
+  ASSERT_EQ(seen.size(), 6u);
+  const remesh::RepairedDual dual =
+      remesh::welded_dual_with_repair(surface, box, features, cut, all, voronoi::compute_voronoi(surface, all));
+  const MeshTopology welded = build_mesh_topology(dual.mesh);
+  ASSERT_EQ(welded.num_components(), 1);
+  EXPECT_EQ(welded.components[0].euler_characteristic(), 2);
+  EXPECT_EQ(welded.num_boundary_loops, 0);
+  for (Index e = 0; e < welded.num_edges(); ++e) EXPECT_TRUE(welded.is_manifold_edge(e));
+  // One vertex per distinct position of the sites: twins welded, nothing else.
+  std::set<std::array<double, 3>> positions;
+  for (const SurfacePoint& site : dual.sites) {
+    const Eigen::Vector3d p = site.position(cut.mesh);
+    positions.insert({p.x(), p.y(), p.z()});
+  }
+  EXPECT_EQ(dual.mesh.vertices.rows(), static_cast<Index>(positions.size()));
+}
+
+}  // namespace
+}  // namespace geodual
