@@ -1,7 +1,5 @@
 #include "option_checks.hpp"
 
-#include "text_table.hpp"
-
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -61,17 +59,6 @@ CLI::Validator finite_positive() {
         return {};
       },
       "NUMBER > 0");
-}
-
-CLI::Validator number_between(double low, double high) {
-  const std::string range = significant(low) + " to " + significant(high);
-  return CLI::Validator(
-      [low, high, range](std::string& text) -> std::string {
-        double value = 0;
-        if (!parse_double(text, value) || !(value >= low && value <= high)) return "must be a number from " + range;
-        return {};
-      },
-      "NUMBER in " + range);
 }
 
 CLI::Validator integer_between(std::int64_t low, std::int64_t high) {

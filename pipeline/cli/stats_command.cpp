@@ -177,8 +177,9 @@ class StatsCommand final : public Command {
     const std::optional<quality::FeatureRecall>& features = report.features;
     json["sharp_angle_deg"] = options_.sharp_angle_deg;
     json["feature_tolerance_pct"] = options_.feature_tolerance_pct;
-    json["feature_edges"] = features ? nlohmann::ordered_json(features->edges) : nlohmann::ordered_json(nullptr);
-    json["feature_length"] = features ? nlohmann::ordered_json(features->length) : nlohmann::ordered_json(nullptr);
+    json["feature_recall_edges"] = features ? nlohmann::ordered_json(features->edges) : nlohmann::ordered_json(nullptr);
+    json["feature_recall_length"] =
+        features ? nlohmann::ordered_json(features->length) : nlohmann::ordered_json(nullptr);
     json["feature_recall_pct"] =
         features ? nlohmann::ordered_json(features->recall_pct) : nlohmann::ordered_json(nullptr);
     json["feature_max_gap_pct"] =

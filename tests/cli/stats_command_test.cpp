@@ -94,8 +94,8 @@ TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
                           "volume_change_pct",
                           "sharp_angle_deg",
                           "feature_tolerance_pct",
-                          "feature_edges",
-                          "feature_length",
+                          "feature_recall_edges",
+                          "feature_recall_length",
                           "feature_recall_pct",
                           "feature_max_gap_pct",
                           "samples_per_side",
@@ -139,8 +139,8 @@ TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
   ASSERT_TRUE(report.features.has_value());
   EXPECT_EQ(json.at("sharp_angle_deg").get<double>(), 60.0);
   EXPECT_EQ(json.at("feature_tolerance_pct").get<double>(), 0.1);
-  EXPECT_EQ(json.at("feature_edges").get<std::int64_t>(), report.features->edges);
-  EXPECT_EQ(json.at("feature_length").get<double>(), report.features->length);
+  EXPECT_EQ(json.at("feature_recall_edges").get<std::int64_t>(), report.features->edges);
+  EXPECT_EQ(json.at("feature_recall_length").get<double>(), report.features->length);
   EXPECT_EQ(json.at("feature_recall_pct").get<double>(), report.features->recall_pct);
   EXPECT_EQ(json.at("feature_max_gap_pct").get<double>(), report.features->max_gap_pct);
 
@@ -233,8 +233,8 @@ TEST(StatsCommand, FeatureRecallOfACubeCutAtACorner) {
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::ordered_json json = nlohmann::ordered_json::parse(run.out);
   const double tau = 0.001 * std::sqrt(3.0);
-  EXPECT_EQ(json.at("feature_edges").get<std::int64_t>(), 12);
-  EXPECT_NEAR(json.at("feature_length").get<double>(), 12.0, 1e-12);
+  EXPECT_EQ(json.at("feature_recall_edges").get<std::int64_t>(), 12);
+  EXPECT_NEAR(json.at("feature_recall_length").get<double>(), 12.0, 1e-12);
   EXPECT_NEAR(json.at("feature_recall_pct").get<double>(), 100 * (12 - 3 * (a - std::sqrt(2.0) * tau)) / 12, 0.003);
   EXPECT_NEAR(json.at("feature_max_gap_pct").get<double>(), 100 * a / std::sqrt(2.0) / std::sqrt(3.0), 1e-9);
 
@@ -249,8 +249,8 @@ TEST(StatsCommand, FeatureRecallOfACubeCutAtACorner) {
   // Creases turning by 90 degrees are not sharp at 91 degrees; 0 measures nothing.
   const nlohmann::ordered_json blunt = nlohmann::ordered_json::parse(
       run_cli({"stats", cube, cut, "--json", "--samples", "0", "--sharp-angle", "91"}).out);
-  EXPECT_EQ(blunt.at("feature_edges").get<std::int64_t>(), 0);
-  EXPECT_EQ(blunt.at("feature_length").get<double>(), 0.0);
+  EXPECT_EQ(blunt.at("feature_recall_edges").get<std::int64_t>(), 0);
+  EXPECT_EQ(blunt.at("feature_recall_length").get<double>(), 0.0);
   EXPECT_EQ(blunt.at("feature_recall_pct").get<double>(), 100.0);
   EXPECT_EQ(blunt.at("feature_max_gap_pct").get<double>(), 0.0);
   const nlohmann::ordered_json off = nlohmann::ordered_json::parse(

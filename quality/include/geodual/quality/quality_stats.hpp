@@ -123,8 +123,8 @@ double face_quality(const TriangleMesh& mesh, Index face);
 /// piece between two samples that is recalled is taken as the mean of its
 /// ends' (the trapezoid rule), so the recall is exact up to a tenth of the
 /// tolerance at each place where the distance crosses the tolerance.
-/// JSON names (geodual stats --json, the remesh's extras): feature_edges,
-/// feature_length, feature_recall_pct, feature_max_gap_pct.
+/// JSON names (geodual stats --json, the remesh's extras): feature_recall_edges,
+/// feature_recall_length, feature_recall_pct, feature_max_gap_pct.
 struct FeatureRecall {
   double sharp_angle_deg = 0.0;  ///< the threshold used
   double tolerance = 0.0;        ///< feature_tolerance_pct of the diagonal, in mesh units
