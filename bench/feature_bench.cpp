@@ -3,7 +3,8 @@
 // feature recall (issue 16).
 //
 //   build/bench/feature_bench [--vertices 3000,10000] [--sharp-angle DEG] [--feature-tolerance PCT]
-//                             [--cgal-iterations N] [--tolerance PCT] [--max-runs R] [--samples S]
+//                             [--geodual-sharp-angle DEG] [--cgal-iterations N] [--tolerance PCT] [--max-runs R]
+//                             [--samples S]
 //                             [--time-limit S] MESH...
 //
 // For each mesh (read once, by the parent process) and each vertex count n,
@@ -11,7 +12,9 @@
 // input the parent had already read):
 //
 //   geodual  geodual::pipeline::run_remesh_pipeline with its default options
-//            (what `geodual remesh --sites n` does) at n sites.
+//            (what `geodual remesh --sites n` does) at n sites;
+//            --geodual-sharp-angle DEG sets RemeshOptions::sharp_angle (the
+//            remesher's own features) instead of its default.
 //   CGAL protected
 //            CGAL::Polygon_mesh_processing on a Surface_mesh of the input:
 //            detect_sharp_edges at --sharp-angle (default 60 degrees) into an
@@ -74,6 +77,7 @@ struct Options {
   std::vector<std::int64_t> vertex_counts = {3000, 10000};
   double sharp_angle_deg = 60.0;
   double feature_tolerance_pct = quality::QualityOptions{}.feature_tolerance_pct;
+  std::optional<double> geodual_sharp_angle;  ///< RemeshOptions::sharp_angle; empty: its default
   unsigned cgal_iterations = 3;
   double tolerance_pct = 3.0;
   int max_runs = 8;
@@ -127,6 +131,7 @@ void add_figures(RunResult& run, const TriangleMesh& input, const TriangleMesh& 
 RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, const Options& options) {
   pipeline::RemeshPipelineOptions pipeline_options;
   pipeline_options.sites = sites;
+  if (options.geodual_sharp_angle) pipeline_options.remesh.sharp_angle = *options.geodual_sharp_angle;
   pipeline_options.statistics = false;  // measured below, the same way for both rows
   RunResult run;
   reset_peak_rss();
@@ -252,8 +257,11 @@ void add_failed_row(TextTable& table, const std::string& method, const std::stri
 int run_benchmark(const Options& options) {
   std::cout << "machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads, load "
             << load_average() << "\n";
-  std::cout << "options: geodual remesh defaults; CGAL detect_sharp_edges " << options.sharp_angle_deg
-            << " deg, split_long_edges, isotropic_remeshing " << options.cgal_iterations
+  std::cout << "options: geodual remesh defaults"
+            << (options.geodual_sharp_angle ? " but sharp_angle " + fixed(*options.geodual_sharp_angle, 1)
+                                            : std::string())
+            << "; CGAL detect_sharp_edges " << options.sharp_angle_deg << " deg, split_long_edges, isotropic_remeshing "
+            << options.cgal_iterations
             << " iterations with the sharp edges constrained (protected or collapsible), vertex count within "
             << options.tolerance_pct << " % of geodual's; recall within " << options.feature_tolerance_pct
             << " % of the diagonal; " << grouped(options.samples) << " samples per side\n";
@@ -318,6 +326,7 @@ int run_benchmark(const Options& options) {
 
 constexpr const char* usage =
     "usage: feature_bench [--vertices 3000,10000] [--sharp-angle DEG] [--feature-tolerance PCT]\n"
+    "                     [--geodual-sharp-angle DEG]\n"
     "                     [--cgal-iterations N] [--tolerance PCT] [--max-runs R] [--samples S]\n"
     "                     [--time-limit S] MESH...\n";
 
@@ -339,6 +348,11 @@ Options parse_options(int argc, char** argv) {
     } else if (arg == "--feature-tolerance") {
       options.feature_tolerance_pct = parse_number(arg, value());
       if (!(options.feature_tolerance_pct > 0)) throw UsageError("--feature-tolerance must be > 0");
+    } else if (arg == "--geodual-sharp-angle") {
+      options.geodual_sharp_angle = parse_number(arg, value());
+      if (!(*options.geodual_sharp_angle >= 0 && *options.geodual_sharp_angle <= 180)) {
+        throw UsageError("--geodual-sharp-angle must be in [0, 180]");
+      }
     } else if (arg == "--cgal-iterations") {
       options.cgal_iterations = static_cast<unsigned>(parse_integer(arg, value(), 1, 1000));
     } else if (arg == "--tolerance") {

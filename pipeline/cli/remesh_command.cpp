@@ -291,7 +291,7 @@ class RemeshCommand final : public Command {
             "feature recall",
             features->edges == 0
                 ? "no sharp edge in the input (normals turning >= " + significant(features->sharp_angle_deg) + " deg)"
-                : "recall " + significant(features->recall_pct, 3) + " % of " + with_thousands(features->edges) +
+                : significant(features->recall_pct, 3) + " % of " + with_thousands(features->edges) +
                       " sharp edges' length, max gap " + significant(features->max_gap_pct, 3) +
                       " % of the bounding-box diagonal");
       }
