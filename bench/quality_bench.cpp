@@ -32,14 +32,9 @@
 //                  its vertex count is within --tolerance % (default 3) of the
 //                  geodual+Lloyd row's (of the geodual row if that failed).
 //
-// The search for L: a triangle mesh of n vertices has about 2 n faces, each of
-// area sqrt(3)/4 L^2 if equilateral, so L0 = sqrt(4 A / (sqrt(3) 2 n)) for a
-// surface of area A. The vertex count falls like L^-2, so each next L comes
-// from a secant step on (log L, log count) through the last two runs (a
-// power-law step with exponent -2 after the first), kept inside the bracket
-// of runs above and below the target (geometric bisection when it leaves it).
-// At most --max-runs runs; if none lands within the tolerance, the closest L
-// is run once more and reported with its miss.
+// The search for L: EdgeLengthSearch (cgal_remeshing.hpp), at most
+// --max-runs runs; if none lands within the tolerance, the closest L is run
+// once more and reported with its miss.
 //
 // Borders: "keep" (the default) leaves CGAL's own handling: border edges are
 // constrained, so they are split and collapsed along the border but never
@@ -64,16 +59,15 @@
 // orientation) is reported as such in the CGAL row.
 
 #include "bench_support.hpp"
+#include "cgal_remeshing.hpp"
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <Eigen/Geometry>
 
@@ -93,8 +87,6 @@
 namespace geodual::bench {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using CgalMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 enum class BorderMode { keep, protect };
@@ -210,60 +202,6 @@ RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
 // ---------------------------------------------------------------------------
 // CGAL
 
-/// The input as a CGAL Surface_mesh: referenced vertices only, faces with a
-/// repeated index left out. Throws geodual::Error when a face cannot be added
-/// (the input is not an oriented 2-manifold).
-CgalMesh to_cgal(const TriangleMesh& mesh) {
-  std::vector<CgalMesh::Vertex_index> handle(static_cast<std::size_t>(mesh.num_vertices()));
-  std::vector<char> referenced(handle.size(), 0);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (!is_proper_face(mesh, f)) continue;
-    for (int c = 0; c < 3; ++c) referenced[static_cast<std::size_t>(mesh.faces(f, c))] = 1;
-  }
-  CgalMesh out;
-  for (Index v = 0; v < mesh.num_vertices(); ++v) {
-    if (referenced[static_cast<std::size_t>(v)] == 0) continue;
-    handle[static_cast<std::size_t>(v)] =
-        out.add_vertex(Kernel::Point_3(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2)));
-  }
-  std::int64_t refused = 0;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (!is_proper_face(mesh, f)) continue;
-    const auto corner = [&](int c) { return handle[static_cast<std::size_t>(mesh.faces(f, c))]; };
-    if (out.add_face(corner(0), corner(1), corner(2)) == CgalMesh::null_face()) ++refused;
-  }
-  if (refused > 0) {
-    throw Error("not a valid polygon mesh for CGAL: " + std::to_string(refused) +
-                " faces could not be added (non-manifold edges or vertices, or inconsistent orientation)");
-  }
-  return out;
-}
-
-TriangleMesh from_cgal(CgalMesh& mesh) {
-  mesh.collect_garbage();  // vertex and face indices become 0..n-1
-  TriangleMesh out;
-  out.vertices.resize(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
-  for (const CgalMesh::Vertex_index v : mesh.vertices()) {
-    const Kernel::Point_3& p = mesh.point(v);
-    const auto row = static_cast<Eigen::Index>(v.idx());
-    out.vertices(row, 0) = p.x();
-    out.vertices(row, 1) = p.y();
-    out.vertices(row, 2) = p.z();
-  }
-  out.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
-  Eigen::Index row = 0;
-  for (const CgalMesh::Face_index f : mesh.faces()) {
-    int c = 0;
-    for (const CgalMesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
-      if (c == 3) throw Error("CGAL returned a face that is not a triangle");
-      out.faces(row, c++) = static_cast<Index>(v.idx());
-    }
-    if (c != 3) throw Error("CGAL returned a face that is not a triangle");
-    ++row;
-  }
-  return out;
-}
-
 /// One CGAL remesh with target edge length `length`; figures only when asked
 /// for, or when the vertex count lands within the tolerance of `target`.
 RunResult run_cgal(const TriangleMesh& input, double length, std::int64_t target, bool force_figures,
@@ -294,17 +232,6 @@ RunResult run_cgal(const TriangleMesh& input, double length, std::int64_t target
   return run;
 }
 
-double surface_area(const TriangleMesh& mesh) {
-  double area = 0;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)).transpose();
-    const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1)).transpose();
-    const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2)).transpose();
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
-  return area;
-}
-
 struct CgalSearch {
   std::optional<RunResult> result;    ///< the run reported (with figures)
   double length = 0;                  ///< its target edge length
@@ -319,18 +246,11 @@ struct CgalSearch {
 CgalSearch search_cgal(const TriangleMesh& input, std::int64_t target, const Options& options) {
   CgalSearch search;
   const auto start = Clock::now();
-  const double log_target = std::log(static_cast<double>(target));
-  double length = std::sqrt(4.0 * surface_area(input) / (std::sqrt(3.0) * 2.0 * static_cast<double>(target)));
-  // Runs so far, (log L, log count); the bracket: the longest L known to give
-  // too many vertices and the shortest known to give too few.
-  std::vector<std::pair<double, double>> points;
-  double too_many_log_length = -std::numeric_limits<double>::infinity();
-  double too_few_log_length = std::numeric_limits<double>::infinity();
-  double best_miss = std::numeric_limits<double>::infinity();
-  double best_length = length;
+  EdgeLengthSearch lengths(surface_area(input), target);
   ChildLimits limits;
   limits.time_limit_seconds = options.time_limit_seconds;
   for (int run = 0; run < options.max_runs; ++run) {
+    const double length = lengths.length();
     const ChildOutcome outcome =
         run_in_child(limits, [&] { return to_bytes(run_cgal(input, length, target, false, options)); });
     ++search.runs;
@@ -341,44 +261,19 @@ CgalSearch search_cgal(const TriangleMesh& input, std::int64_t target, const Opt
       return search;
     }
     const RunResult result = from_bytes(outcome.payload);
-    const double miss = std::abs(static_cast<double>(result.vertices - target)) / static_cast<double>(target);
     std::cerr << "quality_bench:   CGAL L = " << scientific(length, 4) << ": " << result.vertices << " vertices ("
               << fixed(100 * (static_cast<double>(result.vertices) / static_cast<double>(target) - 1), 2) << " %), "
               << fixed(result.seconds, 2) << " s\n";
-    if (miss < best_miss) {
-      best_miss = miss;
-      best_length = length;
-    }
     if (result.has_figures) {
       search.result = result;
       search.length = length;
       search.search_seconds = seconds_since(start);
       return search;
     }
-    const double log_length = std::log(length);
-    const double log_count = std::log(static_cast<double>(std::max<std::int64_t>(result.vertices, 1)));
-    if (result.vertices > target) {
-      too_many_log_length = std::max(too_many_log_length, log_length);
-    } else {
-      too_few_log_length = std::min(too_few_log_length, log_length);
-    }
-    points.emplace_back(log_length, log_count);
-    double next = log_length + 0.5 * (log_count - log_target);  // count ~ L^-2
-    if (points.size() >= 2) {
-      const auto [x0, y0] = points[points.size() - 2];
-      const auto [x1, y1] = points.back();
-      if (y1 != y0 && x1 != x0) {
-        const double slope = (y1 - y0) / (x1 - x0);
-        if (slope < 0) next = x1 + (log_target - y1) / slope;
-      }
-    }
-    if (std::isfinite(too_many_log_length) && std::isfinite(too_few_log_length) &&
-        !(next > too_many_log_length && next < too_few_log_length)) {
-      next = 0.5 * (too_many_log_length + too_few_log_length);
-    }
-    length = std::exp(next);
+    lengths.record(result.vertices);
   }
   // None within the tolerance: report the closest one, with its miss.
+  const double best_length = lengths.best_length();
   const ChildOutcome outcome =
       run_in_child(limits, [&] { return to_bytes(run_cgal(input, best_length, target, true, options)); });
   ++search.runs;

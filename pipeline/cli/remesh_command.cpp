@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <optional>
 #include <string>
 
 namespace geodual::cli {
@@ -202,6 +203,18 @@ class RemeshCommand final : public Command {
       figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
       figures["rms_pct"] = run.statistics->rms_pct;
       figures["area_change_pct"] = run.statistics->area_change_pct;
+      // The feature recall (null where the statistics left it out).
+      if (const std::optional<quality::FeatureRecall>& features = run.statistics->features) {
+        figures["feature_recall_edges"] = features->edges;
+        figures["feature_recall_length"] = features->length;
+        figures["feature_recall_pct"] = features->recall_pct;
+        figures["feature_max_gap_pct"] = features->max_gap_pct;
+      } else {
+        for (const char* key :
+             {"feature_recall_edges", "feature_recall_length", "feature_recall_pct", "feature_max_gap_pct"}) {
+          figures[key] = nullptr;
+        }
+      }
     }
 
     nlohmann::ordered_json json;
@@ -273,6 +286,15 @@ class RemeshCommand final : public Command {
     if (run.statistics) {
       table.add("distance", "Hausdorff " + significant(run.statistics->hausdorff_pct, 3) + " %, RMS " +
                                 significant(run.statistics->rms_pct, 3) + " % of the bounding-box diagonal");
+      if (const std::optional<quality::FeatureRecall>& features = run.statistics->features) {
+        table.add(
+            "feature recall",
+            features->edges == 0
+                ? "no sharp edge in the input (normals turning >= " + significant(features->sharp_angle_deg) + " deg)"
+                : significant(features->recall_pct, 3) + " % of " + with_thousands(features->edges) +
+                      " sharp edges' length, max gap " + significant(features->max_gap_pct, 3) +
+                      " % of the bounding-box diagonal");
+      }
     }
     std::string stages;
     for (const pipeline::StageTiming& timing : run.timings) {

@@ -1,7 +1,9 @@
 // geodual stats REFERENCE CANDIDATE [--json] [--samples N] [--seed S]
-// Quality of the candidate mesh and its distance to the reference: the figures
-// remeshing papers and tools publish (remesh/quality_stats.hpp has the exact
-// definitions), for any two meshes, ours or another tool's.
+//               [--sharp-angle DEG] [--feature-tolerance PCT]
+// Quality of the candidate mesh, its distance to the reference and how well
+// its edges follow the reference's sharp edges: the figures remeshing papers
+// and tools publish (quality/quality_stats.hpp has the exact definitions), for
+// any two meshes, ours or another tool's.
 
 #include "command.hpp"
 #include "option_checks.hpp"
@@ -79,7 +81,9 @@ class StatsCommand final : public Command {
     command.footer(
         "Example:\n  geodual stats scan.ply remeshed.ply --json\n"
         "Distances: all vertices plus N area-uniform samples per side, exact distance to the "
-        "other surface;\nin % of the reference's bounding-box diagonal.");
+        "other surface;\nin % of the reference's bounding-box diagonal.\n"
+        "Feature recall: the share of the reference's sharp-edge length within the tolerance of an edge of the\n"
+        "candidate, and the largest distance from a sharp edge to the candidate's edges.");
     command.add_option("REFERENCE", reference_path_, "The original mesh (.ply, .obj, .off, .stl, .gltf, .glb)")
         ->required();
     command.add_option("CANDIDATE", candidate_path_, "The mesh to assess, e.g. a remesh of REFERENCE")->required();
@@ -92,6 +96,18 @@ class StatsCommand final : public Command {
     command.add_option("--seed", options_.seed, "Seed for the samples")
         ->capture_default_str()
         ->check(unsigned_integer());
+    command
+        .add_option("--sharp-angle", options_.sharp_angle_deg,
+                    "Feature recall: the reference's sharp edges are those whose faces' normals turn by at least this "
+                    "many degrees (0: no feature recall)")
+        ->capture_default_str()
+        ->check(number_between(0, 180));
+    command
+        .add_option("--feature-tolerance", options_.feature_tolerance_pct,
+                    "Feature recall: a point of a sharp edge is recalled within this distance of a candidate edge, "
+                    "in % of the reference's bbox diagonal")
+        ->capture_default_str()
+        ->check(finite_positive());
     command.add_flag("-q,--quiet", quiet_, "No progress line on the terminal");
     return command;
   }
@@ -158,6 +174,16 @@ class StatsCommand final : public Command {
     json["hausdorff_candidate_to_reference_pct"] = 100.0 * report.hausdorff_candidate_to_reference / diagonal;
     json["area_change_pct"] = report.area_change_pct;
     json["volume_change_pct"] = optional_json(report.volume_change_pct);
+    const std::optional<quality::FeatureRecall>& features = report.features;
+    json["sharp_angle_deg"] = options_.sharp_angle_deg;
+    json["feature_tolerance_pct"] = options_.feature_tolerance_pct;
+    json["feature_recall_edges"] = features ? nlohmann::ordered_json(features->edges) : nlohmann::ordered_json(nullptr);
+    json["feature_recall_length"] =
+        features ? nlohmann::ordered_json(features->length) : nlohmann::ordered_json(nullptr);
+    json["feature_recall_pct"] =
+        features ? nlohmann::ordered_json(features->recall_pct) : nlohmann::ordered_json(nullptr);
+    json["feature_max_gap_pct"] =
+        features ? nlohmann::ordered_json(features->max_gap_pct) : nlohmann::ordered_json(nullptr);
     json["samples_per_side"] = options_.samples_per_side;
     json["seed"] = options_.seed;
     json["reference_samples"] = report.reference_samples;
@@ -222,6 +248,20 @@ class StatsCommand final : public Command {
     table.add("area change", signed_percent(report.area_change_pct));
     table.add("volume change", report.volume_change_pct ? signed_percent(*report.volume_change_pct)
                                                         : std::string("not defined (reference volume 0)"));
+    if (const std::optional<quality::FeatureRecall>& features = report.features) {
+      const std::string threshold = "normals turning >= " + significant(features->sharp_angle_deg) + " deg";
+      if (features->edges == 0) {
+        table.add("sharp edges", "none in the reference (" + threshold + ")");
+      } else {
+        table.add("sharp edges", with_thousands(features->edges) + " in the reference (" + threshold + "), length " +
+                                     significant(features->length));
+        table.add("feature recall", percent(features->recall_pct) + " of their length within " +
+                                        percent(options_.feature_tolerance_pct) + " of a candidate edge");
+        table.add("feature max gap", distance(features->max_gap));
+      }
+    } else {
+      table.add("sharp edges", "not measured (--sharp-angle 0)");
+    }
     table.add("distances in", "% of the reference's bbox diagonal " + significant(diagonal));
     table.add("samples", with_thousands(options_.samples_per_side) + " per side + vertices (seed " +
                              std::to_string(options_.seed) + "): " + with_thousands(report.reference_samples) + " + " +

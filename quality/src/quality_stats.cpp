@@ -1,7 +1,9 @@
 // compare_meshes: two-sided Hausdorff and RMS distance between two meshes by
 // exact point-to-surface distances (nearest triangle found through a CGAL AABB
 // tree) from every referenced vertex and from area-uniform samples of each
-// side. The only translation unit of the library that includes CGAL.
+// side; feature_recall: distances from points along the reference's sharp
+// edges to the candidate's edges (nearest segment, through a CGAL AABB tree of
+// segments). The only translation unit of the library that includes CGAL.
 
 #include "geodual/quality/quality_stats.hpp"
 
@@ -9,8 +11,11 @@
 #include "geodual/mesh/detail/progress_from_threads.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/random.hpp"
+#include "geodual/mesh/sharp_edges.hpp"
 
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -21,6 +26,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -38,8 +44,12 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
 using TriangleIterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using TrianglePrimitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
+using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>>;
+using Segment = Kernel::Segment_3;
+using SegmentIterator = std::vector<Segment>::const_iterator;
+using SegmentPrimitive = CGAL::AABB_segment_primitive<Kernel, SegmentIterator>;
+using SegmentTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, SegmentPrimitive>>;
 
 /// QualityOptions::progress, asked on the calling thread only (see
 /// ProgressFromThreads). Each phase of compare_meshes covers a share of [0, 1].
@@ -122,19 +132,34 @@ double squared_distance_to_triangle(const Point& point, const Triangle& triangle
   return height * height / normal2;
 }
 
+/// Squared distance from p to segment ab: to the foot of the perpendicular,
+/// clamped to the segment.
+double squared_distance_to_segment(const Point& point, const Segment& segment) {
+  const Eigen::Vector3d p(point.x(), point.y(), point.z());
+  const Eigen::Vector3d a(segment.source().x(), segment.source().y(), segment.source().z());
+  const Eigen::Vector3d b(segment.target().x(), segment.target().y(), segment.target().z());
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).squaredNorm();
+}
+
 /// Traversal traits for the exact squared distance from a point to the
-/// triangles of an AABB tree: children are visited nearest box first, and a
-/// box no nearer than the best triangle so far is skipped. It starts from the
-/// distance to a given triangle (the previous query's nearest, for queries
-/// in spatial order) instead of the tree's k-d tree hint (costly for points
-/// far from the surface). The result is the minimum over the triangles, so
-/// it depends on the query alone, not on the start, the order of queries or
-/// the thread.
-class NearestTriangle {
+/// primitives (triangles or segments) of an AABB tree: children are visited
+/// nearest box first, and a box no nearer than the best primitive so far is
+/// skipped. It starts from the distance to a given primitive (the previous
+/// query's nearest, for queries in spatial order) instead of the tree's k-d
+/// tree hint (costly for points far from the surface). The result is the
+/// minimum over the primitives, so it depends on the query alone, not on the
+/// start, the order of queries or the thread.
+template <typename Primitive, double (*squared_distance_to)(const Point&, const typename Primitive::Datum&)>
+class NearestPrimitive {
  public:
-  /// `first`: the tree's first triangle, to number the primitives from.
-  NearestTriangle(TriangleIterator first, double start_squared, std::size_t start_triangle)
-      : first_(first), best_(start_squared), best_triangle_(start_triangle) {}
+  using Iterator = typename Primitive::Id;
+
+  /// `first`: the tree's first primitive, to number the primitives from.
+  NearestPrimitive(Iterator first, double start_squared, std::size_t start_primitive)
+      : first_(first), best_(start_squared), best_primitive_(start_primitive) {}
 
   using Node = CGAL::AABB_node<CGAL::AABB_traits<Kernel, Primitive>>;
   using Priority = double;  ///< higher first: minus the squared distance to the box
@@ -142,10 +167,10 @@ class NearestTriangle {
   bool go_further() const { return true; }
 
   void intersection(const Point& query, const Primitive& primitive) {
-    const double d2 = squared_distance_to_triangle(query, primitive.datum());
+    const double d2 = squared_distance_to(query, primitive.datum());
     if (d2 < best_) {
       best_ = d2;
-      best_triangle_ = static_cast<std::size_t>(primitive.id() - first_);
+      best_primitive_ = static_cast<std::size_t>(primitive.id() - first_);
     }
   }
 
@@ -157,7 +182,7 @@ class NearestTriangle {
   }
 
   double squared_distance() const { return best_; }
-  std::size_t nearest_triangle() const { return best_triangle_; }
+  std::size_t nearest_primitive() const { return best_primitive_; }
 
  private:
   static double box_distance(const Point& q, const Node& node) {
@@ -172,14 +197,18 @@ class NearestTriangle {
     return d2;
   }
 
-  TriangleIterator first_;
+  Iterator first_;
   double best_;
-  std::size_t best_triangle_;
+  std::size_t best_primitive_;
 };
 
+using NearestTriangle = NearestPrimitive<TrianglePrimitive, squared_distance_to_triangle>;
+using NearestSegment = NearestPrimitive<SegmentPrimitive, squared_distance_to_segment>;
+
 /// CGAL's median split of the tree build, asking `progress` first at every
-/// node of at least 4096 triangles, so that a cancel ends a build of millions
-/// of triangles within milliseconds (by Cancelled, thrown through the build).
+/// node of at least 4096 primitives, so that a cancel ends a build of millions
+/// of primitives within milliseconds (by Cancelled, thrown through the build).
+template <typename Tree>
 class CancellableSplit {
  public:
   CancellableSplit(const Tree& tree, ProgressCheck& progress)
@@ -192,7 +221,7 @@ class CancellableSplit {
   }
 
  private:
-  Tree::AABB_traits::Split_primitives split_;
+  typename Tree::AABB_traits::Split_primitives split_;
   ProgressCheck& progress_;
 };
 
@@ -227,7 +256,7 @@ class Surface {
     }
     tree_.insert(triangles_.begin(), triangles_.end());
     // Built now, not lazily on the first query, so that the queries only read.
-    tree_.custom_build(tree_.traits().compute_bbox_object(), CancellableSplit(tree_, progress));
+    tree_.custom_build(tree_.traits().compute_bbox_object(), CancellableSplit<TriangleTree>(tree_, progress));
     bbox_ = tree_.bbox();
   }
   Surface(const Surface&) = delete;
@@ -261,7 +290,7 @@ class Surface {
   double squared_distance(const Point& p, std::size_t& near) const {
     NearestTriangle nearest(triangles_.cbegin(), squared_distance_to_triangle(p, triangles_[near]), near);
     tree_.traversal_with_priority(p, nearest);
-    near = nearest.nearest_triangle();
+    near = nearest.nearest_primitive();
     return nearest.squared_distance();
   }
 
@@ -272,7 +301,7 @@ class Surface {
   std::vector<Triangle> triangles_;
   std::vector<double> cumulative_area_;
   std::vector<Point> vertices_;
-  Tree tree_;
+  TriangleTree tree_;
   CGAL::Bbox_3 bbox_;
 };
 
@@ -375,6 +404,215 @@ auto naming(const char* which, F&& f) {
   }
 }
 
+/// The edges of a mesh (sides of faces joining two different vertices, each
+/// once) as segments in an AABB tree, to measure distances to. Building it
+/// asks `progress` (and throws Cancelled when refused).
+class EdgeSegments {
+ public:
+  EdgeSegments(const TriangleMesh& mesh, ProgressCheck& progress) {
+    {
+      std::vector<std::array<Index, 2>> edges;
+      edges.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
+      for (Index f = 0; f < mesh.num_faces(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+          const Index a = mesh.faces(f, k);
+          const Index b = mesh.faces(f, (k + 1) % 3);
+          if (a != b) edges.push_back({std::min(a, b), std::max(a, b)});
+        }
+      }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      if (edges.empty()) throw Error("no face has two different vertices, so there is no edge");
+      progress.check(0.0);
+      segments_.reserve(edges.size());
+      const auto point = [&mesh](Index v) {
+        return Point(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2));
+      };
+      for (const auto& [a, b] : edges) segments_.emplace_back(point(a), point(b));
+    }
+    tree_.insert(segments_.begin(), segments_.end());
+    tree_.custom_build(tree_.traits().compute_bbox_object(), CancellableSplit<SegmentTree>(tree_, progress));
+  }
+  EdgeSegments(const EdgeSegments&) = delete;
+  EdgeSegments& operator=(const EdgeSegments&) = delete;
+
+  /// Squared distance from p to the nearest edge; `near` as in
+  /// Surface::squared_distance.
+  double squared_distance(const Point& p, std::size_t& near) const {
+    NearestSegment nearest(segments_.cbegin(), squared_distance_to_segment(p, segments_[near]), near);
+    tree_.traversal_with_priority(p, nearest);
+    near = nearest.nearest_primitive();
+    return nearest.squared_distance();
+  }
+
+ private:
+  std::vector<Segment> segments_;
+  SegmentTree tree_;
+};
+
+/// The diagonal of the bounding box of the vertices the faces use.
+double referenced_bbox_diagonal(const TriangleMesh& mesh) {
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d high = -low;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = mesh.vertices.row(mesh.faces(f, k));
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  }
+  return (high - low).norm();
+}
+
+/// Throws Error for what triangle_quality refuses: no faces, an index out of
+/// range, a non-finite coordinate.
+void check_mesh(const TriangleMesh& mesh) {
+  if (mesh.num_faces() == 0) throw Error("the mesh has no faces");
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Index v = mesh.faces(f, k);
+      if (v < 0 || v >= mesh.num_vertices()) {
+        throw Error("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " +
+                    std::to_string(mesh.num_vertices()) + " vertices");
+      }
+    }
+  }
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    if (!mesh.vertices.row(v).allFinite()) {
+      throw Error("vertex " + std::to_string(v) + " has a non-finite coordinate");
+    }
+  }
+}
+
+void check_feature_options(const QualityOptions& options) {
+  if (!(options.sharp_angle_deg > 0.0 && options.sharp_angle_deg <= 180.0)) {
+    throw Error("feature recall: sharp_angle_deg is " + std::to_string(options.sharp_angle_deg) +
+                "; give an angle in (0, 180] degrees");
+  }
+  if (!(options.feature_tolerance_pct > 0.0 && std::isfinite(options.feature_tolerance_pct))) {
+    throw Error("feature recall: feature_tolerance_pct is " + std::to_string(options.feature_tolerance_pct) +
+                "; give a positive percentage of the bounding-box diagonal");
+  }
+}
+
+/// The feature recall of checked meshes and options, within the progress
+/// phase [from, from + share). `diagonal`: the reference's (referenced
+/// vertices).
+FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh& candidate,
+                               const QualityOptions& options, double diagonal, double from, double share,
+                               ProgressCheck& progress) {
+  FeatureRecall recall;
+  recall.sharp_angle_deg = options.sharp_angle_deg;
+  recall.tolerance = options.feature_tolerance_pct / 100.0 * diagonal;
+  progress.phase(from, 0.3 * share);
+  progress.check(0.0);
+  // The sharp edges' end points; the topology is freed before the tree is built.
+  std::vector<std::array<Eigen::Vector3d, 2>> sharp;
+  {
+    const MeshTopology topology = build_mesh_topology(reference);
+    progress.check(0.7);
+    for (const Index e : sharp_edges(reference, topology, options.sharp_angle_deg)) {
+      const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+      sharp.push_back({reference.vertices.row(a).transpose(), reference.vertices.row(b).transpose()});
+    }
+  }
+  recall.edges = static_cast<std::int64_t>(sharp.size());
+  progress.check(1.0);
+  if (sharp.empty()) {
+    progress.phase(from, share);
+    progress.check(1.0);
+    return recall;
+  }
+
+  // Samples: both ends of each sharp edge and points at most a tenth of the
+  // tolerance apart between them.
+  const double spacing = recall.tolerance / 10.0;
+  std::vector<std::int64_t> pieces(sharp.size());
+  double total_pieces = 0.0;
+  for (std::size_t i = 0; i < sharp.size(); ++i) {
+    const double length = (sharp[i][1] - sharp[i][0]).norm();
+    const double wanted = std::ceil(length / spacing);
+    total_pieces += std::max(wanted, 1.0) + 1.0;
+    if (!(total_pieces <= static_cast<double>(max_feature_samples))) {
+      throw Error("feature recall: a tolerance of " + std::to_string(options.feature_tolerance_pct) +
+                  " % of the diagonal needs more than " + std::to_string(max_feature_samples) +
+                  " samples along the sharp edges; give a larger one");
+    }
+    pieces[i] = std::max<std::int64_t>(static_cast<std::int64_t>(wanted), 1);
+  }
+  recall.samples = static_cast<std::int64_t>(total_pieces);
+
+  progress.phase(from + 0.3 * share, 0.2 * share);
+  progress.check(0.0);
+  const EdgeSegments candidate_edges = naming("candidate mesh", [&] { return EdgeSegments(candidate, progress); });
+
+  // Fixed blocks of sharp edges, each summed in order, then the blocks summed
+  // in order: the same bits for any number of threads.
+  progress.phase(from + 0.5 * share, 0.5 * share);
+  progress.check(0.0);
+  constexpr std::size_t block = 64;
+  const std::size_t blocks = (sharp.size() + block - 1) / block;
+  std::vector<double> block_length(blocks, 0.0);
+  std::vector<double> block_recalled(blocks, 0.0);
+  std::vector<double> block_max_squared(blocks, 0.0);
+  const double tolerance_squared = recall.tolerance * recall.tolerance;
+  std::atomic<std::int64_t> measured{0};
+  const auto keep_going = [&] {
+    return progress.keep_going(static_cast<double>(measured.load(std::memory_order_relaxed)) /
+                               static_cast<double>(recall.samples));
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::int64_t unreported = 0;
+    for (std::size_t b = range.begin(); b != range.end(); ++b) {
+      double length = 0.0;
+      double recalled = 0.0;
+      double max_squared = 0.0;
+      std::size_t near = 0;
+      for (std::size_t i = b * block; i < std::min((b + 1) * block, sharp.size()); ++i) {
+        const Eigen::Vector3d& a = sharp[i][0];
+        const Eigen::Vector3d& z = sharp[i][1];
+        const std::int64_t n = pieces[i];
+        // Recalled halves of pieces: a piece counts one half for each recalled end.
+        std::int64_t halves = 0;
+        bool previous = false;
+        for (std::int64_t k = 0; k <= n; ++k) {
+          if (++unreported == 4096) {
+            measured.fetch_add(unreported, std::memory_order_relaxed);
+            unreported = 0;
+            if (!keep_going()) return;
+          }
+          const Eigen::Vector3d p = k == n ? z : a + (static_cast<double>(k) / static_cast<double>(n)) * (z - a);
+          const double d2 = candidate_edges.squared_distance(Point(p.x(), p.y(), p.z()), near);
+          max_squared = std::max(max_squared, d2);
+          const bool within = d2 <= tolerance_squared;
+          if (k > 0) halves += static_cast<std::int64_t>(within) + static_cast<std::int64_t>(previous);
+          previous = within;
+        }
+        // Summed like the lengths, so that all recalled gives exactly 100 %.
+        const double edge_length = (z - a).norm();
+        length += edge_length;
+        recalled +=
+            halves == 2 * n ? edge_length : edge_length * static_cast<double>(halves) / static_cast<double>(2 * n);
+      }
+      block_length[b] = length;
+      block_recalled[b] = recalled;
+      block_max_squared[b] = max_squared;
+    }
+  });
+  progress.check(1.0);
+  double recalled = 0.0;
+  double max_squared = 0.0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    recall.length += block_length[b];
+    recalled += block_recalled[b];
+    max_squared = std::max(max_squared, block_max_squared[b]);
+  }
+  recall.recall_pct = recall.length > 0 ? 100.0 * recalled / recall.length : 100.0;
+  recall.max_gap = std::sqrt(max_squared);
+  recall.max_gap_pct = 100.0 * recall.max_gap / diagonal;
+  return recall;
+}
+
 }  // namespace
 
 QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
@@ -383,6 +621,7 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     throw Error("compare_meshes: samples_per_side is " + std::to_string(options.samples_per_side) + "; give 0 to " +
                 std::to_string(max_samples_per_side));
   }
+  if (options.sharp_angle_deg != 0.0) check_feature_options(options);
   // Shares of the work in each phase, roughly as measured on meshes of a
   // million faces with a million samples per side.
   ProgressCheck progress(options.progress);
@@ -403,10 +642,10 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     progress.check(0.0);
     const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate, progress); });
     const std::uint64_t stream = splitmix64_mix(options.seed);
-    progress.phase(0.2, 0.4);
+    progress.phase(0.2, 0.38);
     const OneSided forward =
         measure(reference_surface, candidate_surface, options.samples_per_side, splitmix64_mix(stream), progress);
-    progress.phase(0.6, 0.4);
+    progress.phase(0.58, 0.38);
     const OneSided backward =
         measure(candidate_surface, reference_surface, options.samples_per_side, splitmix64_mix(stream + 1), progress);
     report.hausdorff_reference_to_candidate = std::sqrt(forward.max_squared);
@@ -420,6 +659,12 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
 
   // A reference with a face of non-zero area has a positive area and diagonal.
   const double diagonal = report.reference.bbox_diagonal;
+  if (options.sharp_angle_deg != 0.0) {
+    report.features = measure_features(reference, candidate, options, diagonal, 0.96, 0.04, progress);
+  } else {
+    progress.phase(0.96, 0.04);
+    progress.check(1.0);
+  }
   report.hausdorff_pct = 100.0 * report.hausdorff / diagonal;
   report.rms_pct = 100.0 * report.rms / diagonal;
   report.area_change_pct = 100.0 * (report.candidate.area - report.reference.area) / report.reference.area;
@@ -428,6 +673,15 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
         100.0 * (report.candidate.volume - report.reference.volume) / std::abs(report.reference.volume);
   }
   return report;
+}
+
+FeatureRecall feature_recall(const TriangleMesh& reference, const TriangleMesh& candidate,
+                             const QualityOptions& options) {
+  check_feature_options(options);
+  naming("reference mesh", [&] { check_mesh(reference); });
+  naming("candidate mesh", [&] { check_mesh(candidate); });
+  ProgressCheck progress(options.progress);
+  return measure_features(reference, candidate, options, referenced_bbox_diagonal(reference), 0.0, 1.0, progress);
 }
 
 }  // namespace geodual::quality

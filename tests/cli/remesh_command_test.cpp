@@ -51,9 +51,10 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
     const std::size_t warm_started = json["warm_start_iterations"].get<int>() > 0 ? 1 : 0;
     ASSERT_EQ(energy.size(), json["lloyd_iterations"].get<std::size_t>() + 1 + warm_started);
     for (std::size_t i = 1; i < energy.size(); ++i) EXPECT_LE(energy[i], energy[i - 1]);
-    for (const char* key : {"sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s", "peak_memory_bytes",
-                            "q_min", "q_avg", "lloyd_iterations", "warm_start_iterations", "warm_start_s",
-                            "energy_history", "hausdorff_pct", "rms_pct", "relax_s", "statistics_s"}) {
+    for (const char* key :
+         {"sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s", "peak_memory_bytes", "q_min", "q_avg",
+          "lloyd_iterations", "warm_start_iterations", "warm_start_s", "energy_history", "hausdorff_pct", "rms_pct",
+          "relax_s", "statistics_s", "feature_recall_pct", "feature_max_gap_pct"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
   }

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <string>
@@ -83,10 +84,27 @@ TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
 
   std::vector<std::string> expected = {"reference", "candidate"};
   expected.insert(expected.end(), mesh_keys.begin(), mesh_keys.end());
-  for (const char* key :
-       {"hausdorff", "rms", "hausdorff_pct", "rms_pct", "hausdorff_reference_to_candidate_pct",
-        "hausdorff_candidate_to_reference_pct", "area_change_pct", "volume_change_pct", "samples_per_side", "seed",
-        "reference_samples", "candidate_samples", "reference_quality", "read_s", "stats_s"}) {
+  for (const char* key : {"hausdorff",
+                          "rms",
+                          "hausdorff_pct",
+                          "rms_pct",
+                          "hausdorff_reference_to_candidate_pct",
+                          "hausdorff_candidate_to_reference_pct",
+                          "area_change_pct",
+                          "volume_change_pct",
+                          "sharp_angle_deg",
+                          "feature_tolerance_pct",
+                          "feature_recall_edges",
+                          "feature_recall_length",
+                          "feature_recall_pct",
+                          "feature_max_gap_pct",
+                          "samples_per_side",
+                          "seed",
+                          "reference_samples",
+                          "candidate_samples",
+                          "reference_quality",
+                          "read_s",
+                          "stats_s"}) {
     expected.emplace_back(key);
   }
   EXPECT_EQ(keys_of(json), expected);
@@ -118,6 +136,13 @@ TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
   EXPECT_EQ(json.at("area_change_pct").get<double>(), report.area_change_pct);
   EXPECT_EQ(json.at("volume_change_pct").get<double>(), report.volume_change_pct.value());
   EXPECT_EQ(json.at("reference_quality").at("faces").get<std::int64_t>(), report.reference.faces);
+  ASSERT_TRUE(report.features.has_value());
+  EXPECT_EQ(json.at("sharp_angle_deg").get<double>(), 60.0);
+  EXPECT_EQ(json.at("feature_tolerance_pct").get<double>(), 0.1);
+  EXPECT_EQ(json.at("feature_recall_edges").get<std::int64_t>(), report.features->edges);
+  EXPECT_EQ(json.at("feature_recall_length").get<double>(), report.features->length);
+  EXPECT_EQ(json.at("feature_recall_pct").get<double>(), report.features->recall_pct);
+  EXPECT_EQ(json.at("feature_max_gap_pct").get<double>(), report.features->max_gap_pct);
 
   // Sane values for the decimated bunny against the full scan (MANIFEST.md:
   // bunny_res2 has 16,301 faces, 150 non-manifold edges, 5 boundary loops, so
@@ -178,6 +203,72 @@ TEST(StatsCommand, TableShowsTheFigures) {
   EXPECT_NE(rows.at("hausdorff").find('%'), std::string::npos) << rows.at("hausdorff");
 }
 
+/// The unit cube as OBJ text, with the corner (1, 1, 1) cut off `a` from it
+/// when `a` > 0 (its three pentagons fanned from their corner opposite the
+/// cut, so that the cut's chords are the edges nearest its creases).
+std::string cube_obj(double a) {
+  std::ostringstream obj;
+  for (int k = 0; k < 7; ++k) obj << "v " << (k & 1) << ' ' << ((k >> 1) & 1) << ' ' << ((k >> 2) & 1) << '\n';
+  if (a == 0) {
+    obj << "v 1 1 1\n"
+           "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\n"
+           "f 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+  } else {
+    obj << "v " << 1 - a << " 1 1\nv 1 " << 1 - a << " 1\nv 1 1 " << 1 - a << '\n';  // 8, 9, 10
+    obj << "f 1 3 4\nf 1 4 2\nf 1 2 6\nf 1 6 5\nf 1 5 7\nf 1 7 3\n"
+           "f 5 6 9\nf 5 9 8\nf 5 8 7\nf 3 7 8\nf 3 8 10\nf 3 10 4\nf 2 4 10\nf 2 10 9\nf 2 9 6\n"
+           "f 8 9 10\n";
+  }
+  return obj.str();
+}
+
+TEST(StatsCommand, FeatureRecallOfACubeCutAtACorner) {
+  // The three creases into the cut corner lose a - sqrt(2) tau each, tau =
+  // 0.1 % of the diagonal sqrt(3); the corner is a / sqrt(2) from the cut's chords.
+  const ScratchFolder folder;
+  const double a = 0.05;
+  const auto cube = folder.write("cube.obj", cube_obj(0)).string();
+  const auto cut = folder.write("cut.obj", cube_obj(a)).string();
+  const CliRun run = run_cli({"stats", cube, cut, "--json", "--samples", "1000"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::ordered_json json = nlohmann::ordered_json::parse(run.out);
+  const double tau = 0.001 * std::sqrt(3.0);
+  EXPECT_EQ(json.at("feature_recall_edges").get<std::int64_t>(), 12);
+  EXPECT_NEAR(json.at("feature_recall_length").get<double>(), 12.0, 1e-12);
+  EXPECT_NEAR(json.at("feature_recall_pct").get<double>(), 100 * (12 - 3 * (a - std::sqrt(2.0) * tau)) / 12, 0.003);
+  EXPECT_NEAR(json.at("feature_max_gap_pct").get<double>(), 100 * a / std::sqrt(2.0) / std::sqrt(3.0), 1e-9);
+
+  // The cube against itself recalls everything; with a wider tolerance the cut is recalled too.
+  const nlohmann::ordered_json same =
+      nlohmann::ordered_json::parse(run_cli({"stats", cut, cut, "--json", "--samples", "0"}).out);
+  EXPECT_EQ(same.at("feature_recall_pct").get<double>(), 100.0);
+  const nlohmann::ordered_json wide = nlohmann::ordered_json::parse(
+      run_cli({"stats", cube, cut, "--json", "--samples", "0", "--feature-tolerance", "2.1"}).out);
+  EXPECT_EQ(wide.at("feature_tolerance_pct").get<double>(), 2.1);
+  EXPECT_EQ(wide.at("feature_recall_pct").get<double>(), 100.0);
+  // Creases turning by 90 degrees are not sharp at 91 degrees; 0 measures nothing.
+  const nlohmann::ordered_json blunt = nlohmann::ordered_json::parse(
+      run_cli({"stats", cube, cut, "--json", "--samples", "0", "--sharp-angle", "91"}).out);
+  EXPECT_EQ(blunt.at("feature_recall_edges").get<std::int64_t>(), 0);
+  EXPECT_EQ(blunt.at("feature_recall_length").get<double>(), 0.0);
+  EXPECT_EQ(blunt.at("feature_recall_pct").get<double>(), 100.0);
+  EXPECT_EQ(blunt.at("feature_max_gap_pct").get<double>(), 0.0);
+  const nlohmann::ordered_json off = nlohmann::ordered_json::parse(
+      run_cli({"stats", cube, cut, "--json", "--samples", "0", "--sharp-angle", "0"}).out);
+  EXPECT_EQ(off.at("sharp_angle_deg").get<double>(), 0.0);
+  EXPECT_TRUE(off.at("feature_recall_pct").is_null());
+  EXPECT_TRUE(off.at("feature_max_gap_pct").is_null());
+
+  // The table says it in words.
+  const auto rows = table_rows(run_cli({"stats", cube, cut, "--samples", "0"}).out);
+  ASSERT_EQ(rows.count("sharp edges"), 1U);
+  EXPECT_EQ(rows.at("sharp edges").rfind("12 in the reference", 0), 0U) << rows.at("sharp edges");
+  ASSERT_EQ(rows.count("feature recall"), 1U);
+  EXPECT_EQ(rows.at("feature recall").rfind("98.81%", 0), 0U) << rows.at("feature recall");
+  ASSERT_EQ(rows.count("feature max gap"), 1U);
+  EXPECT_EQ(rows.at("feature max gap").rfind("2.041%", 0), 0U) << rows.at("feature max gap");
+}
+
 TEST(StatsCommand, BadFilesFailNamingThePath) {
   const ScratchFolder folder;
   const auto missing = (folder.path() / "no-such-mesh.ply").string();
@@ -197,6 +288,14 @@ TEST(StatsCommand, BadCommandLinesAreUsageErrors) {
   expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--samples", "1000000000001"}), 2,
                         "--samples");
   expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--frobnicate"}), 2, "--frobnicate");
+  for (const char* angle : {"-1", "181", "nan", "sixty"}) {
+    expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--sharp-angle", angle}), 2,
+                          "--sharp-angle");
+  }
+  for (const char* tolerance : {"0", "-0.1", "inf"}) {
+    expect_one_error_line(run_cli({"stats", reference_mesh, candidate_mesh, "--feature-tolerance", tolerance}), 2,
+                          "--feature-tolerance");
+  }
 }
 
 }  // namespace

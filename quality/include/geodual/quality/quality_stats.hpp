@@ -9,6 +9,10 @@
 // degenerate one. Angles are measured as atan2(|u x v|, u . v), accurate for
 // tiny angles too.
 //
+// Feature recall: whether the candidate's edges follow the reference's sharp
+// edges (creases where the normals of the two faces turn by at least an angle,
+// geodual/mesh/sharp_edges.hpp), as a remesh of a machined part should.
+//
 // Degenerate faces (a repeated vertex index, or exactly zero area computed in
 // double, the definition of analyze_mesh) have Q = 0 and angles (0, 0, 180)
 // degrees: they count in Qmin (= 0), Qavg, the minimum angle (= 0), and with two
@@ -28,6 +32,9 @@ namespace geodual::quality {
 
 /// More samples than this would take days: refused.
 inline constexpr std::int64_t max_samples_per_side = 1'000'000'000'000;
+/// Points along the sharp edges beyond this (a tolerance far too small for
+/// their length) are refused.
+inline constexpr std::int64_t max_feature_samples = 1'000'000'000;
 
 struct QualityOptions {
   /// Points drawn area-uniformly on each mesh for the distances, besides all
@@ -42,6 +49,15 @@ struct QualityOptions {
   /// false cancels the computation (geodual::Cancelled is thrown). It changes
   /// no result.
   std::function<bool(double fraction)> progress{};
+
+  /// Feature recall: an edge of the reference is sharp when the normals of
+  /// its two faces turn by at least this many degrees (in (0, 180]); 0 leaves
+  /// the feature recall out.
+  double sharp_angle_deg = 60.0;
+  /// A point of a sharp edge is recalled when some edge of the candidate
+  /// passes within this distance, in % of the reference's bounding-box
+  /// diagonal (> 0).
+  double feature_tolerance_pct = 0.1;
 };
 
 /// Figures of one mesh alone. Percentages are in [0, 100].
@@ -94,6 +110,34 @@ TriangleQuality triangle_quality(const TriangleMesh& mesh);
 /// a face with a repeated vertex or exactly zero area.
 double face_quality(const TriangleMesh& mesh, Index face);
 
+/// How well the candidate's edges follow the reference's sharp edges.
+///
+/// A sharp edge is an edge of the reference with two faces whose normals turn
+/// by at least sharp_angle_deg (geodual::sharp_edges). The distance from a
+/// point to the candidate is here the distance to the nearest of its edges (as
+/// segments; edges are the sides of faces joining two different vertices),
+/// not to its surface: a crease cut by a chamfer of triangles is not
+/// recalled, however close the surface. Each sharp edge is sampled at both
+/// ends and at points at most a tenth of the tolerance apart; a point is
+/// recalled when its distance is at most the tolerance, and the share of each
+/// piece between two samples that is recalled is taken as the mean of its
+/// ends' (the trapezoid rule), so the recall is exact up to a tenth of the
+/// tolerance at each place where the distance crosses the tolerance.
+/// JSON names (geodual stats --json, the remesh's extras): feature_recall_edges,
+/// feature_recall_length, feature_recall_pct, feature_max_gap_pct.
+struct FeatureRecall {
+  double sharp_angle_deg = 0.0;  ///< the threshold used
+  double tolerance = 0.0;        ///< feature_tolerance_pct of the diagonal, in mesh units
+  std::int64_t edges = 0;        ///< sharp edges of the reference
+  double length = 0.0;           ///< their total length, in mesh units
+  std::int64_t samples = 0;      ///< points measured along them
+  /// 100 * (length of sharp edges within the tolerance of a candidate edge) /
+  /// length; 100 when the reference has no sharp edge.
+  double recall_pct = 100.0;
+  double max_gap = 0.0;      ///< largest distance from a sampled point of a sharp edge to the candidate's edges
+  double max_gap_pct = 0.0;  ///< 100 * max_gap / the reference's bounding-box diagonal
+};
+
 /// The candidate's quality and its distance to the reference.
 ///
 /// Distances: each side's sample set is its referenced vertices plus
@@ -125,12 +169,25 @@ struct QualityReport {
   /// 100 * (candidate.volume - reference.volume) / |reference.volume|; empty
   /// when the reference's volume is 0. Meaningful for closed meshes only.
   std::optional<double> volume_change_pct;
+
+  /// Feature recall (see FeatureRecall); empty when options.sharp_angle_deg is 0.
+  std::optional<FeatureRecall> features;
 };
 
 /// Compares `candidate` with `reference`. Throws geodual::Error (naming which
 /// mesh) for what triangle_quality refuses, for a mesh whose faces all have
-/// zero area, and for a sample count below 0 or above max_samples_per_side.
+/// zero area, for a sample count below 0 or above max_samples_per_side, and
+/// for what feature_recall refuses.
 QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& candidate,
+                             const QualityOptions& options = {});
+
+/// The feature recall alone (compare_meshes computes it too), with
+/// options.sharp_angle_deg, feature_tolerance_pct and progress. Throws
+/// geodual::Error (naming which mesh) for a mesh without faces, a face index
+/// out of range or a non-finite coordinate, for a sharp angle outside
+/// (0, 180], a tolerance that is not positive, and for a tolerance so small
+/// that the sharp edges would need more than max_feature_samples samples.
+FeatureRecall feature_recall(const TriangleMesh& reference, const TriangleMesh& candidate,
                              const QualityOptions& options = {});
 
 }  // namespace geodual::quality
