@@ -39,9 +39,9 @@ CLI::Validator finite_non_negative() {
 }
 
 CLI::Validator number_between(double low, double high) {
-  std::ostringstream text;
-  text << '[' << low << ", " << high << ']';
-  const std::string range = text.str();
+  std::ostringstream bounds;
+  bounds << '[' << low << ", " << high << ']';
+  const std::string range = bounds.str();
   return CLI::Validator(
       [low, high, range](std::string& text) -> std::string {
         double value = 0;
