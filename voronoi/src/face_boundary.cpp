@@ -14,6 +14,9 @@ constexpr int samples_per_inner_side = 8;
 /// side: ~1e-14 of it): bisection's number of halvings, Brent's tolerance.
 constexpr int bisection_steps = 46;
 constexpr int max_polyline_depth = 12;
+/// From this many cones on an edge (about a third as many windows), its
+/// nearest site is asked of an AxisNearestSite rather than of the envelope.
+constexpr std::size_t min_cones_to_index = 96;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -177,6 +180,13 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
   // ends of every window (where the envelope's pieces change) and between,
   // and find each change of site by bisection.
   if (edge_envelope_.slot_count() > 1 && site0 >= 0 && site1 >= 0 && length > 0) {
+    std::size_t cones = 0;
+    for (int slot = 0; slot < edge_envelope_.slot_count(); ++slot) cones += edge_envelope_.cones(slot).size();
+    const AxisNearestSite* index = nullptr;
+    if (cones >= min_cones_to_index) {
+      edge_index_.build(edge_envelope_);
+      index = &edge_index_;
+    }
     samples_.clear();
     for (int i = 0; i <= 4; ++i) samples_.push_back(length * i / 4);
     for (Index i = field_.window_begin[edge]; i < field_.window_begin[edge + 1]; ++i) {
@@ -195,9 +205,11 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
     double previous_x = 0;
     for (std::size_t i = 1; i < samples_.size(); ++i) {
       const double x = samples_[i];
-      const Index site = i + 1 == samples_.size() ? site1 : edge_envelope_.nearest_site(Eigen::Vector2d(x, 0));
+      const Index site = i + 1 == samples_.size() ? site1
+                         : index                  ? index->nearest_site(x)
+                                                  : edge_envelope_.nearest_site(Eigen::Vector2d(x, 0));
       if (site < 0 || site == previous_site) continue;
-      find_site_changes(edge_envelope_, Eigen::Vector2d::Zero(), Eigen::Vector2d(length, 0), previous_x / length,
+      find_site_changes(edge_envelope_, index, Eigen::Vector2d::Zero(), Eigen::Vector2d(length, 0), previous_x / length,
                         x / length, previous_site, site);
       previous_site = site;
       previous_x = x;
@@ -239,8 +251,12 @@ void FaceBoundaryTracer::drop_zero_width_stretches() {
   }
 }
 
-void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p,
-                                           const Eigen::Vector2d& q, double t0, double t1, Index site0, Index site1) {
+void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const AxisNearestSite* on_axis,
+                                           const Eigen::Vector2d& p, const Eigen::Vector2d& q, double t0, double t1,
+                                           Index site0, Index site1) {
+  auto nearest_site = [&](const Eigen::Vector2d& at) {
+    return on_axis ? on_axis->nearest_site(at.x()) : envelope.nearest_site(at);
+  };
   // Where the two sites are equally far, found on the difference of their
   // distances, is the change when they are the nearest on either side of it.
   const Eigen::Vector2d a = p + t0 * (q - p), b = p + t1 * (q - p);
@@ -249,8 +265,7 @@ void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const E
     const double u = equal_distance_parameter(envelope, a, b, site0, site1, g_a, g_b);
     const double step = std::ldexp(t1 - t0, -bisection_steps + 2);
     const double t = t0 + u * (t1 - t0);
-    if (envelope.nearest_site(p + (t - step) * (q - p)) == site0 &&
-        envelope.nearest_site(p + (t + step) * (q - p)) == site1) {
+    if (nearest_site(p + (t - step) * (q - p)) == site0 && nearest_site(p + (t + step) * (q - p)) == site1) {
       changes_.push_back({t, site0, site1});
       return;
     }
@@ -262,14 +277,14 @@ void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const E
   for (int step = 0; step < bisection_steps; ++step) {
     const double mid = 0.5 * (lo + hi);
     if (mid <= lo || mid >= hi) break;
-    const Index site = envelope.nearest_site(p + mid * (q - p));
+    const Index site = nearest_site(p + mid * (q - p));
     if (site == site1) {
       hi = mid;
     } else if (site == site0 || site < 0) {
       lo = mid;
     } else {
-      find_site_changes(envelope, p, q, lo, mid, site0, site);
-      find_site_changes(envelope, p, q, mid, hi, site, site1);
+      find_site_changes(envelope, on_axis, p, q, lo, mid, site0, site);
+      find_site_changes(envelope, on_axis, p, q, mid, hi, site, site1);
       return;
     }
   }
@@ -760,7 +775,7 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
     const double t = static_cast<double>(i) / samples_per_inner_side;
     const Index site = i == samples_per_inner_side ? end_site : envelope_.nearest_site(start + t * (end - start));
     if (site < 0 || site == previous_site) continue;
-    find_site_changes(envelope_, start, end, previous_t, t, previous_site, site);
+    find_site_changes(envelope_, nullptr, start, end, previous_t, t, previous_site, site);
     previous_site = site;
     previous_t = t;
   }

@@ -9,6 +9,7 @@
 // own chunk (node references to edge crossings kept symbolic), so chunks can
 // be traced on any thread and merged in face order.
 
+#include "axis_nearest_site.hpp"
 #include "cell_moments.hpp"
 #include "face_distance.hpp"
 
@@ -176,8 +177,10 @@ class FaceBoundaryTracer {
   Eigen::Vector3d to_space(const Eigen::Vector2d& p) const;
   /// Appends to changes_ every change of nearest site along p + t (q - p)
   /// for t from t0 (where site0 is nearest) to t1 (site1), in order.
-  void find_site_changes(const ConeEnvelope& envelope, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double t0,
-                         double t1, Index site0, Index site1);
+  /// `on_axis`, if given, answers envelope.nearest_site on the x axis, where
+  /// p and q must then lie.
+  void find_site_changes(const ConeEnvelope& envelope, const AxisNearestSite* on_axis, const Eigen::Vector2d& p,
+                         const Eigen::Vector2d& q, double t0, double t1, Index site0, Index site1);
   /// Removes from changes_ the pairs A -> B -> A that enclose no length.
   void drop_zero_width_stretches();
   /// The u in [0, 1] where sites `from` and `to` are equally far at
@@ -217,6 +220,7 @@ class FaceBoundaryTracer {
   TracedChunk* out_ = nullptr;
 
   ConeEnvelope edge_envelope_;
+  AxisNearestSite edge_index_;  ///< edge_envelope_'s, when it holds many cones
   ConeEnvelope face_scratch_;
   std::vector<double> samples_;
   std::vector<SiteChange> changes_;

@@ -76,7 +76,7 @@ bool DistanceCone::sees(const Eigen::Vector2d& p) const {
   if (!in_wedge_only) return true;
   const Eigen::Vector2d q = p - apex;
   if (!wedge_opens) return cross(ray0, q) == 0 && (q - ray0).dot(q - ray1) <= 0;
-  return cross(ray0, q) >= 0 && cross(q, ray1) >= 0;
+  return after_ray0(q) && before_ray1(q);
 }
 
 void ConeEnvelope::clear() {
@@ -132,7 +132,7 @@ double ConeEnvelope::distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2
   const std::span<const DistanceCone> cones =
       slot >= 0 ? std::span<const DistanceCone>(slot_cones_[slot]) : std::span<const DistanceCone>();
   for (const DistanceCone& cone : cones) {
-    const double d = cone.sigma + (p - cone.apex).norm();
+    const double d = cone.value(p);
     if (d < best && cone.sees(p)) best = d, best_cone = &cone;
   }
   if (gradient) {
@@ -154,7 +154,7 @@ Index ConeEnvelope::nearest_site(const Eigen::Vector2d& p) const {
   for (int slot = 0; slot < slot_count(); ++slot) {
     const Index s = slot_site_[slot];
     for (const DistanceCone& cone : slot_cones_[slot]) {
-      const double d = cone.sigma + (p - cone.apex).norm();
+      const double d = cone.value(p);
       if ((d < best || (d == best && s < site)) && cone.sees(p)) best = d, site = s;
     }
   }

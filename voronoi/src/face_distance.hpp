@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <span>
 #include <vector>
 
 namespace geodual::voronoi::detail {
@@ -50,6 +51,11 @@ struct DistanceCone {
 
   void set_rays(const Eigen::Vector2d& from, const Eigen::Vector2d& to);
   bool sees(const Eigen::Vector2d& p) const;
+  /// The value at p, whether or not the cone sees p.
+  double value(const Eigen::Vector2d& p) const { return sigma + (p - apex).norm(); }
+  /// An opening wedge's two half-planes, for q = p - apex: it sees p where both hold.
+  bool after_ray0(const Eigen::Vector2d& q) const { return ray0.x() * q.y() - ray0.y() * q.x() >= 0; }
+  bool before_ray1(const Eigen::Vector2d& q) const { return q.x() * ray1.y() - q.y() * ray1.x() >= 0; }
 };
 
 /// The lower envelopes, one per site, of a set of cones in one plane. The
@@ -72,6 +78,8 @@ class ConeEnvelope {
   /// The slot of a site, or -1 if no cone of it reaches here.
   int slot_of(Index site) const;
   bool has_site(Index site) const { return slot_of(site) >= 0; }
+  /// The cones of one slot, in the order they were added.
+  std::span<const DistanceCone> cones(int slot) const { return slot_cones_[slot]; }
 
   /// Distance to one site at p (+inf if none of its cones sees p) and its
   /// gradient there.
