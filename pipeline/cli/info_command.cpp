@@ -14,6 +14,7 @@
 #include "geodual/pipeline/report_json.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
+#include "geodual/remesh/remesh.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -40,7 +41,7 @@ class InfoCommand final : public Command {
     command
         .add_option("--sharp-angle", sharp_angle_,
                     "Report the sharp features a remesh with --sharp-angle would keep: creases where the normals "
-                    "turn by at least this many degrees (0: none)")
+                    "turn by at least this many degrees (0: none, the remesh's default)")
         ->capture_default_str()
         ->check(number_between(0, 180));
     command.add_option("--sites", sites_, "The remesh's site count, whose spacing sets the features' scale")
@@ -67,7 +68,9 @@ class InfoCommand final : public Command {
     remesh::FeatureSet features;
     if (sharp_angle_ > 0 && report.faces > 0) {
       const TriangleMesh surface = remesh::cut_to_manifold(loaded.mesh).mesh;
-      features = remesh::detect_features(surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_, 0.5));
+      features = remesh::detect_features(
+          surface,
+          remesh::remesh_feature_options(surface, sites_, sharp_angle_, remesh::RemeshOptions{}.min_feature_length));
     }
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();
@@ -147,7 +150,7 @@ class InfoCommand final : public Command {
   std::string path_;
   bool json_ = false;
   std::string preview_path_;
-  double sharp_angle_ = 60;
+  double sharp_angle_ = 0;
   std::int64_t sites_ = 4000;
 };
 

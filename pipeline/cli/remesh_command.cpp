@@ -76,7 +76,7 @@ class RemeshCommand final : public Command {
         ->check(finite_non_negative());
     command
         .add_option("--sharp-angle", options_.sharp_angle,
-                    "Keep creases where the normals turn by at least this many degrees (in networks at least one "
+                    "Keep creases where the normals turn by at least this many degrees (in chains at least half a "
                     "remesh spacing long) as chains of edges, corners included (0: none; ignored with --sites-file)")
         ->capture_default_str()
         ->check(number_between(0, 180));

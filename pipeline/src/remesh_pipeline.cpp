@@ -137,7 +137,11 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     result.initial_sites = std::move(sampled.sites);
     result.sites_added_for_topology = sampled.sites_added_for_topology;
     result.sites_added_reason = sampled.topology_reason;
-    if (sampled.sites_added_for_topology > 0) result.sites_added_reason += loops_from_cut(sampled.boundary_loops);
+    if (sampled.sites_added_for_topology > 0) {
+      // The loops of the surface cut to a manifold (those of the features' cut are the chains' sides).
+      result.sites_added_reason +=
+          loops_from_cut(feature_sites ? build_mesh_topology(manifold).num_boundary_loops : sampled.boundary_loops);
+    }
   }
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
@@ -218,7 +222,8 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
-    if (result.features.empty()) throw;
+    // Only a failure of the remesh that keeps the features (not of the statistics after it) falls back.
+    if (result.features.empty() || result.remesh.mesh.num_faces() > 0) throw;
     // The features could not be kept: the remesh without them, and why.
     result.features_dropped_reason = e.what();
     result.features = {};

@@ -147,8 +147,9 @@ struct ChainWalk {
     const Eigen::Vector3d p = point(from), q = point(to);
     const Eigen::Vector3d d = q - p;
     const double dd = d.squaredNorm();
-    for (std::size_t i = 0; i < at.size(); ++i) {
-      if (at[i] <= from || at[i] >= to) continue;
+    const auto first = std::upper_bound(at.begin(), at.end(), from), last = std::lower_bound(first, at.end(), to);
+    for (auto it = first; it != last; ++it) {
+      const std::size_t i = static_cast<std::size_t>(it - at.begin());
       const Eigen::Vector3d x = surface.vertices.row(chain.vertices[i]).transpose() - p;
       const double s = dd > 0 ? std::clamp(x.dot(d) / dd, 0.0, 1.0) : 0.0;
       if ((x - s * d).norm() > error) return false;
@@ -307,17 +308,43 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
   return result;
 }
 
-std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features,
+std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                         std::span<const SurfacePoint> sites) {
   std::vector<SurfacePoint> missing;
   if (features.empty()) return missing;
   const MeshTopology topology = build_mesh_topology(surface);
+  // Sites at a vertex the cut split: every copy needs one.
+  std::vector<Index> copy_begin, copies;
+  vertex_copies(cut, static_cast<Index>(surface.vertices.rows()), copy_begin, copies);
+  std::vector<Index> at_vertex_held;    // cut vertices holding a site
+  std::vector<Index> at_vertex_wanted;  // surface vertices with more than one copy holding one
+  for (const SurfacePoint& site : sites) {
+    const SiteKey key = site_key(surface, cut, site);
+    if (key.lo < 0 || key.lo != key.hi || copy_begin[key.lo + 1] - copy_begin[key.lo] < 2) continue;
+    at_vertex_wanted.push_back(key.lo);
+    if (site.kind == SurfacePoint::Kind::vertex) {
+      at_vertex_held.push_back(site.element);
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        if (site.barycentric[k] == 1) at_vertex_held.push_back(cut.mesh.faces(site.element, k));
+      }
+    }
+  }
+  std::sort(at_vertex_held.begin(), at_vertex_held.end());
+  std::sort(at_vertex_wanted.begin(), at_vertex_wanted.end());
+  at_vertex_wanted.erase(std::unique(at_vertex_wanted.begin(), at_vertex_wanted.end()), at_vertex_wanted.end());
+  for (const Index v : at_vertex_wanted) {
+    for (Index i = copy_begin[v]; i < copy_begin[v + 1]; ++i) {
+      if (!std::binary_search(at_vertex_held.begin(), at_vertex_held.end(), copies[i])) {
+        missing.push_back(SurfacePoint::at_vertex(copies[i]));
+      }
+    }
+  }
   // Per sharp-edge point held: the faces holding it.
   std::vector<std::pair<SiteKey, Index>> held;
-  const FeatureCut none;  // site keys of face points need no cut
   for (const SurfacePoint& site : sites) {
     if (site.kind != SurfacePoint::Kind::face) continue;
-    const SiteKey key = site_key(surface, none, site);
+    const SiteKey key = site_key(surface, cut, site);
     if (key.lo >= 0 && key.lo != key.hi && is_sharp(features, key.lo, key.hi)) held.push_back({key, site.element});
   }
   std::sort(held.begin(), held.end(), [](const auto& x, const auto& y) {
@@ -387,7 +414,14 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     return edge != surface_topology.edge_vertices.end() && *edge == std::array<Index, 2>{key.lo, key.hi} &&
            surface_topology.is_boundary_edge(static_cast<Index>(edge - surface_topology.edge_vertices.begin()));
   };
+  // Surface vertices the cut split (on a chain).
+  std::vector<std::uint8_t> vertex_split(static_cast<std::size_t>(surface.vertices.rows()), 0);
+  for (std::size_t w = static_cast<std::size_t>(surface.vertices.rows()); w < cut.original_vertex.size(); ++w) {
+    vertex_split[static_cast<std::size_t>(cut.original_vertex[w])] = 1;
+  }
   const MeshTopology topology = build_mesh_topology(welded.mesh);
+  // Twins that made a triangle or an edge in two pieces: not a remesh.
+  for (Index e = 0; e < topology.num_edges(); ++e) welded.nonmanifold_edges += topology.is_manifold_edge(e) ? 0 : 1;
   std::vector<std::uint8_t> needs(n, 0);
   for (Index e = 0; e < topology.num_edges(); ++e) {
     if (!topology.is_boundary_edge(e)) continue;
@@ -400,11 +434,17 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     for (const std::size_t s : {sa, sb}) {
       const SiteKey& key = keys[s];
       const bool on_cut_boundary =
-          key.lo >= 0 && (key.lo == key.hi || is_sharp(features, key.lo, key.hi) || on_surface_boundary(s));
+          key.lo >= 0 && (key.lo == key.hi ? vertex_split[key.lo] || on_surface_boundary(s)
+                                           : is_sharp(features, key.lo, key.hi) || on_surface_boundary(s));
       if (!on_cut_boundary) needs[s] = 1;
     }
   }
   if (welded.cracked_edges == 0) return welded;
+  std::vector<SiteKey> held;  // a move onto a point a site holds would make two sites one
+  for (const SiteKey& key : keys) {
+    if (key.lo >= 0) held.push_back(key);
+  }
+  std::sort(held.begin(), held.end());
 
   // The nearest point of the cut surface's boundary in the site's piece.
   const MeshTopology cut_topology = build_mesh_topology(cut.mesh);
@@ -437,7 +477,11 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
         nearest = point_on_edge(surface, f, lo, hi, lattice_parameter(along));
       }
     }
-    if (best < std::numeric_limits<double>::infinity()) welded.site_moves.emplace_back(s, nearest);
+    if (!(best < std::numeric_limits<double>::infinity())) continue;
+    const SiteKey key = site_key(surface, cut, nearest);
+    if (std::binary_search(held.begin(), held.end(), key)) continue;
+    held.insert(std::upper_bound(held.begin(), held.end(), key), key);
+    welded.site_moves.emplace_back(s, nearest);
   }
   return welded;
 }
@@ -456,8 +500,12 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     dual_seconds += result.dual_seconds;
     const auto start = std::chrono::steady_clock::now();
     WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
+    if (welded.nonmanifold_edges > 0) {
+      throw Error("the remesh welded along the sharp features has " + std::to_string(welded.nonmanifold_edges) +
+                  " edges with three or more triangles");
+    }
     for (const auto& [site, point] : welded.site_moves) result.sites[site] = point;
-    const std::vector<SurfacePoint> more = missing_twins(surface, features, result.sites);
+    const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
     if (welded.cracked_edges == 0 && more.empty()) {
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);

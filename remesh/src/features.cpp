@@ -170,7 +170,8 @@ Chains walk_chains(const TriangleMesh& surface, const FeatureGraph& graph, doubl
       e = at[0] == e ? at[1] : at[0];
       if (walked[e]) break;
     }
-    chain.closed = chain.vertices.front() == chain.vertices.back();
+    // A loop through one corner is an open chain from that corner back to it.
+    chain.closed = chain.vertices.front() == chain.vertices.back() && !corner[chain.vertices.front()];
     result.chains.push_back(std::move(chain));
     result.chain_edges.push_back(std::move(edges));
   };

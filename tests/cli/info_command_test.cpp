@@ -82,7 +82,7 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
                                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
                                  "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
                                  "f 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n");
-  CliRun run = run_cli({"info", path.string(), "--json"});
+  CliRun run = run_cli({"info", path.string(), "--json", "--sharp-angle", "60"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["feature_chains"], 12);
@@ -92,8 +92,10 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
   run = run_cli({"info", path.string(), "--json", "--sharp-angle", "91"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["feature_chains"], 0);
-  run = run_cli({"info", path.string()});
+  run = run_cli({"info", path.string(), "--sharp-angle", "60"});
   EXPECT_NE(run.out.find("12 chains, 8 corners"), std::string::npos) << run.out;
+  run = run_cli({"info", path.string()});  // off by default, as in the remesh
+  EXPECT_EQ(run.out.find("sharp features"), std::string::npos) << run.out;
   EXPECT_EQ(run_cli({"info", path.string(), "--sharp-angle", "nan"}).exit_status, 2);
 }
 

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -99,10 +100,17 @@ TEST(FeatureCut, BoxFallsIntoSixSidesAndSitesComeInTwins) {
     EXPECT_GE(on_faces, 2);
   }
   EXPECT_EQ(at.size(), static_cast<std::size_t>(sites.points));  // twins at exactly one position
-  EXPECT_TRUE(remesh::missing_twins(box, features, sites.sites).empty());
+  EXPECT_TRUE(remesh::missing_twins(box, features, cut, sites.sites).empty());
   // One side's site alone lacks its twin.
   const std::vector<SurfacePoint> one = {sites.sites.back()};
-  EXPECT_EQ(remesh::missing_twins(box, features, one).size(), 1u);
+  EXPECT_EQ(remesh::missing_twins(box, features, cut, one).size(), 1u);
+  // A site at one copy of a split vertex lacks the others.
+  const Index copy = static_cast<Index>(box.vertices.rows());  // the first extra copy
+  const Index original = cut.original_vertex[static_cast<std::size_t>(copy)];
+  const auto copies = std::count(cut.original_vertex.begin(), cut.original_vertex.end(), original);
+  ASSERT_GE(copies, 2);
+  const std::vector<SurfacePoint> at_copy = {SurfacePoint::at_vertex(copy)};
+  EXPECT_EQ(static_cast<std::ptrdiff_t>(remesh::missing_twins(box, features, cut, at_copy).size()), copies - 1);
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {

@@ -54,9 +54,10 @@ struct FeatureSites {
 FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                            const FeatureSiteOptions& options);
 
-/// The twins `sites` lack: for each site on a sharp edge, the same point on
-/// the edge's other face, where no site holds it.
-std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features,
+/// The twins `sites` (on cut.mesh) lack: for each site on a sharp edge, the
+/// same point on the edge's other face, and for each site at a vertex the cut
+/// split, a site at its other copies, where no site holds them.
+std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                         std::span<const SurfacePoint> sites);
 
 struct WeldedDual {
@@ -66,7 +67,8 @@ struct WeldedDual {
   /// that boundary nearest it: moved there (and given twins), they close the
   /// cracks. The weld is a remesh only when there are none.
   std::vector<std::pair<std::size_t, SurfacePoint>> site_moves;
-  std::int64_t cracked_edges = 0;  ///< boundary edges of `mesh` off the surface's boundary
+  std::int64_t cracked_edges = 0;      ///< boundary edges of `mesh` off the surface's boundary
+  std::int64_t nonmanifold_edges = 0;  ///< edges of `mesh` with three or more triangles
 };
 
 /// Welds `dual` (vertex i is sites[i], on cut.mesh) along the chains. A

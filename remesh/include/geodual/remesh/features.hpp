@@ -36,8 +36,9 @@ struct FeatureOptions {
   double corner_angle = 60;
 };
 
-/// A polyline of mesh vertices between two corners (first and last), or a
-/// closed loop without one (first == last).
+/// A polyline of mesh vertices between two corners (first and last, the same
+/// one for a loop through a single corner), or a closed loop without a corner
+/// (first == last, `closed`).
 struct FeatureChain {
   std::vector<Index> vertices;
   bool closed = false;
