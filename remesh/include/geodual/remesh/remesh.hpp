@@ -31,7 +31,7 @@ struct RepairOptions {
 /// The dual-with-repair stage's result: the remesh.
 struct RepairedDual {
   TriangleMesh mesh;                ///< vertex i is sites[i]
-  std::vector<SurfacePoint> sites;  ///< the given sites, then those added by repair
+  std::vector<SurfacePoint> sites;  ///< the given sites (less DualCheck::redundant_sites), then those added by repair
   voronoi::VoronoiDiagram diagram;  ///< of the final sites
   DualCheck check;                  ///< of the final dual (valid)
   std::int64_t sites_added = 0;
