@@ -4,7 +4,8 @@
 // (repair must go around it, not stack another band on it). Repair on
 // features finer than the spacing, which must converge: a spire (issue 19's
 // building_wtc2), a strip narrower than the spacing, a sharp corner with a
-// site in its tip, pieces touching where a repair site would go.
+// site in its tip, pieces touching where a repair site would go, two holes
+// closer than the spacing.
 
 #include "remesh/analytic_surfaces.hpp"
 
@@ -301,6 +302,38 @@ TEST(DualRepair, ARepairSiteWhereAnotherPieceHasASiteStepsIntoItsFace) {
     if (on < corner && (x - Eigen::Vector3d(1, 1, 1)).norm() < 0.05) beside_the_corner = true;
   }
   EXPECT_TRUE(beside_the_corner);
+}
+
+TEST(DualRepair, TwoHolesOneCellApartKeepTheirBridge) {
+  // A unit square of 20 x 20 cells with two holes of 4 x 4 cells one cell
+  // (0.05) apart; 20 sites, a spacing of about 0.25. The arcs between the
+  // holes' sites run from one hole to the other: the dual leaves the bridge
+  // out and the holes merge (3 loops become 2), with every local check
+  // passing. Before: nothing was repaired there while a fault elsewhere had
+  // a repair, and then the largest cells (no valid dual after 10 rounds);
+  // now a site goes at each such arc's far end.
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<Index, 3>> faces;
+  constexpr int n = 20;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) points.emplace_back(double(i) / n, double(j) / n, 0);
+  }
+  auto in_hole = [](int i, int j) { return j >= 8 && j < 12 && ((i >= 4 && i < 8) || (i >= 9 && i < 13)); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (in_hole(i, j)) continue;
+      const Index a = i + (n + 1) * j, b = a + 1, c = a + n + 1, d = c + 1;
+      faces.push_back({a, b, d});
+      faces.push_back({a, d, c});
+    }
+  }
+  const TriangleMesh mesh = test::mesh_from_lists(points, faces);
+  const std::vector<SurfacePoint> sites =
+      remesh::sample_sites(mesh, 20, {.strategy = remesh::SamplingStrategy::poisson});
+  const remesh::RepairedDual result = remesh::dual_with_repair(mesh, sites, voronoi::compute_voronoi(mesh, sites));
+  EXPECT_TRUE(result.check.valid);
+  EXPECT_LE(result.repair_rounds, 6);
+  EXPECT_EQ(topology_of(result.mesh), std::make_pair(std::int64_t{-1}, std::int64_t{3}));
 }
 
 }  // namespace
