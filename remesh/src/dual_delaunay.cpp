@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -138,6 +139,348 @@ Index vertex_of(const TriangleMesh& mesh, const SurfacePoint& p) {
   return p.kind == SurfacePoint::Kind::vertex ? p.element : mesh.faces(p.element, 0);
 }
 
+/// Per vertex: whether it lies on the boundary (an edge with one face, or
+/// three or more) with its faces' angles there summing to less than a right
+/// angle.
+std::vector<std::uint8_t> sharp_boundary_corners(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
+  std::vector<std::uint8_t> on_boundary(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (std::size_t e = 0; e < field.edge_vertices.size(); ++e) {
+    if (field.edge_faces[e][1] < 0) on_boundary[field.edge_vertices[e][0]] = on_boundary[field.edge_vertices[e][1]] = 1;
+  }
+  std::vector<double> angle(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (has_repeated_corner(mesh, f)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const Index v = mesh.faces(f, c);
+      if (!on_boundary[v]) continue;
+      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, (c + 1) % 3)) - mesh.vertices.row(v);
+      const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, (c + 2) % 3)) - mesh.vertices.row(v);
+      angle[v] += std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+  }
+  std::vector<std::uint8_t> sharp(on_boundary.size(), 0);
+  for (std::size_t v = 0; v < sharp.size(); ++v) sharp[v] = on_boundary[v] && angle[v] < 0.5 * std::numbers::pi;
+  return sharp;
+}
+
+/// How a site whose cell fails a check is repaired (the strongest one found
+/// for it counts).
+enum class SiteRepair : std::uint8_t {
+  none,
+  farthest_point,    ///< a non-manifold, duplicate or zero-area triangle at it
+  each_fan,          ///< its triangles form several fans
+  boundary_corners,  ///< no Voronoi vertex: its cell meets others only along arcs to the mesh boundary
+};
+
+/// Where the checks of a dual failed.
+struct Faults {
+  std::vector<SiteRepair> site;                ///< per site
+  std::vector<std::array<Index, 2>> fan_tips;  ///< {site, Voronoi vertex}: each fan's farthest, for each_fan
+  std::vector<Index> split_pairs;              ///< into diagram.adjacency: pairs meeting along several arcs
+  std::vector<Index> closed_arcs;              ///< into diagram.arcs
+  std::vector<Index> mismatched;               ///< input components (smallest vertex) whose topology differs
+  std::vector<Index> component_of_site;        ///< per site, its input component
+  std::map<Index, std::vector<Index>> sites_of_component;
+};
+
+/// Points where new sites restore the closed-ball property, for the faults
+/// of the dual of `diagram` on `input` (`components`: the input's, by smallest vertex).
+std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                                       const Faults& faults, UnionFind& components) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const Index num_sites = static_cast<Index>(field.sites.size());
+  std::vector<SurfacePoint> points;
+  // Each point keeps other repair points at most this far away (see the
+  // filter below); infinity: a quarter of the sites' mean spacing.
+  std::vector<double> apart_at_most;
+  auto repair_at = [&](const SurfacePoint& p, double apart) {
+    points.push_back(p);
+    apart_at_most.push_back(apart);
+  };
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  auto distance_at = [&](Index point) { return voronoi::query(field, input, diagram.point_locations[point]).distance; };
+
+  // Between cells. Two cells meeting along several arcs wrap a tube or a
+  // spire thinner than the spacing: a site halfway along each arc. A closed
+  // boundary (a cell enclosed by another) girdles one: one site on it would
+  // only stack another band of cells there, so three go round it, a third
+  // of its length apart, and cells meet at Voronoi vertices across it. There
+  // the new sites must come closer than the spacing: they keep apart by half
+  // their distance to the sites (a sixth of the loop).
+  std::vector<std::uint8_t> repaired_between(static_cast<std::size_t>(num_sites), 0);
+  for (const Index p : faults.split_pairs) {
+    const voronoi::CellAdjacency& pair = diagram.adjacency[p];
+    for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+      if (std::min(arc.left_site, arc.right_site) != pair.site_a ||
+          std::max(arc.left_site, arc.right_site) != pair.site_b) {
+        continue;
+      }
+      const SurfacePoint& halfway = diagram.point_locations[(arc.point_begin + arc.point_end) / 2];
+      repair_at(halfway, 0.5 * (halfway.position(input) - field.sites[arc.left_site].position(input)).norm());
+    }
+    repaired_between[pair.site_a] = repaired_between[pair.site_b] = 1;
+  }
+  for (const Index a : faults.closed_arcs) {
+    const voronoi::VoronoiArc& arc = diagram.arcs[a];
+    repaired_between[arc.left_site] = repaired_between[arc.right_site] = 1;
+    const auto line = diagram.polyline(arc);
+    double length = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) length += (line[(i + 1) % line.size()] - line[i]).norm();
+    double walked = 0;
+    int placed = 0;
+    for (std::size_t i = 0; i < line.size() && placed < 3; ++i) {
+      if (walked >= placed * length / 3) {
+        repair_at(diagram.point_locations[arc.point_begin + static_cast<Index>(i)], length / 6);
+        ++placed;
+      }
+      walked += (line[(i + 1) % line.size()] - line[i]).norm();
+    }
+  }
+
+  const std::vector<std::uint8_t> sharp = sharp_boundary_corners(input, field);
+  std::vector<std::uint8_t> holds_sharp_corner(static_cast<std::size_t>(num_sites), 0);
+  for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
+    if (sharp[v] && field.nearest_site[v] >= 0) holds_sharp_corner[field.nearest_site[v]] = 1;
+  }
+  // Pieces whose topology differs. Local faults explain most. Besides them,
+  // an arc from the mesh boundary to the mesh boundary crosses a strip
+  // narrower than the spacing (between two holes, a hole and the border,
+  // the sides of a slot), which the dual leaves out, merging holes or
+  // cutting the piece: a site at its end farther from its sites, where no
+  // site holds that stretch of boundary; not across a sharp corner of one
+  // loop, where it would only make the next cell cut off there (see
+  // redundant_sites). Where there is neither, refine where cells are
+  // largest (a handle or hole inside one), at their farthest points.
+  std::vector<std::pair<SurfacePoint, double>> crossings;
+  std::vector<std::uint8_t> crossed(faults.mismatched.size(), 0);
+  UnionFind loops(faults.mismatched.empty() ? 0 : static_cast<std::size_t>(input.num_vertices()));
+  std::vector<std::uint8_t> on_boundary(faults.mismatched.empty() ? 0 : static_cast<std::size_t>(input.num_vertices()),
+                                        0);
+  for (std::size_t e = 0; e < field.edge_vertices.size() && !faults.mismatched.empty(); ++e) {
+    if (field.edge_faces[e][1] >= 0) continue;
+    loops.unite(field.edge_vertices[e][0], field.edge_vertices[e][1]);
+    on_boundary[field.edge_vertices[e][0]] = on_boundary[field.edge_vertices[e][1]] = 1;
+  }
+  // The boundary loop (its smallest vertex) through a point on the mesh boundary.
+  auto loop_of = [&](const SurfacePoint& p) {
+    if (p.kind == SurfacePoint::Kind::vertex) return on_boundary[p.element] ? loops.find(p.element) : Index{-1};
+    Index best = -1;
+    for (int c = 0; c < 3; ++c) {
+      const Index v = input.faces(p.element, c);
+      if (on_boundary[v] && (best < 0 || p.barycentric[c] > p.barycentric[best])) best = c;
+    }
+    return best < 0 ? Index{-1} : loops.find(input.faces(p.element, best));
+  };
+  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+    if (faults.mismatched.empty() || arc.closed || arc.start_vertex >= 0 || arc.end_vertex >= 0 ||
+        arc.point_end <= arc.point_begin) {
+      continue;
+    }
+    const Index component = faults.component_of_site[arc.left_site];
+    const auto it = std::lower_bound(faults.mismatched.begin(), faults.mismatched.end(), component);
+    if (it == faults.mismatched.end() || *it != component) continue;
+    if ((holds_sharp_corner[arc.left_site] || holds_sharp_corner[arc.right_site]) &&
+        loop_of(diagram.point_locations[arc.point_begin]) == loop_of(diagram.point_locations[arc.point_end - 1])) {
+      continue;
+    }
+    const double first = distance_at(arc.point_begin), last = distance_at(arc.point_end - 1);
+    crossings.emplace_back(diagram.point_locations[last > first ? arc.point_end - 1 : arc.point_begin],
+                           0.5 * std::max(first, last));
+    crossed[static_cast<std::size_t>(it - faults.mismatched.begin())] = 1;
+  }
+  std::vector<Index> largest_cells;
+  for (std::size_t i = 0; i < faults.mismatched.size(); ++i) {
+    const std::vector<Index>& sites = faults.sites_of_component.at(faults.mismatched[i]);
+    if (crossed[i] ||
+        std::any_of(sites.begin(), sites.end(), [&](Index s) { return faults.site[s] != SiteRepair::none; })) {
+      continue;
+    }
+    std::vector<std::pair<double, Index>> by_area;
+    for (const Index s : sites) by_area.emplace_back(-diagram.cell_area[s], s);
+    std::sort(by_area.begin(), by_area.end());
+    const std::size_t count = std::max<std::size_t>(1, sites.size() / 20);
+    for (std::size_t k = 0; k < count && k < by_area.size(); ++k) largest_cells.push_back(by_area[k].second);
+  }
+  std::vector<std::uint8_t> refined(static_cast<std::size_t>(num_sites), 0);
+  for (Index s = 0; s < num_sites; ++s) refined[s] = faults.site[s] != SiteRepair::none;
+  for (const Index s : largest_cells) refined[s] = 1;
+
+  // At sites, but for those repaired between cells (their split or enclosed
+  // cell is the cause, and a point beside those repairs would crowd them):
+  // farthest-point refinement, each new site at the point of the cell
+  // farthest from its site, so at least that far from every site. That
+  // point is the cell's farthest mesh vertex, or where the cell holds none
+  // beyond the site (sites denser than the mesh's vertices) the farthest of
+  // its Voronoi vertices and of the ends of its arcs on the mesh boundary.
+  // A boundary corner sharper than a right angle is no place for a site:
+  // its cell is cut off by a single arc (no Voronoi vertex) unless the
+  // sites on either side are almost equally far, and each repair there would
+  // only put the next site closer to the tip.
+  std::vector<Index> farthest_vertex(static_cast<std::size_t>(num_sites), -1);
+  for (Index v = 0; v < static_cast<Index>(field.distance.size()); ++v) {
+    const Index s = field.nearest_site[v];
+    if (s < 0 || sharp[v] || !refined[s]) continue;
+    if (farthest_vertex[s] < 0 || field.distance[v] > field.distance[farthest_vertex[s]]) farthest_vertex[s] = v;
+  }
+  std::vector<Index> farthest_voronoi_vertex(static_cast<std::size_t>(num_sites), -1);
+  for (std::size_t v = 0; v < diagram.vertices.size(); ++v) {
+    const double distance = diagram.vertices[v].distance;
+    for (const Index s : diagram.sites_of(diagram.vertices[v])) {
+      Index& farthest = farthest_voronoi_vertex[s];
+      if (farthest < 0 || distance > diagram.vertices[farthest].distance) farthest = static_cast<Index>(v);
+    }
+  }
+  // Per faulty site: the ends of its arcs on the mesh boundary (indices into
+  // the diagram's points), with their distances.
+  std::vector<std::vector<std::pair<double, Index>>> boundary_ends(static_cast<std::size_t>(num_sites));
+  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+    if (arc.closed || arc.point_end <= arc.point_begin) continue;
+    const bool left = refined[arc.left_site] != 0;
+    const bool right = refined[arc.right_site] != 0;
+    if (!left && !right) continue;
+    for (const auto& [open, point] :
+         {std::pair{arc.start_vertex < 0, arc.point_begin}, std::pair{arc.end_vertex < 0, arc.point_end - 1}}) {
+      if (!open) continue;
+      const double distance = distance_at(point);
+      if (left) boundary_ends[arc.left_site].emplace_back(distance, point);
+      if (right) boundary_ends[arc.right_site].emplace_back(distance, point);
+    }
+  }
+  auto repair_far_from = [&](Index site) {
+    if (farthest_vertex[site] >= 0 && field.distance[farthest_vertex[site]] > 0) {
+      repair_at(SurfacePoint::at_vertex(farthest_vertex[site]), infinity);
+      return;
+    }
+    const Index voronoi_vertex = farthest_voronoi_vertex[site];
+    const auto& ends = boundary_ends[site];
+    const auto end = std::max_element(ends.begin(), ends.end());
+    if (end != ends.end() && (voronoi_vertex < 0 || end->first > diagram.vertices[voronoi_vertex].distance)) {
+      repair_at(diagram.point_locations[end->second], infinity);
+    } else if (voronoi_vertex >= 0) {
+      repair_at(diagram.vertices[voronoi_vertex].location, infinity);
+    }
+  };
+  // Several fans: the cell has several boundary cycles (a band round a tube
+  // or a spire) or reaches the mesh boundary in several places; like a
+  // closed boundary, each fan gets a site, at its farthest Voronoi vertex. A
+  // cell with no Voronoi vertex meets its neighbours only along arcs from
+  // the mesh boundary to the mesh boundary (across a strip or a flap
+  // narrower than the spacing, or cutting off a corner): a site at every end
+  // of them, so that the strip gets sites on both sides. Both keep apart by
+  // half their distance to the sites.
+  for (Index s = 0; s < num_sites; ++s) {
+    if (faults.site[s] == SiteRepair::none || repaired_between[s]) continue;
+    if (faults.site[s] == SiteRepair::each_fan) {
+      auto tip = std::lower_bound(faults.fan_tips.begin(), faults.fan_tips.end(), s,
+                                  [](const std::array<Index, 2>& t, Index site) { return t[0] < site; });
+      for (; tip != faults.fan_tips.end() && (*tip)[0] == s; ++tip) {
+        const voronoi::VoronoiVertex& vertex = diagram.vertices[(*tip)[1]];
+        repair_at(vertex.location, 0.5 * vertex.distance);
+      }
+    } else if (faults.site[s] == SiteRepair::boundary_corners && !boundary_ends[s].empty()) {
+      for (const auto& [distance, point] : boundary_ends[s]) repair_at(diagram.point_locations[point], 0.5 * distance);
+    } else {
+      repair_far_from(s);
+    }
+  }
+  for (const auto& [point, apart] : crossings) repair_at(point, apart);
+  for (const Index s : largest_cells) repair_far_from(s);
+
+  // The points kept: apart from the sites (the engine rejects two sites at
+  // one point; points 1e-9 of the diagonal apart are one point here), and
+  // from each other by a quarter of the sites' mean spacing (two arcs of one
+  // problem often end side by side, and two sites there would make a
+  // sliver) or the smaller of their own separations. Only points on one
+  // piece keep apart; a point where a site already is on another sheet
+  // (vertices cut apart, the two sides of a cut, pieces that touch) moves a
+  // step into its face instead.
+  double cells_area = 0;
+  for (const double area : diagram.cell_area) cells_area += area;
+  const double apart =
+      0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
+  const double diagonal = input.vertices.rows() > 0
+                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
+                              : 0.0;
+  const double spacing = std::max(1e-9 * diagonal, 1e-300);
+  std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
+  auto cell_of = [&](const Eigen::Vector3d& x) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / spacing)),
+                                       static_cast<std::int64_t>(std::floor(x.y() / spacing)),
+                                       static_cast<std::int64_t>(std::floor(x.z() / spacing))};
+  };
+  auto taken = [&](const Eigen::Vector3d& x) {
+    const auto cell = cell_of(x);
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (it == grid.end()) continue;
+          for (const Eigen::Vector3d& y : it->second) {
+            if ((x - y).norm() <= spacing) return true;
+          }
+        }
+      }
+    }
+    return false;
+  };
+  for (const SurfacePoint& site : field.sites) {
+    const Eigen::Vector3d x = site.position(input);
+    grid[cell_of(x)].push_back(x);
+  }
+  std::vector<Index> face_at_vertex;  // a face with area at each vertex, found when first needed
+  auto into_face = [&](const SurfacePoint& p) {
+    Index face = p.element;
+    Eigen::Vector3d barycentric = p.barycentric;
+    if (p.kind == SurfacePoint::Kind::vertex) {
+      if (face_at_vertex.empty()) {
+        face_at_vertex.assign(static_cast<std::size_t>(input.num_vertices()), -1);
+        for (Index f = input.num_faces() - 1; f >= 0; --f) {
+          if (!has_positive_area(input, f)) continue;
+          for (int c = 0; c < 3; ++c) face_at_vertex[input.faces(f, c)] = f;
+        }
+      }
+      face = face_at_vertex[p.element];
+      if (face < 0) return p;
+      for (int c = 0; c < 3; ++c) barycentric[c] = input.faces(face, c) == p.element ? 1.0 : 0.0;
+    }
+    barycentric = 0.98 * barycentric + Eigen::Vector3d::Constant(0.02 / 3);
+    return SurfacePoint::in_face(face, barycentric[0], barycentric[1], barycentric[2]);
+  };
+  // Repair points are few (a round adds tens to hundreds): each is compared
+  // with those kept before it.
+  struct Kept {
+    Eigen::Vector3d position;
+    double apart;
+    Index component;
+  };
+  std::vector<Kept> kept;
+  std::vector<SurfacePoint> result;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    SurfacePoint p = points[i];
+    if (p.kind == SurfacePoint::Kind::face && !has_positive_area(input, p.element)) {
+      // Arcs cross faces without area, which take no site: their nearest corner.
+      int corner = 0;
+      for (int c = 1; c < 3; ++c) corner = p.barycentric[c] > p.barycentric[corner] ? c : corner;
+      p = SurfacePoint::at_vertex(input.faces(p.element, corner));
+    }
+    Eigen::Vector3d x = p.position(input);
+    if (taken(x) && voronoi::query(field, input, p).distance > spacing) {
+      p = into_face(p);
+      x = p.position(input);
+    }
+    const Index component = components.find(vertex_of(input, p));
+    const double own = std::min(apart, apart_at_most[i]);
+    auto near = [&](const Kept& y) {
+      return y.component == component && (x - y.position).norm() <= std::min(own, y.apart);
+    };
+    if (taken(x) || std::any_of(kept.begin(), kept.end(), near)) continue;
+    grid[cell_of(x)].push_back(x);
+    kept.push_back({x, own, component});
+    result.push_back(p);
+  }
+  return result;
+}
+
 }  // namespace
 
 DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram) {
@@ -151,12 +494,15 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (Index s = 0; s < num_sites; ++s) dual.mesh.vertices.row(s) = field.sites[s].position(input).transpose();
   std::vector<std::array<Index, 3>> triangles;
   triangles.reserve(diagram.vertices.size());
+  std::vector<Index> voronoi_vertex_of;  // per triangle
+  voronoi_vertex_of.reserve(diagram.vertices.size());
   // Each Voronoi vertex orders its sites as its face is oriented; faces at
   // odds with their neighbours (an input not oriented consistently) would
   // give triangles at odds with theirs.
   const std::vector<std::uint8_t> reverse = faces_to_reverse(input, field);
   std::vector<Index> corners;
-  for (const voronoi::VoronoiVertex& vertex : diagram.vertices) {
+  for (std::size_t v = 0; v < diagram.vertices.size(); ++v) {
+    const voronoi::VoronoiVertex& vertex = diagram.vertices[v];
     const auto ordered = diagram.sites_of(vertex);
     corners.assign(ordered.begin(), ordered.end());
     if (vertex.location.kind == SurfacePoint::Kind::face && reverse[vertex.location.element]) {
@@ -167,6 +513,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
         static_cast<std::size_t>(std::min_element(corners.begin(), corners.end()) - corners.begin());
     for (std::size_t i = 1; i + 1 < k; ++i) {
       triangles.push_back({corners[apex], corners[(apex + i) % k], corners[(apex + i + 1) % k]});
+      voronoi_vertex_of.push_back(static_cast<Index>(v));
     }
   }
   dual.mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
@@ -174,63 +521,10 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     for (int c = 0; c < 3; ++c) dual.mesh.faces(static_cast<Index>(t), c) = triangles[t][c];
   }
 
-  // Where to add sites: far from a site, at the vertex of its cell farthest
-  // from it, or in a cell that holds no mesh vertex (sites denser than the
-  // mesh's vertices), at its farthest Voronoi vertex; between two cells,
-  // halfway along an arc.
-  std::vector<Index> farthest_vertex(num_sites, -1);
-  for (Index v = 0; v < static_cast<Index>(field.distance.size()); ++v) {
-    const Index s = field.nearest_site[v];
-    if (s < 0) continue;
-    if (farthest_vertex[s] < 0 || field.distance[v] > field.distance[farthest_vertex[s]]) farthest_vertex[s] = v;
-  }
-  std::vector<Index> farthest_voronoi_vertex(num_sites, -1);
-  for (std::size_t v = 0; v < diagram.vertices.size(); ++v) {
-    const double distance = diagram.vertices[v].distance;
-    for (const Index s : diagram.sites_of(diagram.vertices[v])) {
-      Index& farthest = farthest_voronoi_vertex[s];
-      if (farthest < 0 || distance > diagram.vertices[farthest].distance) farthest = static_cast<Index>(v);
-    }
-  }
-  constexpr double infinity = std::numeric_limits<double>::infinity();
-  // Each repair site keeps others at most this far away (see the filter
-  // below); infinity: the default spacing.
-  std::vector<double> repair_apart;
-  auto repair_at = [&](const SurfacePoint& p, double apart_at_most) {
-    check.repair_sites.push_back(p);
-    repair_apart.push_back(apart_at_most);
-  };
-  auto repair_far_from = [&](Index site) {
-    if (site < 0) return;
-    if (farthest_vertex[site] >= 0) {
-      if (field.distance[farthest_vertex[site]] > 0) {
-        repair_at(SurfacePoint::at_vertex(farthest_vertex[site]), infinity);
-      }
-    } else if (farthest_voronoi_vertex[site] >= 0) {
-      repair_at(diagram.vertices[farthest_voronoi_vertex[site]].location, infinity);
-    }
-  };
-  auto repair_on_arc = [&](const voronoi::VoronoiArc& arc) {
-    repair_at(diagram.point_locations[(arc.point_begin + arc.point_end) / 2], infinity);
-  };
-  // A closed boundary (a cell enclosed by another) girdles a protrusion or a
-  // tube thinner than the sites' spacing: one site on it would only stack
-  // another band of cells there, so three go around it, a third of its length
-  // apart, and cells meet at Voronoi vertices across it.
-  auto repair_around_loop = [&](const voronoi::VoronoiArc& arc) {
-    const auto line = diagram.polyline(arc);
-    if (line.empty()) return;
-    double length = 0;
-    for (std::size_t i = 0; i < line.size(); ++i) length += (line[(i + 1) % line.size()] - line[i]).norm();
-    double walked = 0;
-    int placed = 0;
-    for (std::size_t i = 0; i < line.size() && placed < 3; ++i) {
-      if (walked >= placed * length / 3) {
-        repair_at(diagram.point_locations[arc.point_begin + static_cast<Index>(i)], length / 6);
-        ++placed;
-      }
-      walked += (line[(i + 1) % line.size()] - line[i]).norm();
-    }
+  Faults faults;
+  faults.site.assign(static_cast<std::size_t>(num_sites), SiteRepair::none);
+  auto fault_at = [&](Index site, SiteRepair repair) {
+    if (site >= 0) faults.site[site] = std::max(faults.site[site], repair);
   };
 
   // Triangles: degenerate, duplicated; edges: at most two triangles, opposite.
@@ -243,7 +537,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (std::size_t i = 1; i < sorted.size(); ++i) {
     if (sorted[i] == sorted[i - 1]) {
       ++check.duplicate_triangles;
-      repair_far_from(sorted[i][0]);
+      fault_at(sorted[i][0], SiteRepair::farthest_point);
     }
   }
   // Each undirected edge with its uses along (u < v) and against.
@@ -254,7 +548,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
                           c = dual.mesh.vertices.row(t[2]);
     if (!((b - a).cross(c - a).norm() > 1e-14 * diagonal * diagonal)) {
       ++check.degenerate_triangles;
-      repair_far_from(t[0]);
+      fault_at(t[0], SiteRepair::farthest_point);
     }
     for (int k = 0; k < 3; ++k) {
       const Index u = t[k], v = t[(k + 1) % 3];
@@ -269,8 +563,8 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     const int uses = static_cast<int>(j - i);
     if (uses > 2 || along > 1 || uses - along > 1) {
       ++check.nonmanifold_edges;
-      repair_far_from(edges[i][0]);
-      repair_far_from(edges[i][1]);
+      fault_at(edges[i][0], SiteRepair::farthest_point);
+      fault_at(edges[i][1], SiteRepair::farthest_point);
     }
     i = j;
   }
@@ -283,7 +577,33 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (Index s = 0; s < num_sites; ++s) {
     if (!used[s]) {
       ++check.unused_sites;
-      repair_far_from(s);
+      fault_at(s, SiteRepair::boundary_corners);
+    }
+  }
+  if (check.unused_sites > 0) {
+    // A cell whose whole boundary is one arc from the mesh boundary to the
+    // mesh boundary, holding a boundary corner sharper than a right angle,
+    // cuts the corner off its one neighbour's cell. No site added near it
+    // gives it a Voronoi vertex (its neighbours would have to be almost
+    // equally far on both sides of the corner), and each try puts the next
+    // site closer to the tip; without its site, the neighbour's cell takes
+    // the corner in.
+    std::vector<int> arcs_of(static_cast<std::size_t>(num_sites), 0);
+    std::vector<std::uint8_t> cut_off(static_cast<std::size_t>(num_sites), 0);
+    for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+      for (const Index s : {arc.left_site, arc.right_site}) {
+        if (used[s]) continue;
+        ++arcs_of[s];
+        cut_off[s] = !arc.closed && arc.start_vertex < 0 && arc.end_vertex < 0;
+      }
+    }
+    const std::vector<std::uint8_t> sharp = sharp_boundary_corners(input, field);
+    std::vector<std::uint8_t> at_sharp_corner(static_cast<std::size_t>(num_sites), 0);
+    for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
+      if (sharp[v] && field.nearest_site[v] >= 0) at_sharp_corner[field.nearest_site[v]] = 1;
+    }
+    for (Index s = 0; s < num_sites; ++s) {
+      if (!used[s] && arcs_of[s] == 1 && cut_off[s] && at_sharp_corner[s]) check.redundant_sites.push_back(s);
     }
   }
   const ManifoldCut fans = cut_to_manifold(dual.mesh, {.disable_duplicate_faces = false, .min_component_faces = 0});
@@ -294,23 +614,38 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (Index s = 0; s < num_sites; ++s) {
     if (!several_fans[s]) continue;
     ++check.nonmanifold_vertices;
-    repair_far_from(s);
+    fault_at(s, SiteRepair::each_fan);
+  }
+  if (check.nonmanifold_vertices > 0) {
+    // Per fan (a vertex of the cut dual) of such a site: its farthest Voronoi vertex.
+    std::vector<Index> farthest(fans.original_vertex.size(), -1);
+    for (Index t = 0; t < fans.mesh.num_faces(); ++t) {
+      const Index v = voronoi_vertex_of[t];
+      for (int c = 0; c < 3; ++c) {
+        Index& tip = farthest[fans.mesh.faces(t, c)];
+        if (several_fans[fans.original_vertex[fans.mesh.faces(t, c)]] &&
+            (tip < 0 || diagram.vertices[v].distance > diagram.vertices[tip].distance)) {
+          tip = v;
+        }
+      }
+    }
+    for (std::size_t copy = 0; copy < farthest.size(); ++copy) {
+      if (farthest[copy] >= 0) faults.fan_tips.push_back({fans.original_vertex[copy], farthest[copy]});
+    }
+    std::stable_sort(faults.fan_tips.begin(), faults.fan_tips.end(),
+                     [](const auto& a, const auto& b) { return a[0] < b[0]; });
   }
 
   // Arcs: two cells along one arc, every boundary ending at vertices.
-  for (const voronoi::CellAdjacency& pair : diagram.adjacency) {
-    if (pair.arc_count <= 1) continue;
+  for (std::size_t p = 0; p < diagram.adjacency.size(); ++p) {
+    if (diagram.adjacency[p].arc_count <= 1) continue;
     ++check.split_arcs;
-    for (const voronoi::VoronoiArc& arc : diagram.arcs) {
-      const Index a = std::min(arc.left_site, arc.right_site), b = std::max(arc.left_site, arc.right_site);
-      if (a == pair.site_a && b == pair.site_b) repair_on_arc(arc);
-    }
+    faults.split_pairs.push_back(static_cast<Index>(p));
   }
-  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
-    if (arc.closed) {
-      ++check.closed_arcs;
-      repair_around_loop(arc);
-    }
+  for (std::size_t a = 0; a < diagram.arcs.size(); ++a) {
+    if (!diagram.arcs[a].closed) continue;
+    ++check.closed_arcs;
+    faults.closed_arcs.push_back(static_cast<Index>(a));
   }
 
   // Topology per component: the input's (faces with a repeated index aside)
@@ -318,12 +653,13 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   UnionFind input_components(static_cast<std::size_t>(input.num_vertices()));
   const auto input_topology = field_topology(input, field, input_components);
   const MeshTopology dual_topology = build_mesh_topology(dual.mesh);
-  std::map<Index, std::vector<Index>> sites_by_component;
   std::string first_mismatch;
+  faults.component_of_site.resize(static_cast<std::size_t>(num_sites));
   for (Index s = 0; s < num_sites; ++s) {
-    sites_by_component[input_components.find(vertex_of(input, field.sites[s]))].push_back(s);
+    faults.component_of_site[s] = input_components.find(vertex_of(input, field.sites[s]));
+    faults.sites_of_component[faults.component_of_site[s]].push_back(s);
   }
-  for (const auto& [component, sites] : sites_by_component) {
+  for (const auto& [component, sites] : faults.sites_of_component) {
     const Index dual_component = dual_topology.vertex_component[sites[0]];
     bool same = dual_component >= 0 && std::all_of(sites.begin(), sites.end(), [&](Index s) {
                   return dual_topology.vertex_component[s] == dual_component;
@@ -360,68 +696,8 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
                        " sites, Euler characteristic " + std::to_string(expected.euler_characteristic()) + ", " +
                        loops(expected.boundary_loops) + "; in the remesh: " + remeshed + ")";
     }
-    // Local problems explain most mismatches; without any, refine where
-    // cells are largest (a handle or hole inside one): their farthest vertices.
-    if (!check.repair_sites.empty()) continue;
-    std::vector<std::pair<double, Index>> by_area;
-    for (const Index s : sites) by_area.emplace_back(-diagram.cell_area[s], s);
-    std::sort(by_area.begin(), by_area.end());
-    const std::size_t count = std::max<std::size_t>(1, sites.size() / 20);
-    for (std::size_t i = 0; i < count && i < by_area.size(); ++i) repair_far_from(by_area[i].second);
+    faults.mismatched.push_back(component);
   }
-
-  // Repair sites: apart from the sites (the engine rejects two sites at one
-  // point; points 1e-9 of the diagonal apart are one point here), and from
-  // each other by a quarter of the sites' mean spacing (two arcs of one
-  // problem often end side by side, and two sites there would make a sliver).
-  double cells_area = 0;
-  for (const double area : diagram.cell_area) cells_area += area;
-  const double apart =
-      0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
-  const double spacing = std::max(1e-9 * diagonal, 1e-300);
-  std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
-  auto cell_of = [&](const Eigen::Vector3d& x) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / spacing)),
-                                       static_cast<std::int64_t>(std::floor(x.y() / spacing)),
-                                       static_cast<std::int64_t>(std::floor(x.z() / spacing))};
-  };
-  auto taken = [&](const Eigen::Vector3d& x) {
-    const auto cell = cell_of(x);
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (it == grid.end()) continue;
-          for (const Eigen::Vector3d& y : it->second) {
-            if ((x - y).norm() <= spacing) return true;
-          }
-        }
-      }
-    }
-    return false;
-  };
-  for (const SurfacePoint& site : field.sites) {
-    const Eigen::Vector3d x = site.position(input);
-    grid[cell_of(x)].push_back(x);
-  }
-  // Repair sites are few (a round adds tens to hundreds): each is compared
-  // with those kept before it.
-  // Two are kept apart by the smaller of their own separations.
-  std::vector<SurfacePoint> repairs;
-  std::vector<std::pair<Eigen::Vector3d, double>> kept;
-  for (std::size_t i = 0; i < check.repair_sites.size(); ++i) {
-    const SurfacePoint& p = check.repair_sites[i];
-    const Eigen::Vector3d x = p.position(input);
-    const double own = std::min(apart, repair_apart[i]);
-    auto near_kept = [&](const std::pair<Eigen::Vector3d, double>& y) {
-      return (x - y.first).norm() <= std::min(own, y.second);
-    };
-    if (taken(x) || std::any_of(kept.begin(), kept.end(), near_kept)) continue;
-    grid[cell_of(x)].push_back(x);
-    kept.emplace_back(x, own);
-    repairs.push_back(p);
-  }
-  check.repair_sites = std::move(repairs);
 
   auto note = [&](std::int64_t count, const std::string& what) {
     if (count > 0) check.problems.push_back(std::to_string(count) + " " + what);
@@ -436,6 +712,8 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   note(check.topology_mismatches,
        "components whose Euler characteristic or boundary loops differ from the input's" + first_mismatch);
   check.valid = check.problems.empty();
+  for (const Index s : check.redundant_sites) faults.site[s] = SiteRepair::none;
+  if (!check.valid) check.repair_sites = repair_sites(input, diagram, faults, input_components);
   return dual;
 }
 

@@ -42,10 +42,14 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     }
     std::string problems;
     for (const std::string& problem : dual.check.problems) problems += (problems.empty() ? "" : "; ") + problem;
-    if (round >= options.max_rounds || dual.check.repair_sites.empty()) {
+    if (round >= options.max_rounds || (dual.check.repair_sites.empty() && dual.check.redundant_sites.empty())) {
       throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
                   " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +
                   "; try more sites");
+    }
+    // Sites no added site can help go (indices increasing, so from the back).
+    for (auto it = dual.check.redundant_sites.rbegin(); it != dual.check.redundant_sites.rend(); ++it) {
+      result.sites.erase(result.sites.begin() + *it);
     }
     result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
     result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());

@@ -33,6 +33,9 @@ struct DualCheck {
   std::int64_t topology_mismatches = 0;   ///< components whose Euler characteristic or boundary loops differ
   /// Points where new sites restore the closed-ball property.
   std::vector<SurfacePoint> repair_sites;
+  /// Sites that no added site can help and that are better left out: each
+  /// cuts a corner off its one neighbour's cell (no Voronoi vertex).
+  std::vector<Index> redundant_sites;
 };
 
 struct DualMesh {

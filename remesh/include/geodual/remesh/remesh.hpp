@@ -30,8 +30,9 @@ struct RepairOptions {
 
 /// The dual-with-repair stage's result: the remesh.
 struct RepairedDual {
-  TriangleMesh mesh;                ///< vertex i is sites[i] (unless vertex_of_site says otherwise)
-  std::vector<SurfacePoint> sites;  ///< the given sites, then those added by repair
+  TriangleMesh mesh;  ///< vertex i is sites[i] (unless vertex_of_site says otherwise)
+  /// The given sites (less DualCheck::redundant_sites), then those added by repair.
+  std::vector<SurfacePoint> sites;
   /// Per site, its vertex in `mesh` where twins along sharp chains were
   /// welded into one (feature_cut.hpp); empty: vertex i is sites[i].
   std::vector<Index> vertex_of_site;
