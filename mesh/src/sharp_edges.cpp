@@ -14,15 +14,14 @@ namespace {
 
 Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int k) { return mesh.vertices.row(mesh.faces(f, k)); }
 
-/// Whether face f runs the edge from a to b (a, then b, in its corner cycle).
-bool runs(const TriangleMesh& mesh, Index f, Index a, Index b) {
+}  // namespace
+
+bool face_runs_edge(const TriangleMesh& mesh, Index f, Index a, Index b) {
   for (int k = 0; k < 3; ++k) {
     if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
   }
   return false;
 }
-
-}  // namespace
 
 double normal_turn_degrees(const TriangleMesh& mesh, const MeshTopology& topology, Index e) {
   const auto faces = topology.edge_faces(e);
@@ -36,7 +35,7 @@ double normal_turn_degrees(const TriangleMesh& mesh, const MeshTopology& topolog
     normal[i].normalize();
   }
   const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
-  if (runs(mesh, faces[0], a, b) == runs(mesh, faces[1], a, b)) normal[1] = -normal[1];
+  if (face_runs_edge(mesh, faces[0], a, b) == face_runs_edge(mesh, faces[1], a, b)) normal[1] = -normal[1];
   // atan2 of sine and cosine: accurate near 0 and 180 degrees alike.
   const double angle = std::atan2(normal[0].cross(normal[1]).norm(), normal[0].dot(normal[1]));
   return angle * 180 / std::numbers::pi;

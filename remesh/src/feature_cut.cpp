@@ -115,8 +115,7 @@ void vertex_copies(const FeatureCut& cut, Index num_vertices, std::vector<Index>
   }
 }
 
-/// Whether every vertex of the chain between arc lengths [from, to] lies
-/// within `error` of the chord between the chain's points there.
+/// A chain's points by arc length.
 struct ChainWalk {
   const TriangleMesh& surface;
   const FeatureChain& chain;
@@ -143,6 +142,8 @@ struct ChainWalk {
     return (1 - t) * surface.vertices.row(chain.vertices[i]).transpose() +
            t * surface.vertices.row(chain.vertices[i + 1]).transpose();
   }
+  /// Whether every vertex of the chain strictly between arc lengths from and
+  /// to lies within `error` of the chord between the chain's points there.
   bool within(double from, double to, double error) const {
     const Eigen::Vector3d p = point(from), q = point(to);
     const Eigen::Vector3d d = q - p;

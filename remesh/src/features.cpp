@@ -46,14 +46,6 @@ FeatureGraph build_graph(Index num_vertices, std::vector<std::array<Index, 2>> e
   return graph;
 }
 
-/// Whether face f runs from a to b (a, then b, in its corner cycle).
-bool runs(const TriangleMesh& mesh, Index f, Index a, Index b) {
-  for (int k = 0; k < 3; ++k) {
-    if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
-  }
-  return false;
-}
-
 double edge_length(const TriangleMesh& mesh, Index a, Index b) {
   return (mesh.vertices.row(a) - mesh.vertices.row(b)).norm();
 }
@@ -118,7 +110,7 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
     if (joined) continue;
     // Faces that run the edge the same way are misoriented: one side's normals count flipped.
     const auto [a, b] = topology.edge_vertices[e];
-    if (runs(mesh, faces[0], a, b) == runs(mesh, faces[1], a, b)) mean[1] = -mean[1];
+    if (face_runs_edge(mesh, faces[0], a, b) == face_runs_edge(mesh, faces[1], a, b)) mean[1] = -mean[1];
     if (mean[0].norm() > 0 && mean[1].norm() > 0 && mean[0].normalized().dot(mean[1].normalized()) > min_cos) continue;
     kept.push_back(e);
   }

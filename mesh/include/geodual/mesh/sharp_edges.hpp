@@ -11,6 +11,10 @@
 
 namespace geodual {
 
+/// Whether face f runs the edge from a to b (a, then b, in its corner cycle):
+/// two faces that run an edge the same way are misoriented.
+bool face_runs_edge(const TriangleMesh& mesh, Index f, Index a, Index b);
+
 /// The angle in degrees by which the unit normals of edge e's two faces turn
 /// (0: flat, 180: folded flat back), the second face's normal taken flipped
 /// when the two faces run the edge the same way (misoriented). NaN when the
