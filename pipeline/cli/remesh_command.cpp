@@ -151,6 +151,14 @@ class RemeshCommand final : public Command {
     if (run.sites_added_for_topology > 0) {
       std::cerr << "geodual remesh: note: " << mesh_path_ << ": " << run.sites_added_reason << "\n";
     }
+    if (result.sites_added > 0 || result.sites_left_out > 0) {
+      std::string problems;
+      for (const std::string& problem : result.repair_problems) problems += (problems.empty() ? "" : "; ") + problem;
+      std::cerr << "geodual remesh: note: " << mesh_path_ << ": repair added " << with_thousands(result.sites_added)
+                << " sites" << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "")
+                << " in " << result.repair_rounds << " rounds, where the dual of the Voronoi diagram was not a valid remesh ("
+                << problems << ")\n";
+    }
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
       std::cerr << "geodual remesh: warning: " << mesh_path_ << ": " << run.dropped.faces << " faces ("
                 << significant(run.dropped.area_pct, 3)
@@ -186,7 +194,9 @@ class RemeshCommand final : public Command {
     figures["lloyd_diagrams"] = relaxation.diagrams;
     figures["energy_history"] = relaxation.energy;
     figures["sites_added"] = result.sites_added;
+    figures["sites_left_out"] = result.sites_left_out;
     figures["repair_rounds"] = result.repair_rounds;
+    figures["repair_problems"] = result.repair_problems;
     figures["vertices"] = result.mesh.num_vertices();
     figures["faces"] = result.mesh.num_faces();
     figures["euler_characteristic"] = quality.euler_characteristic;
@@ -261,7 +271,9 @@ class RemeshCommand final : public Command {
               with_thousands(static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins) +
                   (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                          : " (" + sites_.file() + ")") +
-                  (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : ""));
+                  (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : "") +
+                  (result.sites_left_out > 0 ? ", " + with_thousands(result.sites_left_out) + " left out by repair"
+                                             : ""));
     if (!run.features.empty()) {
       table.add("features", with_thousands(run.features.sharp_chains) + " sharp chains (" +
                                 significant(options_.sharp_angle, 3) + " deg), " +
@@ -342,6 +354,7 @@ class RemeshCommand final : public Command {
     report["stages"] = stages;
     report["energy_history"] = run.relaxation.energy;
     report["sites_added"] = run.remesh.sites_added;
+    report["sites_left_out"] = run.remesh.sites_left_out;
     report["repair_rounds"] = run.remesh.repair_rounds;
     report["result"] = figures;
     io::write_file_atomically(report_path_, [&](std::ostream& out) {

@@ -491,11 +491,14 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                                      const FeatureSet& features, const FeatureCut& cut, std::vector<SurfacePoint> sites,
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
   RepairedDual result;
-  std::int64_t sites_added = 0;
+  std::int64_t sites_added = 0, sites_left_out = 0;
+  std::vector<std::string> repair_problems;
   double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
   for (int round = 0;; ++round) {
     result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), options);
     sites_added += result.sites_added;
+    sites_left_out += result.sites_left_out;
+    if (repair_problems.empty()) repair_problems = std::move(result.repair_problems);
     geodesic_seconds += result.geodesic_seconds;
     diagram_seconds += result.diagram_seconds;
     dual_seconds += result.dual_seconds;
@@ -527,6 +530,8 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     diagram_seconds += diagram.stats.extraction_seconds;
   }
   result.sites_added = sites_added;
+  result.sites_left_out = sites_left_out;
+  if (!repair_problems.empty()) result.repair_problems = std::move(repair_problems);
   result.geodesic_seconds = geodesic_seconds;
   result.diagram_seconds = diagram_seconds;
   result.dual_seconds = dual_seconds;

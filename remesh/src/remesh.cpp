@@ -40,6 +40,7 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
       result.check = std::move(dual.check);
       return result;
     }
+    if (result.repair_problems.empty()) result.repair_problems = dual.check.problems;
     std::string problems;
     for (const std::string& problem : dual.check.problems) problems += (problems.empty() ? "" : "; ") + problem;
     if (round >= options.max_rounds || (dual.check.repair_sites.empty() && dual.check.redundant_sites.empty())) {
@@ -51,6 +52,7 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     for (auto it = dual.check.redundant_sites.rbegin(); it != dual.check.redundant_sites.rend(); ++it) {
       result.sites.erase(result.sites.begin() + *it);
     }
+    result.sites_left_out += static_cast<std::int64_t>(dual.check.redundant_sites.size());
     result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
     result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());
   }

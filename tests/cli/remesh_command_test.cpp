@@ -43,7 +43,9 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
     const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
     EXPECT_EQ(output.vertices, json["vertices"].get<std::int64_t>()) << extension;
     EXPECT_EQ(output.faces, json["faces"].get<std::int64_t>());
-    EXPECT_EQ(json["vertices"].get<std::int64_t>(), 600 + json["sites_added"].get<std::int64_t>());
+    EXPECT_EQ(json["vertices"].get<std::int64_t>(),
+              600 + json["sites_added"].get<std::int64_t>() - json["sites_left_out"].get<std::int64_t>());
+    EXPECT_EQ(json["repair_problems"].empty(), json["repair_rounds"].get<int>() == 0);
     EXPECT_EQ(output.euler_characteristic, input.euler_characteristic);
     EXPECT_EQ(output.boundary_loops, input.boundary_loops);
     EXPECT_EQ(output.nonmanifold_edges, 0);
@@ -291,6 +293,24 @@ TEST(RemeshCommand, BadRequestsFailCleanly) {
   // Never over the input.
   run = run_cli({"remesh", genus_four, "--sites", "100", "-o", genus_four});
   EXPECT_NE(run.exit_status, 0);
+}
+
+TEST(RemeshCommand, SaysHowManySitesRepairAddedAndWhy) {
+  // 100 unrelaxed sites on a genus-4 surface: the first dual loses handles,
+  // so repair adds sites; the remesh says how many and why.
+  ScratchFolder folder;
+  const auto out = folder.path() / "out.ply";
+  const CliRun run =
+      run_cli({"remesh", genus_four, "--sites", "100", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  const auto added = json["sites_added"].get<std::int64_t>();
+  ASSERT_GT(added, 0);
+  EXPECT_GT(json["repair_rounds"].get<int>(), 0);
+  EXPECT_FALSE(json["repair_problems"].empty());
+  EXPECT_EQ(json["euler_characteristic"].get<int>(), -6);
+  EXPECT_NE(run.err.find("repair added " + std::to_string(added) + " sites"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(json["repair_problems"][0].get<std::string>()), std::string::npos) << run.err;
 }
 
 TEST(VoronoiCommand, WritesCellsBoundariesAndSites) {

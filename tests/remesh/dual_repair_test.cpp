@@ -259,6 +259,11 @@ TEST(DualRepair, ASiteInTheTipOfASharpCornerIsLeftOut) {
   const remesh::RepairedDual result = remesh::dual_with_repair(mesh, sites, voronoi::compute_voronoi(mesh, sites));
   EXPECT_TRUE(result.check.valid);
   EXPECT_LE(result.repair_rounds, 2);
+  // Said, not silent: the site left out is counted, with why repair ran.
+  EXPECT_EQ(result.sites_left_out, 1);
+  EXPECT_EQ(static_cast<std::int64_t>(result.sites.size()),
+            static_cast<std::int64_t>(sites.size()) + result.sites_added - result.sites_left_out);
+  EXPECT_EQ(result.repair_problems, first.check.problems);
   EXPECT_EQ(topology_of(result.mesh), std::make_pair(std::int64_t{1}, std::int64_t{1}));
   const Eigen::Vector3d tip(2, 0.5, 0);
   for (const SurfacePoint& site : result.sites) EXPECT_GT((site.position(mesh) - tip).norm(), 0.1);

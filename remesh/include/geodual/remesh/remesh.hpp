@@ -16,6 +16,7 @@
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace geodual::remesh {
@@ -39,6 +40,12 @@ struct RepairedDual {
   voronoi::VoronoiDiagram diagram;  ///< of the final sites
   DualCheck check;                  ///< of the final dual (valid)
   std::int64_t sites_added = 0;
+  /// Given sites left out by repair: each cut a corner off its one
+  /// neighbour's cell (DualCheck::redundant_sites).
+  std::int64_t sites_left_out = 0;
+  /// Why repair ran: the problems of the first dual that failed its checks
+  /// (DualCheck::problems); empty when the first dual was valid.
+  std::vector<std::string> repair_problems;
   int repair_rounds = 0;
   double geodesic_seconds = 0;  ///< the repair rounds' diagrams
   double diagram_seconds = 0;
