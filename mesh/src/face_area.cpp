@@ -21,4 +21,13 @@ double face_area(const TriangleMesh& mesh, Index f) {
   return std::isfinite(area) ? area : 0.0;
 }
 
+Eigen::Vector3d face_unit_normal(const TriangleMesh& mesh, Index f) {
+  const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
+  const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
+  const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
+  const Eigen::Vector3d normal = (b - a).cross(c - a);
+  const double length = normal.norm();
+  return std::isfinite(length) && length > 0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d::Zero();
+}
+
 }  // namespace geodual

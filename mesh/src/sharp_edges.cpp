@@ -10,11 +10,6 @@
 #include <numbers>
 
 namespace geodual {
-namespace {
-
-Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int k) { return mesh.vertices.row(mesh.faces(f, k)); }
-
-}  // namespace
 
 bool face_runs_edge(const TriangleMesh& mesh, Index f, Index a, Index b) {
   for (int k = 0; k < 3; ++k) {
@@ -29,10 +24,8 @@ double normal_turn_degrees(const TriangleMesh& mesh, const MeshTopology& topolog
   if (faces.size() != 2 || !has_positive_area(mesh, faces[0]) || !has_positive_area(mesh, faces[1])) return nan;
   Eigen::Vector3d normal[2];
   for (int i = 0; i < 2; ++i) {
-    const Index f = faces[i];
-    normal[i] = (corner(mesh, f, 1) - corner(mesh, f, 0)).cross(corner(mesh, f, 2) - corner(mesh, f, 0));
-    if (!(normal[i].norm() > 0)) return nan;
-    normal[i].normalize();
+    normal[i] = face_unit_normal(mesh, faces[i]);
+    if (normal[i].isZero(0)) return nan;
   }
   const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
   if (face_runs_edge(mesh, faces[0], a, b) == face_runs_edge(mesh, faces[1], a, b)) normal[1] = -normal[1];

@@ -77,7 +77,7 @@ class RemeshCommand final : public Command {
     command
         .add_option("--sharp-angle", options_.sharp_angle,
                     "Keep creases where the normals turn by at least this many degrees (in chains at least half a "
-                    "remesh spacing long) as chains of edges, corners included (0: none; ignored with --sites-file)")
+                    "remesh spacing long) as chains of edges, corners included (0: none; ignored with --site-file)")
         ->capture_default_str()
         ->check(number_between(0, 180));
     command
@@ -155,8 +155,9 @@ class RemeshCommand final : public Command {
       std::string problems;
       for (const std::string& problem : result.repair_problems) problems += (problems.empty() ? "" : "; ") + problem;
       std::cerr << "geodual remesh: note: " << mesh_path_ << ": repair added " << with_thousands(result.sites_added)
-                << " sites" << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "")
-                << " in " << result.repair_rounds << " rounds, where the dual of the Voronoi diagram was not a valid remesh ("
+                << " sites"
+                << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "") << " in "
+                << result.repair_rounds << " rounds, where the dual of the Voronoi diagram was not a valid remesh ("
                 << problems << ")\n";
     }
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
@@ -267,13 +268,13 @@ class RemeshCommand final : public Command {
                                                significant(run.dropped.area_pct, 3) + " % of the area) left out"
                                          : std::string()) +
                   ")");
-    table.add("sites",
-              with_thousands(static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins) +
-                  (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
-                                         : " (" + sites_.file() + ")") +
-                  (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : "") +
-                  (result.sites_left_out > 0 ? ", " + with_thousands(result.sites_left_out) + " left out by repair"
-                                             : ""));
+    table.add(
+        "sites",
+        with_thousands(static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins) +
+            (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
+                                   : " (" + sites_.file() + ")") +
+            (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : "") +
+            (result.sites_left_out > 0 ? ", " + with_thousands(result.sites_left_out) + " left out by repair" : ""));
     if (!run.features.empty()) {
       table.add("features", with_thousands(run.features.sharp_chains) + " sharp chains (" +
                                 significant(options_.sharp_angle, 3) + " deg), " +

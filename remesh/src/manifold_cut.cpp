@@ -3,6 +3,7 @@
 #include "geodual/mesh/detail/vertex_pair_sort.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/sharp_edges.hpp"
 #include "geodual/mesh/union_find.hpp"
 
 #include <Eigen/Geometry>
@@ -11,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace geodual::remesh {
@@ -94,6 +96,165 @@ std::int64_t disable_duplicate_faces(const VertexMatrix& vertices, FaceMatrix& f
   return disabled;
 }
 
+/// Two faces that stay joined across an edge of the input's topology.
+struct FacePair {
+  Index edge, first, second;
+};
+
+/// A non-manifold edge with more faces than this is cut apart whole.
+constexpr std::size_t max_faces_paired = 16;
+
+/// Faces in sets with a relative orientation (union-find with parity): the
+/// faces joined so far, each flagged by whether it must be reversed to agree
+/// with its set's first face.
+class OrientedFaceSets {
+ public:
+  explicit OrientedFaceSets(std::size_t n) : parent_(n), flipped_(n, 0) {
+    std::iota(parent_.begin(), parent_.end(), Index{0});
+  }
+
+  /// Joins the sets of f and g with g's orientation relative to f's `flip`;
+  /// false (and nothing changed) when they are in one set already with the
+  /// other relative orientation: the join would make it non-orientable.
+  bool join(Index f, Index g, bool flip) {
+    const auto [root_f, flip_f] = find(f);
+    const auto [root_g, flip_g] = find(g);
+    const bool relative = flip_f != flip_g;
+    if (root_f == root_g) return relative == flip;
+    parent_[root_g] = root_f;
+    flipped_[root_g] = relative != flip;
+    return true;
+  }
+
+ private:
+  /// The root of f's set and whether f is reversed relative to it.
+  std::pair<Index, bool> find(Index f) {
+    bool flip = false;
+    Index root = f;
+    while (parent_[root] != root) {
+      flip = flip != (flipped_[root] != 0);
+      root = parent_[root];
+    }
+    // Path compression: every face on the path points at the root.
+    bool rest = flip;
+    while (parent_[f] != root) {
+      const Index next = parent_[f];
+      const bool own = flipped_[f] != 0;
+      parent_[f] = root;
+      flipped_[f] = rest;
+      rest = rest != own;
+      f = next;
+    }
+    return {root, flip};
+  }
+
+  std::vector<Index> parent_;
+  std::vector<std::uint8_t> flipped_;
+};
+
+/// The faces joined across each edge: both faces of an edge with two; at a
+/// non-manifold edge, pairs of faces that run it in opposite directions, the
+/// most nearly coplanar pair first, each face in at most one pair, and no pair
+/// that would leave its piece with no consistent orientation (a remesh must
+/// be orientable wherever the input's pieces are). A flap glued onto a
+/// surface along an edge (a T-junction of a CAD assembly) leaves the surface
+/// whole and gets a boundary there; two sheets crossing at an edge each stay
+/// whole.
+std::vector<FacePair> joined_face_pairs(const TriangleMesh& mesh, const MeshTopology& topology) {
+  std::vector<FacePair> joined;
+  OrientedFaceSets orientation(static_cast<std::size_t>(mesh.num_faces()));
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto faces = topology.edge_faces(e);
+    if (faces.size() != 2) continue;
+    joined.push_back({e, faces[0], faces[1]});
+    const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+    orientation.join(faces[0], faces[1], face_runs_edge(mesh, faces[0], a, b) == face_runs_edge(mesh, faces[1], a, b));
+  }
+  struct Candidate {
+    double coplanarity;  // cosine of the angle between the unit normals
+    std::size_t i, j;    // indices into the edge's faces
+  };
+  std::vector<Candidate> candidates;
+  std::vector<Eigen::Vector3d> normal;
+  std::vector<std::uint8_t> forward, paired;
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto faces = topology.edge_faces(e);
+    if (faces.size() < 3 || faces.size() > max_faces_paired) continue;
+    const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+    normal.clear();
+    forward.clear();
+    for (const Index f : faces) {
+      normal.push_back(face_unit_normal(mesh, f));
+      forward.push_back(face_runs_edge(mesh, f, a, b) ? 1 : 0);
+    }
+    candidates.clear();
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      for (std::size_t j = i + 1; j < faces.size(); ++j) {
+        if (forward[i] != forward[j]) candidates.push_back({normal[i].dot(normal[j]), i, j});
+      }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& x, const Candidate& y) { return x.coplanarity > y.coplanarity; });
+    paired.assign(faces.size(), 0);
+    for (const Candidate& c : candidates) {
+      if (paired[c.i] || paired[c.j] || !orientation.join(faces[c.i], faces[c.j], false)) continue;
+      paired[c.i] = paired[c.j] = 1;
+      joined.push_back({e, faces[c.i], faces[c.j]});
+    }
+  }
+  return joined;
+}
+
+/// Per corner (3 * face + k): its fan, the corners at one vertex whose faces
+/// are joined around it, numbered in the order of their first corner (-1 for
+/// corners of faces with a repeated corner).
+std::vector<Index> corner_fans(const FaceMatrix& faces, const MeshTopology& topology,
+                               const std::vector<FacePair>& joined) {
+  const Index num_corners = 3 * static_cast<Index>(faces.rows());
+  UnionFind fan(static_cast<std::size_t>(num_corners));
+  const auto corner_at = [&](Index f, Index v) {
+    for (Index k = 0; k < 3; ++k) {
+      if (faces(f, k) == v) return 3 * f + k;
+    }
+    return Index{-1};
+  };
+  for (const FacePair& pair : joined) {
+    for (const Index v : topology.edge_vertices[static_cast<std::size_t>(pair.edge)]) {
+      fan.unite(corner_at(pair.first, v), corner_at(pair.second, v));
+    }
+  }
+  std::vector<Index> corner_fan(static_cast<std::size_t>(num_corners), -1);
+  Index count = 0;
+  for (Index c = 0; c < num_corners; ++c) {
+    if (!proper(faces, c / 3)) continue;
+    const Index root = fan.find(c);  // the set's smallest corner: numbered first
+    corner_fan[c] = root == c ? count++ : corner_fan[root];
+  }
+  return corner_fan;
+}
+
+/// Where the cut (faces of `cut_mesh`) still has an edge with three or more
+/// faces, the input edge it copies is cut apart whole: its pairs leave
+/// `joined`. False when no such edge had a pair left (nothing to undo).
+bool unjoin_edges_left_nonmanifold(const TriangleMesh& cut_mesh, const std::vector<Index>& original_vertex,
+                                   const MeshTopology& topology, std::vector<FacePair>& joined) {
+  const MeshTopology after = build_mesh_topology(cut_mesh);
+  std::vector<std::uint8_t> apart(static_cast<std::size_t>(topology.num_edges()), 0);
+  for (Index e = 0; e < after.num_edges(); ++e) {
+    if (after.is_manifold_edge(e)) continue;
+    std::array<Index, 2> ends = {original_vertex[static_cast<std::size_t>(after.edge_vertices[e][0])],
+                                 original_vertex[static_cast<std::size_t>(after.edge_vertices[e][1])]};
+    std::sort(ends.begin(), ends.end());
+    const auto at = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(), ends);
+    if (at != topology.edge_vertices.end() && *at == ends) apart[at - topology.edge_vertices.begin()] = 1;
+  }
+  const auto before = joined.size();
+  std::erase_if(joined, [&](const FacePair& pair) {
+    return apart[static_cast<std::size_t>(pair.edge)] && !topology.is_manifold_edge(pair.edge);
+  });
+  return joined.size() < before;
+}
+
 }  // namespace
 
 std::vector<SurfacePoint> points_on_cut(const ManifoldCut& cut, std::vector<SurfacePoint> points) {
@@ -123,39 +284,53 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
     cut.faces_disabled = cut.duplicates_disabled;
   }
   // The fans of the input, copies disabled: corners at one vertex whose faces
-  // are joined around it across edges with exactly two faces.
+  // are joined around it across edges (joined_face_pairs).
   cut.mesh.vertices = mesh.vertices;
-  const std::vector<Index> corner_fan = build_mesh_topology(cut.mesh).corner_fan;
-  // One vertex per fan: the first fan of a vertex keeps its index, further
-  // fans get new vertices at the end, in the order of their first corner.
-  std::vector<Index> vertex_of_fan;
-  std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0),
-      split(static_cast<std::size_t>(num_vertices), 0);
-  std::vector<Index> extra;  // original vertex of each new vertex
-  for (Index f = 0; f < num_faces; ++f) {
-    if (!proper(cut.mesh, f)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const auto fan = static_cast<std::size_t>(corner_fan[static_cast<std::size_t>(3 * f + k)]);
-      const Index v = cut.mesh.faces(f, k);
-      if (fan == vertex_of_fan.size()) {  // fans are numbered in the order of their first corner
-        if (!taken[v]) {
-          taken[v] = 1;
-          vertex_of_fan.push_back(v);
-        } else {
-          split[v] = 1;
-          vertex_of_fan.push_back(num_vertices + static_cast<Index>(extra.size()));
-          extra.push_back(v);
+  const MeshTopology topology = build_mesh_topology(cut.mesh);
+  std::vector<FacePair> joined = joined_face_pairs(cut.mesh, topology);
+  const bool pairs_at_nonmanifold_edges = std::any_of(
+      joined.begin(), joined.end(), [&](const FacePair& pair) { return !topology.is_manifold_edge(pair.edge); });
+  const FaceMatrix faces = cut.mesh.faces;  // the input's corners, copies disabled
+  std::vector<std::uint8_t> split;
+  for (;;) {
+    const std::vector<Index> corner_fan = corner_fans(faces, topology, joined);
+    // One vertex per fan: the first fan of a vertex keeps its index, further
+    // fans get new vertices at the end, in the order of their first corner.
+    std::vector<Index> vertex_of_fan(corner_fan.size(), -1);
+    std::vector<std::uint8_t> taken(static_cast<std::size_t>(num_vertices), 0);
+    split.assign(static_cast<std::size_t>(num_vertices), 0);
+    cut.original_vertex.resize(static_cast<std::size_t>(num_vertices));
+    std::iota(cut.original_vertex.begin(), cut.original_vertex.end(), Index{0});
+    for (Index f = 0; f < num_faces; ++f) {
+      if (!proper(faces, f)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const auto fan = static_cast<std::size_t>(corner_fan[static_cast<std::size_t>(3 * f + k)]);
+        const Index v = faces(f, k);
+        if (vertex_of_fan[fan] < 0) {
+          if (!taken[v]) {
+            taken[v] = 1;
+            vertex_of_fan[fan] = v;
+          } else {
+            split[v] = 1;
+            vertex_of_fan[fan] = static_cast<Index>(cut.original_vertex.size());
+            cut.original_vertex.push_back(v);
+          }
         }
+        cut.mesh.faces(f, k) = vertex_of_fan[fan];
       }
-      cut.mesh.faces(f, k) = vertex_of_fan[fan];
     }
-  }
-  cut.mesh.vertices.conservativeResize(num_vertices + static_cast<Index>(extra.size()), 3);
-  cut.original_vertex.resize(static_cast<std::size_t>(num_vertices) + extra.size());
-  std::iota(cut.original_vertex.begin(), cut.original_vertex.begin() + num_vertices, Index{0});
-  for (std::size_t i = 0; i < extra.size(); ++i) {
-    cut.mesh.vertices.row(num_vertices + static_cast<Index>(i)) = mesh.vertices.row(extra[i]);
-    cut.original_vertex[static_cast<std::size_t>(num_vertices) + i] = extra[i];
+    const auto num_copies = static_cast<Index>(cut.original_vertex.size());
+    cut.mesh.vertices.resize(num_copies, 3);
+    for (Index v = 0; v < num_copies; ++v) {
+      cut.mesh.vertices.row(v) = mesh.vertices.row(cut.original_vertex[static_cast<std::size_t>(v)]);
+    }
+    // Pairs joined at non-manifold edges can join the fans round a vertex so
+    // that a third face shares both ends of such an edge again: those edges
+    // are cut apart whole and the fans made again.
+    if (!pairs_at_nonmanifold_edges ||
+        !unjoin_edges_left_nonmanifold(cut.mesh, cut.original_vertex, topology, joined)) {
+      break;
+    }
   }
   cut.vertices_split = std::count(split.begin(), split.end(), std::uint8_t{1});
 

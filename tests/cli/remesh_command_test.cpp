@@ -300,8 +300,8 @@ TEST(RemeshCommand, SaysHowManySitesRepairAddedAndWhy) {
   // so repair adds sites; the remesh says how many and why.
   ScratchFolder folder;
   const auto out = folder.path() / "out.ply";
-  const CliRun run =
-      run_cli({"remesh", genus_four, "--sites", "100", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
+  const CliRun run = run_cli(
+      {"remesh", genus_four, "--sites", "100", "--lloyd", "0", "--samples", "-1", "-o", out.string(), "--json"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   const auto added = json["sites_added"].get<std::int64_t>();

@@ -1,5 +1,5 @@
 #pragma once
-// A face's area, and the one test of whether a face has any: shared by the
+// A face's area and normal, and the one test of whether a face has any: shared by the
 // mesh report, the quality statistics, the manifold cut, the site sampling and
 // the geodesic engine, so that they agree on which faces are degenerate.
 
@@ -46,5 +46,9 @@ bool has_positive_area(const TriangleMesh& mesh, Index f);
 /// Face f's area, half the norm of the cross product of two edges; 0 where
 /// that is not finite. Corner indices are assumed in range.
 double face_area(const TriangleMesh& mesh, Index f);
+
+/// Face f's unit normal (right-handed in its corner order); zero where the
+/// cross product of two edges has no finite, positive length.
+Eigen::Vector3d face_unit_normal(const TriangleMesh& mesh, Index f);
 
 }  // namespace geodual

@@ -3,9 +3,12 @@
 // (several fans of faces meeting at one point). A remesh can only be a
 // 2-manifold, so the remesher first cuts the input apart there, as CGAL's
 // duplicate_non_manifold_vertices does for vertices: every vertex gets one
-// copy per fan of faces joined through edges with exactly two faces. Face
-// indices and positions stay the same (so face-and-barycentric sites keep
-// their meaning); a non-manifold edge becomes a boundary of each of its faces.
+// copy per fan of faces joined around it. Faces stay joined across an edge
+// with two faces; at a non-manifold edge, in pairs that continue each other
+// (opposite directions along it, most nearly coplanar first, the piece kept
+// orientable), and the faces left over get a boundary there. Face indices
+// and positions stay the same (so face-and-barycentric sites keep their
+// meaning).
 // Before the cut, duplicate faces (a CAD soup's second copy of a triangle)
 // are disabled, so that they neither cut the surface apart nor count twice.
 
