@@ -96,7 +96,8 @@ std::int64_t disable_duplicate_faces(const VertexMatrix& vertices, FaceMatrix& f
   return disabled;
 }
 
-/// Two faces that stay joined across an edge of the input's topology.
+/// Two faces that stay joined across a non-manifold edge of the input's
+/// topology.
 struct FacePair {
   Index edge, first, second;
 };
@@ -152,21 +153,20 @@ class OrientedFaceSets {
   std::vector<std::uint8_t> flipped_;
 };
 
-/// The faces joined across each edge: both faces of an edge with two; at a
-/// non-manifold edge, pairs of faces that run it in opposite directions, the
-/// most nearly coplanar pair first, each face in at most one pair, and no pair
-/// that would leave its piece with no consistent orientation (a remesh must
-/// be orientable wherever the input's pieces are). A flap glued onto a
-/// surface along an edge (a T-junction of a CAD assembly) leaves the surface
-/// whole and gets a boundary there; two sheets crossing at an edge each stay
-/// whole.
+/// The faces joined across non-manifold edges (the two faces of an edge with
+/// two are always joined, and not listed): pairs of faces that run the edge
+/// in opposite directions, the most nearly coplanar pair first, each face in
+/// at most one pair, and no pair that would leave its piece with no
+/// consistent orientation (a remesh must be orientable wherever the input's
+/// pieces are). A flap glued onto a surface along an edge (a T-junction of a
+/// CAD assembly) leaves the surface whole and gets a boundary there; two
+/// sheets crossing at an edge each stay whole.
 std::vector<FacePair> joined_face_pairs(const TriangleMesh& mesh, const MeshTopology& topology) {
   std::vector<FacePair> joined;
   OrientedFaceSets orientation(static_cast<std::size_t>(mesh.num_faces()));
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const auto faces = topology.edge_faces(e);
     if (faces.size() != 2) continue;
-    joined.push_back({e, faces[0], faces[1]});
     const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
     orientation.join(faces[0], faces[1], face_runs_edge(mesh, faces[0], a, b) == face_runs_edge(mesh, faces[1], a, b));
   }
@@ -206,8 +206,9 @@ std::vector<FacePair> joined_face_pairs(const TriangleMesh& mesh, const MeshTopo
 }
 
 /// Per corner (3 * face + k): its fan, the corners at one vertex whose faces
-/// are joined around it, numbered in the order of their first corner (-1 for
-/// corners of faces with a repeated corner).
+/// are joined around it (across edges with two faces, and the `joined` pairs),
+/// numbered in the order of their first corner (-1 for corners of faces with
+/// a repeated corner).
 std::vector<Index> corner_fans(const FaceMatrix& faces, const MeshTopology& topology,
                                const std::vector<FacePair>& joined) {
   const Index num_corners = 3 * static_cast<Index>(faces.rows());
@@ -218,11 +219,15 @@ std::vector<Index> corner_fans(const FaceMatrix& faces, const MeshTopology& topo
     }
     return Index{-1};
   };
-  for (const FacePair& pair : joined) {
-    for (const Index v : topology.edge_vertices[static_cast<std::size_t>(pair.edge)]) {
-      fan.unite(corner_at(pair.first, v), corner_at(pair.second, v));
-    }
+  const auto join = [&](Index edge, Index f, Index g) {
+    for (const Index v : topology.edge_vertices[static_cast<std::size_t>(edge)])
+      fan.unite(corner_at(f, v), corner_at(g, v));
+  };
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto both = topology.edge_faces(e);
+    if (both.size() == 2) join(e, both[0], both[1]);
   }
+  for (const FacePair& pair : joined) join(pair.edge, pair.first, pair.second);
   std::vector<Index> corner_fan(static_cast<std::size_t>(num_corners), -1);
   Index count = 0;
   for (Index c = 0; c < num_corners; ++c) {
@@ -249,9 +254,7 @@ bool unjoin_edges_left_nonmanifold(const TriangleMesh& cut_mesh, const std::vect
     if (at != topology.edge_vertices.end() && *at == ends) apart[at - topology.edge_vertices.begin()] = 1;
   }
   const auto before = joined.size();
-  std::erase_if(joined, [&](const FacePair& pair) {
-    return apart[static_cast<std::size_t>(pair.edge)] && !topology.is_manifold_edge(pair.edge);
-  });
+  std::erase_if(joined, [&](const FacePair& pair) { return apart[static_cast<std::size_t>(pair.edge)] != 0; });
   return joined.size() < before;
 }
 
@@ -288,8 +291,6 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   cut.mesh.vertices = mesh.vertices;
   const MeshTopology topology = build_mesh_topology(cut.mesh);
   std::vector<FacePair> joined = joined_face_pairs(cut.mesh, topology);
-  const bool pairs_at_nonmanifold_edges = std::any_of(
-      joined.begin(), joined.end(), [&](const FacePair& pair) { return !topology.is_manifold_edge(pair.edge); });
   const FaceMatrix faces = cut.mesh.faces;  // the input's corners, copies disabled
   std::vector<std::uint8_t> split;
   for (;;) {
@@ -327,10 +328,7 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
     // Pairs joined at non-manifold edges can join the fans round a vertex so
     // that a third face shares both ends of such an edge again: those edges
     // are cut apart whole and the fans made again.
-    if (!pairs_at_nonmanifold_edges ||
-        !unjoin_edges_left_nonmanifold(cut.mesh, cut.original_vertex, topology, joined)) {
-      break;
-    }
+    if (joined.empty() || !unjoin_edges_left_nonmanifold(cut.mesh, cut.original_vertex, topology, joined)) break;
   }
   cut.vertices_split = std::count(split.begin(), split.end(), std::uint8_t{1});
 
