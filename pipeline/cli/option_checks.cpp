@@ -61,6 +61,20 @@ CLI::Validator finite_positive() {
       "NUMBER > 0");
 }
 
+CLI::Validator length_or_percentage() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool percentage = !text.empty() && text.back() == '%';
+        double value = 0;
+        if (!parse_double(percentage ? text.substr(0, text.size() - 1) : text, value) || !std::isfinite(value) ||
+            value <= 0 || (percentage && value > 100)) {
+          return "must be a finite number > 0, or a percentage in (0, 100] followed by %";
+        }
+        return {};
+      },
+      "LENGTH > 0 or PERCENT%");
+}
+
 CLI::Validator integer_between(std::int64_t low, std::int64_t high) {
   const std::string range = std::to_string(low) + " to " + std::to_string(high);
   return CLI::Validator(

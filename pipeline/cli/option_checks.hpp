@@ -15,6 +15,8 @@ CLI::Validator finite_non_negative();
 CLI::Validator finite_positive();
 /// A number in [low, high] (no nan).
 CLI::Validator number_between(double low, double high);
+/// A finite number > 0, or a percentage: a number in (0, 100] followed by '%'.
+CLI::Validator length_or_percentage();
 /// An integer in [low, high].
 CLI::Validator integer_between(std::int64_t low, std::int64_t high);
 /// An unsigned integer given without a sign (CLI11 would wrap "-1" to 2^64 - 1).

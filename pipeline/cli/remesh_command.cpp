@@ -1,4 +1,5 @@
-// geodual remesh MESH -o OUT (--sites N [--sampling S] [--seed S] | --site-file F) [--plain-lloyd]
+// geodual remesh MESH -o OUT (--sites N | --edge-length L[%] | --faces N | --site-file F) [--sampling S]
+//                     [--seed S] [--plain-lloyd]
 //                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--warm-start K] [--json]
 //                     [--preview OUT.png]
 //                     [--max-repair-rounds K]
@@ -40,11 +41,13 @@ class RemeshCommand final : public Command {
     CLI::App& command =
         *app.add_subcommand("remesh", "Remesh a scan: the dual of the geodesic Voronoi diagram of N sites on it");
     command.footer(
-        "Example:\n  geodual remesh scan.ply --sites 4000 -o remeshed.glb --preview remeshed.png\n"
+        "Examples:\n  geodual remesh scan.ply --sites 4000 -o remeshed.glb --preview remeshed.png\n"
+        "  geodual remesh scan.ply --edge-length 1% -o remeshed.glb\n"
         "Output by extension: .glb, .gltf (statistics in asset.extras), .ply, .obj.");
     command.add_option("MESH", mesh_path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
     command.add_option("-o,--output", output_path_, "The remeshed surface: .glb, .gltf, .ply or .obj")->required();
     sites_.add_to(command);
+    sites_.add_sizing_to(command);
     // Flags are named after the option fields (RemeshOptions, LloydOptions,
     // GeodesicOptions, QualityOptions); the second name of a flag is its old
     // one, kept for one release.
@@ -138,6 +141,8 @@ class RemeshCommand final : public Command {
     io::LoadedMesh loaded = io::read_mesh(mesh_path_);
     require_computable_range(loaded.mesh, mesh_path_);
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
+    options.edge_length = sites_.edge_length(loaded.mesh);
+    options.faces = sites_.faces();
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
     const remesh::RepairedDual& result = run.remesh;
     const remesh::LloydResult& relaxation = run.relaxation;
@@ -180,6 +185,10 @@ class RemeshCommand final : public Command {
     figures["sampling"] =
         sites_.file().empty() ? nlohmann::ordered_json(sites_.sampling()) : nlohmann::ordered_json(nullptr);
     figures["seed"] = sites_.seed();
+    figures["edge_length_target"] =
+        options.edge_length > 0 ? nlohmann::ordered_json(options.edge_length) : nlohmann::ordered_json(nullptr);
+    figures["faces_target"] =
+        options.faces > 0 ? nlohmann::ordered_json(options.faces) : nlohmann::ordered_json(nullptr);
     figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
     figures["sites_added_for_topology"] = run.sites_added_for_topology;
     figures["sharp_angle_deg"] = options_.sharp_angle;
@@ -271,6 +280,8 @@ class RemeshCommand final : public Command {
     table.add(
         "sites",
         with_thousands(static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins) +
+            (options.edge_length > 0 ? " for edge length " + significant(options.edge_length, 3) : "") +
+            (options.faces > 0 ? " for " + with_thousands(options.faces) + " faces" : "") +
             (sites_.file().empty() ? " (" + sites_.sampling() + ", seed " + std::to_string(sites_.seed()) + ")"
                                    : " (" + sites_.file() + ")") +
             (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : "") +
@@ -327,9 +338,12 @@ class RemeshCommand final : public Command {
     nlohmann::ordered_json report;
     report["geodual_version"] = build_version();
     nlohmann::ordered_json options;
-    options["sites"] = sites_.file().empty() ? nlohmann::ordered_json(sites_.count()) : nlohmann::ordered_json(nullptr);
+    options["sites"] = sites_.count() > 0 ? nlohmann::ordered_json(sites_.count()) : nlohmann::ordered_json(nullptr);
     options["site_file"] =
         sites_.file().empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(sites_.file());
+    options["edge_length"] = sites_.edge_length_text().empty() ? nlohmann::ordered_json(nullptr)
+                                                               : nlohmann::ordered_json(sites_.edge_length_text());
+    options["faces"] = sites_.faces() > 0 ? nlohmann::ordered_json(sites_.faces()) : nlohmann::ordered_json(nullptr);
     options["sampling"] = sites_.sampling();
     options["seed"] = sites_.seed();
     options["lloyd_iterations"] = options_.lloyd.iterations;

@@ -6,11 +6,13 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/remesh/curvature_density.hpp"
+#include "geodual/remesh/sizing.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -31,6 +33,21 @@ class StageClock {
   Stage stage_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
+
+/// \throw UsageError for a sizing out of range or more than one of
+/// edge_length, faces and given_sites.
+void require_one_site_source(const RemeshPipelineOptions& options) {
+  if (std::isnan(options.edge_length) || options.edge_length < 0 || std::isinf(options.edge_length)) {
+    throw UsageError("edge length " + std::to_string(options.edge_length) +
+                     ": must be a finite number > 0 (0: unused)");
+  }
+  if (options.faces < 0)
+    throw UsageError("faces " + std::to_string(options.faces) + ": must be at least 1 (0: unused)");
+  const int given = (options.edge_length > 0) + (options.faces > 0) + options.given_sites.has_value();
+  if (given > 1) {
+    throw UsageError("give the sites one way only: an edge length, a face count or the sites themselves");
+  }
+}
 
 void report(const ProgressCallback& progress, Stage stage, double fraction) {
   if (progress && !progress(stage, fraction)) {
@@ -107,6 +124,13 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
            (input_loops == 1 ? " boundary loop; " : " boundary loops; ") + std::to_string(made) +
            (made == 1 ? " was" : " were") + " made by the cut to a manifold at its non-manifold edges and vertices)";
   };
+  // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
+  std::int64_t sites = options.sites;
+  if (options.edge_length > 0) {
+    sites = result.sites_for_sizing = remesh::sites_for_edge_length(result.surface.mesh, options.edge_length);
+  } else if (options.faces > 0) {
+    sites = result.sites_for_sizing = remesh::sites_for_faces(result.surface.mesh, options.faces);
+  }
   if (options.given_sites) {
     result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
     remesh::require_a_site_on_every_piece(result.surface.mesh, result.initial_sites);
@@ -114,11 +138,11 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     // Sharp features: cut open and lined with sites, the rest sampled around them.
     const TriangleMesh& manifold = result.surface.mesh;
     std::optional<remesh::FeatureSites> feature_sites;
-    if (options.remesh.sharp_angle > 0 && options.sites >= 4) {
-      const double spacing = remesh::uniform_spacing(manifold, options.sites);
-      result.features = remesh::detect_features(
-          manifold, remesh::remesh_feature_options(manifold, options.sites, options.remesh.sharp_angle,
-                                                   options.remesh.min_feature_length));
+    if (options.remesh.sharp_angle > 0 && sites >= 4) {
+      const double spacing = remesh::uniform_spacing(manifold, sites);
+      result.features =
+          remesh::detect_features(manifold, remesh::remesh_feature_options(manifold, sites, options.remesh.sharp_angle,
+                                                                           options.remesh.min_feature_length));
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
         // Chords within 0.05 % of the diagonal: the statistics' feature recall tolerance is 0.1 %.
@@ -131,9 +155,9 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     }
     remesh::SampledSites sampled =
         feature_sites ? remesh::sample_sites_around(result.feature_cut.mesh,
-                                                    std::max<std::int64_t>(0, options.sites - feature_sites->points),
+                                                    std::max<std::int64_t>(0, sites - feature_sites->points),
                                                     feature_sites->sites, options.sampling)
-                      : remesh::sample_sites_for_topology(manifold, options.sites, options.sampling);
+                      : remesh::sample_sites_for_topology(manifold, sites, options.sampling);
     result.initial_sites = std::move(sampled.sites);
     result.sites_added_for_topology = sampled.sites_added_for_topology;
     result.sites_added_reason = sampled.topology_reason;
@@ -214,6 +238,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 }  // namespace
 
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
+  require_one_site_source(options);
   RemeshPipelineResult result;
   result.input = std::move(input);
   result.input_report = analyze_mesh(result.input.mesh);

@@ -12,12 +12,16 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geodual::cli_test {
@@ -232,6 +236,102 @@ TEST(RemeshCommand, FlagsAreNamedAfterTheOptionFieldsAndTheOldNamesStillWork) {
   EXPECT_EQ(now["statistics"], false);
   EXPECT_EQ(now["remove_redundant_windows"], false);
   EXPECT_EQ(now["window_memory"], 512);
+}
+
+/// The mean length of `mesh`'s edges, each counted once.
+double mean_edge_length(const TriangleMesh& mesh) {
+  std::vector<std::pair<Index, Index>> edges;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Index a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  double total = 0;
+  for (const auto& [a, b] : edges) total += (mesh.vertices.row(a) - mesh.vertices.row(b)).norm();
+  return total / static_cast<double>(edges.size());
+}
+
+TEST(RemeshCommand, AnEdgeLengthGivesThatMeanEdgeLength) {
+  // L = 6 on fertility (diagonal 257): about 1,900 sites.
+  ScratchFolder folder;
+  const auto out = folder.path() / "sized.ply";
+  const CliRun run =
+      run_cli({"remesh", genus_four, "--edge-length", "6", "--samples", "-1", "-o", out.string(), "--json"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["edge_length_target"].get<double>(), 6.0);
+  EXPECT_TRUE(json["faces_target"].is_null());
+  const double mean = mean_edge_length(io::read_mesh(out).mesh);
+  EXPECT_GT(mean, 0.9 * 6) << json["vertices"];
+  EXPECT_LT(mean, 1.1 * 6) << json["vertices"];
+}
+
+TEST(RemeshCommand, AFaceCountGivesThatManyFaces) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "sized.ply";
+  const CliRun run = run_cli({"remesh", open_scan, "--faces", "4000", "--samples", "-1", "-o", out.string(), "--json"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["faces_target"].get<std::int64_t>(), 4000);
+  EXPECT_TRUE(json["edge_length_target"].is_null());
+  const Index faces = io::read_mesh(out).mesh.num_faces();
+  EXPECT_GE(faces, 0.98 * 4000);
+  EXPECT_LE(faces, 1.02 * 4000);
+}
+
+TEST(RemeshCommand, AnEdgeLengthInPercentIsOfTheDiagonal) {
+  ScratchFolder folder;
+  const double diagonal = analyze_mesh(io::read_mesh(open_scan).mesh).bbox_diagonal;
+  const auto by_percent = folder.path() / "percent.ply", by_length = folder.path() / "length.ply";
+  const CliRun percent = run_cli(
+      {"remesh", open_scan, "--edge-length", "2%", "--lloyd", "0", "--samples", "-1", "-o", by_percent.string()});
+  ASSERT_EQ(percent.exit_status, 0) << percent.err;
+  // The text table says what the count is for: 2 % of 0.2502 is 0.005.
+  EXPECT_NE(percent.out.find("for edge length 0.005 "), std::string::npos) << percent.out;
+  std::ostringstream length;
+  length << std::setprecision(17) << 0.02 * diagonal;
+  const CliRun absolute = run_cli({"remesh", open_scan, "--edge-length", length.str(), "--lloyd", "0", "--samples",
+                                   "-1", "-o", by_length.string(), "--json"});
+  ASSERT_EQ(absolute.exit_status, 0) << absolute.err;
+  const nlohmann::json json = nlohmann::json::parse(absolute.out);
+  EXPECT_NEAR(json["edge_length_target"].get<double>(), 0.02 * diagonal, 1e-12 * diagonal);
+  EXPECT_EQ(slurp(by_percent), slurp(by_length));  // the same sites, the same remesh
+}
+
+TEST(RemeshCommand, SitesEdgeLengthFacesAndSiteFileExcludeEachOther) {
+  ScratchFolder folder;
+  const std::string out = (folder.path() / "out.ply").string();
+  for (const std::vector<std::string>& flags :
+       std::vector<std::vector<std::string>>{{"--sites", "100", "--faces", "100"},
+                                             {"--sites", "100", "--edge-length", "1%"},
+                                             {"--edge-length", "1%", "--faces", "100"},
+                                             {"--site-file", "sites.txt", "--faces", "100"},
+                                             {"--edge-length", "0"},
+                                             {"--edge-length", "-1"},
+                                             {"--edge-length", "nan"},
+                                             {"--edge-length", "inf"},
+                                             {"--edge-length", "150%"},
+                                             {"--edge-length", "%"},
+                                             {"--faces", "0"},
+                                             {"--faces", "1e3"}}) {
+    std::vector<std::string> arguments = {"remesh", genus_four, "-o", out};
+    arguments.insert(arguments.end(), flags.begin(), flags.end());
+    const CliRun run = run_cli(arguments);
+    EXPECT_EQ(run.exit_status, 2) << flags[0] << " " << flags[1] << ": " << run.err;
+    EXPECT_LT(run.err.size(), 300u) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  // None given: the message names every way.
+  const CliRun none = run_cli({"remesh", genus_four, "-o", out});
+  EXPECT_EQ(none.exit_status, 2);
+  for (const char* flag : {"--sites", "--site-file", "--edge-length", "--faces"}) {
+    EXPECT_NE(none.err.find(flag), std::string::npos) << none.err;
+  }
+  // Only remesh sizes its output.
+  EXPECT_EQ(run_cli({"voronoi", genus_four, "--faces", "100", "-o", out}).exit_status, 2);
 }
 
 TEST(RemeshCommand, OutOfRangeValuesAreShortUsageErrors) {

@@ -3,6 +3,7 @@
 
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/remesh/sizing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,45 @@ TEST(RemeshPipeline, GivenSitesReplaceSampling) {
     EXPECT_EQ(result.initial_sites[i].element, (*options.given_sites)[i].element);
   }
   EXPECT_EQ(pipeline::stage_name(pipeline::Stage::relax), "relax");
+}
+
+TEST(RemeshPipeline, AFaceCountOrEdgeLengthSetsTheSites) {
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.statistics = false;
+  options.sites = 17;  // unused with a sizing
+  options.faces = 800;
+  const pipeline::RemeshPipelineResult by_faces = pipeline::run_remesh_pipeline(genus_four, options);
+  // Closed, chi = -6: V = 800 / 2 - 6.
+  EXPECT_EQ(by_faces.sites_for_sizing, 394);
+  EXPECT_EQ(by_faces.initial_sites.size(), 394u);
+  EXPECT_EQ(by_faces.remesh.mesh.num_faces(), 2 * (394 + by_faces.remesh.sites_added) + 12);  // F = 2 (V - chi)
+
+  options.faces = 0;
+  options.edge_length = 10;
+  const pipeline::RemeshPipelineResult by_length = pipeline::run_remesh_pipeline(genus_four, options);
+  EXPECT_EQ(by_length.sites_for_sizing, remesh::sites_for_edge_length(by_length.surface.mesh, 10));
+  EXPECT_EQ(static_cast<std::int64_t>(by_length.initial_sites.size()), by_length.sites_for_sizing);
+
+  // Without a sizing the count is options.sites and nothing is recorded.
+  const pipeline::RemeshPipelineResult plain = pipeline::run_remesh_pipeline(genus_four, small_options());
+  EXPECT_EQ(plain.sites_for_sizing, 0);
+}
+
+TEST(RemeshPipeline, MoreThanOneSiteSourceIsAUsageError) {
+  const io::LoadedMesh loaded = io::read_mesh(genus_four);
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.edge_length = 10;
+  options.faces = 800;
+  EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+  options.edge_length = 0;
+  options.given_sites = remesh::sample_sites(loaded.mesh, 300);
+  EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+  options.given_sites.reset();
+  options.faces = -5;
+  EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+  options.faces = 0;
+  options.edge_length = -1;
+  EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
 }
 
 }  // namespace

@@ -51,6 +51,13 @@ using ProgressCallback = std::function<bool(Stage stage, double fraction)>;
 struct RemeshPipelineOptions {
   std::int64_t sites = 4000;                             ///< sites sampled on the input (ignored if given_sites is set)
   std::optional<std::vector<SurfacePoint>> given_sites;  ///< use these sites instead of sampling
+  /// Sizing instead of `sites` (0: unused): the site count is derived on the
+  /// surface cut to a manifold for near-equilateral triangles of this side
+  /// (remesh::sites_for_edge_length) or for about this many faces
+  /// (remesh::sites_for_faces). At most one of edge_length, faces and
+  /// given_sites may be set (geodual::UsageError otherwise).
+  double edge_length = 0;
+  std::int64_t faces = 0;
   /// Blue noise (Poisson disk), seed 1, sites on boundary loops: the relaxation
   /// converges from evenly spread sites in fewer steps than from random ones.
   remesh::SamplingOptions sampling{.strategy = remesh::SamplingStrategy::poisson};
@@ -102,7 +109,10 @@ struct RemeshPipelineResult {
   /// failed and the remesh was made without them (empty otherwise).
   std::string features_dropped_reason;
   std::vector<SurfacePoint> initial_sites;
-  /// Sites sampled beyond options.sites because the surface's pieces and
+  /// The site count derived from options.edge_length or options.faces, used
+  /// instead of options.sites (0 when neither is set).
+  std::int64_t sites_for_sizing = 0;
+  /// Sites sampled beyond options.sites (or sites_for_sizing) because the surface's pieces and
   /// boundary loops need them (remesh::sample_sites_for_topology), and why.
   std::int64_t sites_added_for_topology = 0;
   std::string sites_added_reason;
