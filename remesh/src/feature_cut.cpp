@@ -492,13 +492,14 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
   RepairedDual result;
   std::int64_t sites_added = 0, sites_left_out = 0;
+  int repair_rounds = 0;  // of the rounds before the last
   std::vector<std::string> repair_problems;
   double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
   for (int round = 0;; ++round) {
     result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), options);
     sites_added += result.sites_added;
     sites_left_out += result.sites_left_out;
-    if (repair_problems.empty()) repair_problems = std::move(result.repair_problems);
+    repair_problems.insert(repair_problems.end(), result.repair_problems.begin(), result.repair_problems.end());
     geodesic_seconds += result.geodesic_seconds;
     diagram_seconds += result.diagram_seconds;
     dual_seconds += result.dual_seconds;
@@ -524,6 +525,14 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     }
     sites = std::move(result.sites);
     sites_added += static_cast<std::int64_t>(more.size());
+    repair_rounds += result.repair_rounds + 1;
+    if (!more.empty()) {
+      repair_problems.push_back(std::to_string(more.size()) + " points of the sharp features without their twin sites");
+    }
+    if (welded.cracked_edges > 0) {
+      repair_problems.push_back(std::to_string(welded.cracked_edges) +
+                                " edges of the welded remesh leaving the sharp features");
+    }
     sites.insert(sites.end(), more.begin(), more.end());
     diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
     geodesic_seconds += diagram.stats.geodesic_seconds;
@@ -531,7 +540,8 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
   }
   result.sites_added = sites_added;
   result.sites_left_out = sites_left_out;
-  if (!repair_problems.empty()) result.repair_problems = std::move(repair_problems);
+  result.repair_rounds += repair_rounds;
+  result.repair_problems = std::move(repair_problems);
   result.geodesic_seconds = geodesic_seconds;
   result.diagram_seconds = diagram_seconds;
   result.dual_seconds = dual_seconds;

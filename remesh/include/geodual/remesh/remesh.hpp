@@ -44,7 +44,8 @@ struct RepairedDual {
   /// neighbour's cell (DualCheck::redundant_sites).
   std::int64_t sites_left_out = 0;
   /// Why repair ran: the problems of the first dual that failed its checks
-  /// (DualCheck::problems); empty when the first dual was valid.
+  /// (DualCheck::problems; welded_dual_with_repair adds those of each weld
+  /// round); empty when the first dual was valid.
   std::vector<std::string> repair_problems;
   int repair_rounds = 0;
   double geodesic_seconds = 0;  ///< the repair rounds' diagrams
