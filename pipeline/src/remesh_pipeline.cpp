@@ -37,7 +37,7 @@ class StageClock {
 /// \throw UsageError for a sizing out of range or more than one of
 /// edge_length, faces and given_sites.
 void require_one_site_source(const RemeshPipelineOptions& options) {
-  if (std::isnan(options.edge_length) || options.edge_length < 0 || std::isinf(options.edge_length)) {
+  if (!std::isfinite(options.edge_length) || options.edge_length < 0) {
     throw UsageError("edge length " + std::to_string(options.edge_length) +
                      ": must be a finite number > 0 (0: unused)");
   }
