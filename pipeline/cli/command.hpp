@@ -4,6 +4,7 @@
 // line, runs the chosen one and turns its exceptions into exit statuses.
 
 #include <memory>
+#include <string_view>
 
 namespace CLI {
 class App;
@@ -23,6 +24,10 @@ class Command {
   /// 2), geodual::Error for bad input (exit 1).
   virtual int run() = 0;
 };
+
+/// Prints "geodual: error: <message>" on stderr as one line, without
+/// allocating (it also reports running out of memory).
+void report_error(std::string_view message);
 
 using CommandFactory = std::unique_ptr<Command>();
 

@@ -34,6 +34,12 @@ CommandFactory make_voronoi_command;
 CommandFactory make_remesh_command;
 CommandFactory make_stats_command;
 
+void report_error(std::string_view message) {
+  std::cerr << "geodual: error: ";
+  for (const char c : message) std::cerr.put(c == '\n' || c == '\r' ? ' ' : c);
+  std::cerr << std::endl;
+}
+
 namespace {
 
 constexpr CommandFactory* command_factories[] = {
@@ -43,14 +49,6 @@ constexpr CommandFactory* command_factories[] = {
 constexpr int exit_failure = 1;
 constexpr int exit_usage = 2;
 constexpr int exit_cancelled = 3;
-
-/// Prints "geodual: error: <message>" as one line, without allocating (it
-/// also reports running out of memory).
-void report_error(std::string_view message) {
-  std::cerr << "geodual: error: ";
-  for (const char c : message) std::cerr.put(c == '\n' || c == '\r' ? ' ' : c);
-  std::cerr << std::endl;
-}
 
 int run(int argc, char** argv) {
   CLI::App app{

@@ -3,6 +3,7 @@
 //                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--warm-start K] [--json]
 //                     [--preview OUT.png]
 //                     [--max-repair-rounds K]
+// geodual remesh MESH... --output-dir DIR [--format glb|gltf|ply|obj] (the same options)
 // The main job: a dense scan in, an isotropic mesh of about N vertices out,
 // through the dual of the exact geodesic Voronoi diagram.
 
@@ -16,6 +17,7 @@
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
@@ -28,12 +30,39 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <iomanip>
 #include <iostream>
+#include <map>
+#include <new>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace geodual::cli {
 namespace {
+
+/// The start of a scan's error for the batch summary: without the leading
+/// "<path>: ", at most six words.
+std::string first_words(std::string message, const std::string& path) {
+  if (message.rfind(path + ": ", 0) == 0) message.erase(0, path.size() + 2);
+  std::istringstream words(message);
+  std::string word, start;
+  for (int count = 0; words >> word; ++count) {
+    if (count == 6) return start + " ...";
+    start += (start.empty() ? "" : " ") + word;
+  }
+  return start;
+}
+
+/// Seconds with two decimals, for the batch summary's "time s" column.
+std::string seconds_column(double seconds) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2) << seconds;
+  return text.str();
+}
 
 class RemeshCommand final : public Command {
  public:
@@ -43,9 +72,22 @@ class RemeshCommand final : public Command {
     command.footer(
         "Examples:\n  geodual remesh scan.ply --sites 4000 -o remeshed.glb --preview remeshed.png\n"
         "  geodual remesh scan.ply --edge-length 1% -o remeshed.glb\n"
+        "  geodual remesh a.ply b.obj --sites 4000 --output-dir remeshed   (remeshed/a.glb, remeshed/b.glb)\n"
         "Output by extension: .glb, .gltf (statistics in asset.extras), .ply, .obj.");
-    command.add_option("MESH", mesh_path_, "Mesh file: .ply, .obj, .off, .stl, .gltf or .glb")->required();
-    command.add_option("-o,--output", output_path_, "The remeshed surface: .glb, .gltf, .ply or .obj")->required();
+    command
+        .add_option("MESH", mesh_paths_,
+                    "Mesh files: .ply, .obj, .off, .stl, .gltf or .glb (several need --output-dir)")
+        ->required();
+    CLI::Option* output =
+        command.add_option("-o,--output", output_path_, "The remeshed surface: .glb, .gltf, .ply or .obj");
+    CLI::Option* output_dir = command.add_option(
+        "--output-dir", output_dir_,
+        "One output per input, one after another: DIR/<input stem>.<format>; a summary table at the end");
+    output->excludes(output_dir);
+    command.add_option("--format", format_, "With --output-dir: what the outputs are written as")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"glb", "gltf", "ply", "obj"}))
+        ->needs(output_dir);
     sites_.add_to(command);
     sites_.add_sizing_to(command);
     // Flags are named after the option fields (RemeshOptions, LloydOptions,
@@ -114,17 +156,96 @@ class RemeshCommand final : public Command {
 
   int run() override {
     sites_.validate("remesh");
+    if (!output_dir_.empty()) return run_batch();
+    if (output_path_.empty()) throw UsageError("remesh: give the output: -o OUT, or --output-dir DIR");
+    if (mesh_paths_.size() > 1) {
+      throw UsageError("remesh: " + std::to_string(mesh_paths_.size()) +
+                       " inputs need --output-dir DIR (one output each), not -o");
+    }
+    const std::string& mesh_path = mesh_paths_.front();
     // Every output checked before any work: nothing is written unless all can be.
     io::require_output_path(output_path_, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
-    io::refuse_to_overwrite_inputs(output_path_, {mesh_path_, sites_.file()});
+    io::refuse_to_overwrite_inputs(output_path_, {mesh_path, sites_.file()});
     if (!preview_path_.empty()) {
       io::require_output_path(preview_path_, {".png"}, "a preview");
-      io::refuse_to_overwrite_inputs(preview_path_, {mesh_path_, sites_.file()});
+      io::refuse_to_overwrite_inputs(preview_path_, {mesh_path, sites_.file()});
     }
     if (!report_path_.empty()) {
       io::require_output_path(report_path_, {".json"}, "a report");
-      io::refuse_to_overwrite_inputs(report_path_, {mesh_path_, sites_.file()});
+      io::refuse_to_overwrite_inputs(report_path_, {mesh_path, sites_.file()});
     }
+    const nlohmann::ordered_json json = remesh_scan(mesh_path, output_path_);
+    if (json_) std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
+    return 0;
+  }
+
+ private:
+  /// --output-dir: every input remeshed with the same options, one after
+  /// another; a failed scan is reported and the next one goes on; Ctrl-C
+  /// stops the batch. Returns 1 if any scan failed.
+  int run_batch() {
+    for (const auto& [option, given] : {std::pair<const char*, bool>{"--preview", !preview_path_.empty()},
+                                        {"--report", !report_path_.empty()},
+                                        {"--site-file", !sites_.file().empty()}}) {
+      if (given) throw UsageError(std::string("remesh: ") + option + " names one file; it cannot go with --output-dir");
+    }
+    // Every output named and checked before any work.
+    std::vector<std::string> outputs;
+    std::map<std::string, std::string> input_of_stem;
+    for (const std::string& mesh_path : mesh_paths_) {
+      const std::string stem = std::filesystem::path(mesh_path).stem().string();
+      const std::string output = (std::filesystem::path(output_dir_) / (stem + "." + format_)).string();
+      const auto [known, added] = input_of_stem.emplace(stem, mesh_path);
+      if (!added) {
+        throw UsageError("remesh: " + known->second + " and " + mesh_path + " would both be written as " + output);
+      }
+      outputs.push_back(output);
+    }
+    for (const std::string& output : outputs) {
+      io::require_output_path(output, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
+      for (const std::string& mesh_path : mesh_paths_) io::refuse_to_overwrite_inputs(output, {mesh_path});
+    }
+
+    ColumnTable summary({"scan", "vertices", "Qavg", "H %", "time s", "status"});
+    nlohmann::ordered_json results = nlohmann::ordered_json::array();
+    std::size_t failed = 0;
+    for (std::size_t i = 0; i < mesh_paths_.size(); ++i) {
+      const std::string& mesh_path = mesh_paths_[i];
+      if (interrupted()) throw Cancelled("remesh cancelled before " + mesh_path);
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        const nlohmann::ordered_json json = remesh_scan(mesh_path, outputs[i]);
+        summary.add({mesh_path, with_thousands(json["vertices"].get<std::int64_t>()),
+                     significant(json["q_avg"].get<double>(), 3),
+                     json.contains("hausdorff_pct") ? significant(json["hausdorff_pct"].get<double>(), 3) : "-",
+                     seconds_column(seconds_since(start)), "ok"});
+        results.push_back(json);
+        if (!json_) std::cout << '\n';  // a blank line after the scan's table
+      } catch (const Cancelled&) {
+        throw;  // Ctrl-C: the scan under way writes nothing, and the batch stops
+      } catch (const std::exception& error) {
+        ++failed;
+        const std::string message =
+            dynamic_cast<const std::bad_alloc*>(&error) != nullptr ? "out of memory" : error.what();
+        report_error(message.rfind(mesh_path + ": ", 0) == 0 ? message : mesh_path + ": " + message);
+        summary.add({mesh_path, "-", "-", "-", seconds_column(seconds_since(start)), first_words(message, mesh_path)});
+        results.push_back({{"mesh", mesh_path}, {"output", outputs[i]}, {"error", message}});
+      }
+    }
+    if (json_) {
+      std::cout << results.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
+    } else {
+      summary.print(std::cout);
+      std::cout << mesh_paths_.size() - failed << " of " << mesh_paths_.size() << " scans remeshed into " << output_dir_
+                << '\n';
+    }
+    return failed > 0 ? 1 : 0;
+  }
+
+  /// One scan: remeshes `mesh_path` into `output_path` (and the preview and
+  /// report when asked), prints its table unless --json, and returns the
+  /// figures --json prints. Throws on failure, writing nothing.
+  nlohmann::ordered_json remesh_scan(const std::string& mesh_path, const std::string& output_path) const {
     const auto start = std::chrono::steady_clock::now();
     ProgressBar bar(quiet_);
     pipeline::RemeshPipelineOptions options;
@@ -138,8 +259,8 @@ class RemeshCommand final : public Command {
     options.progress = [&](pipeline::Stage stage, double fraction) {
       return bar.update(pipeline::stage_name(stage), fraction);
     };
-    io::LoadedMesh loaded = io::read_mesh(mesh_path_);
-    require_computable_range(loaded.mesh, mesh_path_);
+    io::LoadedMesh loaded = io::read_mesh(mesh_path);
+    require_computable_range(loaded.mesh, mesh_path);
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
     options.edge_length = sites_.edge_length(loaded.mesh);
     options.faces = sites_.faces();
@@ -149,24 +270,24 @@ class RemeshCommand final : public Command {
     const quality::TriangleQuality quality =
         run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
     if (!run.features_dropped_reason.empty()) {
-      std::cerr << "geodual remesh: warning: " << mesh_path_
+      std::cerr << "geodual remesh: warning: " << mesh_path
                 << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
                 << "\n";
     }
     if (run.sites_added_for_topology > 0) {
-      std::cerr << "geodual remesh: note: " << mesh_path_ << ": " << run.sites_added_reason << "\n";
+      std::cerr << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
     if (result.sites_added > 0 || result.sites_left_out > 0) {
       std::string problems;
       for (const std::string& problem : result.repair_problems) problems += (problems.empty() ? "" : "; ") + problem;
-      std::cerr << "geodual remesh: note: " << mesh_path_ << ": repair added " << with_thousands(result.sites_added)
+      std::cerr << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
                 << " sites"
                 << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "") << " in "
                 << result.repair_rounds << " rounds, where the dual of the Voronoi diagram was not a valid remesh ("
                 << problems << ")\n";
     }
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
-      std::cerr << "geodual remesh: warning: " << mesh_path_ << ": " << run.dropped.faces << " faces ("
+      std::cerr << "geodual remesh: warning: " << mesh_path << ": " << run.dropped.faces << " faces ("
                 << significant(run.dropped.area_pct, 3)
                 << " % of the area) left out as scraps or flaps of non-manifold pieces; --strict makes this an "
                    "error\n";
@@ -238,8 +359,8 @@ class RemeshCommand final : public Command {
     }
 
     nlohmann::ordered_json json;
-    json["mesh"] = mesh_path_;
-    json["output"] = output_path_;
+    json["mesh"] = mesh_path;
+    json["output"] = output_path;
     json.update(figures);
     for (const pipeline::StageTiming& timing : run.timings) {
       json[std::string(pipeline::stage_name(timing.stage)) + "_s"] = timing.seconds;
@@ -254,21 +375,18 @@ class RemeshCommand final : public Command {
         color_ == "quality" ? quality_colors(result.mesh) : Eigen::Matrix<float, Eigen::Dynamic, 3>();
     // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, colors, still_wanted);
-    write_remesh(output_path_, result.mesh, figures.dump(), colors);
+    write_remesh(output_path, result.mesh, figures.dump(), colors);
     const double write_seconds = seconds_since(write_start);
     bar.finish();
     json["write_s"] = write_seconds;
     json["time_s"] = seconds_since(start);
     json["peak_memory_bytes"] = peak_memory_bytes();
-    if (!report_path_.empty()) write_report(run, json);
+    if (!report_path_.empty()) write_report(mesh_path, run, json);
 
-    if (json_) {
-      std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
-      return 0;
-    }
+    if (json_) return json;
     KeyValueTable table;
     table.add("input",
-              mesh_path_ + " (" + with_thousands(run.input.mesh.num_vertices()) + " vertices, " +
+              mesh_path + " (" + with_thousands(run.input.mesh.num_vertices()) + " vertices, " +
                   with_thousands(run.input.mesh.num_faces()) + " faces" +
                   (run.surface.vertices_split > 0
                        ? ", " + with_thousands(run.surface.vertices_split) + " non-manifold vertices cut apart"
@@ -300,7 +418,7 @@ class RemeshCommand final : public Command {
                              ", CVT energy " + significant(relaxation.energy.front(), 4) + " -> " +
                              significant(relaxation.energy.back(), 4));
     }
-    table.add("output", output_path_ + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
+    table.add("output", output_path + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
     table.add("topology", "Euler characteristic " + std::to_string(quality.euler_characteristic) + ", " +
                               std::to_string(quality.boundary_loops) + " boundary loops, manifold");
@@ -329,12 +447,12 @@ class RemeshCommand final : public Command {
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
     if (!preview_path_.empty()) table.add("preview", preview_path_);
     table.print(std::cout);
-    return 0;
+    return json;
   }
 
- private:
   /// --report: everything a comparison needs, in one JSON file.
-  void write_report(const pipeline::RemeshPipelineResult& run, const nlohmann::ordered_json& figures) const {
+  void write_report(const std::string& mesh_path, const pipeline::RemeshPipelineResult& run,
+                    const nlohmann::ordered_json& figures) const {
     nlohmann::ordered_json report;
     report["geodual_version"] = build_version();
     nlohmann::ordered_json options;
@@ -359,7 +477,7 @@ class RemeshCommand final : public Command {
     options["strict"] = strict_;
     report["options"] = options;
     report["input"] = pipeline::mesh_report_json(run.input_report);
-    report["input"]["file"] = mesh_path_;
+    report["input"]["file"] = mesh_path;
     nlohmann::ordered_json stages = nlohmann::ordered_json::array();
     for (const pipeline::StageTiming& timing : run.timings) {
       stages.push_back({{"stage", pipeline::stage_name(timing.stage)},
@@ -377,8 +495,10 @@ class RemeshCommand final : public Command {
     });
   }
 
-  std::string mesh_path_;
+  std::vector<std::string> mesh_paths_;
   std::string output_path_;
+  std::string output_dir_;
+  std::string format_ = "glb";
   SiteSource sites_{"poisson"};  // blue noise: Lloyd converges from it in fewer steps
   std::string preview_path_;
   remesh::RemeshOptions options_;

@@ -1,5 +1,6 @@
 #pragma once
-// Human-readable output: aligned "key  value" rows and number formatting.
+// Human-readable output: aligned "key  value" rows, aligned columns and
+// number formatting.
 
 #include <chrono>
 #include <cstdint>
@@ -19,6 +20,18 @@ class KeyValueTable {
 
  private:
   std::vector<std::pair<std::string, std::string>> rows_;
+};
+
+/// Rows of cells under a header row, each column as wide as its widest cell.
+class ColumnTable {
+ public:
+  explicit ColumnTable(std::vector<std::string> header);
+  /// A row of cells; missing cells are empty, extra ones are not printed.
+  void add(std::vector<std::string> row);
+  void print(std::ostream& out) const;
+
+ private:
+  std::vector<std::vector<std::string>> rows_;  // the header first
 };
 
 /// 1234567 -> "1,234,567".

@@ -127,6 +127,26 @@ TEST_F(LargeMeshes, CtrlCStopsInfoWithinASecond) {
   EXPECT_FALSE(std::filesystem::exists(preview));
 }
 
+TEST_F(LargeMeshes, CtrlCStopsABatchKeepingTheFinishedScansOnly) {
+  // A small scan (well under a second), then the million-face one (about 8 s
+  // to remesh), interrupted 1.5 s after the time the small one alone takes.
+  const std::string small = "tests/data/woody.ply";
+  const auto folder = output_folder_.path();
+  const std::string options = " --sites 300 --lloyd 0 --samples -1 --output-dir " + folder.string();
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(shell(std::string(GEODUAL_CLI) + " remesh " + small + options).first, 0);
+  const double small_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::filesystem::remove(folder / "woody.glb");
+  const InterruptedRun run = interrupt_after(small_seconds + 1.5, "remesh " + small + " " + large() + options);
+  EXPECT_EQ(run.status, 3) << run.output;
+  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
+  EXPECT_NE(run.output.find("cancelled"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("scans remeshed"), std::string::npos) << run.output;  // no summary
+  // The finished scan's output and nothing else (no temporary file either).
+  EXPECT_TRUE(std::filesystem::exists(folder / "woody.glb"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()), 1);
+}
+
 TEST(Interrupt, CtrlCStopsTheStatisticsStageOfRemeshWithinASecond) {
   ScratchFolder folder;
   const auto out = folder.path() / "out.ply";

@@ -612,5 +612,129 @@ TEST(RemeshCommand, LoopsMadeByTheCutAreNamedAsSuch) {
   EXPECT_EQ(output.boundary_loops, 3);
 }
 
+// --- Batches: several scans, one output each in --output-dir ---------------
+
+constexpr const char* small_scan = "tests/data/woody.ply";
+
+/// The options every batch test remeshes with: few sites, no Lloyd, a cheap
+/// comparison with the input.
+std::vector<std::string> batch_options() { return {"--sites", "150", "--lloyd", "0", "--samples", "2000"}; }
+
+std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(RemeshCommand, ABatchWritesEveryOutputTheSameBytesAsSingleRuns) {
+  ScratchFolder folder;
+  const auto dir = folder.path() / "out";
+  std::filesystem::create_directories(dir);
+  const CliRun batch = run_cli(
+      concat({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--format", "ply"}, batch_options()));
+  ASSERT_EQ(batch.exit_status, 0) << batch.err;
+  // The per-scan tables, then the summary naming both scans as ok.
+  const std::size_t summary = batch.out.find("scan ");
+  ASSERT_NE(summary, std::string::npos) << batch.out;
+  for (const char* header : {"vertices", "Qavg", "H %", "time s", "status"}) {
+    EXPECT_NE(batch.out.find(header, summary), std::string::npos) << header;
+  }
+  for (const std::string& scan : {std::string(small_scan), std::string(genus_four)}) {
+    const std::size_t row = batch.out.find("\n" + scan + " ", summary);
+    ASSERT_NE(row, std::string::npos) << batch.out;
+    const std::string line = batch.out.substr(row + 1, batch.out.find('\n', row + 1) - row - 1);
+    EXPECT_EQ(line.substr(line.size() - 2), "ok") << line;
+  }
+  EXPECT_NE(batch.out.find("2 of 2 scans"), std::string::npos) << batch.out;
+  // Each output is the single run's bytes, with the same options.
+  for (const auto& [scan, name] :
+       {std::pair<std::string, std::string>{small_scan, "woody.ply"}, {genus_four, "fertility.ply"}}) {
+    const auto single = folder.path() / name;
+    const CliRun run = run_cli(concat({"remesh", scan, "-o", single.string()}, batch_options()));
+    ASSERT_EQ(run.exit_status, 0) << run.err;
+    ASSERT_TRUE(std::filesystem::exists(dir / name)) << name;
+    EXPECT_EQ(slurp(dir / name), slurp(single)) << name;
+  }
+  // The default format is .glb; --json prints one array, an object per scan.
+  const CliRun json_run =
+      run_cli(concat({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--json"}, batch_options()));
+  ASSERT_EQ(json_run.exit_status, 0) << json_run.err;
+  const nlohmann::json json = nlohmann::json::parse(json_run.out);
+  ASSERT_TRUE(json.is_array());
+  ASSERT_EQ(json.size(), 2U);
+  EXPECT_EQ(json[0]["mesh"], small_scan);
+  EXPECT_EQ(json[0]["output"], (dir / "woody.glb").string());
+  EXPECT_EQ(json[1]["mesh"], genus_four);
+  EXPECT_GT(json[1]["vertices"].get<int>(), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "woody.glb"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "fertility.glb"));
+}
+
+TEST(RemeshCommand, ABatchGoesOnPastAFailedScanAndExitsOne) {
+  ScratchFolder folder;
+  const auto dir = folder.path() / "out";
+  std::filesystem::create_directories(dir);
+  const auto malformed = folder.write("malformed.ply",
+                                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                      "end_header\n0 0 0\n1 0\n");
+  const auto missing = folder.path() / "missing.obj";
+  const CliRun run = run_cli(concat(
+      {"remesh", missing.string(), small_scan, malformed.string(), "--output-dir", dir.string()}, batch_options()));
+  EXPECT_EQ(run.exit_status, 1) << run.err;
+  // The good scan's output is there, the bad ones' are not.
+  EXPECT_TRUE(std::filesystem::exists(dir / "woody.glb"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "missing.glb"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "malformed.glb"));
+  // Each error names its file; the summary says which failed.
+  EXPECT_NE(run.err.find(missing.string()), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(malformed.string()), std::string::npos) << run.err;
+  const std::size_t summary = run.out.find("scan ");
+  ASSERT_NE(summary, std::string::npos) << run.out;
+  for (const std::string& scan : {missing.string(), std::string(small_scan), malformed.string()}) {
+    const std::size_t row = run.out.find("\n" + scan + " ", summary);
+    ASSERT_NE(row, std::string::npos) << scan << "\n" << run.out;
+    const std::string line = run.out.substr(row + 1, run.out.find('\n', row + 1) - row - 1);
+    EXPECT_EQ(line.substr(line.size() - 2) == "ok", scan == small_scan) << line;
+  }
+  EXPECT_NE(run.out.find("1 of 3 scans"), std::string::npos) << run.out;
+}
+
+TEST(RemeshCommand, BatchUsageErrorsComeBeforeAnyWork) {
+  ScratchFolder folder;
+  const auto dir = folder.path();
+  const auto other = folder.path() / "elsewhere";
+  std::filesystem::create_directories(other);
+  std::filesystem::copy_file(small_scan, other / "woody.ply");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      // Two inputs with the same stem would write the same output.
+      {{"remesh", small_scan, (other / "woody.ply").string(), "--output-dir", dir.string()}, "woody"},
+      // Several inputs need --output-dir, and -o excludes it.
+      {{"remesh", small_scan, genus_four, "-o", (dir / "out.glb").string()}, "--output-dir"},
+      {{"remesh", small_scan, "-o", (dir / "out.glb").string(), "--output-dir", dir.string()}, "excludes"},
+      {{"remesh", small_scan, genus_four}, "-o OUT"},
+      // --format goes with --output-dir; options naming one file do not.
+      {{"remesh", small_scan, "-o", (dir / "out.glb").string(), "--format", "ply"}, "--output-dir"},
+      {{"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--format", "stl"}, "stl"},
+      {{"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--report", (dir / "r.json").string()},
+       "--report"},
+      {{"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--preview", (dir / "p.png").string()},
+       "--preview"},
+  };
+  for (const auto& [args, named] : cases) {
+    const CliRun run = run_cli(concat(args, batch_options()));
+    EXPECT_EQ(run.exit_status, 2) << args.back() << ": " << run.err;
+    EXPECT_NE(run.err.find(named), std::string::npos) << run.err;
+  }
+  const auto sites = folder.write("sites.txt", "0 0.2 0.3 0.5\n");
+  const CliRun run = run_cli({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--site-file",
+                              sites.string(), "--lloyd", "0", "--samples", "-1"});
+  EXPECT_EQ(run.exit_status, 2) << run.err;
+  EXPECT_NE(run.err.find("--site-file"), std::string::npos) << run.err;
+  // Nothing was written.
+  EXPECT_FALSE(std::filesystem::exists(dir / "woody.glb"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "fertility.glb"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.glb"));
+}
+
 }  // namespace
 }  // namespace geodual::cli_test
