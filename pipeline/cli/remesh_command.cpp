@@ -278,8 +278,7 @@ class RemeshCommand final : public Command {
       std::cerr << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
     if (result.sites_added > 0 || result.sites_left_out > 0) {
-      std::string problems;
-      for (const std::string& problem : result.repair_problems) problems += (problems.empty() ? "" : "; ") + problem;
+      const std::string problems = remesh::problems_line(result.repair_problems);
       std::cerr << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
                 << " sites"
                 << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "") << " in "

@@ -717,4 +717,10 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   return dual;
 }
 
+std::string problems_line(const std::vector<std::string>& problems) {
+  std::string line;
+  for (const std::string& problem : problems) line += (line.empty() ? "" : "; ") + problem;
+  return line;
+}
+
 }  // namespace geodual::remesh

@@ -41,8 +41,7 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
       return result;
     }
     if (result.repair_problems.empty()) result.repair_problems = dual.check.problems;
-    std::string problems;
-    for (const std::string& problem : dual.check.problems) problems += (problems.empty() ? "" : "; ") + problem;
+    const std::string problems = problems_line(dual.check.problems);
     if (round >= options.max_rounds || (dual.check.repair_sites.empty() && dual.check.redundant_sites.empty())) {
       throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
                   " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +

@@ -38,6 +38,9 @@ struct DualCheck {
   std::vector<Index> redundant_sites;
 };
 
+/// DualCheck::problems (or RepairedDual::repair_problems) as one line, "; " between them.
+std::string problems_line(const std::vector<std::string>& problems);
+
 struct DualMesh {
   TriangleMesh mesh;  ///< vertex i is site i
   DualCheck check;
