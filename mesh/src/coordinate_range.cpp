@@ -11,15 +11,20 @@
 
 namespace geodual {
 
-void require_computable_range(const TriangleMesh& mesh, std::string_view name) {
-  if (mesh.faces.rows() == 0) return;
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d high = -low;
+BoundingBox referenced_bounding_box(const TriangleMesh& mesh) {
+  BoundingBox box{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+                  Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
   for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) {
     const Eigen::Vector3d p = mesh.vertices.row(mesh.faces.data()[i]).transpose();
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
+    box.low = box.low.cwiseMin(p);
+    box.high = box.high.cwiseMax(p);
   }
+  return box;
+}
+
+void require_computable_range(const TriangleMesh& mesh, std::string_view name) {
+  if (mesh.faces.rows() == 0) return;
+  const auto [low, high] = referenced_bounding_box(mesh);
   std::ostringstream message;
   message << name << ": ";
   const double largest = std::max(low.cwiseAbs().maxCoeff(), high.cwiseAbs().maxCoeff());

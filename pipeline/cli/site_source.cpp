@@ -1,12 +1,12 @@
 #include "site_source.hpp"
 
+#include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/sites.hpp"
 #include "option_checks.hpp"
 
 #include <CLI/CLI.hpp>
 
-#include <limits>
 #include <string>
 
 namespace geodual::cli {
@@ -54,17 +54,7 @@ double SiteSource::edge_length(const TriangleMesh& mesh) const {
   const bool percentage = edge_length_.back() == '%';
   const double value = std::stod(percentage ? edge_length_.substr(0, edge_length_.size() - 1) : edge_length_);
   if (!percentage) return value;
-  // The bounding box of the vertices the faces use.
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d high = -low;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d p = mesh.vertices.row(mesh.faces(f, k)).transpose();
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  }
-  const double diagonal = mesh.num_faces() > 0 ? (high - low).norm() : 0;
+  const double diagonal = mesh.num_faces() > 0 ? referenced_bounding_box(mesh).diagonal() : 0;
   if (!(diagonal > 0)) {
     throw UsageError("--edge-length " + edge_length_ + ": the input's bounding box has no diagonal to take it of");
   }

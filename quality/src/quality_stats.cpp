@@ -7,6 +7,8 @@
 
 #include "geodual/quality/quality_stats.hpp"
 
+#include "geodual/mesh/coordinate_range.hpp"
+
 #include "geodual/mesh/detail/morton_code.hpp"
 #include "geodual/mesh/detail/progress_from_threads.hpp"
 #include "geodual/mesh/error.hpp"
@@ -450,20 +452,6 @@ class EdgeSegments {
   SegmentTree tree_;
 };
 
-/// The diagonal of the bounding box of the vertices the faces use.
-double referenced_bbox_diagonal(const TriangleMesh& mesh) {
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d high = -low;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d p = mesh.vertices.row(mesh.faces(f, k));
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  }
-  return (high - low).norm();
-}
-
 /// Throws Error for what triangle_quality refuses: no faces, an index out of
 /// range, a non-finite coordinate.
 void check_mesh(const TriangleMesh& mesh) {
@@ -681,7 +669,8 @@ FeatureRecall feature_recall(const TriangleMesh& reference, const TriangleMesh& 
   naming("reference mesh", [&] { check_mesh(reference); });
   naming("candidate mesh", [&] { check_mesh(candidate); });
   ProgressCheck progress(options.progress);
-  return measure_features(reference, candidate, options, referenced_bbox_diagonal(reference), 0.0, 1.0, progress);
+  return measure_features(reference, candidate, options, referenced_bounding_box(reference).diagonal(), 0.0, 1.0,
+                          progress);
 }
 
 }  // namespace geodual::quality
