@@ -219,6 +219,10 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     throw Error(e.what() + note);
   }
   geodesic_surface.reset();
+  if (options.attributes && !result.input.attributes.empty()) {
+    result.attributes =
+        interpolate_attributes(result.input.mesh, result.input.attributes, remesh_vertices_on_input(result));
+  }
   dual_clock.stop();
   report(options.progress, Stage::dual, 1.0);
 
@@ -236,6 +240,25 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 }
 
 }  // namespace
+
+std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& result) {
+  const remesh::RepairedDual& remeshed = result.remesh;
+  std::vector<SurfacePoint> points(static_cast<std::size_t>(remeshed.mesh.num_vertices()));
+  const bool features = !result.feature_cut.original_vertex.empty();
+  for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
+    SurfacePoint point = remeshed.sites[site];
+    if (point.kind == SurfacePoint::Kind::vertex) {
+      // A copy of a copy: feature cut -> manifold cut -> input.
+      Index v = point.element;
+      if (features) v = result.feature_cut.original_vertex[static_cast<std::size_t>(v)];
+      point.element = result.surface.original_vertex[static_cast<std::size_t>(v)];
+    }
+    const std::size_t vertex =
+        remeshed.vertex_of_site.empty() ? site : static_cast<std::size_t>(remeshed.vertex_of_site[site]);
+    points[vertex] = point;  // welded twins are copies of one point
+  }
+  return points;
+}
 
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
   require_one_site_source(options);

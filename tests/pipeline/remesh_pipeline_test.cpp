@@ -4,6 +4,7 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/sizing.hpp"
+#include "hard_cases.hpp"
 
 #include <gtest/gtest.h>
 
@@ -140,6 +141,53 @@ TEST(RemeshPipeline, MoreThanOneSiteSourceIsAUsageError) {
   options.faces = 0;
   options.edge_length = -1;
   EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+}
+
+// A colour field linear in space is linear on every face, so the remesh's
+// vertices, which are points of the input, carry it exactly; with the sharp
+// features kept too (their cut splits vertices into copies, welded again).
+void expect_linear_colors_carried(io::LoadedMesh loaded, double sharp_angle) {
+  const TriangleMesh& mesh = loaded.mesh;
+  const Eigen::RowVector3d low = mesh.vertices.colwise().minCoeff(), size = mesh.vertices.colwise().maxCoeff() - low;
+  const auto field = [&](const Eigen::RowVector3d& p) -> Eigen::RowVector3d {
+    return (p - low).cwiseQuotient(size) * 0.8 + Eigen::RowVector3d::Constant(0.1);
+  };
+  loaded.attributes.colors.resize(mesh.num_vertices(), 3);
+  for (Index v = 0; v < mesh.num_vertices(); ++v)
+    loaded.attributes.colors.row(v) = field(mesh.vertices.row(v)).cast<float>();
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.statistics = false;
+  options.remesh.sharp_angle = sharp_angle;
+  options.remesh.lloyd.iterations = 3;
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), options);
+  EXPECT_EQ(result.features.empty(), sharp_angle == 0) << result.features_dropped_reason;
+  const TriangleMesh& remeshed = result.remesh.mesh;
+  ASSERT_EQ(result.attributes.colors.rows(), remeshed.num_vertices());
+  double worst = 0;
+  for (Index v = 0; v < remeshed.num_vertices(); ++v) {
+    const Eigen::RowVector3d expected = field(remeshed.vertices.row(v));
+    worst = std::max(worst, (result.attributes.colors.row(v).cast<double>() - expected).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-6);
+}
+
+TEST(RemeshPipeline, CarriesALinearColourFieldExactly) { expect_linear_colors_carried(io::read_mesh(genus_four), 0); }
+
+TEST(RemeshPipeline, CarriesALinearColourFieldExactlyWithSharpFeatures) {
+  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 17);
+  io::LoadedMesh box;
+  box.mesh = bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+  expect_linear_colors_carried(std::move(box), 60);
+}
+
+TEST(RemeshPipeline, DropsTheAttributesWhenAskedTo) {
+  io::LoadedMesh loaded = io::read_mesh(genus_four);
+  loaded.attributes.scalars.push_back(
+      {"q", ValueType::float32, std::vector<double>(static_cast<std::size_t>(loaded.mesh.num_vertices()), 1.0)});
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.statistics = false;
+  options.attributes = false;
+  EXPECT_TRUE(pipeline::run_remesh_pipeline(std::move(loaded), options).attributes.empty());
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 // and the same scene always gives the same bytes.
 
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/vertex_attributes.hpp"
 
 #include <Eigen/Core>
 
@@ -28,8 +29,8 @@
 
 namespace geodual::io {
 
-/// Per-vertex colours, one row per vertex: 3 columns (RGB) or 4 (RGBA), linear, each in [0, 1].
-using ColorMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+/// Per-vertex colours (vertex_attributes.hpp); in a glTF scene they are linear, as COLOR_0 is.
+using geodual::ColorMatrix;
 
 /// K x 2 point indices, one row per line segment.
 using SegmentMatrix = Eigen::Matrix<Index, Eigen::Dynamic, 2, Eigen::RowMajor>;

@@ -5,6 +5,7 @@
 
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/vertex_attributes.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +30,9 @@ struct ReadInfo {
 
 struct LoadedMesh {
   TriangleMesh mesh;
+  /// What the file stores per vertex besides positions (colours, normals,
+  /// other scalars); each member empty when the file has none.
+  VertexAttributes attributes;
   ReadInfo info;
 };
 

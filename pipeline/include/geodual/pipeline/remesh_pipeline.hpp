@@ -66,6 +66,9 @@ struct RemeshPipelineOptions {
   /// `max_dropped_area_pct` of the input's area is left out; false: report it only.
   bool strict = false;
   double max_dropped_area_pct = 0.1;
+  /// Carry the input's vertex attributes (colours, normals, scalars) to the
+  /// remesh's vertices (RemeshPipelineResult::attributes); false: drop them.
+  bool attributes = true;
   bool statistics = true;           ///< compare the remesh with the input (quality, Hausdorff)
   quality::QualityOptions quality;  ///< 10^6 samples per side
   ProgressCallback progress;
@@ -119,9 +122,17 @@ struct RemeshPipelineResult {
   /// The relax stage: relaxed sites, energy history (its diagram moved on to `remesh`).
   remesh::LloydResult relaxation;
   remesh::RepairedDual remesh;  ///< the dual stage: the remeshed mesh, final sites and diagram
+  /// The input's attributes at the remesh's vertices, one row per vertex of
+  /// remesh.mesh (interpolate_attributes at the points of the input they are);
+  /// empty when the input has none or options.attributes is false.
+  VertexAttributes attributes;
   std::optional<quality::QualityReport> statistics;
   std::vector<StageTiming> timings;
 };
+
+/// Each vertex of `result.remesh.mesh` as a point of the input mesh (the cuts
+/// keep the input's faces and their corner order, and split vertices into copies).
+std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& result);
 
 /// Runs every stage on a file.
 RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, const RemeshPipelineOptions& options = {});
