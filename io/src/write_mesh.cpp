@@ -8,7 +8,7 @@
 
 namespace geodual::io {
 
-void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh) {
+void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes) {
   MeshFormat format{};
   try {
     format = format_from_extension(path);

@@ -5,6 +5,7 @@
 
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/vertex_attributes.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -34,7 +35,10 @@ void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh,
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
 
 /// Writes by extension (case-insensitive): .ply, .obj, .glb or .gltf (glTF: see
-/// gltf.hpp for more); any other extension is a geodual::Error.
-void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh);
+/// gltf.hpp for more); any other extension is a geodual::Error. The
+/// attributes (one row per vertex, or empty) go where the format has room:
+/// PLY every one, with the types they carry; OBJ the colours (`v x y z r g b`);
+/// glTF COLOR_0 (converted to linear), NORMAL, and each scalar as `_NAME`.
+void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {});
 
 }  // namespace geodual::io
