@@ -57,7 +57,7 @@ ModelBuilder::ModelBuilder(std::string where) : where_(std::move(where)) {
 }
 
 void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh, const ColorMatrix& colors,
-                                 std::span<const GltfVertexScalar> scalars) {
+                                 const VertexMatrix& normals, std::span<const GltfVertexScalar> scalars) {
   const std::string where = where_ + ": " + entry_name("triangle mesh", triangle_meshes_++, name);
   if (mesh.num_faces() == 0) fail(where, "has no triangles");
   const std::span<const Index> corners(mesh.faces.data(), static_cast<std::size_t>(mesh.faces.size()));
@@ -66,9 +66,23 @@ void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.attributes["POSITION"] = add_positions(mesh.vertices, where);
-  const std::vector<float> normals = area_weighted_vertex_normals(mesh.vertices, mesh.faces);
-  primitive.attributes["NORMAL"] = add_accessor(bytes_of(normals), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                                                normals.size() / 3, TINYGLTF_TARGET_ARRAY_BUFFER);
+  std::vector<float> unit_normals = area_weighted_vertex_normals(mesh.vertices, mesh.faces);
+  if (normals.rows() > 0) {
+    if (normals.rows() != mesh.vertices.rows()) {
+      fail(where, "has " + std::to_string(normals.rows()) + " normals for " + std::to_string(mesh.vertices.rows()) +
+                      " vertices");
+    }
+    for (Eigen::Index v = 0; v < normals.rows(); ++v) {
+      const double length = normals.row(v).norm();
+      if (!std::isfinite(length) || length == 0) continue;  // the area-weighted one stays
+      for (Eigen::Index k = 0; k < 3; ++k) {
+        unit_normals[static_cast<std::size_t>(3 * v + k)] = static_cast<float>(normals(v, k) / length);
+      }
+    }
+  }
+  primitive.attributes["NORMAL"] =
+      add_accessor(bytes_of(unit_normals), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, unit_normals.size() / 3,
+                   TINYGLTF_TARGET_ARRAY_BUFFER);
   if (const auto color = add_colors(colors, mesh.vertices.rows(), where)) primitive.attributes["COLOR_0"] = *color;
 
   std::set<std::string, std::less<>> names;

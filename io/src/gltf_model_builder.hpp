@@ -21,8 +21,10 @@ class ModelBuilder {
   /// `where` starts every error message (the output path, or "glTF output").
   explicit ModelBuilder(std::string where);
 
+  /// `normals` empty: area-weighted ones; otherwise normalised, with the
+  /// area-weighted normal where a row is zero or not finite.
   void add_triangles(std::string_view name, const TriangleMesh& mesh, const ColorMatrix& colors,
-                     std::span<const GltfVertexScalar> scalars);
+                     const VertexMatrix& normals, std::span<const GltfVertexScalar> scalars);
   void add_lines(const GltfLineSet& lines);
   void add_points(const GltfPointSet& points);
 

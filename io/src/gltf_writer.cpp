@@ -42,7 +42,7 @@ std::vector<std::byte> write_model(tinygltf::Model model, const detail::gltf::As
 std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer container, const std::string& where) {
   detail::gltf::ModelBuilder builder(where);
   for (const GltfTriangleMesh& entry : scene.triangle_meshes) {
-    builder.add_triangles(entry.name, entry.mesh, entry.colors, entry.scalars);
+    builder.add_triangles(entry.name, entry.mesh, entry.colors, entry.normals, entry.scalars);
   }
   for (const GltfLineSet& entry : scene.line_sets) builder.add_lines(entry);
   for (const GltfPointSet& entry : scene.point_sets) builder.add_points(entry);
@@ -76,10 +76,28 @@ void write_gltf(const std::filesystem::path& path, const GltfScene& scene) {
   write_bytes(path, encode_scene(scene, container, path.string()));
 }
 
-void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh) {
+GltfTriangleMesh gltf_triangle_mesh(std::string name, TriangleMesh mesh, const VertexAttributes& attributes) {
+  GltfTriangleMesh entry{.name = std::move(name), .mesh = std::move(mesh)};
+  entry.colors = attributes.colors.unaryExpr([](float c) { return linear_from_srgb(c); });
+  if (entry.colors.cols() == 4) entry.colors.col(3) = attributes.colors.col(3);  // alpha is linear already
+  entry.normals = attributes.normals;
+  for (const VertexScalar& scalar : attributes.scalars) {
+    GltfVertexScalar& out = entry.scalars.emplace_back();
+    out.name = "_" + scalar.name;
+    out.values.assign(scalar.values.begin(), scalar.values.end());  // float32: glTF's one scalar type
+  }
+  return entry;
+}
+
+void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes) {
   const GltfContainer container = container_for(path);
+  if (!attributes.empty()) {
+    write_bytes(
+        path, encode_scene({.triangle_meshes = {gltf_triangle_mesh({}, mesh, attributes)}}, container, path.string()));
+    return;
+  }
   detail::gltf::ModelBuilder builder(path.string());
-  builder.add_triangles({}, mesh, ColorMatrix{}, {});  // no copy of the mesh
+  builder.add_triangles({}, mesh, ColorMatrix{}, VertexMatrix{}, {});  // no copy of the mesh
   write_bytes(path,
               write_model(builder.finish(), detail::gltf::AssetExtras({}, path.string()), container, path.string()));
 }

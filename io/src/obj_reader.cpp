@@ -1,7 +1,8 @@
 // Wavefront OBJ reader: `v` lines give vertices, `f` lines faces (any of the
 // forms v, v/vt, v//vn, v/vt/vn; negative indices count back from the latest
 // vertex), polygons are triangulated in their plane (polygon_triangulation.hpp).
-// Everything else -- texture coordinates, normals, groups, objects, materials,
+// Vertex colours written as `v x y z r g b` (in [0, 1], or 0-255) are kept
+// when every vertex has one. Everything else -- texture coordinates, normals, groups, objects, materials,
 // smoothing, lines, points -- is ignored, as are comments. Lines end in "\n"
 // or "\r\n".
 
@@ -10,8 +11,10 @@
 #include "file_error.hpp"
 #include "parse_number.hpp"
 #include "polygon_triangulation.hpp"
+#include "str_cat.hpp"
 #include "text_lines.hpp"
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -59,6 +62,7 @@ class ObjParser {
     loaded.info.encoding = "ascii";
     loaded.mesh.vertices = Eigen::Map<const VertexMatrix>(coordinates_.data(), vertex_count, 3);
     loaded.mesh.faces = faces_.take(loaded.mesh.vertices, loaded.info);
+    take_colors(loaded);
     return loaded;
   }
 
@@ -78,7 +82,43 @@ class ObjParser {
       }
       coordinates_.push_back(*value);
     }
-    // An optional w, or r g b colour values, may follow; they are not needed.
+    // An optional w, or r g b colour values, may follow.
+    std::array<double, 3> rgb{};
+    int extra = 0;
+    for (std::string_view word; extra < 4 && words.next(word); ++extra) {
+      const auto value = parse_double(word);
+      if (!value) {
+        throw_line_error(file_, lines_.line_number(), "vertex value '", excerpt(word), "' is not a number");
+      }
+      if (extra < 3) rgb[static_cast<std::size_t>(extra)] = *value;
+    }
+    if (extra == 3) {
+      colored_vertices_ += 1;
+      colors_.resize(coordinates_.size(), 0.0f);  // vertices before the first colour stay black
+      for (std::size_t k = 0; k < 3; ++k) colors_[coordinates_.size() - 3 + k] = static_cast<float>(rgb[k]);
+    }
+  }
+
+  /// The colours, when every vertex has one: in [0, 1], or all within 0-255 (scaled).
+  void take_colors(LoadedMesh& loaded) const {
+    const std::int64_t vertices = loaded.mesh.num_vertices();
+    if (colored_vertices_ == 0) return;
+    if (colored_vertices_ < vertices) {
+      loaded.info.notes.push_back(
+          str_cat("vertex colours ignored: only ", colored_vertices_, " of ", vertices, " vertices have one"));
+      return;
+    }
+    ColorMatrix colors = Eigen::Map<const ColorMatrix>(colors_.data(), vertices, 3);
+    if (!colors.allFinite() || colors.minCoeff() < 0.0f || colors.maxCoeff() > 255.0f) {
+      loaded.info.notes.push_back("vertex colours ignored: not all within [0, 1] or 0-255");
+      return;
+    }
+    if (colors.maxCoeff() > 1.0f) {
+      colors /= 255.0f;
+      loaded.info.notes.push_back("vertex colours read as 0-255 (some exceed 1)");
+    }
+    loaded.attributes.colors = std::move(colors);
+    loaded.attributes.color_type = ValueType::float32;
   }
 
   void read_face(WordCursor& words) {
@@ -130,6 +170,8 @@ class ObjParser {
   LineCursor lines_;
   const fs::path& file_;
   std::vector<double> coordinates_;
+  std::vector<float> colors_;  ///< r g b per vertex once one has a colour
+  std::int64_t colored_vertices_ = 0;
   FaceBuffer faces_;
   std::vector<Index> corners_;  // reused for every face: no allocation per face
   std::size_t face_count_ = 0;

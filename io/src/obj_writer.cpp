@@ -1,10 +1,12 @@
-// Wavefront OBJ writer: "v x y z" and "f a b c" lines (1-based indices).
+// Wavefront OBJ writer: "v x y z" (or "v x y z r g b" with colours) and
+// "f a b c" lines (1-based indices).
 // Coordinates are printed by std::to_chars in its shortest round-trip form:
 // at most max_digits10 (17) significant digits, and reading the text back
 // gives the very same double. No locale is involved.
 
 #include "geodual/io/write_mesh.hpp"
 
+#include "file_error.hpp"
 #include "mesh_checks.hpp"
 
 #include "geodual/io/atomic_file.hpp"
@@ -42,15 +44,16 @@ class TextBlockWriter {
   std::string buffer_;
 };
 
-/// Room for the longest line: "v " and 3 doubles of at most 24 characters with separators.
-using LineBuffer = std::array<char, 96>;
+/// Room for the longest line: "v " and 3 doubles of at most 24 characters,
+/// 3 floats of at most 15, with separators.
+using LineBuffer = std::array<char, 160>;
 
 template <class T>
 char* put_number(char* at, LineBuffer& line, T value) {
   return std::to_chars(at, line.data() + line.size(), value).ptr;
 }
 
-void write_obj_text(std::ostream& out, const TriangleMesh& mesh) {
+void write_obj_text(std::ostream& out, const TriangleMesh& mesh, const ColorMatrix& colors) {
   TextBlockWriter text(out);
   LineBuffer line;
   for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
@@ -59,6 +62,10 @@ void write_obj_text(std::ostream& out, const TriangleMesh& mesh) {
     for (Eigen::Index axis = 0; axis < 3; ++axis) {
       *at++ = ' ';
       at = put_number(at, line, mesh.vertices(v, axis));
+    }
+    for (Eigen::Index k = 0; colors.rows() > 0 && k < 3; ++k) {
+      *at++ = ' ';
+      at = put_number(at, line, colors(v, k));
     }
     *at++ = '\n';
     text.append(line.data(), at);
@@ -78,12 +85,16 @@ void write_obj_text(std::ostream& out, const TriangleMesh& mesh) {
 
 }  // namespace
 
-void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors) {
   detail::check_face_indices(path, mesh);
+  if (colors.rows() > 0 && (colors.rows() != mesh.vertices.rows() || colors.cols() < 3)) {
+    detail::throw_file_error(path, "vertex colours: ", colors.rows(), " rows of ", colors.cols(), " channels for ",
+                             mesh.vertices.rows(), " vertices");
+  }
   write_file_atomically(path, [&](std::ostream& out) {
     static constexpr std::string_view header = "# written by geodual\n";
     out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    write_obj_text(out, mesh);
+    write_obj_text(out, mesh, colors);
   });
 }
 

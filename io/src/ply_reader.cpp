@@ -13,6 +13,7 @@
 #include "file_error.hpp"
 #include "parse_number.hpp"
 #include "ply_header.hpp"
+#include "ply_vertex_attributes.hpp"
 #include "polygon_triangulation.hpp"
 #include "saturating.hpp"
 #include "text_lines.hpp"
@@ -208,7 +209,8 @@ class BinaryPlyBody {
     }
   }
 
-  void read_vertices(const PlyElement& element, const std::array<std::size_t, 3>& xyz, VertexMatrix& vertices) {
+  void read_vertices(const PlyElement& element, const std::array<std::size_t, 3>& xyz, VertexMatrix& vertices,
+                     PlyVertexAttributes& attributes) {
     const PlyScalar type = element.properties[xyz[0]].type;
     const bool same_type = element.properties[xyz[1]].type == type && element.properties[xyz[2]].type == type;
     const auto record_size = element.fixed_record_size();
@@ -224,6 +226,13 @@ class BinaryPlyBody {
       visit_ply_scalar(type, [&](auto tag) {
         copy_coordinates<typename decltype(tag)::type>(element.count, *record_size, offsets, vertices);
       });
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        if (!attributes.reads(p)) continue;
+        visit_ply_scalar(element.properties[p].type, [&](auto tag) {
+          copy_attribute<typename decltype(tag)::type>(element.count, *record_size, p, property_offset(element, p),
+                                                       attributes);
+        });
+      }
       at_ += element.count * *record_size;
       return;
     }
@@ -236,6 +245,9 @@ class BinaryPlyBody {
               if (property == xyz[axis]) {
                 out[axis] = load_real(element.properties[property].type, value);
               }
+            }
+            if (attributes.reads(property)) {
+              attributes.put(property, record, load_real(element.properties[property].type, value));
             }
           },
           [](std::size_t, std::uint64_t, const std::byte*) {});
@@ -359,6 +371,15 @@ class BinaryPlyBody {
     }
   }
 
+  template <class T>
+  void copy_attribute(std::uint64_t count, std::size_t record_size, std::size_t property, std::size_t offset,
+                      PlyVertexAttributes& attributes) const {
+    const std::byte* value = data_.data() + at_ + offset;
+    for (std::uint64_t i = 0; i < count; ++i, value += record_size) {
+      attributes.put(property, i, static_cast<double>(load<T, Order>(value)));
+    }
+  }
+
   /// The fast path for face records that hold nothing but the index list.
   template <class Count, class Item>
   void read_index_lists(const PlyElement& element, const CornerCheck& check, FaceBuffer& triangles) {
@@ -395,12 +416,13 @@ class BinaryPlyBody {
 
 template <std::endian Order>
 std::size_t read_binary_body(std::span<const std::byte> data, const PlyHeader& header, const PlyMeshLayout& layout,
-                             const fs::path& file, TriangleMesh& mesh, FaceBuffer& triangles) {
+                             const fs::path& file, TriangleMesh& mesh, PlyVertexAttributes& attributes,
+                             FaceBuffer& triangles) {
   BinaryPlyBody<Order> body(data, header.body_offset, file);
   const std::uint64_t vertex_count = layout.vertex ? layout.vertex->count : 0;
   for (const PlyElement& element : header.elements) {
     if (&element == layout.vertex) {
-      body.read_vertices(element, layout.xyz, mesh.vertices);
+      body.read_vertices(element, layout.xyz, mesh.vertices, attributes);
       triangles.know_vertices(mesh.vertices);
     } else if (&element == layout.face) {
       body.read_faces(element, layout.corner_list, CornerCheck(element, vertex_count, file), triangles);
@@ -549,11 +571,11 @@ class AsciiPlyBody {
   std::vector<Index> corners_;  // reused for every face: no allocation per record
 };
 
-/// Reads an ascii body into `mesh` and `triangles`; with both null, only
-/// checks every record (a dry run: nothing sized by the header's counts is
-/// allocated). Returns whether text follows the last element.
+/// Reads an ascii body into `mesh`, `attributes` and `triangles`; with all
+/// null, only checks every record (a dry run: nothing sized by the header's
+/// counts is allocated). Returns whether text follows the last element.
 bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, const PlyMeshLayout& layout,
-                     const fs::path& file, TriangleMesh* mesh, FaceBuffer* triangles) {
+                     const fs::path& file, TriangleMesh* mesh, PlyVertexAttributes* attributes, FaceBuffer* triangles) {
   const std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
   AsciiPlyBody body(text, header, file);
   const std::uint64_t vertex_count = layout.vertex ? layout.vertex->count : 0;
@@ -569,6 +591,7 @@ bool read_ascii_body(std::span<const std::byte> data, const PlyHeader& header, c
                 mesh->vertices(static_cast<Eigen::Index>(record), axis) = value;
               }
             }
+            if (attributes != nullptr && attributes->reads(property)) attributes->put(property, record, value);
           },
           std::nullopt, nullptr, nullptr);
       if (triangles != nullptr) {
@@ -601,9 +624,9 @@ std::string ignored_parts(const PlyHeader& header, const PlyMeshLayout& layout) 
       continue;
     }
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
-      const bool is_coordinate = p == layout.xyz[0] || p == layout.xyz[1] || p == layout.xyz[2];
-      const bool used =
-          (&element == layout.vertex && is_coordinate) || (&element == layout.face && p == layout.corner_list);
+      // Every scalar vertex property is read: coordinates, or attributes.
+      const bool used = (&element == layout.vertex && !element.properties[p].is_list()) ||
+                        (&element == layout.face && p == layout.corner_list);
       if (!used) {
         add(excerpt(element.name), " property '", excerpt(element.properties[p].name), "'");
       }
@@ -626,7 +649,7 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
     // without allocating, to name it, else report the shortfall itself.
     switch (header.encoding) {
       case PlyEncoding::ascii:
-        read_ascii_body(data, header, layout, name, nullptr, nullptr);
+        read_ascii_body(data, header, layout, name, nullptr, nullptr, nullptr);
         throw_shortfall(*shortfall, data.size(), name);
       case PlyEncoding::binary_little_endian:
         name_truncated_record<std::endian::little>(data, header, *shortfall, name);
@@ -643,9 +666,12 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
   }
 
   FaceBuffer triangles(layout.face ? static_cast<std::size_t>(layout.face->count) : 0);
+  // No vertex element: no attributes either (and no vertices for the faces to use).
+  const PlyElement no_vertices;
+  PlyVertexAttributes attributes(layout.vertex ? *layout.vertex : no_vertices, layout.xyz);
   switch (header.encoding) {
     case PlyEncoding::ascii:
-      if (read_ascii_body(data, header, layout, name, &loaded.mesh, &triangles)) {
+      if (read_ascii_body(data, header, layout, name, &loaded.mesh, &attributes, &triangles)) {
         loaded.info.notes.push_back("text after the last element was ignored");
       }
       break;
@@ -653,8 +679,8 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
     case PlyEncoding::binary_big_endian: {
       const std::size_t trailing =
           header.encoding == PlyEncoding::binary_little_endian
-              ? read_binary_body<std::endian::little>(data, header, layout, name, loaded.mesh, triangles)
-              : read_binary_body<std::endian::big>(data, header, layout, name, loaded.mesh, triangles);
+              ? read_binary_body<std::endian::little>(data, header, layout, name, loaded.mesh, attributes, triangles)
+              : read_binary_body<std::endian::big>(data, header, layout, name, loaded.mesh, attributes, triangles);
       if (trailing > 0) {
         loaded.info.notes.push_back(str_cat(trailing, " bytes after the last element were ignored"));
       }
@@ -662,6 +688,7 @@ LoadedMesh read_ply(std::span<const std::byte> data, const fs::path& name) {
     }
   }
   loaded.mesh.faces = triangles.take(loaded.mesh.vertices, loaded.info);
+  loaded.attributes = attributes.take(loaded.info.notes);
   if (const std::string ignored = ignored_parts(header, layout); !ignored.empty()) {
     loaded.info.notes.push_back("ignored: " + ignored);
   }

@@ -1,5 +1,5 @@
-// Binary little-endian PLY writer: float64 x y z, optional per-vertex scalar
-// properties, `list uchar int vertex_indices`. The body is encoded in blocks
+// Binary little-endian PLY writer: float64 x y z, the vertex attributes as
+// properties of the types they carry, `list uchar int vertex_indices`. The body is encoded in blocks
 // into one reusable buffer, whatever the host's byte order.
 
 #include "geodual/io/write_mesh.hpp"
@@ -12,13 +12,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <ostream>
 #include <string>
 #include <string_view>
 #include <type_traits>
-#include <variant>
 #include <vector>
 
 namespace geodual::io {
@@ -27,63 +28,116 @@ namespace {
 namespace fs = std::filesystem;
 using detail::throw_file_error;
 
-template <class T>
-constexpr std::string_view ply_type_name() {
-  if constexpr (std::is_same_v<T, double>) {
-    return "double";
-  } else if constexpr (std::is_same_v<T, float>) {
-    return "float";
-  } else {
-    static_assert(std::is_same_v<T, std::int32_t>);
-    return "int";
+std::size_t size_of(ValueType type) {
+  switch (type) {
+    case ValueType::int8:
+    case ValueType::uint8: return 1;
+    case ValueType::int16:
+    case ValueType::uint16: return 2;
+    case ValueType::int32:
+    case ValueType::uint32:
+    case ValueType::float32: return 4;
+    case ValueType::float64: break;
   }
+  return 8;
 }
 
-std::size_t value_size(const VertexProperty& property) {
-  return std::visit([](const auto& values) { return sizeof(values[0]); }, property.values);
+/// One vertex property of the file: its name, type, and where its values come from.
+struct PlyColumn {
+  std::string name;
+  ValueType type = ValueType::float64;
+  const float* floats = nullptr;  ///< colours, scaled by `scale` to the type's range
+  const double* doubles = nullptr;
+  std::size_t stride = 1;
+  double scale = 1;
+};
+
+/// The attributes as PLY vertex properties: nx ny nz, red green blue [alpha], then the scalars.
+std::vector<PlyColumn> ply_columns(const VertexAttributes& attributes) {
+  std::vector<PlyColumn> columns;
+  if (attributes.normals.rows() > 0) {
+    const char* names[] = {"nx", "ny", "nz"};
+    for (std::size_t k = 0; k < 3; ++k) {
+      columns.push_back(
+          {.name = names[k], .type = attributes.normal_type, .doubles = attributes.normals.data() + k, .stride = 3});
+    }
+  }
+  if (attributes.colors.rows() > 0) {
+    const char* names[] = {"red", "green", "blue", "alpha"};
+    const auto channels = static_cast<std::size_t>(attributes.colors.cols());
+    const double scale = attributes.color_type == ValueType::uint8    ? 255.0
+                         : attributes.color_type == ValueType::uint16 ? 65535.0
+                                                                      : 1.0;
+    const ValueType type =
+        scale == 1.0 && attributes.color_type != ValueType::float64 ? ValueType::float32 : attributes.color_type;
+    for (std::size_t k = 0; k < channels; ++k) {
+      columns.push_back(
+          {.name = names[k], .type = type, .floats = attributes.colors.data() + k, .stride = channels, .scale = scale});
+    }
+  }
+  for (const VertexScalar& scalar : attributes.scalars) {
+    columns.push_back({.name = scalar.name, .type = scalar.type, .doubles = scalar.values.data()});
+  }
+  return columns;
 }
 
-std::size_t value_count(const VertexProperty& property) {
-  return std::visit([](const auto& values) { return values.size(); }, property.values);
-}
-
-/// Names must be one PLY word, unique, and not one of the coordinates.
-void check_properties(const fs::path& path, const TriangleMesh& mesh, const std::vector<VertexProperty>& properties) {
-  for (std::size_t i = 0; i < properties.size(); ++i) {
-    const VertexProperty& property = properties[i];
-    const bool is_word = !property.name.empty() && std::all_of(property.name.begin(), property.name.end(),
-                                                               [](char c) { return c > ' ' && c <= '~'; });
+/// Names must be one PLY word, unique, and not one of the coordinates; sizes must match.
+void check_columns(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
+                   const std::vector<PlyColumn>& columns) {
+  if (const std::string problem = attribute_size_problem(attributes, mesh.num_vertices()); !problem.empty()) {
+    throw_file_error(path, "vertex attributes do not fit the mesh: ", problem);
+  }
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    const std::string& name = columns[i].name;
+    const bool is_word =
+        !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c > ' ' && c <= '~'; });
     if (!is_word) {
-      throw_file_error(path, "vertex property name '", detail::excerpt(property.name),
+      throw_file_error(path, "vertex property name '", detail::excerpt(name),
                        "' must be one word of printable ASCII characters");
     }
-    if (property.name == "x" || property.name == "y" || property.name == "z") {
-      throw_file_error(path, "vertex property name '", property.name, "' is taken by the coordinates");
+    if (name == "x" || name == "y" || name == "z") {
+      throw_file_error(path, "vertex property name '", name, "' is taken by the coordinates");
     }
     for (std::size_t j = 0; j < i; ++j) {
-      if (properties[j].name == property.name) {
-        throw_file_error(path, "vertex property '", property.name, "' is given twice");
-      }
-    }
-    if (value_count(property) != static_cast<std::size_t>(mesh.vertices.rows())) {
-      throw_file_error(path, "vertex property '", property.name, "' has ", value_count(property), " values for ",
-                       mesh.vertices.rows(), " vertices");
+      if (columns[j].name == name) throw_file_error(path, "vertex property '", name, "' is given twice");
     }
   }
 }
 
-std::string ply_header(const TriangleMesh& mesh, const std::vector<VertexProperty>& properties) {
+std::string ply_header(const TriangleMesh& mesh, const std::vector<PlyColumn>& columns) {
   std::string header =
       detail::str_cat("ply\nformat binary_little_endian 1.0\ncomment written by geodual\n", "element vertex ",
                       mesh.vertices.rows(), "\nproperty double x\nproperty double y\nproperty double z\n");
-  for (const VertexProperty& property : properties) {
-    const std::string_view type = std::visit(
-        [](const auto& values) { return ply_type_name<std::decay_t<decltype(values[0])>>(); }, property.values);
-    header += detail::str_cat("property ", type, " ", property.name, "\n");
+  for (const PlyColumn& column : columns) {
+    header += detail::str_cat("property ", ply_type_name(column.type), " ", column.name, "\n");
   }
   header +=
       detail::str_cat("element face ", mesh.faces.rows(), "\nproperty list uchar int vertex_indices\nend_header\n");
   return header;
+}
+
+/// Stores `value` as `type` (little-endian); integer types get the nearest value they hold.
+std::byte* store_value(std::byte* at, ValueType type, double value) {
+  constexpr auto le = std::endian::little;
+  const auto integer = [&](auto tag) {
+    using T = typename decltype(tag)::type;
+    const double clamped = std::clamp(std::round(value), static_cast<double>(std::numeric_limits<T>::lowest()),
+                                      static_cast<double>(std::numeric_limits<T>::max()));
+    detail::store<le>(at, static_cast<T>(clamped));
+    return at + sizeof(T);
+  };
+  switch (type) {
+    case ValueType::int8: return integer(std::type_identity<std::int8_t>{});
+    case ValueType::uint8: return integer(std::type_identity<std::uint8_t>{});
+    case ValueType::int16: return integer(std::type_identity<std::int16_t>{});
+    case ValueType::uint16: return integer(std::type_identity<std::uint16_t>{});
+    case ValueType::int32: return integer(std::type_identity<std::int32_t>{});
+    case ValueType::uint32: return integer(std::type_identity<std::uint32_t>{});
+    case ValueType::float32: detail::store<le>(at, static_cast<float>(value)); return at + sizeof(float);
+    case ValueType::float64: break;
+  }
+  detail::store<le>(at, value);
+  return at + sizeof(double);
 }
 
 /// Encodes records block by block into one buffer and hands full blocks to the stream.
@@ -115,11 +169,11 @@ class BlockWriter {
   std::size_t used_ = 0;
 };
 
-void write_body(std::ostream& out, const TriangleMesh& mesh, const std::vector<VertexProperty>& properties) {
+void write_body(std::ostream& out, const TriangleMesh& mesh, const std::vector<PlyColumn>& columns) {
   constexpr auto le = std::endian::little;
   std::size_t vertex_record = 3 * sizeof(double);
-  for (const VertexProperty& property : properties) {
-    vertex_record += value_size(property);
+  for (const PlyColumn& column : columns) {
+    vertex_record += size_of(column.type);
   }
   BlockWriter vertices(out, vertex_record);
   for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
@@ -127,13 +181,11 @@ void write_body(std::ostream& out, const TriangleMesh& mesh, const std::vector<V
     for (Eigen::Index axis = 0; axis < 3; ++axis, at += sizeof(double)) {
       detail::store<le>(at, mesh.vertices(v, axis));
     }
-    for (const VertexProperty& property : properties) {
-      std::visit(
-          [&at, v](const auto& values) {
-            detail::store<le>(at, values[static_cast<std::size_t>(v)]);
-            at += sizeof(values[0]);
-          },
-          property.values);
+    const auto row = static_cast<std::size_t>(v);
+    for (const PlyColumn& column : columns) {
+      const double value = column.floats != nullptr ? column.scale * column.floats[row * column.stride]
+                                                    : column.doubles[row * column.stride];
+      at = store_value(at, column.type, value);
     }
   }
   vertices.flush();
@@ -152,13 +204,14 @@ void write_body(std::ostream& out, const TriangleMesh& mesh, const std::vector<V
 
 }  // namespace
 
-void write_ply(const fs::path& path, const TriangleMesh& mesh, const std::vector<VertexProperty>& vertex_properties) {
+void write_ply(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes) {
   detail::check_face_indices(path, mesh);
-  check_properties(path, mesh, vertex_properties);
-  const std::string header = ply_header(mesh, vertex_properties);
+  const std::vector<PlyColumn> columns = ply_columns(attributes);
+  check_columns(path, mesh, attributes, columns);
+  const std::string header = ply_header(mesh, columns);
   write_file_atomically(path, [&](std::ostream& out) {
     out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    write_body(out, mesh, vertex_properties);
+    write_body(out, mesh, columns);
   });
 }
 

@@ -17,10 +17,10 @@ void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh, con
                              "' (expected .ply, .obj, .glb or .gltf)");
   }
   switch (format) {
-    case MeshFormat::ply: write_ply(path, mesh); return;
-    case MeshFormat::obj: write_obj(path, mesh); return;
+    case MeshFormat::ply: write_ply(path, mesh, attributes); return;
+    case MeshFormat::obj: write_obj(path, mesh, attributes.colors); return;
     case MeshFormat::glb:
-    case MeshFormat::gltf: write_gltf(path, mesh); return;
+    case MeshFormat::gltf: write_gltf(path, mesh, attributes); return;
     case MeshFormat::off:
     case MeshFormat::stl:
       detail::throw_file_error(path, "writing ", format_name(format),

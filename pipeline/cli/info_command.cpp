@@ -74,12 +74,19 @@ class InfoCommand final : public Command {
     }
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();
-    if (!preview_path_.empty()) write_mesh_preview(preview_path_, loaded.mesh, {}, still_wanted);
+    if (!preview_path_.empty()) {
+      const ColorMatrix& colors = loaded.attributes.colors;
+      write_mesh_preview(preview_path_, loaded.mesh,
+                         colors.rows() > 0 ? Eigen::Matrix<float, Eigen::Dynamic, 3>(colors.leftCols(3))
+                                           : Eigen::Matrix<float, Eigen::Dynamic, 3>(),
+                         still_wanted);
+    }
 
+    const std::vector<std::string> attributes = pipeline::attribute_list(loaded.attributes);
     if (json_) {
-      print_json(loaded.info, report, features, read_seconds, analysis_seconds);
+      print_json(loaded.info, attributes, report, features, read_seconds, analysis_seconds);
     } else {
-      print_table(loaded.info, report, features, read_seconds, analysis_seconds);
+      print_table(loaded.info, attributes, report, features, read_seconds, analysis_seconds);
     }
     return 0;
   }
@@ -90,11 +97,12 @@ class InfoCommand final : public Command {
     if (interrupted()) throw Cancelled("info cancelled");
   }
 
-  void print_json(const io::ReadInfo& info, const MeshReport& report, const remesh::FeatureSet& features,
-                  double read_seconds, double analysis_seconds) const {
+  void print_json(const io::ReadInfo& info, const std::vector<std::string>& attributes, const MeshReport& report,
+                  const remesh::FeatureSet& features, double read_seconds, double analysis_seconds) const {
     nlohmann::ordered_json json;
     json["file"] = path_;
     json.update(pipeline::read_info_json(info));
+    json["attributes"] = attributes;
     json["read_seconds"] = read_seconds;
     json["analysis_seconds"] = analysis_seconds;
     json.update(pipeline::mesh_report_json(report));
@@ -106,8 +114,8 @@ class InfoCommand final : public Command {
     std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
   }
 
-  void print_table(const io::ReadInfo& info, const MeshReport& report, const remesh::FeatureSet& features,
-                   double read_seconds, double analysis_seconds) const {
+  void print_table(const io::ReadInfo& info, const std::vector<std::string>& attributes, const MeshReport& report,
+                   const remesh::FeatureSet& features, double read_seconds, double analysis_seconds) const {
     KeyValueTable table;
     table.add("file", path_);
     table.add("format",
@@ -118,6 +126,7 @@ class InfoCommand final : public Command {
     if (info.polygons_split > 0) table.add("polygons split", with_thousands(info.polygons_split));
     if (info.welded_corners > 0) table.add("welded corners", with_thousands(info.welded_corners));
     for (const std::string& note : info.notes) table.add("note", note);
+    table.add("vertex attributes", attributes.empty() ? "none" : comma_list(attributes));
 
     table.add("vertices", with_thousands(report.vertices));
     table.add("faces", with_thousands(report.faces));

@@ -148,9 +148,18 @@ class RemeshCommand final : public Command {
     command.add_option("--report", report_path_,
                        "Also write a JSON report: options, input report, stage times and memory, Lloyd energy, "
                        "quality and distance figures");
-    command.add_option("--color", color_, "Colour the output and the preview: none or quality (mean Q per vertex)")
+    command
+        .add_option("--color", color_,
+                    "Colour the output and the preview: none (the input's colours, if any) or quality (mean Q per "
+                    "vertex, instead of the input's colours)")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "quality"}));
+    command
+        .add_option("--attributes", attributes_,
+                    "The input's vertex attributes (colours, normals, other scalars), interpolated at the remesh's "
+                    "vertices and written where the output format has room: all or none")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"all", "none"}));
     return command;
   }
 
@@ -254,6 +263,7 @@ class RemeshCommand final : public Command {
     options.remesh = options_;
     geodesic_.apply(options.remesh.lloyd.voronoi.geodesic);
     options.strict = strict_;
+    options.attributes = attributes_ == "all";
     options.statistics = samples_ >= 0;
     options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
     options.progress = [&](pipeline::Stage stage, double fraction) {
@@ -360,6 +370,7 @@ class RemeshCommand final : public Command {
     nlohmann::ordered_json json;
     json["mesh"] = mesh_path;
     json["output"] = output_path;
+    json["attributes"] = pipeline::attribute_list(run.attributes);
     json.update(figures);
     for (const pipeline::StageTiming& timing : run.timings) {
       json[std::string(pipeline::stage_name(timing.stage)) + "_s"] = timing.seconds;
@@ -370,11 +381,19 @@ class RemeshCommand final : public Command {
     json["warm_start_s"] = relaxation.warm_start_seconds;
     json["dual_s"] = result.dual_seconds;
     const auto write_start = std::chrono::steady_clock::now();
-    const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
-        color_ == "quality" ? quality_colors(result.mesh) : Eigen::Matrix<float, Eigen::Dynamic, 3>();
+    VertexAttributes attributes = run.attributes;
+    if (color_ == "quality") {
+      attributes.colors = quality_colors(result.mesh);
+      attributes.color_type = ValueType::uint8;
+    }
     // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
-    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, colors, still_wanted);
-    write_remesh(output_path, result.mesh, figures.dump(), colors);
+    if (!preview_path_.empty()) {
+      const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
+          attributes.colors.rows() > 0 ? Eigen::Matrix<float, Eigen::Dynamic, 3>(attributes.colors.leftCols(3))
+                                       : Eigen::Matrix<float, Eigen::Dynamic, 3>();
+      write_mesh_preview(preview_path_, result.mesh, colors, still_wanted);
+    }
+    write_remesh(output_path, result.mesh, attributes, figures.dump());
     const double write_seconds = seconds_since(write_start);
     bar.finish();
     json["write_s"] = write_seconds;
@@ -419,6 +438,9 @@ class RemeshCommand final : public Command {
     }
     table.add("output", output_path + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
+    if (const std::vector<std::string> kept = pipeline::attribute_list(run.attributes); !kept.empty()) {
+      table.add("attributes", comma_list(kept) + " (interpolated)");
+    }
     table.add("topology", "Euler characteristic " + std::to_string(quality.euler_characteristic) + ", " +
                               std::to_string(quality.boundary_loops) + " boundary loops, manifold");
     table.add("quality", "Qmin " + significant(quality.q_min, 3) + ", Qavg " + significant(quality.q_avg, 3) +
@@ -508,6 +530,7 @@ class RemeshCommand final : public Command {
   bool quiet_ = false;
   std::string report_path_;
   std::string color_ = "none";
+  std::string attributes_ = "all";
 };
 
 }  // namespace

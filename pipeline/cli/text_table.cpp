@@ -67,4 +67,10 @@ std::string duration(double seconds) {
   return significant(seconds, 3) + " s";
 }
 
+std::string comma_list(const std::vector<std::string>& items) {
+  std::string list;
+  for (const std::string& item : items) list += (list.empty() ? "" : ", ") + item;
+  return list;
+}
+
 }  // namespace geodual::cli

@@ -48,6 +48,9 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// The items separated by ", ".
+std::string comma_list(const std::vector<std::string>& items);
+
 /// A number with `digits` significant digits, e.g. 0.250246.
 std::string significant(double value, int digits = 6);
 

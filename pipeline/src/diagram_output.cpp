@@ -74,21 +74,19 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
   io::write_gltf(path, scene);
 }
 
-void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json,
-                  const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors) {
+void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
+                  const std::string& extras_json) {
   const std::string extension = io::lowercase_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
     io::GltfScene scene;
     scene.generator = "geodual " + std::string(build_version());
     scene.extras_json = extras_json;
-    io::ColorMatrix colors;
-    if (vertex_colors.rows() == mesh.vertices.rows()) colors = vertex_colors;
-    scene.triangle_meshes.push_back({"remesh", mesh, colors, {}});
+    scene.triangle_meshes.push_back(io::gltf_triangle_mesh("remesh", mesh, attributes));
     io::write_gltf(path, scene);
     return;
   }
   if (extension == ".ply" || extension == ".obj") {
-    io::write_mesh(path, mesh);
+    io::write_mesh(path, mesh, attributes);
     return;
   }
   throw Error(path.string() + ": a remesh is written as .glb, .gltf, .ply or .obj");

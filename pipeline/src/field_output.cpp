@@ -37,8 +37,11 @@ void write_geodesic_field(const std::filesystem::path& path, const TriangleMesh&
   const io::MeshFormat format = io::format_from_extension(path);
   const auto n = static_cast<std::size_t>(mesh.num_vertices());
   if (format == io::MeshFormat::ply) {
-    std::vector<std::int32_t> sites(field.nearest_site.begin(), field.nearest_site.end());
-    io::write_ply(path, mesh, {{"distance", field.distance}, {"site", std::move(sites)}});
+    VertexAttributes attributes;
+    attributes.scalars.push_back({"distance", ValueType::float64, field.distance});
+    attributes.scalars.push_back(
+        {"site", ValueType::int32, std::vector<double>(field.nearest_site.begin(), field.nearest_site.end())});
+    io::write_ply(path, mesh, attributes);
     return;
   }
   if (format == io::MeshFormat::glb || format == io::MeshFormat::gltf) {

@@ -41,6 +41,19 @@ nlohmann::ordered_json mesh_report_json(const MeshReport& report) {
   return json;
 }
 
+std::vector<std::string> attribute_list(const VertexAttributes& attributes) {
+  std::vector<std::string> list;
+  if (attributes.colors.rows() > 0) {
+    list.push_back(std::string("colors ") + (attributes.colors.cols() == 4 ? "rgba " : "rgb ") +
+                   std::string(ply_type_name(attributes.color_type)));
+  }
+  if (attributes.normals.rows() > 0) list.push_back("normals " + std::string(ply_type_name(attributes.normal_type)));
+  for (const VertexScalar& scalar : attributes.scalars) {
+    list.push_back(scalar.name + " " + std::string(ply_type_name(scalar.type)));
+  }
+  return list;
+}
+
 nlohmann::ordered_json read_info_json(const io::ReadInfo& info) {
   nlohmann::ordered_json json;
   json["format"] = std::string(io::format_name(info.format));

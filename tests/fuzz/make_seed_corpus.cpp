@@ -206,8 +206,10 @@ void write_handmade(const fs::path& folder) {
 
 void write_variants(const TriangleMesh& mesh, const std::string& stem, const fs::path& folder) {
   const fs::path ply = folder / "ply";
-  geodual::io::write_ply(ply / (stem + "_le_double.ply"), mesh,
-                         {{"quality", std::vector<float>(static_cast<std::size_t>(mesh.vertices.rows()), 0.5f)}});
+  geodual::VertexAttributes quality;
+  quality.scalars.push_back({"quality", geodual::ValueType::float32,
+                             std::vector<double>(static_cast<std::size_t>(mesh.vertices.rows()), 0.5)});
+  geodual::io::write_ply(ply / (stem + "_le_double.ply"), mesh, quality);
   save(ply / (stem + "_ascii.ply"), ascii_ply(mesh));
   save(ply / (stem + "_le_float.ply"), binary_ply(mesh, std::endian::little));
   save(ply / (stem + "_be_float.ply"), binary_ply(mesh, std::endian::big));

@@ -165,6 +165,17 @@ std::vector<Sample> samples() {
   out.push_back({"triangles_rgba", {}});
   out.back().scene.triangle_meshes.push_back({.mesh = sphere, .colors = colors_for(sphere.vertices, 4)});
 
+  // A remesh with the attributes of a scan: sRGB colours with alpha, given
+  // normals (one zero: the area-weighted one replaces it), a scalar.
+  out.push_back({"triangles_scan_attributes", {}});
+  {
+    VertexAttributes attributes{.colors = colors_for(sphere.vertices, 4), .normals = sphere.vertices};
+    attributes.normals.row(0).setZero();
+    const std::vector<float> heights = height_field(sphere.vertices);
+    attributes.scalars.push_back({"intensity", ValueType::uint16, std::vector<double>(heights.begin(), heights.end())});
+    out.back().scene.triangle_meshes.push_back(gltf_triangle_mesh("scan", sphere, attributes));
+  }
+
   out.push_back({"awkward_mesh", {}});
   out.back().scene.triangle_meshes.push_back({.name = "tetrahedron and degenerate", .mesh = awkward_mesh()});
 

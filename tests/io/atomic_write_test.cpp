@@ -65,7 +65,9 @@ TEST(AtomicWrite, MeshWritersUseIt) {
   mesh.faces << 0, 1, 2;
   write_file(dir / "keep.ply", "previous");
   // A property of the wrong length makes write_ply fail before it writes: the old file stays.
-  EXPECT_THROW(io::write_ply(dir / "keep.ply", mesh, {{"bad", std::vector<float>(2)}}), Error);
+  VertexAttributes bad;
+  bad.scalars.push_back({"bad", ValueType::float32, std::vector<double>(2)});
+  EXPECT_THROW(io::write_ply(dir / "keep.ply", mesh, bad), Error);
   EXPECT_EQ(read_file(dir / "keep.ply"), "previous");
   // A missing output folder: an error naming the path, nothing created.
   const std::string message = error_message([&] { io::write_obj(dir / "missing" / "out.obj", mesh); });

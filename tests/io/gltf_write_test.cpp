@@ -246,6 +246,31 @@ TEST(GltfWrite, ColoursScalarsLinesPointsAndExtras) {
   EXPECT_EQ(doc["asset"]["extras"]["name"], "run");
 }
 
+TEST(GltfWrite, AttributesBecomeLinearColoursGivenNormalsAndNamedScalars) {
+  const TriangleMesh mesh = tetrahedron_and_lone_vertex();
+  VertexAttributes attributes;
+  attributes.colors = ColorMatrix{{1, 0.5f, 0, 0.25f}, {0, 0, 0, 1}, {0.2f, 0.4f, 0.6f, 1}, {1, 1, 1, 1}, {0, 1, 0, 0}};
+  attributes.normals = VertexMatrix{{0, 0, 2}, {0, 0, 0}, {1, 0, 0}, {0, 3, 4}, {0, 1, 0}};
+  attributes.scalars.push_back({"intensity", ValueType::uint16, {10, 20, 30, 40, 50}});
+  const Glb glb =
+      split_glb(encode_gltf({.triangle_meshes = {gltf_triangle_mesh("scan", mesh, attributes)}}, GltfContainer::glb));
+  const json& names = glb.document["meshes"][0]["primitives"][0]["attributes"];
+  // COLOR_0 is linear: sRGB-decoded colour channels, alpha as it is.
+  const std::vector<float> colors = floats_of(glb, names["COLOR_0"].get<int>());
+  ASSERT_EQ(colors.size(), 20u);
+  for (std::size_t i = 0; i < 20; ++i) {
+    const float given = attributes.colors(static_cast<Eigen::Index>(i / 4), static_cast<Eigen::Index>(i % 4));
+    EXPECT_FLOAT_EQ(colors[i], i % 4 == 3 ? given : linear_from_srgb(given)) << i;
+  }
+  EXPECT_NEAR(colors[1], 0.2140, 1e-4);  // sRGB 0.5
+  // NORMAL: the given ones normalised; the zero one replaced by the area-weighted normal.
+  const std::vector<float> normals = floats_of(glb, names["NORMAL"].get<int>());
+  EXPECT_EQ(std::vector<float>(normals.begin(), normals.begin() + 3), std::vector<float>({0, 0, 1}));
+  EXPECT_NEAR(std::hypot(normals[3], normals[4], normals[5]), 1.0, 1e-6);
+  EXPECT_EQ(std::vector<float>(normals.begin() + 9, normals.begin() + 12), std::vector<float>({0, 0.6f, 0.8f}));
+  EXPECT_EQ(floats_of(glb, names["_intensity"].get<int>()), std::vector<float>({10, 20, 30, 40, 50}));
+}
+
 TEST(GltfWrite, EmbeddedGltfHoldsTheSameJsonAndADataUri) {
   const GltfScene scene = one_mesh_scene(tetrahedron_and_lone_vertex());
   const Glb glb = split_glb(encode_gltf(scene, GltfContainer::glb));

@@ -191,7 +191,7 @@ std::string binary_with_extras(std::endian order) {
   return file.str();
 }
 
-TEST(PlyReader, BinaryExtraPropertiesAndElementsAreSkipped) {
+TEST(PlyReader, BinaryExtraElementsAreSkippedAndVertexPropertiesRead) {
   TempDir dir;
   for (const std::endian order : {std::endian::little, std::endian::big}) {
     const io::LoadedMesh loaded = read_text(dir, "extras.ply", binary_with_extras(order));
@@ -200,8 +200,21 @@ TEST(PlyReader, BinaryExtraPropertiesAndElementsAreSkipped) {
     ASSERT_FALSE(loaded.info.notes.empty());
     const std::string& note = loaded.info.notes.back();
     EXPECT_NE(note.find("element 'material'"), std::string::npos) << note;
-    EXPECT_NE(note.find("vertex property 'confidence'"), std::string::npos) << note;
+    EXPECT_EQ(note.find("vertex property"), std::string::npos) << note;
     EXPECT_NE(note.find("face property 'texcoord'"), std::string::npos) << note;
+    // A lone red is no colour: every vertex property is a scalar of its own type.
+    EXPECT_EQ(loaded.attributes.colors.rows(), 0);
+    const std::vector<VertexScalar>& scalars = loaded.attributes.scalars;
+    ASSERT_EQ(scalars.size(), 3u);
+    EXPECT_EQ(scalars[0].name, "red");
+    EXPECT_EQ(scalars[0].type, ValueType::uint8);
+    EXPECT_EQ(scalars[0].values, (std::vector<double>{200, 200, 200}));
+    EXPECT_EQ(scalars[1].name, "confidence");
+    EXPECT_EQ(scalars[1].type, ValueType::float32);
+    EXPECT_EQ(scalars[1].values, (std::vector<double>{0.75, 0.75, 0.75}));
+    EXPECT_EQ(scalars[2].name, "label");
+    EXPECT_EQ(scalars[2].type, ValueType::int16);
+    EXPECT_EQ(scalars[2].values, (std::vector<double>{-3, -3, -3}));
   }
 }
 
@@ -298,7 +311,8 @@ TEST(PlyReader, HugeHeadersParseInLinearTime) {
   EXPECT_EQ(face_list(loaded.mesh), (std::vector<Index>{0, 1, 2}));
   EXPECT_EQ(loaded.mesh.vertices(1, 0), 1.0);
   ASSERT_FALSE(loaded.info.notes.empty());
-  EXPECT_NE(loaded.info.notes.back().find(" and 199988 more"), std::string::npos) << loaded.info.notes.back();
+  EXPECT_NE(loaded.info.notes.back().find(" and 99988 more"), std::string::npos) << loaded.info.notes.back();
+  EXPECT_EQ(loaded.attributes.scalars.size(), static_cast<std::size_t>(extras));
   EXPECT_LT(loaded.info.notes.back().size(), 1000u);
 }
 

@@ -136,10 +136,11 @@ TEST(WriteRoundTrip, PlyVertexPropertiesAreWrittenAsDeclared) {
   static_assert(std::endian::native == std::endian::little);
   TempDir dir;
   TriangleMesh mesh = awkward_mesh();
-  const std::vector<io::VertexProperty> properties = {
-      {"distance", std::vector<double>{0.5, 1.0 / 3.0, 2, 3, 1e-300}},
-      {"weight", std::vector<float>{1.5f, -2.f, 0.1f, 4.f, 5.f}},
-      {"site", std::vector<std::int32_t>{-1, 0, 7, 2147483647, -2147483647 - 1}},
+  VertexAttributes properties;
+  properties.scalars = {
+      {"distance", ValueType::float64, {0.5, 1.0 / 3.0, 2, 3, 1e-300}},
+      {"weight", ValueType::float32, {1.5, -2, static_cast<double>(0.1f), 4, 5}},
+      {"site", ValueType::int32, {-1, 0, 7, 2147483647, -2147483648.0}},
   };
   io::write_ply(dir / "props.ply", mesh, properties);
   const std::string file = read_file(dir / "props.ply");
@@ -155,39 +156,54 @@ TEST(WriteRoundTrip, PlyVertexPropertiesAreWrittenAsDeclared) {
   for (std::size_t v = 0; v < 5; ++v) {
     const std::size_t at = body + v * record;
     EXPECT_EQ(value_at<double>(file, at + 8), mesh.vertices(static_cast<Eigen::Index>(v), 1));
-    EXPECT_EQ(value_at<double>(file, at + 24), std::get<std::vector<double>>(properties[0].values)[v]);
-    EXPECT_EQ(value_at<float>(file, at + 32), std::get<std::vector<float>>(properties[1].values)[v]);
-    EXPECT_EQ(value_at<std::int32_t>(file, at + 36), std::get<std::vector<std::int32_t>>(properties[2].values)[v]);
+    EXPECT_EQ(value_at<double>(file, at + 24), properties.scalars[0].values[v]);
+    EXPECT_EQ(value_at<float>(file, at + 32), static_cast<float>(properties.scalars[1].values[v]));
+    EXPECT_EQ(value_at<std::int32_t>(file, at + 36), static_cast<std::int32_t>(properties.scalars[2].values[v]));
   }
   const std::size_t faces = body + 5 * record;
   EXPECT_EQ(file[faces], 3);
   EXPECT_EQ(value_at<std::int32_t>(file, faces + 13 + 1 + 4), 3);  // face 1, corner 1
 
-  // The reader skips the properties, names them, and keeps the geometry.
+  // The reader gives the properties back with their names, types and values.
   const io::LoadedMesh loaded = read_mesh(dir / "props.ply");
   expect_same_bits(loaded.mesh, mesh);
-  ASSERT_FALSE(loaded.info.notes.empty());
-  EXPECT_NE(loaded.info.notes.back().find("vertex property 'weight'"), std::string::npos);
+  ASSERT_EQ(loaded.attributes.scalars.size(), 3u);
+  for (std::size_t s = 0; s < 3; ++s) {
+    EXPECT_EQ(loaded.attributes.scalars[s].name, properties.scalars[s].name);
+    EXPECT_EQ(loaded.attributes.scalars[s].type, properties.scalars[s].type);
+    EXPECT_EQ(loaded.attributes.scalars[s].values, properties.scalars[s].values);
+  }
+  EXPECT_TRUE(loaded.info.notes.empty());
 }
 
 TEST(WriteRoundTrip, InvalidPlyPropertiesAreRefusedAndNothingIsWritten) {
   TempDir dir;
   const TriangleMesh mesh = awkward_mesh();
   const fs::path path = dir / "bad.ply";
-  const auto refuse = [&](io::VertexProperty property, std::string_view expected) {
-    const std::string message = error_message([&] { io::write_ply(path, mesh, {property}); });
+  const auto refuse = [&](VertexScalar scalar, std::string_view expected) {
+    VertexAttributes attributes;
+    attributes.scalars.push_back(std::move(scalar));
+    const std::string message = error_message([&] { io::write_ply(path, mesh, attributes); });
     EXPECT_TRUE(message.starts_with(path.string() + ": ")) << message;
     EXPECT_NE(message.find(expected), std::string::npos) << message;
     EXPECT_FALSE(fs::exists(path));
   };
-  refuse({"short", std::vector<double>{1, 2}}, "vertex property 'short' has 2 values for 5 vertices");
-  refuse({"two words", std::vector<float>(5)}, "must be one word");
-  refuse({"", std::vector<float>(5)}, "must be one word");
-  refuse({"x", std::vector<std::int32_t>(5)}, "taken by the coordinates");
-  const std::string twice = error_message([&] {
-    io::write_ply(path, mesh, {{"a", std::vector<float>(5)}, {"a", std::vector<double>(5)}});
-  });
+  refuse({"short", ValueType::float64, {1, 2}}, "scalar 'short': 2 rows for 5 vertices");
+  refuse({"two words", ValueType::float32, std::vector<double>(5)}, "must be one word");
+  refuse({"", ValueType::float32, std::vector<double>(5)}, "must be one word");
+  refuse({"x", ValueType::int32, std::vector<double>(5)}, "taken by the coordinates");
+  VertexAttributes twice_given;
+  twice_given.scalars = {{"a", ValueType::float32, std::vector<double>(5)},
+                         {"a", ValueType::float64, std::vector<double>(5)}};
+  const std::string twice = error_message([&] { io::write_ply(path, mesh, twice_given); });
   EXPECT_NE(twice.find("vertex property 'a' is given twice"), std::string::npos) << twice;
+  // A scalar named like a colour channel that is written too.
+  VertexAttributes clash;
+  clash.colors = ColorMatrix::Zero(5, 3);
+  clash.scalars = {{"red", ValueType::uint8, std::vector<double>(5)}};
+  const std::string red = error_message([&] { io::write_ply(path, mesh, clash); });
+  EXPECT_NE(red.find("vertex property 'red' is given twice"), std::string::npos) << red;
+  EXPECT_FALSE(fs::exists(path));
 }
 
 TEST(WriteRoundTrip, FacesOutOfRangeAreRefused) {

@@ -45,11 +45,19 @@ struct GltfVertexScalar {
 
 /// A triangle mesh (a TRIANGLES primitive).
 struct GltfTriangleMesh {
-  std::string name{};                       ///< node and mesh name; empty: none
-  TriangleMesh mesh{};                      ///< at least one triangle
-  ColorMatrix colors{};                     ///< COLOR_0: empty, or one row per vertex
+  std::string name{};    ///< node and mesh name; empty: none
+  TriangleMesh mesh{};   ///< at least one triangle
+  ColorMatrix colors{};  ///< COLOR_0: empty, or one row per vertex
+  /// NORMAL: empty for area-weighted normals, or one row per vertex
+  /// (normalised; a zero or non-finite row gets the area-weighted normal).
+  VertexMatrix normals{};
   std::vector<GltfVertexScalar> scalars{};  ///< one value per vertex each
 };
+
+/// A triangle mesh entry carrying `attributes` as glTF has them: colours
+/// (sRGB-encoded) converted to linear COLOR_0, normals as NORMAL, each scalar
+/// as the float attribute `_NAME`.
+GltfTriangleMesh gltf_triangle_mesh(std::string name, TriangleMesh mesh, const VertexAttributes& attributes);
 
 /// Line segments between points (a LINES primitive), e.g. polylines such as
 /// Voronoi cell boundaries: consecutive points joined by segments (i, i + 1).
@@ -95,7 +103,8 @@ std::vector<std::byte> encode_gltf(const GltfScene& scene, GltfContainer contain
 /// (case-insensitive). Errors (as encode_gltf, plus I/O) name the path.
 void write_gltf(const std::filesystem::path& path, const GltfScene& scene);
 
-/// Writes one triangle mesh (positions, normals, indices) to `path`, as above.
-void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh);
+/// Writes one triangle mesh (positions, normals, indices) and its attributes
+/// (gltf_triangle_mesh) to `path`, as above.
+void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {});
 
 }  // namespace geodual::io

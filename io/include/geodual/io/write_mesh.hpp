@@ -10,29 +10,25 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
-#include <variant>
 #include <vector>
 
 namespace geodual::io {
 
-/// One scalar per vertex, written as a PLY vertex property of the matching type.
-struct VertexProperty {
-  std::string name;
-  std::variant<std::vector<double>, std::vector<float>, std::vector<std::int32_t>> values;
-};
-
-/// Binary little-endian PLY: float64 x y z, then the vertex properties in the
-/// order given (double, float, int32 -> PLY double, float, int), then faces as
-/// `list uchar int vertex_indices`. Property names must be single printable
-/// words, unique, not x/y/z, with one value per vertex; face indices must be
-/// in range. Violations throw geodual::Error naming the path; nothing is written.
-void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh,
-               const std::vector<VertexProperty>& vertex_properties = {});
+/// Binary little-endian PLY: float64 x y z, then the attributes as vertex
+/// properties -- nx ny nz, red green blue [alpha], the scalars in order --
+/// each of the type it carries (colours of a float type as float in [0, 1],
+/// uint8 and uint16 scaled to their range; integer scalars rounded), then
+/// faces as `list uchar int vertex_indices`. Scalar names must be single
+/// printable words, unique, not taken by the coordinates, normals or colours
+/// written; each attribute has one row per vertex; face indices must be in
+/// range. Violations throw geodual::Error naming the path; nothing is written.
+void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {});
 
 /// Wavefront OBJ ("v x y z", "f a b c", 1-based). Coordinates are printed in
 /// the shortest form that reads back as the same double (std::to_chars: at most
-/// max_digits10 = 17 significant digits), so the round trip is exact.
-void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
+/// max_digits10 = 17 significant digits), so the round trip is exact. With
+/// colours (one row per vertex, RGB first), vertices are "v x y z r g b" (alpha is dropped).
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors = {});
 
 /// Writes by extension (case-insensitive): .ply, .obj, .glb or .gltf (glTF: see
 /// gltf.hpp for more); any other extension is a geodual::Error. The

@@ -33,18 +33,19 @@ struct VertexScalar {
 };
 
 /// What a mesh carries per vertex besides its position. Each member is empty
-/// or has one row (value) per vertex.
+/// or has one row (value) per vertex; every member has a default, so
+/// designated initializers may leave any of them out.
 struct VertexAttributes {
   /// Colours as files store them for display: sRGB-encoded, not linear (PLY's
   /// and OBJ's convention; glTF's linear COLOR_0 is converted on reading and
   /// writing). color_type is how the file stored them: uint8 (0-255), uint16
   /// (0-65535) or float32/float64 (0-1).
-  ColorMatrix colors;
+  ColorMatrix colors{};
   ValueType color_type = ValueType::uint8;
   /// Unit normals (not necessarily unit in the file: interpolation renormalises).
-  VertexMatrix normals;
+  VertexMatrix normals{};
   ValueType normal_type = ValueType::float32;
-  std::vector<VertexScalar> scalars;
+  std::vector<VertexScalar> scalars{};
 
   bool empty() const { return colors.rows() == 0 && normals.rows() == 0 && scalars.empty(); }
 };

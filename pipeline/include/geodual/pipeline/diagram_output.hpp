@@ -2,6 +2,7 @@
 // Writing Voronoi diagrams and remeshes, and the pictures of them.
 
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/vertex_attributes.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
 #include <Eigen/Core>
@@ -21,14 +22,13 @@ namespace geodual {
 void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh& mesh,
                            const voronoi::VoronoiDiagram& diagram, const std::string& extras_json = {});
 
-/// A remeshed surface by extension: .ply, .obj, .glb or .gltf (with
-/// `extras_json` in asset.extras, and `vertex_colors` as COLOR_0 when given:
-/// one row per vertex, linear RGB in [0, 1]).
-void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const std::string& extras_json = {},
-                  const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors = {});
+/// A remeshed surface and its vertex attributes by extension: .ply, .obj,
+/// .glb or .gltf (io::write_mesh; glTF with `extras_json` in asset.extras).
+void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {},
+                  const std::string& extras_json = {});
 
 /// Per vertex, the mean quality Q of its triangles mapped to a colour: red
-/// (Q = 0) through yellow to green (Q = 1).
+/// (Q = 0) through yellow to green (Q = 1), sRGB-encoded as VertexAttributes::colors.
 Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh);
 
 /// A PNG picture of the input coloured by cell with the boundaries and sites.

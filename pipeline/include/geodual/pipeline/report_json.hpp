@@ -8,6 +8,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <string>
+#include <vector>
+
 namespace geodual::pipeline {
 
 /// vertices, faces, edges, components, boundary_loops, boundary_edges,
@@ -18,5 +21,9 @@ nlohmann::ordered_json mesh_report_json(const MeshReport& report);
 
 /// format, encoding, file_bytes, polygons_split, welded_corners, notes.
 nlohmann::ordered_json read_info_json(const io::ReadInfo& info);
+
+/// The vertex attributes present, one entry each with its type, e.g.
+/// ["colors rgb uchar", "normals float", "quality float"]; empty when none.
+std::vector<std::string> attribute_list(const VertexAttributes& attributes);
 
 }  // namespace geodual::pipeline
