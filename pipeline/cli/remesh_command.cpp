@@ -25,20 +25,25 @@
 #include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
 
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <new>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace geodual::cli {
@@ -183,14 +188,15 @@ class RemeshCommand final : public Command {
       io::require_output_path(report_path_, {".json"}, "a report");
       io::refuse_to_overwrite_inputs(report_path_, {mesh_path, sites_.file()});
     }
-    const nlohmann::ordered_json json = remesh_scan(mesh_path, output_path_);
+    const nlohmann::ordered_json json = remesh_scan(mesh_path, output_path_, {std::cout, std::cerr, true});
     if (json_) std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
     return 0;
   }
 
  private:
-  /// --output-dir: every input remeshed with the same options, one after
-  /// another; a failed scan is reported and the next one goes on; Ctrl-C
+  /// --output-dir: every input remeshed with the same options, as many at
+  /// once as --threads allows (each scan's output is the same bytes as when
+  /// run alone); a failed scan is reported and the others go on; Ctrl-C
   /// stops the batch. Returns 1 if any scan failed.
   int run_batch() {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--preview", !preview_path_.empty()},
@@ -215,30 +221,40 @@ class RemeshCommand final : public Command {
       for (const std::string& mesh_path : mesh_paths_) io::refuse_to_overwrite_inputs(output, {mesh_path});
     }
 
+    // Scans run side by side, as many at once as --threads allows; each
+    // one's messages are held back and printed in the order of the inputs.
+    const std::size_t concurrent =
+        std::min(mesh_paths_.size(), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    std::vector<ScanRun> runs(mesh_paths_.size());
+    if (concurrent <= 1) {
+      for (std::size_t i = 0; i < runs.size(); ++i) {
+        if (interrupted()) throw Cancelled("remesh cancelled before " + mesh_paths_[i]);
+        run_scan(i, outputs[i], {std::cout, std::cerr, true}, runs[i]);
+        if (runs[i].cancelled) throw Cancelled("remesh cancelled");  // the scan under way wrote nothing
+        if (!runs[i].error.empty()) report_error(runs[i].error);
+        if (!json_ && runs[i].json) std::cout << '\n';  // a blank line after the scan's table
+      }
+    } else {
+      run_concurrently(outputs, concurrent, runs);
+    }
+
     ColumnTable summary({"scan", "vertices", "Qavg", "H %", "time s", "status"});
     nlohmann::ordered_json results = nlohmann::ordered_json::array();
     std::size_t failed = 0;
-    for (std::size_t i = 0; i < mesh_paths_.size(); ++i) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
       const std::string& mesh_path = mesh_paths_[i];
-      if (interrupted()) throw Cancelled("remesh cancelled before " + mesh_path);
-      const auto start = std::chrono::steady_clock::now();
-      try {
-        const nlohmann::ordered_json json = remesh_scan(mesh_path, outputs[i]);
+      const ScanRun& scan = runs[i];
+      if (scan.json) {
+        const nlohmann::ordered_json& json = *scan.json;
         summary.add({mesh_path, with_thousands(json["vertices"].get<std::int64_t>()),
                      significant(json["q_avg"].get<double>(), 3),
                      json.contains("hausdorff_pct") ? significant(json["hausdorff_pct"].get<double>(), 3) : "-",
-                     seconds_column(seconds_since(start)), "ok"});
+                     seconds_column(scan.seconds), "ok"});
         results.push_back(json);
-        if (!json_) std::cout << '\n';  // a blank line after the scan's table
-      } catch (const Cancelled&) {
-        throw;  // Ctrl-C: the scan under way writes nothing, and the batch stops
-      } catch (const std::exception& error) {
+      } else {
         ++failed;
-        const std::string message =
-            dynamic_cast<const std::bad_alloc*>(&error) != nullptr ? "out of memory" : error.what();
-        report_error(message.rfind(mesh_path + ": ", 0) == 0 ? message : mesh_path + ": " + message);
-        summary.add({mesh_path, "-", "-", "-", seconds_column(seconds_since(start)), first_words(message, mesh_path)});
-        results.push_back({{"mesh", mesh_path}, {"output", outputs[i]}, {"error", message}});
+        summary.add({mesh_path, "-", "-", "-", seconds_column(scan.seconds), first_words(scan.error, mesh_path)});
+        results.push_back({{"mesh", mesh_path}, {"output", outputs[i]}, {"error", scan.error}});
       }
     }
     if (json_) {
@@ -251,12 +267,85 @@ class RemeshCommand final : public Command {
     return failed > 0 ? 1 : 0;
   }
 
+  /// Where one scan's messages go: the terminal, or buffers in a batch.
+  struct ScanStreams {
+    std::ostream& out;
+    std::ostream& err;
+    bool progress_bar = false;
+  };
+
+  /// A batch's scan: its figures (none if it failed), why it failed, its time.
+  struct ScanRun {
+    std::optional<nlohmann::ordered_json> json;
+    std::string error;  ///< the message, starting with the input's path
+    bool cancelled = false;
+    double seconds = 0;
+    std::ostringstream out, err;  ///< held back for printing in order (concurrent batches)
+  };
+
+  /// Scan `i` of the batch into `output`, failures caught into `scan`.
+  void run_scan(std::size_t i, const std::string& output, const ScanStreams& streams, ScanRun& scan) const {
+    const std::string& mesh_path = mesh_paths_[i];
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      scan.json = remesh_scan(mesh_path, output, streams);
+    } catch (const Cancelled&) {
+      scan.cancelled = true;
+    } catch (const std::exception& error) {
+      const std::string message =
+          dynamic_cast<const std::bad_alloc*>(&error) != nullptr ? "out of memory" : error.what();
+      scan.error = message.rfind(mesh_path + ": ", 0) == 0 ? message : mesh_path + ": " + message;
+    }
+    scan.seconds = seconds_since(start);
+  }
+
+  /// Runs the batch on `workers` threads, each taking the next scan not yet
+  /// begun, and prints each scan's messages once those before it are printed.
+  /// Ctrl-C cancels the scans under way (they write nothing) and those not begun.
+  void run_concurrently(const std::vector<std::string>& outputs, std::size_t workers, std::vector<ScanRun>& runs) {
+    std::mutex mutex;
+    std::condition_variable finished;
+    std::vector<std::uint8_t> done(runs.size(), 0);
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> threads;
+    for (std::size_t w = 0; w < workers; ++w) {
+      threads.emplace_back([&] {
+        for (std::size_t i = next++; i < runs.size(); i = next++) {
+          if (interrupted()) {
+            runs[i].cancelled = true;
+          } else {
+            run_scan(i, outputs[i], {runs[i].out, runs[i].err, false}, runs[i]);
+          }
+          const std::lock_guard lock(mutex);
+          done[i] = 1;
+          finished.notify_all();
+        }
+      });
+    }
+    bool cancelled = false;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      std::unique_lock lock(mutex);
+      finished.wait(lock, [&] { return done[i] != 0; });
+      lock.unlock();
+      cancelled = cancelled || runs[i].cancelled;
+      if (cancelled) continue;
+      std::cerr << runs[i].err.str();
+      if (!runs[i].error.empty()) report_error(runs[i].error);
+      std::cout << runs[i].out.str();
+      if (!json_ && runs[i].json) std::cout << '\n';  // a blank line after the scan's table
+      std::cout.flush();
+    }
+    for (std::thread& thread : threads) thread.join();
+    if (cancelled) throw Cancelled("remesh cancelled");
+  }
+
   /// One scan: remeshes `mesh_path` into `output_path` (and the preview and
   /// report when asked), prints its table unless --json, and returns the
   /// figures --json prints. Throws on failure, writing nothing.
-  nlohmann::ordered_json remesh_scan(const std::string& mesh_path, const std::string& output_path) const {
+  nlohmann::ordered_json remesh_scan(const std::string& mesh_path, const std::string& output_path,
+                                     const ScanStreams& streams) const {
     const auto start = std::chrono::steady_clock::now();
-    ProgressBar bar(quiet_);
+    ProgressBar bar(quiet_ || !streams.progress_bar);
     pipeline::RemeshPipelineOptions options;
     options.sites = sites_.count();
     options.sampling = sites_.sampling_options();
@@ -280,26 +369,26 @@ class RemeshCommand final : public Command {
     const quality::TriangleQuality quality =
         run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
     if (!run.features_dropped_reason.empty()) {
-      std::cerr << "geodual remesh: warning: " << mesh_path
-                << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
-                << "\n";
+      streams.err << "geodual remesh: warning: " << mesh_path
+                  << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
+                  << "\n";
     }
     if (run.sites_added_for_topology > 0) {
-      std::cerr << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
+      streams.err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
     if (result.sites_added > 0 || result.sites_left_out > 0) {
       const std::string problems = remesh::problems_line(result.repair_problems);
-      std::cerr << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
-                << " sites"
-                << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "") << " in "
-                << result.repair_rounds << " rounds, where the dual of the Voronoi diagram was not a valid remesh ("
-                << problems << ")\n";
+      streams.err << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
+                  << " sites"
+                  << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "")
+                  << " in " << result.repair_rounds
+                  << " rounds, where the dual of the Voronoi diagram was not a valid remesh (" << problems << ")\n";
     }
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
-      std::cerr << "geodual remesh: warning: " << mesh_path << ": " << run.dropped.faces << " faces ("
-                << significant(run.dropped.area_pct, 3)
-                << " % of the area) left out as scraps or flaps of non-manifold pieces; --strict makes this an "
-                   "error\n";
+      streams.err << "geodual remesh: warning: " << mesh_path << ": " << run.dropped.faces << " faces ("
+                  << significant(run.dropped.area_pct, 3)
+                  << " % of the area) left out as scraps or flaps of non-manifold pieces; --strict makes this an "
+                     "error\n";
     }
 
     // The figures: what the remesh is, the same bytes for the same input,
@@ -467,7 +556,7 @@ class RemeshCommand final : public Command {
     table.add("time", duration(seconds_since(start)) + " (" + stages + ", write " + duration(write_seconds) + ")");
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
     if (!preview_path_.empty()) table.add("preview", preview_path_);
-    table.print(std::cout);
+    table.print(streams.out);
     return json;
   }
 

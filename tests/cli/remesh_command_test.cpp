@@ -629,9 +629,13 @@ TEST(RemeshCommand, ABatchWritesEveryOutputTheSameBytesAsSingleRuns) {
   ScratchFolder folder;
   const auto dir = folder.path() / "out";
   std::filesystem::create_directories(dir);
+  // Two threads: the scans run side by side; their tables come in the inputs' order.
   const CliRun batch = run_cli(
-      concat({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--format", "ply"}, batch_options()));
+      concat({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--format", "ply", "--threads", "2"},
+             batch_options()));
   ASSERT_EQ(batch.exit_status, 0) << batch.err;
+  EXPECT_LT(batch.out.find(std::string(small_scan) + " ("), batch.out.find(std::string(genus_four) + " ("))
+      << batch.out;
   // The per-scan tables, then the summary naming both scans as ok.
   const std::size_t summary = batch.out.find("scan ");
   ASSERT_NE(summary, std::string::npos) << batch.out;
@@ -649,7 +653,7 @@ TEST(RemeshCommand, ABatchWritesEveryOutputTheSameBytesAsSingleRuns) {
   for (const auto& [scan, name] :
        {std::pair<std::string, std::string>{small_scan, "woody.ply"}, {genus_four, "fertility.ply"}}) {
     const auto single = folder.path() / name;
-    const CliRun run = run_cli(concat({"remesh", scan, "-o", single.string()}, batch_options()));
+    const CliRun run = run_cli(concat({"remesh", scan, "-o", single.string(), "--threads", "1"}, batch_options()));
     ASSERT_EQ(run.exit_status, 0) << run.err;
     ASSERT_TRUE(std::filesystem::exists(dir / name)) << name;
     EXPECT_EQ(slurp(dir / name), slurp(single)) << name;
