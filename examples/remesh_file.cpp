@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     if (argc == 4) options.sites = std::stoll(argv[3]);
     options.quality.samples_per_side = 100'000;  // for the Hausdorff figure; 10x fewer than the default
     const auto result = geodual::pipeline::run_remesh_pipeline(argv[1], options);
-    geodual::io::write_mesh(argv[2], result.remesh.mesh);
+    geodual::io::write_mesh(argv[2], result.remesh.mesh, result.attributes);  // with the scan's colours
 
     const auto& stats = *result.statistics;  // set: options.statistics is true by default
     std::cout << "vertices  " << result.remesh.mesh.num_vertices() << '\n'

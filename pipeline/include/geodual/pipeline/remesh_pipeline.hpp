@@ -6,7 +6,7 @@
 //   geodual::pipeline::RemeshPipelineOptions options;   // 4000 sites, 10 Lloyd iterations
 //   options.sites = 2000;
 //   auto result = geodual::pipeline::run_remesh_pipeline("scan.ply", options);
-//   geodual::io::write_mesh("remeshed.ply", result.remesh.mesh);
+//   geodual::io::write_mesh("remeshed.ply", result.remesh.mesh, result.attributes);
 //
 // Stage by stage (each takes plain data and returns plain data; these are
 // the calls the pipeline makes):
