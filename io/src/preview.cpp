@@ -4,6 +4,7 @@
 // the PNG. See preview.hpp for what the picture shows.
 
 #include "geodual/io/preview.hpp"
+#include "geodual/mesh/vertex_attributes.hpp"
 
 #include "preview_png.hpp"
 #include "preview_raster.hpp"
@@ -412,8 +413,7 @@ class SrgbEncoder {
  public:
   SrgbEncoder() {
     for (std::size_t i = 0; i < table_.size(); ++i) {
-      const double c = static_cast<double>(i) / kSteps;
-      const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+      const double s = srgb_from_linear(static_cast<float>(i) / kSteps);
       table_[i] = static_cast<std::uint8_t>(std::lround(s * 255.0));
     }
   }

@@ -75,11 +75,7 @@ class InfoCommand final : public Command {
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();
     if (!preview_path_.empty()) {
-      const ColorMatrix& colors = loaded.attributes.colors;
-      write_mesh_preview(preview_path_, loaded.mesh,
-                         colors.rows() > 0 ? Eigen::Matrix<float, Eigen::Dynamic, 3>(colors.leftCols(3))
-                                           : Eigen::Matrix<float, Eigen::Dynamic, 3>(),
-                         still_wanted);
+      write_mesh_preview(preview_path_, loaded.mesh, loaded.attributes.colors, still_wanted);
     }
 
     const std::vector<std::string> attributes = pipeline::attribute_list(loaded.attributes);

@@ -476,12 +476,7 @@ class RemeshCommand final : public Command {
       attributes.color_type = ValueType::uint8;
     }
     // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
-    if (!preview_path_.empty()) {
-      const Eigen::Matrix<float, Eigen::Dynamic, 3> colors =
-          attributes.colors.rows() > 0 ? Eigen::Matrix<float, Eigen::Dynamic, 3>(attributes.colors.leftCols(3))
-                                       : Eigen::Matrix<float, Eigen::Dynamic, 3>();
-      write_mesh_preview(preview_path_, result.mesh, colors, still_wanted);
-    }
+    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, attributes.colors, still_wanted);
     write_remesh(output_path, result.mesh, attributes, figures.dump());
     const double write_seconds = seconds_since(write_start);
     bar.finish();

@@ -112,14 +112,14 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
   io::write_preview_png(path, scene, options);
 }
 
-Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh) {
+ColorMatrix quality_colors(const TriangleMesh& mesh) {
   // Q per triangle (quality::face_quality), averaged at vertices.
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.vertices.rows()), count = sum;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const double q = quality::face_quality(mesh, f);
     for (int k = 0; k < 3; ++k) sum[mesh.faces(f, k)] += q, count[mesh.faces(f, k)] += 1;
   }
-  Eigen::Matrix<float, Eigen::Dynamic, 3> colors(mesh.vertices.rows(), 3);
+  ColorMatrix colors(mesh.vertices.rows(), 3);
   for (Index v = 0; v < mesh.vertices.rows(); ++v) {
     const double q = count[v] > 0 ? std::clamp(sum[v] / count[v], 0.0, 1.0) : 0.0;
     // red -> yellow at 0.5 -> green
@@ -128,14 +128,17 @@ Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh)
   return colors;
 }
 
-void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors,
+void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors,
                         const std::function<bool(double)>& progress) {
   io::PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = true;
-  if (vertex_colors.rows() == mesh.vertices.rows()) {
-    for (Index v = 0; v < vertex_colors.rows(); ++v) scene.vertex_colors.emplace_back(vertex_colors.row(v).transpose());
+  if (colors.rows() == mesh.vertices.rows() && colors.cols() >= 3) {
+    // The preview shades in linear light.
+    for (Index v = 0; v < colors.rows(); ++v) {
+      scene.vertex_colors.emplace_back(linear_from_srgb(colors(v, 0)), linear_from_srgb(colors(v, 1)),
+                                       linear_from_srgb(colors(v, 2)));
+    }
   }
   io::PreviewOptions options;
   options.progress = progress;

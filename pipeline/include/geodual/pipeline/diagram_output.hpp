@@ -29,7 +29,7 @@ void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, c
 
 /// Per vertex, the mean quality Q of its triangles mapped to a colour: red
 /// (Q = 0) through yellow to green (Q = 1), sRGB-encoded as VertexAttributes::colors.
-Eigen::Matrix<float, Eigen::Dynamic, 3> quality_colors(const TriangleMesh& mesh);
+ColorMatrix quality_colors(const TriangleMesh& mesh);
 
 /// A PNG picture of the input coloured by cell with the boundaries and sites.
 /// `progress` as io::PreviewOptions::progress (false: Cancelled, nothing written).
@@ -37,9 +37,9 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
                            const voronoi::VoronoiDiagram& diagram, const std::function<bool(double)>& progress = {});
 
 /// A PNG picture of a mesh, shaded with its wireframe (coloured per vertex
-/// when `vertex_colors` has a row per vertex); `progress` as above.
-void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh,
-                        const Eigen::Matrix<float, Eigen::Dynamic, 3>& vertex_colors = {},
+/// when `colors`, sRGB-encoded as VertexAttributes::colors, has a row per
+/// vertex; alpha is ignored); `progress` as above.
+void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors = {},
                         const std::function<bool(double)>& progress = {});
 
 /// The process's peak resident memory in bytes (0 where unknown).
