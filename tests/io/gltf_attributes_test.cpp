@@ -21,6 +21,20 @@
 
 #include <unistd.h>
 
+// The JPEG encoder for one test, compiled privately into this file (as preview_png.cpp does for PNG).
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#define STBI_WRITE_NO_STDIO
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
+
 namespace geodual::io {
 namespace {
 namespace fs = std::filesystem;
@@ -398,6 +412,26 @@ TEST(GltfAttributes, TextureTimesFactorAndTextureFromAGlbBufferView) {
     EXPECT_NEAR(out(v, 0), expected[v][0], byte_tolerance);
     EXPECT_NEAR(out(v, 1), srgb_from_linear(0.5f * linear_from_srgb(expected[v][1])), byte_tolerance);
     EXPECT_NEAR(out(v, 2), expected[v][2], byte_tolerance);
+  }
+}
+
+TEST(GltfAttributes, JpegTexture) {
+  // An 8 x 8 JPEG of one colour: decoded within a few levels of it (JPEG is lossy).
+  std::vector<std::uint8_t> rgb;
+  for (int i = 0; i < 64; ++i) rgb.insert(rgb.end(), {120, 60, 200});
+  std::vector<std::byte> jpeg;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::byte>*>(context);
+    out->insert(out->end(), static_cast<const std::byte*>(data), static_cast<const std::byte*>(data) + size);
+  };
+  ASSERT_NE(stbi_write_jpg_to_func(append, &jpeg, 8, 8, 3, rgb.data(), 100), 0);
+  const std::string images = R"([{"uri":"data:image/jpeg;base64,)" + base64(jpeg) + R"("}])";
+  const LoadedMesh loaded = read_json(textured_file({0.1f, 0.1f, 0.5f, 0.5f, 0.9f, 0.3f}, images));
+  ASSERT_EQ(loaded.attributes.colors.rows(), 3);
+  const Eigen::RowVector3f expected = Eigen::RowVector3f(120, 60, 200) / 255.0f;
+  for (int v = 0; v < 3; ++v) {
+    EXPECT_LT((loaded.attributes.colors.row(v) - expected).cwiseAbs().maxCoeff(), 4.0f / 255.0f)
+        << loaded.attributes.colors.row(v) * 255.0f;
   }
 }
 
