@@ -83,6 +83,8 @@ std::vector<std::byte> read_file_prefix(const fs::path& path, std::uint64_t leng
 
 }  // namespace
 
+bool is_data_uri(std::string_view uri) { return starts_with_ignoring_case(uri, "data:"); }
+
 std::vector<std::byte> decode_data_uri(std::string_view uri, std::string_view where) {
   const std::size_t comma = uri.find(',');
   if (comma == std::string_view::npos) fail(where, "data URI has no ',' before its data");
@@ -179,7 +181,7 @@ std::span<const std::byte> BufferStore::load(std::size_t index) {
   }
 
   std::vector<std::byte> data;
-  if (starts_with_ignoring_case(*uri, "data:")) {
+  if (is_data_uri(*uri)) {
     data = decode_data_uri(*uri, where);
     if (data.size() < length) {
       fail(where, "data URI holds " + std::to_string(data.size()) + " bytes, fewer than the declared byteLength " +

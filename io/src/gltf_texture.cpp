@@ -206,9 +206,7 @@ const DecodedImage& TextureStore::image(std::size_t index) {
   const std::string where = image_where(index);
   DecodedImage decoded;
   if (const std::optional<std::string> uri = optional_string(image, "uri", where)) {
-    if (uri->size() >= 5 && std::equal(uri->begin(), uri->begin() + 5, "data:", [](char a, char b) {
-          return (a >= 'A' && a <= 'Z' ? static_cast<char>(a - 'A' + 'a') : a) == b;
-        })) {
+    if (is_data_uri(*uri)) {
       decoded = decode_image(decode_data_uri(*uri, where), where);
     } else {
       if (file_.empty()) {
