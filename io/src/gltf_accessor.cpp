@@ -12,23 +12,56 @@ namespace {
 constexpr std::uint64_t min_byte_stride = 4;
 constexpr std::uint64_t max_byte_stride = 252;
 
-template <class T>
-T load(const std::byte* at) {
-  T value;
-  std::memcpy(&value, at, sizeof value);
-  return value;
+using element_detail::dequantize;
+using element_detail::load;
+
+std::string_view shape_name(AccessorShape shape) {
+  switch (shape) {
+    case AccessorShape::scalar: return "SCALAR";
+    case AccessorShape::vec2: return "VEC2";
+    case AccessorShape::vec3: return "VEC3";
+    case AccessorShape::vec4: return "VEC4";
+  }
+  return "?";
 }
 
-// Normalized integers map to [0, 1] (unsigned) or [-1, 1] (signed), as the spec defines.
-template <class T>
-double dequantize(T value, bool normalized) {
-  const double v = static_cast<double>(value);
-  if (!normalized) return v;
-  if constexpr (std::is_signed_v<T>) {
-    return std::max(v / static_cast<double>(std::numeric_limits<T>::max()), -1.0);
-  } else {
-    return v / static_cast<double>(std::numeric_limits<T>::max());
+std::size_t shape_components(AccessorShape shape) {
+  switch (shape) {
+    case AccessorShape::scalar: return 1;
+    case AccessorShape::vec2: return 2;
+    case AccessorShape::vec3: return 3;
+    case AccessorShape::vec4: return 4;
   }
+  return 0;
+}
+
+struct CheckedView {
+  const Json* json = nullptr;
+  std::string where;
+  std::size_t buffer = 0;
+  std::uint64_t offset = 0;
+  std::uint64_t length = 0;
+};
+
+// Buffer view `index`: its buffer, byteOffset and byteLength, checked to lie inside the buffer.
+CheckedView check_buffer_view(const Json& root, BufferStore& buffers, std::size_t index, const std::string& where) {
+  const Json& views = array_member(root, "bufferViews", where);
+  CheckedView result;
+  result.json = &views[index];
+  result.where = where + ": " + describe("bufferView", index, *result.json);
+  const Json& view = *result.json;
+  if (!view.is_object()) fail(result.where, "must be a JSON object");
+  result.buffer = required_index(view, "buffer", buffers.size(), "buffer", result.where);
+  result.offset = optional_uint(view, "byteOffset", result.where).value_or(0);
+  result.length = required_uint(view, "byteLength", result.where);
+  if (result.length == 0) fail(result.where, "'byteLength' must be at least 1");
+  const std::span<const std::byte> buffer = buffers.bytes(result.buffer);
+  if (result.offset > buffer.size() || result.length > buffer.size() - result.offset) {
+    fail(result.where, "bytes " + std::to_string(result.offset) + ".." + std::to_string(result.offset + result.length) +
+                           " run past the end of buffer " + std::to_string(result.buffer) + " (" +
+                           std::to_string(buffer.size()) + " bytes)");
+  }
+  return result;
 }
 
 template <class T>
@@ -54,8 +87,8 @@ std::vector<std::uint32_t> load_scalars(const AccessorView& view) {
 
 }  // namespace
 
-AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t index, AccessorShape shape,
-                           const std::string& user) {
+AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t index,
+                           std::initializer_list<AccessorShape> shapes, const std::string& user) {
   const Json& accessors = array_member(root, "accessors", user);
   if (index >= accessors.size()) {
     fail(user,
@@ -73,11 +106,15 @@ AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t i
   if (!component_type) fail(where, "invalid componentType " + std::to_string(type_code));
 
   const std::optional<std::string> type = optional_string(accessor, "type", where);
-  const std::string_view expected = shape == AccessorShape::vec3 ? "VEC3" : "SCALAR";
   if (!type) fail(where, "required 'type' is missing");
-  if (*type != expected) {
-    fail(where, "has type '" + type->substr(0, 16) + "', expected " + std::string(expected));
+  const auto shape =
+      std::find_if(shapes.begin(), shapes.end(), [&](AccessorShape s) { return shape_name(s) == *type; });
+  if (shape == shapes.end()) {
+    std::string expected;
+    for (const AccessorShape s : shapes) expected += (expected.empty() ? "" : " or ") + std::string(shape_name(s));
+    fail(where, "has type '" + type->substr(0, 16) + "', expected " + expected);
   }
+  const std::size_t components = shape_components(*shape);
 
   const std::uint64_t count = required_uint(accessor, "count", where);
   if (count == 0) fail(where, "'count' must be at least 1");
@@ -88,16 +125,11 @@ AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t i
   const std::optional<std::size_t> view_index =
       optional_index(accessor, "bufferView", views.size(), "bufferView", where);
   if (!view_index) fail(where, "has no bufferView (an all-zero accessor); not supported for geometry");
-  const Json& view = views[*view_index];
-  const std::string view_where = where + ": " + describe("bufferView", *view_index, view);
-  if (!view.is_object()) fail(view_where, "must be a JSON object");
-  const std::size_t buffer_index = required_index(view, "buffer", buffers.size(), "buffer", view_where);
-  const std::uint64_t view_offset = optional_uint(view, "byteOffset", view_where).value_or(0);
-  const std::uint64_t view_length = required_uint(view, "byteLength", view_where);
-  if (view_length == 0) fail(view_where, "'byteLength' must be at least 1");
+  const CheckedView view = check_buffer_view(root, buffers, *view_index, where);
+  const std::string& view_where = view.where;
 
-  const std::uint64_t element_size = component_size(*component_type) * (shape == AccessorShape::vec3 ? 3 : 1);
-  const std::optional<std::uint64_t> declared_stride = optional_uint(view, "byteStride", view_where);
+  const std::uint64_t element_size = component_size(*component_type) * components;
+  const std::optional<std::uint64_t> declared_stride = optional_uint(*view.json, "byteStride", view_where);
   if (declared_stride) {
     if (*declared_stride < min_byte_stride || *declared_stride > max_byte_stride) {
       fail(view_where, "'byteStride' " + std::to_string(*declared_stride) + " is outside 4..252");
@@ -109,13 +141,9 @@ AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t i
     }
   }
   const std::uint64_t stride = declared_stride.value_or(element_size);
-
-  const std::span<const std::byte> buffer = buffers.bytes(buffer_index);
-  if (view_offset > buffer.size() || view_length > buffer.size() - view_offset) {
-    fail(view_where, "bytes " + std::to_string(view_offset) + ".." + std::to_string(view_offset + view_length) +
-                         " run past the end of buffer " + std::to_string(buffer_index) + " (" +
-                         std::to_string(buffer.size()) + " bytes)");
-  }
+  const std::uint64_t view_offset = view.offset;
+  const std::uint64_t view_length = view.length;
+  const std::span<const std::byte> buffer = buffers.bytes(view.buffer);
   // All terms are below 2^53 and stride <= 252, so none of this overflows.
   const std::uint64_t accessor_bytes = (count - 1) * stride + element_size;
   if (accessor_offset > view_length || accessor_bytes > view_length - accessor_offset) {
@@ -129,10 +157,29 @@ AccessorView view_accessor(const Json& root, BufferStore& buffers, std::size_t i
       buffer.subspan(static_cast<std::size_t>(view_offset + accessor_offset), static_cast<std::size_t>(accessor_bytes));
   result.count = static_cast<std::size_t>(count);
   result.stride = static_cast<std::size_t>(stride);
+  result.components = components;
   result.component_type = *component_type;
   result.normalized = normalized;
   result.where = where;
   return result;
+}
+
+std::string accessor_type(const Json& root, std::size_t index) {
+  const Json* accessors = find_member(root, "accessors");
+  if (accessors == nullptr || !accessors->is_array() || index >= accessors->size()) return {};
+  const Json* type = find_member((*accessors)[index], "type");
+  return type != nullptr && type->is_string() ? type->get<std::string>() : std::string();
+}
+
+std::span<const std::byte> buffer_view_bytes(const Json& root, BufferStore& buffers, std::size_t index,
+                                             const std::string& where) {
+  const std::size_t count = array_member(root, "bufferViews", where).size();
+  if (index >= count) {
+    fail(where, "refers to bufferView " + std::to_string(index) + ", but the file has " + std::to_string(count));
+  }
+  const CheckedView view = check_buffer_view(root, buffers, index, where);
+  return buffers.bytes(view.buffer)
+      .subspan(static_cast<std::size_t>(view.offset), static_cast<std::size_t>(view.length));
 }
 
 void append_positions(const AccessorView& view, bool allow_quantized, std::vector<double>& out) {

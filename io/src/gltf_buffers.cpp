@@ -58,21 +58,6 @@ std::string shortened(std::string_view uri) {
   return uri.size() <= max_length ? std::string(uri) : std::string(uri.substr(0, max_length)) + "...";
 }
 
-// "data:[<media type>][;parameters];base64,<data>" -> the decoded bytes.
-std::vector<std::byte> decode_data_uri(std::string_view uri, std::string_view where) {
-  const std::size_t comma = uri.find(',');
-  if (comma == std::string_view::npos) fail(where, "data URI has no ',' before its data");
-  const std::string_view header = uri.substr(0, comma);
-  constexpr std::string_view base64_marker = ";base64";
-  if (header.size() < base64_marker.size() ||
-      !starts_with_ignoring_case(header.substr(header.size() - base64_marker.size()), base64_marker)) {
-    fail(where, "data URI '" + shortened(header) + "' is not base64-encoded (expected ';base64,')");
-  }
-  std::optional<std::vector<std::byte>> data = decode_base64(uri.substr(comma + 1));
-  if (!data) fail(where, "data URI holds invalid base64");
-  return std::move(*data);
-}
-
 std::vector<std::byte> read_file_prefix(const fs::path& path, std::uint64_t length, std::string_view uri,
                                         std::string_view where) {
   std::error_code ec;
@@ -97,6 +82,36 @@ std::vector<std::byte> read_file_prefix(const fs::path& path, std::uint64_t leng
 }
 
 }  // namespace
+
+bool is_data_uri(std::string_view uri) { return starts_with_ignoring_case(uri, "data:"); }
+
+std::vector<std::byte> decode_data_uri(std::string_view uri, std::string_view where) {
+  const std::size_t comma = uri.find(',');
+  if (comma == std::string_view::npos) fail(where, "data URI has no ',' before its data");
+  const std::string_view header = uri.substr(0, comma);
+  constexpr std::string_view base64_marker = ";base64";
+  if (header.size() < base64_marker.size() ||
+      !starts_with_ignoring_case(header.substr(header.size() - base64_marker.size()), base64_marker)) {
+    fail(where, "data URI '" + shortened(header) + "' is not base64-encoded (expected ';base64,')");
+  }
+  std::optional<std::vector<std::byte>> data = decode_base64(uri.substr(comma + 1));
+  if (!data) fail(where, "data URI holds invalid base64");
+  return std::move(*data);
+}
+
+std::vector<std::byte> read_external_file(const fs::path& path, std::string_view what, std::string_view where) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) fail(where, std::string(what) + " not found (looked for '" + path.string() + "')");
+  if (!fs::is_regular_file(status)) fail(where, std::string(what) + " '" + path.string() + "' is not a regular file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) fail(where, "cannot read " + std::string(what) + " '" + path.string() + "': " + ec.message());
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::byte> data(static_cast<std::size_t>(size));
+  in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(size));
+  if (!in) fail(where, "cannot read " + std::string(what) + " '" + path.string() + "'");
+  return data;
+}
 
 fs::path resolve_relative_uri(std::string_view uri, const fs::path& file, std::string_view where) {
   if (has_scheme(uri)) {
@@ -166,7 +181,7 @@ std::span<const std::byte> BufferStore::load(std::size_t index) {
   }
 
   std::vector<std::byte> data;
-  if (starts_with_ignoring_case(*uri, "data:")) {
+  if (is_data_uri(*uri)) {
     data = decode_data_uri(*uri, where);
     if (data.size() < length) {
       fail(where, "data URI holds " + std::to_string(data.size()) + " bytes, fewer than the declared byteLength " +

@@ -56,4 +56,15 @@ class BufferStore {
 std::filesystem::path resolve_relative_uri(std::string_view uri, const std::filesystem::path& file,
                                            std::string_view where);
 
+/// Whether `uri` starts with "data:" (in any case).
+bool is_data_uri(std::string_view uri);
+
+/// The bytes of a base64 data URI ("data:<media type>;base64,<data>"); throws when it is not one.
+std::vector<std::byte> decode_data_uri(std::string_view uri, std::string_view where);
+
+/// The whole content of an external file (e.g. an image) that resolve_relative_uri
+/// found; `what` names it in messages, e.g. "external image 'a.png'".
+std::vector<std::byte> read_external_file(const std::filesystem::path& path, std::string_view what,
+                                          std::string_view where);
+
 }  // namespace geodual::io::detail::gltf

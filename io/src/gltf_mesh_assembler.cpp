@@ -26,8 +26,13 @@ std::string counted(std::size_t n, std::string_view one, std::string_view many) 
 
 }  // namespace
 
-MeshAssembler::MeshAssembler(const Json& root, BufferStore& buffers, bool allow_quantized, std::string where)
-    : root_(root), buffers_(buffers), allow_quantized_(allow_quantized), where_(std::move(where)) {}
+MeshAssembler::MeshAssembler(const Json& root, BufferStore& buffers, TextureStore& textures, bool allow_quantized,
+                             std::string where)
+    : root_(root),
+      buffers_(buffers),
+      allow_quantized_(allow_quantized),
+      where_(std::move(where)),
+      attributes_(root, buffers, textures, allow_quantized, where_) {}
 
 TriangleMesh MeshAssembler::assemble(const std::vector<MeshInstance>& instances) {
   std::size_t total_vertices = 0;
@@ -46,6 +51,12 @@ TriangleMesh MeshAssembler::assemble(const std::vector<MeshInstance>& instances)
            "every mesh), more than a geodual mesh holds");
     }
   }
+
+  std::vector<const PrimitiveAttributes*> planned;
+  for (const auto& [mesh, plan] : plans_) {
+    for (const PrimitivePlan& primitive : plan.primitives) planned.push_back(&primitive.attributes);
+  }
+  attributes_.choose(planned, total_vertices);
 
   vertices_.reserve(3 * total_vertices);
   faces_.reserve(3 * total_triangles);
@@ -107,6 +118,7 @@ std::optional<MeshAssembler::PrimitivePlan> MeshAssembler::plan_primitive(const 
   if (const auto indices = optional_index(primitive, "indices", accessor_count, "accessor", where + ": indices")) {
     plan.indices = view_accessor(root_, buffers_, *indices, AccessorShape::scalar, where + ": indices");
   }
+  plan.attributes = attributes_.plan(primitive, *attributes, plan.positions.count, where);
   plan.where = std::move(where);
   return plan;
 }
@@ -117,17 +129,25 @@ void MeshAssembler::read_instance(const MeshPlan& plan, const MeshInstance& inst
   const bool flip = instance.world.linear().determinant() < 0;
   if (flip) ++mirrored_instances_;
 
-  std::map<std::size_t, std::size_t> first_vertex;  // POSITION accessor -> its first vertex in this instance
+  // POSITION accessor -> its first vertex in this instance and the primitive that appended it
+  std::map<std::size_t, std::pair<std::size_t, const PrimitivePlan*>> first_vertex;
   for (const PrimitivePlan& primitive : plan.primitives) {
     auto found = first_vertex.find(primitive.position_accessor);
     if (found == first_vertex.end()) {
-      found = first_vertex.emplace(primitive.position_accessor, append_positions(primitive.positions, instance)).first;
+      const std::size_t first = append_positions(primitive, instance);
+      found = first_vertex.emplace(primitive.position_accessor, std::pair(first, &primitive)).first;
+    } else if (found->second.second->attributes.sources != primitive.attributes.sources) {
+      ++attribute_conflicts_;
     }
-    append_triangles(primitive, found->second, flip);
+    append_triangles(primitive, found->second.first, flip);
   }
 }
 
-std::size_t MeshAssembler::append_positions(const AccessorView& positions, const MeshInstance& instance) {
+VertexAttributes MeshAssembler::take_attributes() { return attributes_.take(); }
+
+std::size_t MeshAssembler::append_positions(const PrimitivePlan& primitive, const MeshInstance& instance) {
+  const AccessorView& positions = primitive.positions;
+  attributes_.append(primitive.attributes, positions.count, instance);
   const std::size_t first = vertices_.size() / 3;
   gltf::append_positions(positions, allow_quantized_, vertices_);
   if (!instance.identity) {
@@ -208,6 +228,12 @@ std::vector<std::string> MeshAssembler::notes() const {
     notes.push_back("ignored " + counted(trailing_ignored_, "index", "indices") +
                     " after the last whole triangle of TRIANGLES primitives");
   }
+  if (attribute_conflicts_ > 0) {
+    notes.push_back(counted(attribute_conflicts_, "primitive shares", "primitives share") +
+                    " its POSITION accessor with an earlier primitive of the mesh but has other vertex attributes "
+                    "or another material; the shared vertices keep the earlier primitive's");
+  }
+  for (std::string& note : attributes_.notes()) notes.push_back(std::move(note));
   return notes;
 }
 

@@ -14,13 +14,22 @@
 // POINTS and LINES primitives, and primitives without POSITION, are skipped
 // and counted; a mirroring transform (negative determinant) flips the winding
 // so that triangles stay counter-clockwise seen from outside.
+//
+// Vertex attributes (gltf_attributes.hpp) follow the same merge: each
+// appended POSITION accessor gets its rows from the primitive that appended
+// it; a later primitive of the instance that shares that accessor but has
+// other attributes or another material is noted, its shared vertices keep
+// the first primitive's values.
 
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/mesh/vertex_attributes.hpp"
 #include "gltf_accessor.hpp"
+#include "gltf_attributes.hpp"
 #include "gltf_buffers.hpp"
 #include "gltf_constants.hpp"
 #include "gltf_json.hpp"
 #include "gltf_scene_graph.hpp"
+#include "gltf_texture.hpp"
 
 #include <cstddef>
 #include <map>
@@ -33,11 +42,16 @@ namespace geodual::io::detail::gltf {
 class MeshAssembler {
  public:
   /// `allow_quantized`: integer positions are allowed (KHR_mesh_quantization).
-  MeshAssembler(const Json& root, BufferStore& buffers, bool allow_quantized, std::string where);
+  MeshAssembler(const Json& root, BufferStore& buffers, TextureStore& textures, bool allow_quantized,
+                std::string where);
 
   TriangleMesh assemble(const std::vector<MeshInstance>& instances);
 
-  /// Remarks on what was skipped, converted or transformed, for ReadInfo::notes.
+  /// The vertex attributes of the mesh assemble() returned (one row per vertex), moved out.
+  VertexAttributes take_attributes();
+
+  /// Remarks on what was skipped, converted, transformed or read, for
+  /// ReadInfo::notes (complete after take_attributes()).
   std::vector<std::string> notes() const;
 
  private:
@@ -47,6 +61,7 @@ class MeshAssembler {
     std::size_t position_accessor = 0;
     AccessorView positions;
     std::optional<AccessorView> indices;
+    PrimitiveAttributes attributes;
     std::string where;
   };
 
@@ -59,13 +74,14 @@ class MeshAssembler {
   const MeshPlan& plan_mesh(std::size_t mesh, const std::string& where);
   std::optional<PrimitivePlan> plan_primitive(const Json& primitive, std::string where);
   void read_instance(const MeshPlan& plan, const MeshInstance& instance);
-  std::size_t append_positions(const AccessorView& positions, const MeshInstance& instance);
+  std::size_t append_positions(const PrimitivePlan& primitive, const MeshInstance& instance);
   void append_triangles(const PrimitivePlan& primitive, std::size_t first_vertex, bool flip);
 
   const Json& root_;
   BufferStore& buffers_;
   bool allow_quantized_;
   std::string where_;
+  AttributeReader attributes_;
   std::map<std::size_t, MeshPlan> plans_;  // by mesh index
   std::vector<double> vertices_;           // x, y, z per vertex
   std::vector<Index> faces_;               // three per triangle
@@ -78,6 +94,7 @@ class MeshAssembler {
   std::size_t strips_and_fans_ = 0;
   std::size_t degenerate_dropped_ = 0;
   std::size_t trailing_ignored_ = 0;
+  std::size_t attribute_conflicts_ = 0;  // primitives sharing POSITION with different attribute sources
 };
 
 }  // namespace geodual::io::detail::gltf

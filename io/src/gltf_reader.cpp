@@ -11,7 +11,12 @@
 // external files in the current directory, requires an external buffer to be
 // exactly byteLength long, decodes every image, and names no element in its
 // errors. This reader loads nothing but the buffers that the triangle
-// primitives use (see gltf_buffers.hpp).
+// primitives use (see gltf_buffers.hpp) and decodes only the images that
+// give their vertices colour (gltf_texture.hpp).
+//
+// Besides positions and triangles it reads the vertices' colours (the base
+// colour: factor x texture x COLOR_0), normals and "_NAME" scalars into
+// LoadedMesh::attributes (gltf_attributes.hpp).
 
 #include "format_readers.hpp"
 
@@ -21,6 +26,7 @@
 #include "gltf_json.hpp"
 #include "gltf_mesh_assembler.hpp"
 #include "gltf_scene_graph.hpp"
+#include "gltf_texture.hpp"
 
 #include <algorithm>
 #include <array>
@@ -143,8 +149,10 @@ LoadedMesh read_gltf_document(std::span<const std::byte> data, bool binary, cons
 
   gltf::BufferStore buffers(root, bin, name, where);
   const std::vector<gltf::MeshInstance> instances = gltf::collect_mesh_instances(root, where, info.notes);
-  gltf::MeshAssembler assembler(root, buffers, allow_quantized, where);
+  gltf::TextureStore textures(root, buffers, name, where);
+  gltf::MeshAssembler assembler(root, buffers, textures, allow_quantized, where);
   result.mesh = assembler.assemble(instances);
+  result.attributes = assembler.take_attributes();
   for (std::string& note : assembler.notes()) info.notes.push_back(std::move(note));
   return result;
 }

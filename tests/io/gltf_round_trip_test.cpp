@@ -80,7 +80,9 @@ TEST_P(GltfRoundTrip, PositionsBitExactAndFacesExact) {
   const LoadedMesh loaded = read_back(path);
   expect_bit_exact(mesh, loaded.mesh);
   EXPECT_EQ(loaded.info.format, GetParam() == ".glb" ? MeshFormat::glb : MeshFormat::gltf);
-  EXPECT_TRUE(loaded.info.notes.empty());
+  // The writer always stores NORMAL; the reader says it read them, and nothing else.
+  EXPECT_EQ(loaded.info.notes, std::vector<std::string>{"vertex normals from NORMAL"});
+  EXPECT_EQ(loaded.attributes.normals.rows(), mesh.num_vertices());
 }
 
 TEST_P(GltfRoundTrip, LargeMeshWithUint32Indices) {
