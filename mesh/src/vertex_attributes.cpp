@@ -127,14 +127,15 @@ std::string attribute_size_problem(const VertexAttributes& attributes, Index ver
 }
 
 // IEC 61966-2-1: linear below the knee, a 2.4 power above it.
+// Evaluated in double, so that 0 and 1 map to exactly 0 and 1.
 float srgb_from_linear(float linear) {
-  const float c = std::clamp(linear, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  const double c = std::clamp(static_cast<double>(linear), 0.0, 1.0);
+  return static_cast<float>(c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
 }
 
 float linear_from_srgb(float encoded) {
-  const float c = std::clamp(encoded, 0.0f, 1.0f);
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+  const double c = std::clamp(static_cast<double>(encoded), 0.0, 1.0);
+  return static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
 }
 
 }  // namespace geodual

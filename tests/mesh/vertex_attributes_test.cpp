@@ -73,7 +73,8 @@ TEST(VertexAttributes, SizeProblemsNameTheAttribute) {
 
 TEST(VertexAttributes, SrgbEncodingRoundTripsAndMatchesTheStandardsKnee) {
   EXPECT_FLOAT_EQ(srgb_from_linear(0.0f), 0.0f);
-  EXPECT_FLOAT_EQ(srgb_from_linear(1.0f), 1.0f);
+  EXPECT_EQ(srgb_from_linear(1.0f), 1.0f);  // exactly: white stays white
+  EXPECT_EQ(linear_from_srgb(1.0f), 1.0f);
   EXPECT_NEAR(srgb_from_linear(0.18f), 0.4613f, 1e-4);  // middle grey
   for (int i = 0; i <= 255; ++i) {
     const float encoded = static_cast<float>(i) / 255.0f;
