@@ -49,20 +49,26 @@ py::array_t<T, py::array::c_style | py::array::forcecast> as_type(const py::arra
 }
 
 /// `value` as an index into `count` elements: an integer (Python or numpy) in [0, count).
-Index index_from(const py::handle& value, Index count, const char* what) {
-  if (!PyIndex_Check(value.ptr())) {
+Index index_from(const py::handle& value, Index count, const char* what, const char* what_plural) {
+  if (!is_integer(value)) {
     throw py::type_error(std::string(what) + " index must be an integer, got " +
                          std::string(py::str(py::type::handle_of(value).attr("__name__"))));
   }
   const auto index = py::cast<long long>(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
   if (index < 0 || index >= count) {
     throw py::value_error(std::string(what) + " index " + std::to_string(index) + " out of range: the mesh has " +
-                          std::to_string(count) + " " + what + (count == 1 ? "" : "s"));
+                          std::to_string(count) + " " + (count == 1 ? what : what_plural));
   }
   return static_cast<Index>(index);
 }
 
 }  // namespace
+
+bool is_integer(const py::handle& value) {
+  // numpy arrays have __index__ too (for one element); an array is not an integer here.
+  return PyIndex_Check(value.ptr()) &&
+         !(py::isinstance<py::array>(value) && py::reinterpret_borrow<py::array>(value).ndim() > 0);
+}
 
 TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& faces) {
   TriangleMesh mesh;
@@ -131,13 +137,13 @@ ColorMatrix colors_from_array(const py::handle& colors, Index vertex_count) {
 }
 
 std::vector<SurfacePoint> sites_from_object(const py::handle& sites, const TriangleMesh& mesh) {
-  if (PyIndex_Check(sites.ptr()) || (!py::isinstance<py::sequence>(sites) && !py::isinstance<py::array>(sites))) {
+  if (is_integer(sites) || (!py::isinstance<py::sequence>(sites) && !py::isinstance<py::array>(sites))) {
     throw py::type_error("sites must be a sequence of vertex indices or (face, u, v, w) tuples");
   }
   std::vector<SurfacePoint> points;
   for (const py::handle item : sites) {
-    if (PyIndex_Check(item.ptr())) {
-      points.push_back(SurfacePoint::at_vertex(index_from(item, mesh.num_vertices(), "vertex")));
+    if (is_integer(item)) {
+      points.push_back(SurfacePoint::at_vertex(index_from(item, mesh.num_vertices(), "vertex", "vertices")));
       continue;
     }
     if ((!py::isinstance<py::sequence>(item) && !py::isinstance<py::array>(item)) || py::len(item) != 4) {
@@ -147,11 +153,11 @@ std::vector<SurfacePoint> sites_from_object(const py::handle& sites, const Trian
     const py::sequence tuple = py::reinterpret_borrow<py::sequence>(item);
     py::object face = tuple[0];
     // A row of a float k x 4 array: the face index is a float holding an integer.
-    if (!PyIndex_Check(face.ptr()) && PyFloat_Check(py::float_(face).ptr())) {
+    if (!is_integer(face) && PyFloat_Check(face.ptr())) {  // numpy float64 is a float too
       const double value = face.cast<double>();
       if (value == std::floor(value) && std::abs(value) < 1e15) face = py::int_(static_cast<long long>(value));
     }
-    const Index f = index_from(face, mesh.num_faces(), "face");
+    const Index f = index_from(face, mesh.num_faces(), "face", "faces");
     points.push_back(
         SurfacePoint::in_face(f, tuple[1].cast<double>(), tuple[2].cast<double>(), tuple[3].cast<double>()));
   }

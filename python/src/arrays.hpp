@@ -32,6 +32,9 @@ ColorMatrix colors_from_array(const py::handle& colors, Index vertex_count);
 /// geodesic engine.
 std::vector<SurfacePoint> sites_from_object(const py::handle& sites, const TriangleMesh& mesh);
 
+/// A Python or numpy integer (not an array, although one-element arrays have __index__ too).
+bool is_integer(const py::handle& value);
+
 /// New numpy arrays (copies) of geodual's data.
 py::array_t<double> vertices_to_array(const VertexMatrix& vertices);
 py::array_t<Index> faces_to_array(const FaceMatrix& faces);

@@ -32,7 +32,7 @@ struct RemeshResult {
 };
 
 std::int64_t positive_count(const py::handle& value, const char* name) {
-  if (!PyIndex_Check(value.ptr())) throw py::type_error(std::string(name) + " must be an integer");
+  if (!is_integer(value)) throw py::type_error(std::string(name) + " must be an integer");
   const auto count = value.cast<long long>();
   if (count < 1) throw py::value_error(std::string(name) + " must be at least 1, got " + std::to_string(count));
   return count;
@@ -51,7 +51,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
 
   pipeline::RemeshPipelineOptions options;
   if (!sites.is_none()) {
-    if (PyIndex_Check(sites.ptr())) {
+    if (is_integer(sites)) {
       options.sites = positive_count(sites, "sites");
     } else {
       options.given_sites = sites_from_object(sites, input.mesh);
