@@ -34,14 +34,13 @@ bool ProgressBridge::operator()(std::string_view stage, double fraction) {
   return !error_ && !refused_;
 }
 
-void ProgressBridge::raise_cancelled(const std::exception& cancelled) {
+void ProgressBridge::raise_stop(const char* message) {
   if (error_) {
     py::error_already_set error = std::move(*error_);
     error_.reset();
     throw error;
   }
-  const std::string why = refused_ ? " (the progress callback returned False)" : "";
-  throw_cancelled(cancelled.what() + why);
+  if (refused_) throw_cancelled(std::string(message) + " (the progress callback returned False)");
 }
 
 }  // namespace geodual::python

@@ -5,6 +5,8 @@
 // Python once it has unwound: KeyboardInterrupt (or whatever the callable
 // raised) as itself, a False from the callable as geodual.Cancelled.
 
+#include "geodual/mesh/error.hpp"
+
 #include <pybind11/pybind11.h>
 
 #include <optional>
@@ -24,13 +26,16 @@ class ProgressBridge {
   /// For geodual's callbacks; called without the GIL. Returns false to cancel.
   bool operator()(std::string_view stage, double fraction);
 
-  /// Runs `compute()` without the GIL and returns its result. A cancellation
-  /// this bridge caused is raised as the Python exception behind it.
+  /// Runs `compute()` without the GIL and returns its result. A stop this
+  /// bridge caused is raised as the Python exception behind it, whatever
+  /// geodual error the computation unwound with.
   template <class Compute>
   auto run(Compute&& compute) -> decltype(compute());
 
  private:
-  [[noreturn]] void raise_cancelled(const std::exception& cancelled);
+  /// With the GIL: raises what stopped the computation (`message`: geodual's
+  /// error), if this bridge did; returns otherwise.
+  void raise_stop(const char* message);
 
   py::object callable_;
   std::optional<py::error_already_set> error_;  ///< what the callable or Ctrl-C raised
@@ -41,14 +46,13 @@ class ProgressBridge {
 
 }  // namespace geodual::python
 
-#include "geodual/mesh/error.hpp"
-
 template <class Compute>
 auto geodual::python::ProgressBridge::run(Compute&& compute) -> decltype(compute()) {
   try {
     py::gil_scoped_release release;
     return compute();
-  } catch (const Cancelled& cancelled) {
-    raise_cancelled(cancelled);  // the GIL is held again here
+  } catch (const Error& error) {
+    raise_stop(error.what());  // the GIL is held again here
+    throw;
   }
 }

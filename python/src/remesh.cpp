@@ -53,6 +53,9 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   if (!sites.is_none()) {
     if (is_integer(sites)) {
       options.sites = positive_count(sites, "sites");
+    } else if (!py::isinstance<py::sequence>(sites) && !py::isinstance<py::array>(sites)) {
+      throw py::type_error("sites must be a count or a sequence of vertex indices and (face, u, v, w) tuples, got " +
+                           std::string(py::repr(sites)));
     } else {
       options.given_sites = sites_from_object(sites, input.mesh);
     }
@@ -129,7 +132,7 @@ void add_remesh(py::module_& module) {
                std::to_string(py::len(result.faces)) + " faces>";
       });
 
-  module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::kw_only(), py::arg("sites") = py::none(),
+  module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
              py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
              py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = 0.0,
              py::arg("progress") = py::none(), py::arg("statistics") = true,

@@ -117,6 +117,8 @@ def test_remesh_argument_errors(woody):
         geodual.remesh(V, F, sites=100, faces=200)
     with pytest.raises(ValueError, match="at most one of sites, edge_length and faces"):
         geodual.remesh(V, F, sites=100, edge_length=1.0)
+    with pytest.raises(TypeError, match="sites must be a count or a sequence"):
+        geodual.remesh(V, F, 2000.0)
     with pytest.raises(ValueError, match="sites must be at least 1"):
         geodual.remesh(V, F, sites=0)
     with pytest.raises(ValueError, match="edge_length must be a finite number > 0"):
@@ -149,7 +151,7 @@ def test_progress_returning_false_cancels(woody):
         calls.append(stage)
         return stage != "relax"
 
-    with pytest.raises(geodual.Cancelled, match="progress callback returned False"):
+    with pytest.raises(geodual.Cancelled, match="the progress callback returned False"):
         geodual.remesh(V, F, sites=200, progress=stop_in_relax)
     assert calls[-1] == "relax"  # not asked again once it said stop
     assert issubclass(geodual.Cancelled, geodual.Error)
