@@ -13,6 +13,7 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/pipeline/report_json.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
 #include <CLI/CLI.hpp>
@@ -20,7 +21,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <optional>
@@ -31,43 +31,6 @@
 
 namespace geodual::cli {
 namespace {
-
-nlohmann::ordered_json optional_json(const std::optional<double>& value) {
-  return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
-}
-
-/// A genus as 2, not 2.0; null where it means nothing.
-nlohmann::ordered_json genus_json(const std::optional<double>& genus) {
-  if (!genus) return nullptr;
-  if (*genus == std::round(*genus)) return std::llround(*genus);
-  return *genus;
-}
-
-/// The figures of one mesh, under the keys the README documents.
-nlohmann::ordered_json quality_json(const quality::TriangleQuality& q) {
-  nlohmann::ordered_json json;
-  json["vertices"] = q.vertices;
-  json["faces"] = q.faces;
-  json["degenerate_faces"] = q.degenerate_faces;
-  json["q_min"] = q.q_min;
-  json["q_avg"] = q.q_avg;
-  json["theta_min_deg"] = q.theta_min_deg;
-  json["theta_min_avg_deg"] = q.theta_min_avg_deg;
-  json["pct_angles_lt30"] = q.pct_angles_lt30;
-  json["p30"] = q.p30;
-  json["valence_histogram"] = q.valence_histogram;
-  json["interior_vertices"] = q.interior_vertices;
-  json["pct_valence6"] = optional_json(q.pct_valence6);
-  json["euler_characteristic"] = q.euler_characteristic;
-  json["genus"] = genus_json(q.genus);
-  json["components"] = q.components;
-  json["boundary_loops"] = q.boundary_loops;
-  json["nonmanifold_edges"] = q.nonmanifold_edges;
-  json["bbox_diagonal"] = q.bbox_diagonal;
-  json["area"] = q.area;
-  json["volume"] = q.volume;
-  return json;
-}
 
 std::string percent(double value) { return significant(value, 4) + "%"; }
 
@@ -164,31 +127,7 @@ class StatsCommand final : public Command {
     nlohmann::ordered_json json;
     json["reference"] = reference_path_;
     json["candidate"] = candidate_path_;
-    json.update(quality_json(report.candidate));
-    json["hausdorff"] = report.hausdorff;
-    json["rms"] = report.rms;
-    json["hausdorff_pct"] = report.hausdorff_pct;
-    json["rms_pct"] = report.rms_pct;
-    const double diagonal = report.reference.bbox_diagonal;
-    json["hausdorff_reference_to_candidate_pct"] = 100.0 * report.hausdorff_reference_to_candidate / diagonal;
-    json["hausdorff_candidate_to_reference_pct"] = 100.0 * report.hausdorff_candidate_to_reference / diagonal;
-    json["area_change_pct"] = report.area_change_pct;
-    json["volume_change_pct"] = optional_json(report.volume_change_pct);
-    const std::optional<quality::FeatureRecall>& features = report.features;
-    json["sharp_angle_deg"] = options_.sharp_angle_deg;
-    json["feature_tolerance_pct"] = options_.feature_tolerance_pct;
-    json["feature_recall_edges"] = features ? nlohmann::ordered_json(features->edges) : nlohmann::ordered_json(nullptr);
-    json["feature_recall_length"] =
-        features ? nlohmann::ordered_json(features->length) : nlohmann::ordered_json(nullptr);
-    json["feature_recall_pct"] =
-        features ? nlohmann::ordered_json(features->recall_pct) : nlohmann::ordered_json(nullptr);
-    json["feature_max_gap_pct"] =
-        features ? nlohmann::ordered_json(features->max_gap_pct) : nlohmann::ordered_json(nullptr);
-    json["samples_per_side"] = options_.samples_per_side;
-    json["seed"] = options_.seed;
-    json["reference_samples"] = report.reference_samples;
-    json["candidate_samples"] = report.candidate_samples;
-    json["reference_quality"] = quality_json(report.reference);
+    json.update(pipeline::quality_report_json(report, options_));
     json["read_s"] = read_seconds;
     json["stats_s"] = stats_seconds;
     // Paths need not be UTF-8: replace what is not rather than fail.

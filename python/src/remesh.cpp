@@ -1,0 +1,181 @@
+// remesh: the whole pipeline (sample, Lloyd relaxation, dual with repair,
+// statistics) on numpy arrays, through pipeline::run_remesh_pipeline.
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "cancellation.hpp"
+#include "json_to_python.hpp"
+
+#include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/pipeline/remesh_pipeline.hpp"
+#include "geodual/pipeline/report_json.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+namespace geodual::python {
+namespace {
+
+/// What remesh() returns: plain Python objects, read-only attributes.
+struct RemeshResult {
+  py::object vertices;
+  py::object faces;
+  py::object colors;
+  py::object stats;
+  std::int64_t sites = 0;
+  std::int64_t sites_added_for_topology = 0;
+  std::int64_t sites_added = 0;
+  std::int64_t sites_left_out = 0;
+  py::object timings;
+};
+
+std::int64_t positive_count(const py::handle& value, const char* name) {
+  if (!is_integer(value)) throw py::type_error(std::string(name) + " must be an integer");
+  const auto count = value.cast<long long>();
+  if (count < 1) throw py::value_error(std::string(name) + " must be at least 1, got " + std::to_string(count));
+  return count;
+}
+
+RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
+                    const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
+                    const py::object& colors, double sharp_angle, const py::object& progress, bool statistics) {
+  const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
+  if (sizings > 1) {
+    throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
+  }
+  io::LoadedMesh input;
+  input.mesh = mesh_from_arrays(vertices, faces);
+  if (!colors.is_none()) input.attributes.colors = colors_from_array(colors, input.mesh.num_vertices());
+
+  pipeline::RemeshPipelineOptions options;
+  if (!sites.is_none()) {
+    if (is_integer(sites)) {
+      options.sites = positive_count(sites, "sites");
+    } else if (!py::isinstance<py::sequence>(sites) && !py::isinstance<py::array>(sites)) {
+      throw py::type_error("sites must be a count or a sequence of vertex indices and (face, u, v, w) tuples, got " +
+                           std::string(py::repr(sites)));
+    } else {
+      options.given_sites = sites_from_object(sites, input.mesh);
+    }
+  }
+  if (!edge_length.is_none()) {
+    options.edge_length = edge_length.cast<double>();
+    if (!std::isfinite(options.edge_length) || options.edge_length <= 0) {
+      throw py::value_error("edge_length must be a finite number > 0, got " + std::string(py::repr(edge_length)));
+    }
+  }
+  if (!face_count.is_none()) options.faces = positive_count(face_count, "faces");
+  if (lloyd < 0) throw py::value_error("lloyd must be >= 0 (iterations), got " + std::to_string(lloyd));
+  if (seed < 0) throw py::value_error("seed must be >= 0, got " + std::to_string(seed));
+  if (!(sharp_angle >= 0 && sharp_angle <= 180)) {
+    throw py::value_error("sharp_angle must be in [0, 180] degrees (0: no features), got " +
+                          std::to_string(sharp_angle));
+  }
+  options.remesh.lloyd.iterations = lloyd;
+  options.sampling.seed = static_cast<std::uint64_t>(seed);
+  options.remesh.sharp_angle = sharp_angle;
+  options.statistics = statistics;
+  ProgressBridge bridge(progress);
+  options.progress = [&bridge](pipeline::Stage stage, double fraction) {
+    return bridge(pipeline::stage_name(stage), fraction);
+  };
+
+  const pipeline::RemeshPipelineResult run = bridge.run([&] {
+    require_computable_range(input.mesh, "V");
+    return pipeline::run_remesh_pipeline(std::move(input), options);
+  });
+
+  RemeshResult result;
+  const TriangleMesh& mesh = run.remesh.mesh;
+  result.vertices = vertices_to_array(mesh.vertices);
+  result.faces = faces_to_array(mesh.faces);
+  result.colors = run.attributes.colors.rows() > 0 ? py::object(colors_to_array(run.attributes.colors)) : py::none();
+  result.stats = json_to_python(run.statistics ? pipeline::quality_report_json(*run.statistics, options.quality)
+                                               : pipeline::triangle_quality_json(quality::triangle_quality(mesh)));
+  result.sites = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
+  result.sites_added_for_topology = run.sites_added_for_topology;
+  result.sites_added = run.remesh.sites_added;
+  result.sites_left_out = run.remesh.sites_left_out;
+  py::dict timings;
+  for (const pipeline::StageTiming& timing : run.timings) {
+    timings[py::str(std::string(pipeline::stage_name(timing.stage)))] = timing.seconds;
+  }
+  result.timings = std::move(timings);
+  return result;
+}
+
+}  // namespace
+
+void add_remesh(py::module_& module) {
+  py::class_<RemeshResult>(module, "RemeshResult", "What geodual.remesh() returns.")
+      .def_readonly("vertices", &RemeshResult::vertices, "float64 n x 3: the remesh's vertex positions")
+      .def_readonly("faces", &RemeshResult::faces, "int32 m x 3: its triangles, oriented like the input")
+      .def_readonly("colors", &RemeshResult::colors,
+                    "float32 n x 3 / n x 4: the input's colours interpolated at the remesh's vertices, or None")
+      .def_readonly("stats", &RemeshResult::stats,
+                    "dict: with statistics=True the keys of `geodual stats --json` (the remesh's quality "
+                    "figures, Hausdorff/RMS distance to the input, reference_quality...); otherwise the remesh's "
+                    "quality figures only")
+      .def_readonly("sites", &RemeshResult::sites, "the sites sampled (or given), before repair")
+      .def_readonly("sites_added_for_topology", &RemeshResult::sites_added_for_topology,
+                    "sites sampled beyond the count asked because the surface's pieces and boundary loops need "
+                    "them (included in `sites`)")
+      .def_readonly("sites_added", &RemeshResult::sites_added,
+                    "sites the repair added where the dual was not a valid remesh")
+      .def_readonly("sites_left_out", &RemeshResult::sites_left_out,
+                    "given sites the repair left out (each cut a corner off a neighbour's cell)")
+      .def_readonly("timings", &RemeshResult::timings, "dict: seconds per stage (sample, relax, dual, statistics)")
+      .def("__repr__", [](const RemeshResult& result) {
+        return "<geodual.RemeshResult: " + std::to_string(py::len(result.vertices)) + " vertices, " +
+               std::to_string(py::len(result.faces)) + " faces>";
+      });
+
+  module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
+             py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
+             py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = 0.0,
+             py::arg("progress") = py::none(), py::arg("statistics") = true,
+             R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
+
+The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
+are sampled (blue noise), relaxed towards a geodesic centroidal Voronoi
+tessellation by Lloyd iterations, and the dual of their Voronoi diagram is the
+remesh (one vertex per site); where it is not a valid remesh, sites are added
+there and the diagram recomputed.
+
+V, F: the input (n x 3 positions, m x 3 triangles).
+Sizing, at most one of (default: sites=4000):
+  sites        the number of vertices wanted, or the sites themselves as a
+               sequence of vertex indices and (face, u, v, w) tuples
+  edge_length  the edge length wanted, in the mesh's units
+  faces        about this many triangles
+The remesh has exactly `sites` vertices unless the surface's pieces and
+boundary loops need more sites (result.sites_added_for_topology) or the repair
+adds some (result.sites_added) or leaves some out (result.sites_left_out):
+len(result.vertices) == result.sites + result.sites_added - result.sites_left_out.
+lloyd: Lloyd iterations (0: none). seed: the sampling's seed; the same input,
+options and seed give the same result.
+colors: None or the input's per-vertex colours (n x 3 / n x 4, floats in
+[0, 1] or uint8), interpolated to the remesh's vertices (result.colors).
+sharp_angle: keep sharp creases where the normals turn by at least this many
+degrees (0: none).
+progress: None or progress(stage, fraction) with stage one of "sample",
+"relax", "dual", "statistics"; return False to cancel (geodual.Cancelled).
+Ctrl-C raises KeyboardInterrupt.
+statistics: compare the remesh with the input (Hausdorff and RMS distance
+with 10^6 samples per side); result.stats then has the keys of
+`geodual stats --json`.
+
+Returns a RemeshResult: .vertices, .faces, .colors, .stats, .timings, and the
+site counts above. Raises ValueError/TypeError for bad arguments,
+geodual.Error where the remesh is impossible (the message says why).
+
+Example:
+    V, F = geodual.read_mesh("scan.ply")
+    result = geodual.remesh(V, F, sites=2000)
+    print(len(result.vertices), result.stats["q_avg"], result.stats["hausdorff_pct"])
+)");
+}
+
+}  // namespace geodual::python

@@ -1,0 +1,194 @@
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import geodual
+from conftest import grid_plane
+
+# The keys `geodual stats --json` prints, less its paths and times
+# (tests/cli/stats_command_test.cpp checks the CLI's).
+STATS_KEYS = [
+    "vertices", "faces", "degenerate_faces", "q_min", "q_avg", "theta_min_deg", "theta_min_avg_deg",
+    "pct_angles_lt30", "p30", "valence_histogram", "interior_vertices", "pct_valence6",
+    "euler_characteristic", "genus", "components", "boundary_loops", "nonmanifold_edges", "bbox_diagonal",
+    "area", "volume", "hausdorff", "rms", "hausdorff_pct", "rms_pct", "hausdorff_reference_to_candidate_pct",
+    "hausdorff_candidate_to_reference_pct", "area_change_pct", "volume_change_pct", "sharp_angle_deg",
+    "feature_tolerance_pct", "feature_recall_edges", "feature_recall_length", "feature_recall_pct",
+    "feature_max_gap_pct", "samples_per_side", "seed", "reference_samples", "candidate_samples",
+    "reference_quality",
+]
+
+
+@pytest.fixture(scope="module")
+def fertility():
+    return geodual.read_mesh(os.path.join(os.path.dirname(__file__), "..", "data", "fertility.ply"))
+
+
+@pytest.fixture(scope="module")
+def woody():
+    return geodual.read_mesh(os.path.join(os.path.dirname(__file__), "..", "data", "woody.ply"))
+
+
+def test_remesh_2000_sites_gives_2000_vertices_and_the_stats(fertility):
+    V, F = fertility
+    result = geodual.remesh(V, F, sites=2000)
+    # Fertility is one closed piece: no sites are needed for boundary loops,
+    # and on this mesh the repair adds none, so the count is exact.
+    assert result.sites == 2000
+    assert result.sites_added == 0 and result.sites_left_out == 0 and result.sites_added_for_topology == 0
+    assert result.vertices.shape == (2000, 3) and result.vertices.dtype == np.float64
+    assert result.faces.dtype == np.int32 and result.faces.shape[1] == 3
+    assert result.faces.min() >= 0 and result.faces.max() < 2000
+    assert result.colors is None
+    stats = result.stats
+    assert list(stats) == STATS_KEYS
+    assert stats["vertices"] == 2000 and stats["faces"] == len(result.faces)
+    # Genus 4, closed: chi = 2 - 2g = -6, kept by the remesh; F = 2(V - chi).
+    assert stats["genus"] == 4 and stats["euler_characteristic"] == -6 and stats["boundary_loops"] == 0
+    assert len(result.faces) == 2 * (2000 + 6)
+    assert 0.5 < stats["q_avg"] < 1 and 0 < stats["q_min"] <= stats["q_avg"]
+    assert 0 < stats["hausdorff_pct"] < 2 and 0 < stats["rms_pct"] < stats["hausdorff_pct"]
+    assert abs(stats["area_change_pct"]) < 2
+    assert stats["reference_quality"]["vertices"] == len(V)
+    assert stats["reference_quality"]["faces"] == len(F)
+    assert set(result.timings) == {"sample", "relax", "dual", "statistics"}
+    # Remesh vertices lie on the input: within the Hausdorff distance of it.
+    assert np.all(result.vertices.min(axis=0) >= V.min(axis=0) - 1e-9)
+    assert np.all(result.vertices.max(axis=0) <= V.max(axis=0) + 1e-9)
+
+
+def test_remesh_is_deterministic_and_seeded(woody):
+    V, F = woody
+    a = geodual.remesh(V, F, sites=200, lloyd=3, statistics=False)
+    b = geodual.remesh(V, F, sites=200, lloyd=3, statistics=False)
+    c = geodual.remesh(V, F, sites=200, lloyd=3, statistics=False, seed=2)
+    np.testing.assert_array_equal(a.vertices, b.vertices)
+    np.testing.assert_array_equal(a.faces, b.faces)
+    assert not np.array_equal(a.vertices, c.vertices)
+    # Without statistics, the remesh's own quality figures only.
+    assert a.stats["vertices"] == len(a.vertices) and "hausdorff" not in a.stats
+    assert "statistics" not in a.timings
+
+
+def test_remesh_sizing_by_edge_length_and_faces(woody):
+    V, F = woody
+    by_faces = geodual.remesh(V, F, faces=400, lloyd=2, statistics=False)
+    assert 300 < len(by_faces.faces) < 500
+    edges = np.concatenate([by_faces.faces[:, [0, 1]], by_faces.faces[:, [1, 2]], by_faces.faces[:, [2, 0]]])
+    mean_edge = np.linalg.norm(by_faces.vertices[edges[:, 0]] - by_faces.vertices[edges[:, 1]], axis=1).mean()
+    by_length = geodual.remesh(V, F, edge_length=mean_edge, lloyd=2, statistics=False)
+    assert 0.7 * len(by_faces.faces) < len(by_length.faces) < 1.3 * len(by_faces.faces)
+
+
+def test_remesh_with_given_sites_keeps_them(woody):
+    V, F = woody
+    sites = list(range(0, 694, 7))
+    result = geodual.remesh(V, F, sites=sites, lloyd=0, statistics=False)
+    assert result.sites == len(sites)
+    n = len(sites) + result.sites_added - result.sites_left_out
+    assert len(result.vertices) == n
+    if result.sites_left_out == 0:
+        np.testing.assert_array_equal(result.vertices[: len(sites)], V[sites])
+
+
+def test_colors_of_a_linear_field_come_back_linear():
+    V, F = grid_plane(31)
+    V[:, 2] = 0.3 * V[:, 0] - 0.2 * V[:, 1]  # a tilted plane, still flat
+    colors = np.column_stack([V[:, 0], 1 - V[:, 1], 0.5 * V[:, 0] + 0.25 * V[:, 1] + 0.1])
+    result = geodual.remesh(V, F, sites=150, lloyd=2, colors=colors, statistics=False)
+    assert result.colors.dtype == np.float32 and result.colors.shape == (len(result.vertices), 3)
+    x, y = result.vertices[:, 0], result.vertices[:, 1]
+    expected = np.column_stack([x, 1 - y, 0.5 * x + 0.25 * y + 0.1])
+    np.testing.assert_allclose(result.colors, expected, rtol=0, atol=1e-4)
+    # RGBA stays RGBA.
+    rgba = np.column_stack([colors, np.full(len(V), 0.5)])
+    result = geodual.remesh(V, F, sites=150, lloyd=0, colors=rgba, statistics=False)
+    assert result.colors.shape == (len(result.vertices), 4)
+    np.testing.assert_allclose(result.colors[:, 3], 0.5, atol=1e-6)
+
+
+def test_remesh_argument_errors(woody):
+    V, F = woody
+    with pytest.raises(ValueError, match="at most one of sites, edge_length and faces"):
+        geodual.remesh(V, F, sites=100, faces=200)
+    with pytest.raises(ValueError, match="at most one of sites, edge_length and faces"):
+        geodual.remesh(V, F, sites=100, edge_length=1.0)
+    with pytest.raises(TypeError, match="sites must be a count or a sequence"):
+        geodual.remesh(V, F, 2000.0)
+    with pytest.raises(ValueError, match="sites must be at least 1"):
+        geodual.remesh(V, F, sites=0)
+    with pytest.raises(ValueError, match="edge_length must be a finite number > 0"):
+        geodual.remesh(V, F, edge_length=-1.0)
+    with pytest.raises(ValueError, match="lloyd must be >= 0"):
+        geodual.remesh(V, F, lloyd=-1)
+    with pytest.raises(ValueError, match="colors has 3 rows for 694 vertices"):
+        geodual.remesh(V, F, colors=np.zeros((3, 3)))
+    with pytest.raises(TypeError, match="progress must be a callable"):
+        geodual.remesh(V, F, sites=100, progress=5)
+    with pytest.raises(ValueError, match="V must be an n x 3 array"):
+        geodual.remesh(V[:, :2], F)
+
+
+def test_progress_reports_each_stage_in_order(woody):
+    V, F = woody
+    seen = []
+    geodual.remesh(V, F, sites=200, lloyd=2, progress=lambda stage, fraction: seen.append((stage, fraction)))
+    stages = [stage for stage, _ in seen]
+    assert [s for i, s in enumerate(stages) if i == 0 or stages[i - 1] != s] == ["sample", "relax", "dual", "statistics"]
+    assert all(0 <= fraction <= 1 for _, fraction in seen)
+    assert seen[-1] == ("statistics", 1.0)
+
+
+def test_progress_returning_false_cancels(woody):
+    V, F = woody
+    calls = []
+
+    def stop_in_relax(stage, fraction):
+        calls.append(stage)
+        return stage != "relax"
+
+    with pytest.raises(geodual.Cancelled, match="the progress callback returned False"):
+        geodual.remesh(V, F, sites=200, progress=stop_in_relax)
+    assert calls[-1] == "relax"  # not asked again once it said stop
+    assert issubclass(geodual.Cancelled, geodual.Error)
+
+
+def test_progress_raising_keyboard_interrupt_cancels(woody):
+    V, F = woody
+
+    def interrupt(stage, fraction):
+        if stage == "relax" and fraction > 0:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        geodual.remesh(V, F, sites=200, progress=interrupt)
+    # Any other exception the callback raises comes through as itself.
+    with pytest.raises(ZeroDivisionError):
+        geodual.geodesic(V, F, [0], progress=lambda stage, fraction: 1 / 0)
+
+
+def test_ctrl_c_interrupts_a_running_remesh(data_dir):
+    """A real SIGINT while the computation runs without the GIL and without a
+    progress callable: the pipeline's own checks see it and stop."""
+    V, F = geodual.read_mesh(data_dir / "bunny.ply")
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            geodual.remesh(V, F, sites=20000, lloyd=30)  # about a minute if not stopped
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 10
+
+
+def test_help_is_useful():
+    for name in ["remesh", "geodesic", "read_mesh"]:
+        assert "Example" in getattr(geodual, name).__doc__, name
+    assert "polylines" in geodual.voronoi.__doc__ and "colors" in geodual.write_mesh.__doc__
+    assert "edge_length" in geodual.remesh.__doc__ and "progress" in geodual.remesh.__doc__
+    assert issubclass(geodual.Error, RuntimeError) and issubclass(geodual.UsageError, ValueError)
