@@ -92,3 +92,17 @@ def test_bad_colors_raise_clear_errors(tmp_path):
         colors = np.zeros((9, 4))
         colors[4, 3] = 1.5
         geodual.write_mesh(tmp_path / "c.ply", V, F, colors=colors)
+
+
+@pytest.mark.parametrize("extension", [".ply", ".obj", ".glb"])
+def test_colors_round_trip_through_every_format(tmp_path, extension):
+    V, F = grid_plane(5)
+    rng = np.random.default_rng(9)
+    C = rng.integers(0, 256, size=(len(V), 3), dtype=np.uint8)
+    path = tmp_path / ("coloured" + extension)
+    geodual.write_mesh(path, V, F, colors=C)
+    V2, F2, C2 = geodual.read_mesh(path, colors=True)
+    assert C2 is not None and C2.shape == (len(V), 3) and C2.dtype == np.float32
+    # PLY keeps the bytes; OBJ prints k / 255 exactly; glTF's linear COLOR_0 (float32) comes back within rounding.
+    tolerance = 1e-6 if extension == ".glb" else 0
+    np.testing.assert_allclose(C2 * 255, C.astype(np.float64), atol=255 * tolerance + 1e-4)
