@@ -82,24 +82,37 @@ std::vector<PlyColumn> ply_columns(const VertexAttributes& attributes) {
 }
 
 /// Names must be one PLY word, unique, and not one of the coordinates; sizes must match.
-void check_columns(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
-                   const std::vector<PlyColumn>& columns) {
-  if (const std::string problem = attribute_size_problem(attributes, mesh.num_vertices()); !problem.empty()) {
-    throw_file_error(path, "vertex attributes do not fit the mesh: ", problem);
-  }
+std::string column_problem(const std::vector<PlyColumn>& columns) {
   for (std::size_t i = 0; i < columns.size(); ++i) {
     const std::string& name = columns[i].name;
     const bool is_word =
         !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c > ' ' && c <= '~'; });
     if (!is_word) {
-      throw_file_error(path, "vertex property name '", detail::excerpt(name),
-                       "' must be one word of printable ASCII characters");
+      return detail::str_cat("vertex property name '", detail::excerpt(name),
+                             "' must be one word of printable ASCII characters");
     }
     if (name == "x" || name == "y" || name == "z") {
-      throw_file_error(path, "vertex property name '", name, "' is taken by the coordinates");
+      return detail::str_cat("vertex property name '", name, "' is taken by the coordinates");
     }
     for (std::size_t j = 0; j < i; ++j) {
-      if (columns[j].name == name) throw_file_error(path, "vertex property '", name, "' is given twice");
+      if (columns[j].name == name) return detail::str_cat("vertex property '", name, "' is given twice");
+    }
+  }
+  return {};
+}
+
+void check_columns(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
+                   const std::vector<PlyColumn>& columns) {
+  if (const std::string problem = attribute_size_problem(attributes, mesh.num_vertices()); !problem.empty()) {
+    throw_file_error(path, "vertex attributes do not fit the mesh: ", problem);
+  }
+  if (const std::string problem = column_problem(columns); !problem.empty()) throw_file_error(path, problem);
+  // An integer type holds no NaN or infinity.
+  for (const VertexScalar& scalar : attributes.scalars) {
+    if (scalar.type == ValueType::float32 || scalar.type == ValueType::float64) continue;
+    if (!std::all_of(scalar.values.begin(), scalar.values.end(), [](double x) { return std::isfinite(x); })) {
+      throw_file_error(path, "vertex property '", detail::excerpt(scalar.name), "' of type ",
+                       ply_type_name(scalar.type), " has a value that is not finite");
     }
   }
 }
@@ -203,6 +216,10 @@ void write_body(std::ostream& out, const TriangleMesh& mesh, const std::vector<P
 }
 
 }  // namespace
+
+std::string ply_attribute_problem(const VertexAttributes& attributes) {
+  return column_problem(ply_columns(attributes));
+}
 
 void write_ply(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes) {
   detail::check_face_indices(path, mesh);

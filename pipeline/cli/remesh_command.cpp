@@ -16,6 +16,7 @@
 
 #include "geodual/io/atomic_file.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/io/write_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
@@ -86,12 +87,17 @@ class RemeshCommand final : public Command {
     CLI::Option* output =
         command.add_option("-o,--output", output_path_, "The remeshed surface: .glb, .gltf, .ply or .obj");
     CLI::Option* output_dir = command.add_option(
-        "--output-dir", output_dir_,
-        "One output per input, one after another: DIR/<input stem>.<format>; a summary table at the end");
+        "--output-dir", output_dir_, "One output per input: DIR/<input stem>.<format>; a summary table at the end");
     output->excludes(output_dir);
     command.add_option("--format", format_, "With --output-dir: what the outputs are written as")
         ->capture_default_str()
         ->check(CLI::IsMember({"glb", "gltf", "ply", "obj"}))
+        ->needs(output_dir);
+    command
+        .add_option("--jobs", jobs_,
+                    "With --output-dir: scans remeshed at once (0: as many as --threads allows); each holds its "
+                    "scan in memory")
+        ->check(CLI::NonNegativeNumber)
         ->needs(output_dir);
     sites_.add_to(command);
     sites_.add_sizing_to(command);
@@ -224,7 +230,9 @@ class RemeshCommand final : public Command {
     // Scans run side by side, as many at once as --threads allows; each
     // one's messages are held back and printed in the order of the inputs.
     const std::size_t concurrent =
-        std::min(mesh_paths_.size(), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+        std::min(mesh_paths_.size(),
+                 jobs_ > 0 ? static_cast<std::size_t>(jobs_)
+                           : tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
     std::vector<ScanRun> runs(mesh_paths_.size());
     if (concurrent <= 1) {
       for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -283,7 +291,7 @@ class RemeshCommand final : public Command {
     std::ostringstream out, err;  ///< held back for printing in order (concurrent batches)
   };
 
-  /// Scan `i` of the batch into `output`, failures caught into `scan`.
+  /// Scan `i` of the batch into `output`, failures caught into `scan` (none escapes).
   void run_scan(std::size_t i, const std::string& output, const ScanStreams& streams, ScanRun& scan) const {
     const std::string& mesh_path = mesh_paths_[i];
     const auto start = std::chrono::steady_clock::now();
@@ -291,10 +299,13 @@ class RemeshCommand final : public Command {
       scan.json = remesh_scan(mesh_path, output, streams);
     } catch (const Cancelled&) {
       scan.cancelled = true;
+    } catch (const std::bad_alloc&) {
+      scan.error = mesh_path + ": out of memory";
     } catch (const std::exception& error) {
-      const std::string message =
-          dynamic_cast<const std::bad_alloc*>(&error) != nullptr ? "out of memory" : error.what();
+      const std::string message = error.what();
       scan.error = message.rfind(mesh_path + ": ", 0) == 0 ? message : mesh_path + ": " + message;
+    } catch (...) {
+      scan.error = mesh_path + ": unknown error";
     }
     scan.seconds = seconds_since(start);
   }
@@ -307,7 +318,7 @@ class RemeshCommand final : public Command {
     std::condition_variable finished;
     std::vector<std::uint8_t> done(runs.size(), 0);
     std::atomic<std::size_t> next{0};
-    std::vector<std::thread> threads;
+    std::vector<std::jthread> threads;  // joined on the way out, whatever happens
     for (std::size_t w = 0; w < workers; ++w) {
       threads.emplace_back([&] {
         for (std::size_t i = next++; i < runs.size(); i = next++) {
@@ -327,15 +338,16 @@ class RemeshCommand final : public Command {
       std::unique_lock lock(mutex);
       finished.wait(lock, [&] { return done[i] != 0; });
       lock.unlock();
+      // After Ctrl-C, the scans that finished anyway (their outputs are written) are still reported.
       cancelled = cancelled || runs[i].cancelled;
-      if (cancelled) continue;
+      if (runs[i].cancelled || (cancelled && !runs[i].json)) continue;
       std::cerr << runs[i].err.str();
       if (!runs[i].error.empty()) report_error(runs[i].error);
       std::cout << runs[i].out.str();
       if (!json_ && runs[i].json) std::cout << '\n';  // a blank line after the scan's table
       std::cout.flush();
     }
-    for (std::thread& thread : threads) thread.join();
+    threads.clear();  // joins
     if (cancelled) throw Cancelled("remesh cancelled");
   }
 
@@ -360,6 +372,13 @@ class RemeshCommand final : public Command {
     };
     io::LoadedMesh loaded = io::read_mesh(mesh_path);
     require_computable_range(loaded.mesh, mesh_path);
+    // Attributes a PLY output could not name: said now, not after the work.
+    if (options.attributes && io::lowercase_extension(output_path) == ".ply") {
+      if (const std::string problem = io::ply_attribute_problem(loaded.attributes); !problem.empty()) {
+        throw Error(mesh_path + ": its vertex attributes cannot be written as PLY (" + problem +
+                    "); remesh with --attributes none, or write glTF");
+      }
+    }
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
     options.edge_length = sites_.edge_length(loaded.mesh);
     options.faces = sites_.faces();
@@ -604,6 +623,7 @@ class RemeshCommand final : public Command {
   std::string output_path_;
   std::string output_dir_;
   std::string format_ = "glb";
+  int jobs_ = 0;
   SiteSource sites_{"poisson"};  // blue noise: Lloyd converges from it in fewer steps
   std::string preview_path_;
   remesh::RemeshOptions options_;

@@ -244,7 +244,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& result) {
   const remesh::RepairedDual& remeshed = result.remesh;
   std::vector<SurfacePoint> points(static_cast<std::size_t>(remeshed.mesh.num_vertices()));
-  const bool features = !result.feature_cut.original_vertex.empty();
+  const bool features = !result.features.empty();  // then the sites are on result.feature_cut.mesh
   for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
     SurfacePoint point = remeshed.sites[site];
     if (point.kind == SurfacePoint::Kind::vertex) {

@@ -5,6 +5,7 @@
 #include "cli_runner.hpp"
 #include "scratch_folder.hpp"
 
+#include "geodual/io/gltf.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
 
@@ -132,6 +133,33 @@ TEST_F(ColouredScan, AttributesNoneDropsThem) {
   const CliRun bad = remesh(folder_.path() / "x.ply", {"--attributes", "some"});
   EXPECT_NE(bad.exit_status, 0);
   EXPECT_FALSE(fs::exists(folder_.path() / "x.ply"));
+}
+
+// A glTF scalar "_x" would be PLY's property x: refused before the work, and
+// nothing is written; glTF output, or --attributes none, goes through.
+TEST(RemeshAttributes, NamesAPlyOutputCannotHoldFailBeforeTheWork) {
+  ScratchFolder folder;
+  io::LoadedMesh loaded = io::read_mesh("tests/data/woody.ply");
+  const auto n = static_cast<std::size_t>(loaded.mesh.num_vertices());
+  io::GltfScene scene;
+  scene.triangle_meshes.push_back(
+      {.mesh = loaded.mesh, .scalars = {{.name = "_x", .values = std::vector<float>(n, 1.0f)}}});
+  const fs::path input = folder.path() / "scalar_x.glb";
+  io::write_gltf(input, scene);
+  const std::vector<std::string> options = {"--sites", "100", "--lloyd", "0", "--samples", "-1"};
+  const auto run = [&](const fs::path& out, std::vector<std::string> extra) {
+    std::vector<std::string> arguments = {"remesh", input.string(), "-o", out.string()};
+    arguments.insert(arguments.end(), options.begin(), options.end());
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    return run_cli(arguments);
+  };
+  const CliRun refused = run(folder.path() / "out.ply", {});
+  EXPECT_EQ(refused.exit_status, 1);
+  EXPECT_NE(refused.err.find("'x' is taken by the coordinates"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--attributes none"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(folder.path() / "out.ply"));
+  EXPECT_EQ(run(folder.path() / "plain.ply", {"--attributes", "none"}).exit_status, 0);
+  EXPECT_EQ(run(folder.path() / "out.glb", {}).exit_status, 0);
 }
 
 }  // namespace

@@ -649,6 +649,16 @@ TEST(RemeshCommand, ABatchWritesEveryOutputTheSameBytesAsSingleRuns) {
     EXPECT_EQ(line.substr(line.size() - 2), "ok") << line;
   }
   EXPECT_NE(batch.out.find("2 of 2 scans"), std::string::npos) << batch.out;
+  // --jobs 1: one scan at a time, the same bytes (checked against the single runs below).
+  const auto sequential = folder.path() / "sequential";
+  std::filesystem::create_directories(sequential);
+  ASSERT_EQ(run_cli(concat({"remesh", small_scan, genus_four, "--output-dir", sequential.string(), "--format", "ply",
+                            "--jobs", "1"},
+                           batch_options()))
+                .exit_status,
+            0);
+  EXPECT_EQ(slurp(sequential / "woody.ply"), slurp(dir / "woody.ply"));
+  EXPECT_EQ(slurp(sequential / "fertility.ply"), slurp(dir / "fertility.ply"));
   // Each output is the single run's bytes, with the same options.
   for (const auto& [scan, name] :
        {std::pair<std::string, std::string>{small_scan, "woody.ply"}, {genus_four, "fertility.ply"}}) {

@@ -24,6 +24,11 @@ namespace geodual::io {
 /// range. Violations throw geodual::Error naming the path; nothing is written.
 void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {});
 
+/// Why write_ply would refuse the names of `attributes` (e.g. "vertex property
+/// 'x' is taken by the coordinates"), or an empty string: to check before
+/// the work whose result is written.
+std::string ply_attribute_problem(const VertexAttributes& attributes);
+
 /// Wavefront OBJ ("v x y z", "f a b c", 1-based). Coordinates are printed in
 /// the shortest form that reads back as the same double (std::to_chars: at most
 /// max_digits10 = 17 significant digits), so the round trip is exact. With
