@@ -5,9 +5,9 @@
 //    (tinygltf carries its own) and stb's process-wide settings (compression
 //    level, vertical flip) stay private to this file and at their defaults;
 //  - no new link dependency or CMake change: the header is all we need;
-//  - the header lives in /usr/include, a system header directory, so its own
-//    warnings do not reach -Werror; the pragmas below keep it that way if it
-//    is ever found through an ordinary -I path.
+//  - the header lives in /usr/include (libstb-dev), a system header
+//    directory, so its own warnings do not reach -Werror: no pragmas needed,
+//    here or where geodual includes stb elsewhere.
 //  - STBI_WRITE_NO_STDIO: we only encode to memory (files are written
 //    atomically by atomic_file.cpp).
 
@@ -20,15 +20,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC
 #define STBI_WRITE_NO_STDIO
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wpedantic"
 #include <stb/stb_image_write.h>
-#pragma GCC diagnostic pop
 
 namespace geodual::io::detail {
 namespace {
