@@ -97,7 +97,7 @@ class RemeshCommand final : public Command {
         .add_option("--jobs", jobs_,
                     "With --output-dir: scans remeshed at once (0: as many as --threads allows); each holds its "
                     "scan in memory")
-        ->check(CLI::NonNegativeNumber)
+        ->check(integer_between(0, 4096))
         ->needs(output_dir);
     sites_.add_to(command);
     sites_.add_sizing_to(command);
