@@ -1,6 +1,7 @@
 // geodual remesh MESH -o OUT (--sites N | --edge-length L[%] | --faces N | --site-file F) [--sampling S]
 //                     [--seed S] [--plain-lloyd]
-//                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--warm-start K] [--json]
+//                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--geodesic-tolerance T] [--warm-start K]
+//                     [--json]
 //                     [--preview OUT.png]
 //                     [--max-repair-rounds K]
 // geodual remesh MESH... --output-dir DIR [--format glb|gltf|ply|obj] (the same options)
@@ -111,7 +112,13 @@ class RemeshCommand final : public Command {
         ->check(integer_between(0, 100000));
     command
         .add_option("--lloyd-tolerance,--lloyd-tol", options_.lloyd.tolerance,
-                    "Stop Lloyd once an iteration lowers the CVT energy by less than this fraction")
+                    "Stop Lloyd (and its warm start) once a step lowers the CVT energy by less than this fraction")
+        ->capture_default_str()
+        ->check(finite_non_negative());
+    command
+        .add_option("--geodesic-tolerance", options_.lloyd.geodesic_tolerance,
+                    "Stop the Lloyd iterations, each an exact geodesic diagram, once one lowers the CVT energy by "
+                    "less than this fraction (0: only --lloyd-tolerance)")
         ->capture_default_str()
         ->check(finite_non_negative());
     command
@@ -590,6 +597,7 @@ class RemeshCommand final : public Command {
     options["seed"] = sites_.seed();
     options["lloyd_iterations"] = options_.lloyd.iterations;
     options["lloyd_tolerance"] = options_.lloyd.tolerance;
+    options["geodesic_tolerance"] = options_.lloyd.geodesic_tolerance;
     options["warm_start_iterations"] = options_.lloyd.warm_start_iterations;
     options["newton"] = options_.lloyd.newton;
     options["curvature_adaptation"] = options_.curvature_adaptation;

@@ -176,7 +176,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   const TriangleMesh& surface = features ? result.feature_cut.mesh : result.surface.mesh;
   remesh::LloydOptions lloyd =
       remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
-  const int diagrams = lloyd.iterations + 1;
+  // From the warm start the iterations mostly stop after one or two (LloydOptions::geodesic_tolerance).
+  const int diagrams = std::min(lloyd.iterations, 2) + 1;
   int diagrams_done = 0;  // the first diagram, then one per accepted iteration
   double relaxed = 0;     // the fraction reported last
   if (options.progress) {

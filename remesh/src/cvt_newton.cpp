@@ -81,7 +81,7 @@ Eigen::VectorXd truncated_newton(const Eigen::SparseMatrix<double>& hessian, con
 }  // namespace
 
 std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
-                                                        const voronoi::GeodesicField& field) {
+                                                        const voronoi::SurfaceTopology& topology) {
   std::vector<Eigen::Vector3d> normal(sites.size(), Eigen::Vector3d::Zero());
   std::vector<Index> vertex_site;
   for (std::size_t s = 0; s < sites.size(); ++s) {
@@ -94,7 +94,7 @@ std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh
   }
   if (!vertex_site.empty()) {
     for (Index f = 0; f < mesh.faces.rows(); ++f) {
-      if (field.face_edges[f][0] < 0) continue;
+      if (topology.face_edges[f][0] < 0) continue;
       for (int c = 0; c < 3; ++c) {
         const Index s = vertex_site[mesh.faces(f, c)];
         if (s >= 0) normal[s] += face_normal(mesh, f);

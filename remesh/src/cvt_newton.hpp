@@ -29,7 +29,7 @@
 
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
-#include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 
 #include <Eigen/Core>
 
@@ -63,7 +63,7 @@ struct CvtBoundary {
 /// the area-weighted normal of the faces around it (the planes in which the
 /// diagram's log moments lie).
 std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
-                                                        const voronoi::GeodesicField& field);
+                                                        const voronoi::SurfaceTopology& topology);
 
 /// Per site, its step as a 3D vector in the site's tangent plane (zero for the
 /// sites not movable), at most max_step * sqrt(cell area) long.

@@ -19,38 +19,37 @@
 namespace geodual::remesh {
 namespace {
 
-/// True for a face point on a boundary edge of the propagation surface.
-bool on_boundary(const voronoi::GeodesicField& field, const SurfacePoint& point) {
+/// True for a face point on a boundary edge of the surface.
+bool on_boundary(const voronoi::SurfaceTopology& topology, const SurfacePoint& point) {
   for (int c = 0; c < 3; ++c) {
     if (point.barycentric[c] != 0) continue;
-    const Index edge = field.face_edges[point.element][(c + 1) % 3];  // the side opposite corner c
-    if (edge >= 0 && (field.edge_faces[edge][0] < 0 || field.edge_faces[edge][1] < 0)) return true;
+    const Index edge = topology.face_edges[point.element][(c + 1) % 3];  // the side opposite corner c
+    if (edge >= 0 && (topology.edge_faces[edge][0] < 0 || topology.edge_faces[edge][1] < 0)) return true;
   }
   return false;
 }
 
-/// Per site, whether a step may move it: its cell has area, and it is not on
-/// the boundary unless boundary sites move.
+/// Per site, whether a step may move it: it is not on the boundary unless
+/// boundary sites move. (A site whose cell is empty stays too: the steps
+/// check that.)
 std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
-                                const voronoi::GeodesicField& field, std::span<const double> cell_area,
-                                const LloydOptions& options) {
+                                const voronoi::SurfaceTopology& topology, const LloydOptions& options) {
+  std::vector<bool> movable(sites.size(), true);
+  if (options.move_boundary_sites) return movable;
   std::vector<bool> boundary_vertex;
   const bool vertex_sites = std::any_of(sites.begin(), sites.end(),
                                         [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
-  if (vertex_sites && !options.move_boundary_sites) {
+  if (vertex_sites) {
     boundary_vertex.assign(static_cast<std::size_t>(mesh.vertices.rows()), false);
-    for (std::size_t e = 0; e < field.edge_faces.size(); ++e) {
-      if (field.edge_faces[e][0] >= 0 && field.edge_faces[e][1] >= 0) continue;
-      for (const Index v : field.edge_vertices[e]) boundary_vertex[v] = true;
+    for (std::size_t e = 0; e < topology.edge_faces.size(); ++e) {
+      if (topology.edge_faces[e][0] >= 0 && topology.edge_faces[e][1] >= 0) continue;
+      for (const Index v : topology.edge_vertices[e]) boundary_vertex[v] = true;
     }
   }
-  std::vector<bool> movable(sites.size());
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const SurfacePoint& site = sites[i];
-    const bool boundary =
-        !options.move_boundary_sites &&
-        (site.kind == SurfacePoint::Kind::vertex ? bool(boundary_vertex[site.element]) : on_boundary(field, site));
-    movable[i] = cell_area[i] > 0 && !boundary;
+    movable[i] =
+        !(site.kind == SurfacePoint::Kind::vertex ? bool(boundary_vertex[site.element]) : on_boundary(topology, site));
   }
   return movable;
 }
@@ -70,7 +69,7 @@ std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, con
 std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                           const voronoi::VoronoiDiagram& diagram, const detail::WeightedCells& cells,
                                           const std::vector<bool>& movable, double damping, double max_step) {
-  const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, diagram.field);
+  const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, *diagram.field.topology);
   std::vector<Eigen::Vector3d> position(sites.size());
   for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
   std::vector<detail::CvtBoundary> boundaries;
@@ -86,8 +85,9 @@ std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<co
 
 /// The Newton step on the restricted Voronoi diagram's cells.
 std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
-                                          const voronoi::GeodesicField& topology, const detail::RestrictedCells& cells,
-                                          const std::vector<bool>& movable, double damping, double max_step) {
+                                          const voronoi::SurfaceTopology& topology,
+                                          const detail::RestrictedCells& cells, const std::vector<bool>& movable,
+                                          double damping, double max_step) {
   const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, topology);
   std::vector<Eigen::Vector3d> position(sites.size());
   for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
@@ -105,7 +105,7 @@ std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<co
 /// Lloyd's steps on the restricted diagram: `factor` times the way to each
 /// cell's centroid, taken into the site's tangent plane.
 std::vector<Eigen::Vector3d> lloyd_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
-                                         const voronoi::GeodesicField& topology, const detail::RestrictedCells& cells,
+                                         const voronoi::SurfaceTopology& topology, const detail::RestrictedCells& cells,
                                          const std::vector<bool>& movable, double factor) {
   const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, topology);
   std::vector<Eigen::Vector3d> steps(movable.size(), Eigen::Vector3d::Zero());
@@ -169,7 +169,7 @@ bool relaxation_step(const LloydOptions& options, double energy, StepControl& co
 /// (restricted_voronoi.hpp) for at most options.warm_start_iterations steps,
 /// stopping early by the same rules. Returns the sites reached and counts
 /// the steps taken.
-std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::GeodesicField& topology,
+std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::vector<SurfacePoint> sites, const std::vector<bool>& movable,
                                      const LloydOptions& options, int& steps_taken) {
   detail::RestrictedCells cells = detail::restricted_voronoi(mesh, topology, sites, options.density);
@@ -211,6 +211,8 @@ void check_options(const LloydOptions& options) {
   require(options.warm_start_iterations >= 0,
           "warm_start_iterations must be >= 0, got " + std::to_string(options.warm_start_iterations));
   require(options.tolerance >= 0, "tolerance must be >= 0, got " + std::to_string(options.tolerance));
+  require(options.geodesic_tolerance >= 0,
+          "geodesic_tolerance must be >= 0, got " + std::to_string(options.geodesic_tolerance));
   require(options.over_relaxation > 0 && options.over_relaxation < 2,
           "over_relaxation must be in (0, 2), got " + std::to_string(options.over_relaxation));
   require(options.newton_damping > 0 && std::isfinite(options.newton_damping),
@@ -252,7 +254,17 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   auto cells_of = [&](const std::vector<SurfacePoint>& points, const voronoi::VoronoiDiagram& diagram) {
     return detail::weighted_cells(mesh, points, diagram, options.density);
   };
+  const voronoi::SurfaceTopology& topology = *surface.topology();
+  const std::vector<bool> boundary_fixed = movable_sites(mesh, sites, topology, options);
   result.sites = std::move(sites);
+  // The warm start needs no geodesics: the first diagram is that of the
+  // sites it reaches (issue #17: no diagram just to judge it).
+  if (options.iterations > 0 && options.warm_start_iterations > 0) {
+    const auto start = std::chrono::steady_clock::now();
+    result.sites =
+        warm_start(mesh, topology, std::move(result.sites), boundary_fixed, options, result.warm_start_iterations);
+    result.warm_start_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   result.diagram = diagram_of(result.sites);
   detail::WeightedCells cells = cells_of(result.sites, result.diagram);
   result.energy.push_back(cells.total_energy());
@@ -261,37 +273,15 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   };
   tell(false);
 
-  if (options.iterations > 0 && options.warm_start_iterations > 0) {
-    const auto start = std::chrono::steady_clock::now();
-    const std::vector<bool> movable =
-        movable_sites(mesh, result.sites, result.diagram.field, result.diagram.cell_area, options);
-    std::vector<SurfacePoint> warm =
-        warm_start(mesh, result.diagram.field, result.sites, movable, options, result.warm_start_iterations);
-    result.warm_start_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (result.warm_start_iterations > 0) {
-      voronoi::VoronoiDiagram next = diagram_of(warm);
-      detail::WeightedCells next_cells = cells_of(warm, next);
-      // Kept only if it lowers the (geodesic) energy, which it does unless
-      // the two diagrams differ wildly.
-      if (next_cells.total_energy() < result.energy.back()) {
-        result.sites = std::move(warm);
-        result.diagram = std::move(next);
-        cells = std::move(next_cells);
-        result.energy.push_back(cells.total_energy());
-      } else {
-        result.warm_start_iterations = 0;
-      }
-    }
-  }
-
   StepControl control = initial_control(options);
+  const double stop_fraction = std::max(options.tolerance, options.geodesic_tolerance);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const double previous = result.energy.back();
-    const std::vector<bool> movable =
-        movable_sites(mesh, result.sites, result.diagram.field, result.diagram.cell_area, options);
+    std::vector<bool> movable = boundary_fixed;
+    for (std::size_t i = 0; i < movable.size(); ++i) movable[i] = movable[i] && result.diagram.cell_area[i] > 0;
     auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       const auto start = std::chrono::steady_clock::now();
-      std::vector<SurfacePoint> moved = detail::move_sites(mesh, result.diagram.field, result.sites, steps);
+      std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, result.sites, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       voronoi::VoronoiDiagram next = diagram_of(moved);
       detail::WeightedCells next_cells = cells_of(moved, next);
@@ -314,7 +304,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     // Not even Lloyd's step lowers the energy: stop here.
     if (!relaxation_step(options, previous, control, newton, lloyd, take)) break;
     ++result.iterations;
-    if (previous - result.energy.back() < options.tolerance * previous) break;
+    if (previous - result.energy.back() < stop_fraction * previous) break;
     tell(false);
   }
   tell(true);

@@ -93,7 +93,7 @@ struct Scratch {
 
 double RestrictedCells::total_energy() const { return std::accumulate(energy.begin(), energy.end(), 0.0); }
 
-RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::GeodesicField& topology,
+RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                    std::span<const SurfacePoint> sites, std::span<const double> density) {
   const std::size_t site_count = sites.size();
   std::vector<Eigen::Vector3d> position(site_count);
@@ -274,11 +274,15 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
       first = last;
     }
   };
-  // Each cell is integrated by one thread on its own, and each block of
-  // sites keeps its boundary pieces apart: the sums and the order of the
-  // pieces do not depend on the threads.
+  // Each cell is integrated by one thread on its own, the cells taken in
+  // the grid's Z-order so that neighbouring cells, which share faces, run
+  // close together in time (the faces and their corners are then still in
+  // the cache). Each block of cells keeps its boundary pieces apart; they are
+  // gathered in the order of the sites at the end, so the sums and the order
+  // of the pieces do not depend on the threads.
   constexpr std::size_t kBlock = 256;
   struct Block {
+    std::vector<Index> cell_begin;  // per slot of the block, its first boundary
     std::vector<RestrictedBoundary> boundaries;
     std::vector<Eigen::Vector3d> segment_ends;
   };
@@ -286,23 +290,34 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Geod
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       Scratch& scratch = scratches.local();
-                      for (std::size_t block = range.begin(); block != range.end(); ++block) {
+                      for (std::size_t b = range.begin(); b != range.end(); ++b) {
+                        Block& block = blocks[b];
                         scratch.boundaries.clear();
                         scratch.segment_ends.clear();
-                        for (std::size_t s = block * kBlock; s < std::min(site_count, (block + 1) * kBlock); ++s) {
-                          cell(static_cast<Index>(s), scratch);
+                        for (std::size_t slot = b * kBlock; slot < std::min(site_count, (b + 1) * kBlock); ++slot) {
+                          block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
+                          cell(grid.original(static_cast<Index>(slot)), scratch);
                         }
-                        blocks[block] = {scratch.boundaries, scratch.segment_ends};
+                        block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
+                        block.boundaries = scratch.boundaries;
+                        block.segment_ends = scratch.segment_ends;
                       }
                     });
-  for (const Block& block : blocks) {
-    const auto offset = static_cast<Index>(cells.segment_ends.size());
-    for (RestrictedBoundary boundary : block.boundaries) {
-      boundary.begin += offset;
-      boundary.end += offset;
+  std::vector<Index> slot_of(site_count);
+  for (Index slot = 0; slot < static_cast<Index>(site_count); ++slot) slot_of[grid.original(slot)] = slot;
+  for (std::size_t s = 0; s < site_count; ++s) {
+    const auto slot = static_cast<std::size_t>(slot_of[s]);
+    const Block& block = blocks[slot / kBlock];
+    const std::size_t k = slot % kBlock;
+    for (Index b = block.cell_begin[k]; b < block.cell_begin[k + 1]; ++b) {
+      RestrictedBoundary boundary = block.boundaries[b];
+      const auto begin = static_cast<Index>(cells.segment_ends.size());
+      cells.segment_ends.insert(cells.segment_ends.end(), block.segment_ends.begin() + boundary.begin,
+                                block.segment_ends.begin() + boundary.end);
+      boundary.end = begin + (boundary.end - boundary.begin);
+      boundary.begin = begin;
       cells.boundaries.push_back(boundary);
     }
-    cells.segment_ends.insert(cells.segment_ends.end(), block.segment_ends.begin(), block.segment_ends.end());
   }
   return cells;
 }

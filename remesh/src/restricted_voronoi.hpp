@@ -21,7 +21,7 @@
 
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
-#include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 
 #include <Eigen/Core>
 
@@ -52,11 +52,11 @@ struct RestrictedCells {
   double total_energy() const;
 };
 
-/// The cells of `sites` on `mesh`, crossing edges as `topology` (a geodesic
-/// field's propagation topology) joins faces. `density`: one value per mesh
+/// The cells of `sites` on `mesh`, crossing edges as the surface's
+/// `topology` joins faces. `density`: one value per mesh
 /// vertex, or empty for 1. A site that shares its position with another
 /// gets an empty cell. Bit-identical for any number of threads.
-RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::GeodesicField& topology,
+RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                    std::span<const SurfacePoint> sites, std::span<const double> density);
 
 }  // namespace geodual::remesh::detail

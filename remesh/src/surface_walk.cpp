@@ -33,8 +33,8 @@ Eigen::Vector3d barycentric_in(const TriangleMesh& mesh, Index face, const Eigen
 
 }  // namespace
 
-SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicField& field, const SurfacePoint& start,
-                             const Eigen::Vector3d& direction, double length) {
+SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
+                             const SurfacePoint& start, const Eigen::Vector3d& direction, double length) {
   if (start.kind != SurfacePoint::Kind::face || !(length > 0) || !direction.allFinite()) return start;
   Index face = start.element;
   Eigen::Vector3d p = start.position(mesh);
@@ -63,7 +63,7 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     double exit_t = INFINITY;
     int exit_side = -1;
     for (int k = 0; k < 3; ++k) {
-      if (field.face_edges[face][k] == entry_edge) continue;
+      if (topology.face_edges[face][k] == entry_edge) continue;
       const Eigen::Vector3d a = corner(mesh, face, k), b = corner(mesh, face, (k + 1) % 3);
       const Eigen::Vector3d side = b - a;
       // p + t v = a + u side, within the face's plane.
@@ -79,8 +79,9 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
     }
     p += exit_t * v;
     remaining -= exit_t;
-    const Index edge = field.face_edges[face][exit_side];
-    const Index next = field.edge_faces[edge][0] == face ? field.edge_faces[edge][1] : field.edge_faces[edge][0];
+    const Index edge = topology.face_edges[face][exit_side];
+    const Index next =
+        topology.edge_faces[edge][0] == face ? topology.edge_faces[edge][1] : topology.edge_faces[edge][0];
     if (next < 0) return stop();  // the mesh boundary: stop on it
     // Unfold about the edge: keep the component along it, and turn the rest
     // into the next face's plane, pointing into that face.
@@ -112,18 +113,18 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicFi
   return stop();
 }
 
-VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
+VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology) {
   VertexFans fans;
   fans.begin.assign(static_cast<std::size_t>(mesh.num_vertices()) + 1, 0);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (field.face_edges[f][0] < 0) continue;
+    if (topology.face_edges[f][0] < 0) continue;
     for (int c = 0; c < 3; ++c) ++fans.begin[mesh.faces(f, c) + 1];
   }
   std::partial_sum(fans.begin.begin(), fans.begin.end(), fans.begin.begin());
   fans.face.resize(static_cast<std::size_t>(fans.begin.back()));
   std::vector<Index> fill(fans.begin.begin(), fans.begin.end() - 1);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (field.face_edges[f][0] < 0) continue;
+    if (topology.face_edges[f][0] < 0) continue;
     for (int c = 0; c < 3; ++c) fans.face[fill[mesh.faces(f, c)]++] = f;
   }
   return fans;
@@ -131,7 +132,7 @@ VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& f
 
 /// Every site walked along the surface by its step (a tangent vector at the
 /// site); a pair landing on one point keeps its old places.
-std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
+std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::span<const SurfacePoint> sites, std::span<const Eigen::Vector3d> steps) {
   std::vector<SurfacePoint> moved(sites.begin(), sites.end());
   // A vertex site steps from the corner of the face around it whose angle
@@ -139,7 +140,7 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Ge
   VertexFans fans;
   if (std::any_of(sites.begin(), sites.end(),
                   [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
-    fans = vertex_fans(mesh, field);
+    fans = vertex_fans(mesh, topology);
   }
   auto as_face_point = [&](const SurfacePoint& site, const Eigen::Vector3d& step) {
     if (site.kind == SurfacePoint::Kind::face || fans.begin.empty()) return site;
@@ -170,7 +171,7 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Ge
                         if (!(length > 0)) continue;
                         const SurfacePoint site = as_face_point(sites[i], step);
                         if (site.kind != SurfacePoint::Kind::face) continue;
-                        moved[i] = walk_on_surface(mesh, field, site, step, length);
+                        moved[i] = walk_on_surface(mesh, topology, site, step, length);
                       }
                     });
   std::vector<std::size_t> order(moved.size());

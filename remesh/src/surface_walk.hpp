@@ -6,7 +6,7 @@
 
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
-#include "geodual/voronoi/geodesic_field.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
 
 #include <Eigen/Core>
 
@@ -17,12 +17,12 @@ namespace geodual::remesh::detail {
 
 /// The point reached from `start` (a face point) after walking `length` along
 /// `direction` (a 3D vector in the plane of start's face; its length is
-/// ignored). Uses the propagation topology of `field` to cross edges.
-SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::GeodesicField& field, const SurfacePoint& start,
-                             const Eigen::Vector3d& direction, double length);
+/// ignored). Crosses edges as the surface's `topology` joins faces.
+SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
+                             const SurfacePoint& start, const Eigen::Vector3d& direction, double length);
 
 /// Per vertex, the faces around it that take part in the propagation (see
-/// `field`): those of vertex v are around(v).
+/// `topology`): those of vertex v are around(v).
 struct VertexFans {
   std::vector<Index> begin;
   std::vector<Index> face;
@@ -30,14 +30,14 @@ struct VertexFans {
     return {face.data() + begin[v], static_cast<std::size_t>(begin[v + 1] - begin[v])};
   }
 };
-VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::GeodesicField& field);
+VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology);
 
 /// Every site walked along the surface by its step (a 3D vector in the
 /// site's tangent plane, as cvt_newton.hpp's frames describe it): a face site
 /// from its face, a vertex site from the face around it whose corner angle
 /// holds the step. A pair of sites landing on one point keeps its old places.
 /// Bit-identical for any number of threads.
-std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::GeodesicField& field,
+std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::span<const SurfacePoint> sites, std::span<const Eigen::Vector3d> steps);
 
 }  // namespace geodual::remesh::detail

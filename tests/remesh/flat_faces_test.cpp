@@ -105,7 +105,8 @@ TEST(FlatFaces, AWalkNeverEndsInOne) {
   for (Index cell = 0; cell < 16; cell += 2) {  // the lower triangle of each bottom cell
     const SurfacePoint start = SurfacePoint::in_face(cell, 0.4, 0.4, 0.2);
     for (const double length : {0.1, 0.2, 1.0}) {
-      const SurfacePoint end = detail::walk_on_surface(mesh, field, start, Eigen::Vector3d(0.1, -1, 0), length);
+      const SurfacePoint end =
+          detail::walk_on_surface(mesh, *field.topology, start, Eigen::Vector3d(0.1, -1, 0), length);
       ASSERT_EQ(end.kind, SurfacePoint::Kind::face);
       EXPECT_TRUE(has_positive_area(mesh, end.element)) << "from face " << cell << ", length " << length;
       EXPECT_GE(end.position(mesh).y(), -1e-12);

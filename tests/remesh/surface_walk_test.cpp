@@ -45,7 +45,7 @@ TEST(SurfaceWalk, NeverEndsInAZeroAreaFace) {
           const double distance = (target - origin).norm();
           for (const double scale : {0.9, 1.0, 1.0001, 1.1, 2.0}) {
             const SurfacePoint end =
-                remesh::detail::walk_on_surface(mesh, field, start, target - origin, scale * distance);
+                remesh::detail::walk_on_surface(mesh, *field.topology, start, target - origin, scale * distance);
             ++walks;
             through_flat += end.element == from ? 0 : 1;
             ASSERT_TRUE(end.barycentric.allFinite()) << "from face " << from << " towards flat face " << flat;

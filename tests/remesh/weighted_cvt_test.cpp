@@ -91,7 +91,8 @@ TEST(WeightedLloyd, SitesGatherWhereTheDensityIsLargeAsRhoToTheHalf) {
   const std::vector<SurfacePoint> sites = remesh::sample_sites(disk, 300, {.sites_on_boundary = false});
   remesh::LloydOptions uniform;
   uniform.iterations = 30;
-  uniform.tolerance = 0;
+  uniform.tolerance = uniform.geodesic_tolerance = 0;
+  uniform.warm_start_iterations = 0;  // the weighted geodesic steps alone
   remesh::LloydOptions weighted = uniform;
   weighted.density = ramp(disk);
   const remesh::LloydResult plain = remesh::lloyd_relax(disk, sites, uniform);

@@ -22,11 +22,20 @@ struct LloydOptions {
   /// At most this many steps on the restricted Voronoi diagram first (the
   /// warm start, see above; 0: none). Skipped when `iterations` is 0. Between
   /// its steps it asks voronoi.geodesic.progress (with 0), which can cancel it.
-  int warm_start_iterations = 20;
-  /// Stop once an iteration lowers the energy by less than this fraction of
-  /// it. A Newton step must lower it by this much to be taken (one that
-  /// lowers it by less is retried more damped, then Lloyd's step decides).
+  /// It needs no geodesic diagram: the first is that of the sites it reaches.
+  int warm_start_iterations = 50;
+  /// Stop once a step (of the warm start or of the iterations) lowers the
+  /// energy by less than this fraction of it. A Newton step must lower it by
+  /// this much to be taken (one that lowers it by less is retried more
+  /// damped, then Lloyd's step decides).
   double tolerance = 1e-5;
+  /// The iterations, each an exact geodesic diagram, also stop once one
+  /// lowers the energy by less than this fraction of it. From a converged
+  /// warm start the first lowers it by about 1e-4 and the triangles no longer
+  /// change measurably (docs/algorithms.md#lloydnewton-relaxation); where the
+  /// restricted diagram is far from the geodesic one (few sites on a curved
+  /// or thin surface) the iterations go on. 0: only `tolerance` stops them.
+  double geodesic_tolerance = 1e-3;
   /// With newton = false, each step goes this many times the way to the
   /// centroid (over-relaxed Lloyd; 1 is the plain one); when an over-relaxed
   /// step would raise the energy, the relaxation falls back to 1 from there
@@ -61,14 +70,14 @@ struct LloydOptions {
 struct LloydResult {
   std::vector<SurfacePoint> sites;  ///< the relaxed sites, in the given order
   voronoi::VoronoiDiagram diagram;  ///< of the relaxed sites
-  /// CVT energy (weighted by `density` when given) of the given sites, then
-  /// after the warm start when it ran (warm_start_iterations > 0), then after
+  /// CVT energy (weighted by `density` when given) of the first diagram's
+  /// sites (the given ones, or those the warm start reached), then after
   /// each accepted iteration.
   std::vector<double> energy;
   int iterations = 0;             ///< iterations accepted
-  int warm_start_iterations = 0;  ///< warm-start steps taken (0: none, or not kept)
-  int diagrams = 0;  ///< geodesic diagrams computed (the warm start's result and rejected steps cost one each)
-  double warm_start_seconds = 0;  ///< the warm start's steps (its geodesic diagram counts below)
+  int warm_start_iterations = 0;  ///< warm-start steps taken
+  int diagrams = 0;               ///< geodesic diagrams computed (the first, and one per step tried)
+  double warm_start_seconds = 0;  ///< the warm start's steps
   double geodesic_seconds = 0;    ///< all diagrams
   double diagram_seconds = 0;
   double move_seconds = 0;  ///< centroid steps
