@@ -100,17 +100,6 @@ struct RunResult {
   double feature_length_pct = 0;   ///< their total length in % of the input's diagonal
 };
 
-std::vector<std::byte> to_bytes(const RunResult& run) {
-  ByteWriter out;
-  out.put(run);
-  return out.bytes();
-}
-
-RunResult from_bytes(const std::vector<std::byte>& bytes) {
-  ByteReader in(bytes);
-  return in.get<RunResult>();
-}
-
 void add_figures(RunResult& run, const TriangleMesh& input, const TriangleMesh& output, const Options& options) {
   quality::QualityOptions quality;
   quality.samples_per_side = options.samples;
@@ -174,55 +163,22 @@ RunResult run_cgal(const TriangleMesh& input, double length, bool protect, std::
   run.cpu_seconds = process_cpu_seconds() - cpu_start;
   run.peak_rss = peak_rss_bytes().value_or(0);
   run.vertices = output.num_vertices();
-  const double miss = 100.0 * std::abs(static_cast<double>(run.vertices - target)) / static_cast<double>(target);
-  if (force_figures || miss <= options.tolerance_pct) add_figures(run, input, output, options);
+  if (force_figures || miss_pct(run.vertices, target) <= options.tolerance_pct)
+    add_figures(run, input, output, options);
   return run;
 }
 
-struct CgalSearch {
-  std::optional<RunResult> result;    ///< the run reported (with figures)
-  double length = 0;                  ///< its target edge length
-  int runs = 0;                       ///< remeshes done, the reported one included
-  std::string failure;                ///< why there is no result
-  std::int64_t failed_child_rss = 0;  ///< the failed run's peak RSS
-};
-
 /// CGAL's run whose vertex count is within the tolerance of `target`, or the
 /// closest one.
-CgalSearch search_cgal(const TriangleMesh& input, bool protect, std::int64_t target, const Options& options) {
-  CgalSearch search;
-  EdgeLengthSearch lengths(surface_area(input), target);
+EdgeLengthSearchResult<RunResult> search_cgal(const TriangleMesh& input, bool protect, std::int64_t target,
+                                              const Options& options) {
   ChildLimits limits;
   limits.time_limit_seconds = options.time_limit_seconds;
-  const auto run_at = [&](double length, bool force_figures) {
-    const ChildOutcome outcome = run_in_child(
-        limits, [&] { return to_bytes(run_cgal(input, length, protect, target, force_figures, options)); });
-    ++search.runs;
-    if (outcome.status != ChildOutcome::Status::ok) {
-      search.failure = outcome.message;
-      search.failed_child_rss = outcome.child_max_rss_bytes;
-      return std::optional<RunResult>();
-    }
-    const RunResult result = from_bytes(outcome.payload);
-    std::cerr << "feature_bench:   CGAL L = " << scientific(length, 4) << ": " << result.vertices << " vertices ("
-              << fixed(100 * (static_cast<double>(result.vertices) / static_cast<double>(target) - 1), 2) << " %), "
-              << fixed(result.seconds, 2) << " s\n";
-    return std::optional<RunResult>(result);
-  };
-  for (int run = 0; run < options.max_runs; ++run) {
-    const double length = lengths.length();
-    const std::optional<RunResult> result = run_at(length, false);
-    if (!result) return search;
-    if (result->has_figures) {
-      search.result = result;
-      search.length = length;
-      return search;
-    }
-    lengths.record(result->vertices);
-  }
-  search.length = lengths.best_length();
-  search.result = run_at(search.length, true);
-  return search;
+  return search_edge_length<RunResult>(
+      surface_area(input), target, options.max_runs, "feature_bench:   ", [&](double length, bool force_figures) {
+        return run_in_child(limits,
+                            [&] { return to_bytes(run_cgal(input, length, protect, target, force_figures, options)); });
+      });
 }
 
 TextTable make_table() {
@@ -280,7 +236,7 @@ int run_benchmark(const Options& options) {
       const ChildOutcome outcome = run_in_child(limits, [&] { return to_bytes(run_geodual(input, count, options)); });
       std::int64_t target = count;
       if (outcome.status == ChildOutcome::Status::ok) {
-        const RunResult run = from_bytes(outcome.payload);
+        const RunResult run = from_bytes<RunResult>(outcome.payload);
         any = run;
         target = run.vertices;
         add_run_row(table, "geodual", run,
@@ -293,7 +249,7 @@ int run_benchmark(const Options& options) {
       for (const bool protect : {true, false}) {
         const std::string method = protect ? "CGAL protected" : "CGAL collapsible";
         std::cerr << "feature_bench:   " << method << " to " << target << " vertices\n";
-        const CgalSearch search = search_cgal(input.mesh, protect, target, options);
+        const EdgeLengthSearchResult<RunResult> search = search_cgal(input.mesh, protect, target, options);
         if (!search.result) {
           add_failed_row(table, method, search.failure, search.failed_child_rss);
           ++failures;
