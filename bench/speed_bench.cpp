@@ -106,6 +106,15 @@ struct Row {
   std::string notes;
 };
 
+Row new_row(const std::string& input, std::int64_t sites, const std::string& method, std::int64_t threads) {
+  Row row;
+  row.input = input;
+  row.sites = sites;
+  row.method = method;
+  row.threads = threads;
+  return row;
+}
+
 // ---------------------------------------------------------------------------
 // The runs (each in a forked child)
 
@@ -179,10 +188,11 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
   std::vector<Row> rows;
   std::optional<std::filesystem::path> first_output;  ///< of the first T that succeeded
   std::optional<double> first_seconds;
+  std::int64_t first_threads = 0;
   std::optional<std::int64_t> target;
   std::optional<RemeshRun> figures_of_first;  ///< the first run that measured the figures
   for (const std::int64_t threads : options.threads) {
-    Row row{.input = name, .sites = sites, .method = "geodual", .threads = threads};
+    Row row = new_row(name, sites, "geodual", threads);
     const std::filesystem::path output = output_dir / (stem + "-geodual-t" + std::to_string(threads) + ".glb");
     std::cerr << "speed_bench:   geodual " << sites << " sites, " << threads << " threads\n";
     const bool figures = !figures_of_first;
@@ -212,18 +222,19 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
     if (first_output) {
       row.same_output = same_bytes(*first_output, output);
       row.speedup = *first_seconds / run.seconds;
-      row.notes = *row.same_output ? "the same bytes as " + std::to_string(rows.front().threads) + " thread(s)"
-                                   : "OUTPUT DIFFERS from " + std::to_string(rows.front().threads) + " thread(s)";
+      const std::string first = std::to_string(first_threads) + (first_threads == 1 ? " thread" : " threads");
+      row.notes = *row.same_output ? "the same bytes as on " + first : "OUTPUT DIFFERS from the one on " + first;
     } else {
       first_output = output;
       first_seconds = run.seconds;
+      first_threads = threads;
       target = run.vertices;
     }
     row.run = run;
     rows.push_back(std::move(row));
   }
 
-  Row cgal{.input = name, .sites = sites, .method = "CGAL isotropic", .threads = 1};
+  Row cgal = new_row(name, sites, "CGAL isotropic", 1);
   const std::int64_t vertices = target.value_or(sites);
   const std::filesystem::path output = output_dir / (stem + "-cgal.glb");
   std::cerr << "speed_bench:   CGAL isotropic_remeshing to " << vertices << " vertices\n";
