@@ -194,7 +194,8 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
   for (const std::int64_t threads : options.threads) {
     Row row = new_row(name, sites, "geodual", threads);
     const std::filesystem::path output = output_dir / (stem + "-geodual-t" + std::to_string(threads) + ".glb");
-    std::cerr << "speed_bench:   geodual " << sites << " sites, " << threads << " threads\n";
+    std::cerr << "speed_bench:   geodual " << sites << " sites, " << threads
+              << (threads == 1 ? " thread\n" : " threads\n");
     const bool figures = !figures_of_first;
     const ChildOutcome outcome =
         run_in_child(limits, [&] { return to_bytes(run_geodual(mesh, sites, threads, output, figures, options)); });
@@ -312,6 +313,12 @@ nlohmann::ordered_json row_json(const Row& row, double ratio_to_cgal) {
   return json;
 }
 
+/// row_json on one line of stdout.
+void print_json(const Row& row, double ratio_to_cgal) {
+  std::cout << row_json(row, ratio_to_cgal).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
+            << '\n';
+}
+
 TextTable make_table() {
   return TextTable({{"input", TextTable::Align::left},
                     {"method", TextTable::Align::left},
@@ -332,14 +339,16 @@ TextTable make_table() {
 }
 
 void add_table_row(TextTable& table, const Row& row, bool first_of_group, double ratio_to_cgal) {
-  const std::string input = first_of_group ? row.input + " " + grouped(row.sites) + " sites" : "";
+  const std::string input = !first_of_group ? ""
+                            : row.sites > 0 ? row.input + " " + grouped(row.sites) + " sites"
+                                            : row.input;
   const std::string method = row.method == "geodual" ? "**geodual**" : row.method;
   if (!row.run) {
     std::vector<std::string> cells(16, "-");
     cells[0] = input;
     cells[1] = method;
-    cells[2] = std::to_string(row.threads);
-    cells[12] = mebibytes(row.failed_child_rss);
+    if (row.threads > 0) cells[2] = std::to_string(row.threads);
+    if (row.failed_child_rss > 0) cells[12] = mebibytes(row.failed_child_rss);
     cells[15] = "failed: " + row.failure;
     table.add_row(std::move(cells));
     return;
@@ -379,20 +388,25 @@ int run_benchmark(const Options& options) {
   int failures = 0;
   for (const auto& path : options.meshes) {
     double area = 0;
-    {
+    try {
       // Read here for the area only (the children read the file themselves).
       const io::LoadedMesh input = io::read_mesh(path);
       area = surface_area(input.mesh);
       std::cerr << "speed_bench: " << path.filename().string() << " (" << input.mesh.num_vertices() << " vertices, "
                 << input.mesh.num_faces() << " faces)\n";
+    } catch (const std::exception& e) {
+      Row row = new_row(path.filename().string(), 0, "read", 0);
+      row.failure = e.what();
+      print_json(row, std::numeric_limits<double>::quiet_NaN());
+      groups.push_back({std::move(row)});
+      ++failures;
+      continue;
     }
     for (const std::int64_t sites : options.site_counts) {
       std::vector<Row> rows = measure(path, area, sites, output_dir, options);
       for (const Row& row : rows) {
         if (!row.run || row.same_output == false) ++failures;
-        std::cout << row_json(row, time_ratio(row, rows))
-                         .dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
-                  << '\n';
+        print_json(row, time_ratio(row, rows));
       }
       std::cout.flush();
       groups.push_back(std::move(rows));
