@@ -22,8 +22,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -193,6 +195,36 @@ inline std::vector<std::int64_t> parse_integer_list(const std::string& option, c
   for (const std::string_view item : split_commas(text))
     values.push_back(parse_integer(option, std::string(item), low, high));
   return values;
+}
+
+/// Reads an option's value: the next word, or a UsageError naming the option.
+using NextValue = std::function<std::string()>;
+
+/// The benchmarks' command line: each word that starts with '-' goes to
+/// `option(word, value)`, which returns false for a word it does not know (a
+/// UsageError showing `usage`); --help and -h print `usage` and exit; the
+/// other words are returned, in order (the meshes).
+inline std::vector<std::filesystem::path> parse_command_line(
+    int argc, char** argv, std::string_view usage,
+    const std::function<bool(const std::string& word, const NextValue& value)>& option) {
+  std::vector<std::filesystem::path> paths;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const NextValue value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::cout << usage;
+      std::exit(0);
+    }
+    if (arg.empty() || arg[0] != '-') {
+      paths.emplace_back(arg);
+    } else if (!option(arg, value)) {
+      throw UsageError("unknown option " + arg + "\n" + std::string(usage));
+    }
+  }
+  return paths;
 }
 
 /// The 1, 5 and 15 minute load averages as /proc/loadavg prints them.

@@ -14,6 +14,7 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -201,6 +202,35 @@ inline TriangleMesh cgal_isotropic_remesh(const TriangleMesh& input, double leng
                            CGAL::parameters::number_of_iterations(options.iterations)
                                .protect_constraints(options.border == CgalBorder::protect));
   return from_cgal(mesh);
+}
+
+/// What the benchmarks that set CGAL beside geodual share, and their options.
+struct ComparisonOptions {
+  CgalRemeshOptions cgal;      ///< --cgal-iterations N (default 3)
+  double tolerance_pct = 3.0;  ///< --tolerance PCT: CGAL's vertex count within this % of geodual's
+  int max_runs = 8;            ///< --max-runs R: remeshes to find CGAL's edge length
+  std::int64_t samples = quality::QualityOptions{}.samples_per_side;  ///< --samples S: per side, for the distances
+  unsigned time_limit_seconds = 1800;                                 ///< --time-limit S: per run
+};
+
+/// Reads `word` (and its value) into `options` when it is one of
+/// ComparisonOptions' options; false when it is not.
+inline bool parse_comparison_option(const std::string& word, const NextValue& value, ComparisonOptions& options) {
+  if (word == "--cgal-iterations") {
+    options.cgal.iterations = static_cast<unsigned>(parse_integer(word, value(), 1, 1000));
+  } else if (word == "--tolerance") {
+    options.tolerance_pct = parse_number(word, value());
+    if (!(options.tolerance_pct > 0)) throw UsageError("--tolerance must be > 0");
+  } else if (word == "--max-runs") {
+    options.max_runs = static_cast<int>(parse_integer(word, value(), 1, 100));
+  } else if (word == "--samples") {
+    options.samples = parse_integer(word, value(), 0, quality::max_samples_per_side);
+  } else if (word == "--time-limit") {
+    options.time_limit_seconds = static_cast<unsigned>(parse_integer(word, value(), 1, 1'000'000));
+  } else {
+    return false;
+  }
+  return true;
 }
 
 /// 100 * |vertices / target - 1|.

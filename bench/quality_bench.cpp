@@ -89,14 +89,10 @@ struct Options {
   int lloyd = 10;
   double lloyd_tolerance = remesh::LloydOptions{}.tolerance;
   int warm_start = remesh::LloydOptions{}.warm_start_iterations;
-  bool plain_lloyd = false;       ///< also a row with plain Lloyd steps
-  double adapt = 0;               ///< > 0: also a row with curvature-adapted sizing of this strength
-  bool cgal = true;               ///< the CGAL row
-  CgalRemeshOptions cgal_remesh;  ///< iterations (default 3) and borders
-  double tolerance_pct = 3.0;
-  int max_runs = 8;
-  std::int64_t samples = quality::QualityOptions{}.samples_per_side;
-  unsigned time_limit_seconds = 1800;
+  bool plain_lloyd = false;      ///< also a row with plain Lloyd steps
+  double adapt = 0;              ///< > 0: also a row with curvature-adapted sizing of this strength
+  bool cgal = true;              ///< the CGAL row
+  ComparisonOptions comparison;  ///< CGAL's remesh (3 iterations, borders kept) and search, the statistics
   std::vector<std::filesystem::path> meshes;
 };
 
@@ -125,7 +121,7 @@ RemeshRun run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
   run.sites_added = result.remesh.sites_added;
   run.lloyd_iterations = result.relaxation.iterations;
   run.warm_start_iterations = result.relaxation.warm_start_iterations;
-  add_figures(run, input.mesh, result.remesh.mesh, options.samples);
+  add_figures(run, input.mesh, result.remesh.mesh, options.comparison.samples);
   return run;
 }
 
@@ -140,13 +136,13 @@ RemeshRun run_cgal(const TriangleMesh& input, double length, std::int64_t target
   reset_peak_rss();
   const double cpu_start = process_cpu_seconds();
   const auto start = Clock::now();
-  const TriangleMesh output = cgal_isotropic_remesh(input, length, options.cgal_remesh);
+  const TriangleMesh output = cgal_isotropic_remesh(input, length, options.comparison.cgal);
   run.seconds = seconds_since(start);
   run.cpu_seconds = process_cpu_seconds() - cpu_start;
   run.peak_rss = peak_rss_bytes().value_or(0);
   run.vertices = output.num_vertices();
-  if (force_figures || miss_pct(run.vertices, target) <= options.tolerance_pct) {
-    add_figures(run, input, output, options.samples);
+  if (force_figures || miss_pct(run.vertices, target) <= options.comparison.tolerance_pct) {
+    add_figures(run, input, output, options.comparison.samples);
   }
   return run;
 }
@@ -155,9 +151,10 @@ RemeshRun run_cgal(const TriangleMesh& input, double length, std::int64_t target
 /// the closest one (see the file comment).
 EdgeLengthSearchResult<RemeshRun> search_cgal(const TriangleMesh& input, std::int64_t target, const Options& options) {
   ChildLimits limits;
-  limits.time_limit_seconds = options.time_limit_seconds;
+  limits.time_limit_seconds = options.comparison.time_limit_seconds;
   return search_edge_length<RemeshRun>(
-      surface_area(input), target, options.max_runs, "quality_bench:   ", [&](double length, bool force_figures) {
+      surface_area(input), target, options.comparison.max_runs,
+      "quality_bench:   ", [&](double length, bool force_figures) {
         return run_in_child(limits, [&] { return to_bytes(run_cgal(input, length, target, force_figures, options)); });
       });
 }
@@ -216,13 +213,13 @@ int run_benchmark(const Options& options) {
             << load_average() << "\n";
   std::cout << "options: Lloyd " << options.lloyd << " iterations (tolerance " << options.lloyd_tolerance
             << ", warm start " << options.warm_start << " steps), CGAL isotropic_remeshing "
-            << options.cgal_remesh.iterations << " iterations, borders "
-            << (options.cgal_remesh.border == CgalBorder::keep ? "kept (CGAL default)"
-                                                               : "protected (split to L, then fixed)")
-            << ", vertex count within " << options.tolerance_pct << " %, " << grouped(options.samples)
-            << " samples per side\n";
+            << options.comparison.cgal.iterations << " iterations, borders "
+            << (options.comparison.cgal.border == CgalBorder::keep ? "kept (CGAL default)"
+                                                                   : "protected (split to L, then fixed)")
+            << ", vertex count within " << options.comparison.tolerance_pct << " %, "
+            << grouped(options.comparison.samples) << " samples per side\n";
   ChildLimits limits;
-  limits.time_limit_seconds = options.time_limit_seconds;
+  limits.time_limit_seconds = options.comparison.time_limit_seconds;
   int failures = 0;
   for (const auto& path : options.meshes) {
     const io::LoadedMesh input = io::read_mesh(path);
@@ -277,11 +274,11 @@ int run_benchmark(const Options& options) {
       const RemeshRun& run = *search.result;
       if (!input_figures) input_figures = run.input;
       const double miss = 100.0 * (static_cast<double>(run.vertices) / static_cast<double>(*target) - 1.0);
-      std::string notes = "L=" + scientific(search.length, 4) + ", " + std::to_string(options.cgal_remesh.iterations) +
-                          " iter, " + (miss >= 0 ? "+" : "") + fixed(miss, 2) + " % of " + grouped(*target) +
-                          " vertices after " + std::to_string(search.runs) + " runs (" +
-                          fixed(search.search_seconds, 1) + " s)";
-      if (std::abs(miss) > options.tolerance_pct) notes += ", NOT within the tolerance";
+      std::string notes = "L=" + scientific(search.length, 4) + ", " +
+                          std::to_string(options.comparison.cgal.iterations) + " iter, " + (miss >= 0 ? "+" : "") +
+                          fixed(miss, 2) + " % of " + grouped(*target) + " vertices after " +
+                          std::to_string(search.runs) + " runs (" + fixed(search.search_seconds, 1) + " s)";
+      if (std::abs(miss) > options.comparison.tolerance_pct) notes += ", NOT within the tolerance";
       add_run_row(table, method, sites, run, notes);
     }
     std::cout << "\n### " << name << " (" << grouped(input.mesh.num_vertices()) << " vertices, "
@@ -307,57 +304,37 @@ constexpr const char* usage =
 
 Options parse_options(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--sites") {
-      options.site_counts = parse_integer_list(arg, value(), 4, 100'000'000);
-    } else if (arg == "--lloyd") {
-      options.lloyd = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
-    } else if (arg == "--warm-start") {
-      options.warm_start = static_cast<int>(parse_integer(arg, value(), 0, 10'000));
-    } else if (arg == "--plain-lloyd") {
+  options.meshes = parse_command_line(argc, argv, usage, [&](const std::string& word, const NextValue& value) {
+    if (word == "--sites") {
+      options.site_counts = parse_integer_list(word, value(), 4, 100'000'000);
+    } else if (word == "--lloyd") {
+      options.lloyd = static_cast<int>(parse_integer(word, value(), 0, 10'000));
+    } else if (word == "--warm-start") {
+      options.warm_start = static_cast<int>(parse_integer(word, value(), 0, 10'000));
+    } else if (word == "--plain-lloyd") {
       options.plain_lloyd = true;
-    } else if (arg == "--adapt") {
-      options.adapt = parse_number(arg, value());
+    } else if (word == "--adapt") {
+      options.adapt = parse_number(word, value());
       if (options.adapt < 0) throw UsageError("--adapt must be >= 0");
-    } else if (arg == "--no-cgal") {
+    } else if (word == "--no-cgal") {
       options.cgal = false;
-    } else if (arg == "--lloyd-tol") {
-      options.lloyd_tolerance = parse_number(arg, value());
+    } else if (word == "--lloyd-tol") {
+      options.lloyd_tolerance = parse_number(word, value());
       if (options.lloyd_tolerance < 0) throw UsageError("--lloyd-tol must be >= 0");
-    } else if (arg == "--cgal-iterations") {
-      options.cgal_remesh.iterations = static_cast<unsigned>(parse_integer(arg, value(), 1, 1000));
-    } else if (arg == "--cgal-border") {
+    } else if (word == "--cgal-border") {
       const std::string mode = value();
       if (mode == "keep") {
-        options.cgal_remesh.border = CgalBorder::keep;
+        options.comparison.cgal.border = CgalBorder::keep;
       } else if (mode == "protect") {
-        options.cgal_remesh.border = CgalBorder::protect;
+        options.comparison.cgal.border = CgalBorder::protect;
       } else {
         throw UsageError("--cgal-border: expected keep or protect, got '" + mode + "'");
       }
-    } else if (arg == "--tolerance") {
-      options.tolerance_pct = parse_number(arg, value());
-      if (!(options.tolerance_pct > 0)) throw UsageError("--tolerance must be > 0");
-    } else if (arg == "--max-runs") {
-      options.max_runs = static_cast<int>(parse_integer(arg, value(), 1, 100));
-    } else if (arg == "--samples") {
-      options.samples = parse_integer(arg, value(), 0, quality::max_samples_per_side);
-    } else if (arg == "--time-limit") {
-      options.time_limit_seconds = static_cast<unsigned>(parse_integer(arg, value(), 1, 1'000'000));
-    } else if (arg == "--help" || arg == "-h") {
-      std::cout << usage;
-      std::exit(0);
-    } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError("unknown option " + arg + "\n" + usage);
     } else {
-      options.meshes.emplace_back(arg);
+      return parse_comparison_option(word, value, options.comparison);
     }
-  }
+    return true;
+  });
   if (options.meshes.empty()) {
     for (const char* name : {"bunny", "armadillo_86k", "fertility"}) {
       options.meshes.push_back(std::filesystem::path("tests/data") / (std::string(name) + ".ply"));

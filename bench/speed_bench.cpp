@@ -79,11 +79,7 @@ namespace {
 struct Options {
   std::vector<std::int64_t> site_counts = {5000};
   std::vector<std::int64_t> threads = {1, 2};
-  CgalRemeshOptions cgal_remesh;
-  double tolerance_pct = 3.0;
-  int max_runs = 8;
-  std::int64_t samples = quality::QualityOptions{}.samples_per_side;
-  unsigned time_limit_seconds = 1800;
+  ComparisonOptions comparison;      ///< CGAL's remesh and search, the statistics, the time limit
   std::filesystem::path output_dir;  ///< empty: a temporary folder, removed at the end
   std::vector<std::filesystem::path> meshes;
 };
@@ -144,7 +140,7 @@ RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std
   run.sites_added = result->remesh.sites_added;
   run.lloyd_iterations = result->relaxation.iterations;
   run.warm_start_iterations = result->relaxation.warm_start_iterations;
-  if (figures) add_figures(run, result->input.mesh, result->remesh.mesh, options.samples);
+  if (figures) add_figures(run, result->input.mesh, result->remesh.mesh, options.comparison.samples);
   return run;
 }
 
@@ -158,14 +154,14 @@ RemeshRun run_cgal(const std::filesystem::path& mesh, double length, std::int64_
   const double cpu_start = process_cpu_seconds();
   const auto start = Clock::now();
   const io::LoadedMesh input = io::read_mesh(mesh);
-  const TriangleMesh remeshed = cgal_isotropic_remesh(input.mesh, length, options.cgal_remesh);
+  const TriangleMesh remeshed = cgal_isotropic_remesh(input.mesh, length, options.comparison.cgal);
   write_remesh(output, remeshed);
   run.seconds = seconds_since(start);
   run.cpu_seconds = process_cpu_seconds() - cpu_start;
   run.peak_rss = peak_rss_bytes().value_or(0);
   run.vertices = remeshed.num_vertices();
-  if (force_figures || miss_pct(run.vertices, target) <= options.tolerance_pct) {
-    add_figures(run, input.mesh, remeshed, options.samples);
+  if (force_figures || miss_pct(run.vertices, target) <= options.comparison.tolerance_pct) {
+    add_figures(run, input.mesh, remeshed, options.comparison.samples);
   }
   return run;
 }
@@ -182,7 +178,7 @@ bool same_bytes(const std::filesystem::path& a, const std::filesystem::path& b) 
 std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::int64_t sites,
                          const std::filesystem::path& output_dir, const Options& options) {
   ChildLimits limits;
-  limits.time_limit_seconds = options.time_limit_seconds;
+  limits.time_limit_seconds = options.comparison.time_limit_seconds;
   const std::string name = mesh.filename().string();
   const std::string stem = mesh.stem().string() + "-" + std::to_string(sites);
   std::vector<Row> rows;
@@ -240,7 +236,7 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
   const std::filesystem::path output = output_dir / (stem + "-cgal.glb");
   std::cerr << "speed_bench:   CGAL isotropic_remeshing to " << vertices << " vertices\n";
   const EdgeLengthSearchResult<RemeshRun> search = search_edge_length<RemeshRun>(
-      area, vertices, options.max_runs, "speed_bench:   ", [&](double length, bool force_figures) {
+      area, vertices, options.comparison.max_runs, "speed_bench:   ", [&](double length, bool force_figures) {
         return run_in_child(limits,
                             [&] { return to_bytes(run_cgal(mesh, length, vertices, force_figures, output, options)); });
       });
@@ -250,11 +246,11 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
     cgal.run = search.result;
     cgal.cgal_length = search.length;
     cgal.cgal_miss_pct = 100.0 * (static_cast<double>(search.result->vertices) / static_cast<double>(vertices) - 1.0);
-    cgal.notes = "L=" + scientific(search.length, 4) + ", " + std::to_string(options.cgal_remesh.iterations) +
+    cgal.notes = "L=" + scientific(search.length, 4) + ", " + std::to_string(options.comparison.cgal.iterations) +
                  " iter, " + (cgal.cgal_miss_pct >= 0 ? "+" : "") + fixed(cgal.cgal_miss_pct, 2) + " % of " +
                  grouped(vertices) + " vertices; L found in " + std::to_string(search.runs) + " runs (" +
                  fixed(search.search_seconds, 1) + " s)";
-    if (std::abs(cgal.cgal_miss_pct) > options.tolerance_pct) cgal.notes += ", NOT within the tolerance";
+    if (std::abs(cgal.cgal_miss_pct) > options.comparison.tolerance_pct) cgal.notes += ", NOT within the tolerance";
   } else {
     cgal.failure = search.failure;
     cgal.failed_child_rss = search.failed_child_rss;
@@ -377,9 +373,9 @@ int run_benchmark(const Options& options) {
             << load_average() << "\n";
   std::cout << "options: geodual's default job (as `geodual remesh MESH --sites N --no-statistics -o OUT.glb`) on ";
   for (std::size_t i = 0; i < options.threads.size(); ++i) std::cout << (i ? "," : "") << options.threads[i];
-  std::cout << " threads; CGAL isotropic_remeshing " << options.cgal_remesh.iterations
-            << " iterations at the vertex count within " << options.tolerance_pct << " %; " << grouped(options.samples)
-            << " samples per side\n";
+  std::cout << " threads; CGAL isotropic_remeshing " << options.comparison.cgal.iterations
+            << " iterations at the vertex count within " << options.comparison.tolerance_pct << " %; "
+            << grouped(options.comparison.samples) << " samples per side\n";
   const bool temporary = options.output_dir.empty();
   const std::filesystem::path output_dir = temporary ? temporary_folder() : options.output_dir;
   if (!temporary) std::filesystem::create_directories(output_dir);
@@ -440,38 +436,18 @@ constexpr const char* usage =
 
 Options parse_options(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--sites") {
-      options.site_counts = parse_integer_list(arg, value(), 4, 100'000'000);
-    } else if (arg == "--threads") {
-      options.threads = parse_integer_list(arg, value(), 1, 4096);
-    } else if (arg == "--cgal-iterations") {
-      options.cgal_remesh.iterations = static_cast<unsigned>(parse_integer(arg, value(), 1, 1000));
-    } else if (arg == "--tolerance") {
-      options.tolerance_pct = parse_number(arg, value());
-      if (!(options.tolerance_pct > 0)) throw UsageError("--tolerance must be > 0");
-    } else if (arg == "--max-runs") {
-      options.max_runs = static_cast<int>(parse_integer(arg, value(), 1, 100));
-    } else if (arg == "--samples") {
-      options.samples = parse_integer(arg, value(), 0, quality::max_samples_per_side);
-    } else if (arg == "--time-limit") {
-      options.time_limit_seconds = static_cast<unsigned>(parse_integer(arg, value(), 1, 1'000'000));
-    } else if (arg == "--output-dir") {
+  options.meshes = parse_command_line(argc, argv, usage, [&](const std::string& word, const NextValue& value) {
+    if (word == "--sites") {
+      options.site_counts = parse_integer_list(word, value(), 4, 100'000'000);
+    } else if (word == "--threads") {
+      options.threads = parse_integer_list(word, value(), 1, 4096);
+    } else if (word == "--output-dir") {
       options.output_dir = value();
-    } else if (arg == "--help" || arg == "-h") {
-      std::cout << usage;
-      std::exit(0);
-    } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError("unknown option " + arg + "\n" + usage);
     } else {
-      options.meshes.emplace_back(arg);
+      return parse_comparison_option(word, value, options.comparison);
     }
-  }
+    return true;
+  });
   if (options.meshes.empty()) {
     options.meshes = {"examples/data/bunny.ply", "tests/data/armadillo_86k.ply", "tests/data/fertility.ply"};
   }
