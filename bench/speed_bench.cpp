@@ -202,7 +202,8 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
       continue;
     }
     RemeshRun run = from_bytes<RemeshRun>(outcome.payload);
-    if (figures_of_first) {  // measured once: the outputs are the same mesh (checked below)
+    if (first_output) row.same_output = same_bytes(*first_output, output);
+    if (figures_of_first && row.same_output == true) {  // measured once for the same mesh
       run.output = figures_of_first->output;
       run.input = figures_of_first->input;
       run.has_figures = true;
@@ -217,7 +218,6 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
       row.notes += (row.notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
     }
     if (first_output) {
-      row.same_output = same_bytes(*first_output, output);
       row.speedup = *first_seconds / run.seconds;
       const std::string first = std::to_string(first_threads) + (first_threads == 1 ? " thread" : " threads");
       row.notes = *row.same_output ? "the same bytes as on " + first : "OUTPUT DIFFERS from the one on " + first;
