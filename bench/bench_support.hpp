@@ -2,7 +2,8 @@
 // Small helpers shared by the benchmark programs in bench/: timers, medians,
 // process memory (peak RSS through /proc), running one measurement in a
 // forked child under a memory and time limit, byte streams for sending its
-// results back, plain-text tables, and reproducible random vertex sites.
+// results back, plain-text tables, reproducible random vertex sites, and the
+// quality figures of one remesh as the remesh benchmarks report them.
 //
 // Linux only (it reads /proc and forks); header-only so that every bench/*.cpp
 // stays one executable.
@@ -11,6 +12,7 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/pipeline/sites.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <algorithm>
 #include <array>
@@ -20,8 +22,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -193,6 +197,36 @@ inline std::vector<std::int64_t> parse_integer_list(const std::string& option, c
   return values;
 }
 
+/// Reads an option's value: the next word, or a UsageError naming the option.
+using NextValue = std::function<std::string()>;
+
+/// The benchmarks' command line: each word that starts with '-' goes to
+/// `option(word, value)`, which returns false for a word it does not know (a
+/// UsageError showing `usage`); --help and -h print `usage` and exit; the
+/// other words are returned, in order (the meshes).
+inline std::vector<std::filesystem::path> parse_command_line(
+    int argc, char** argv, std::string_view usage,
+    const std::function<bool(const std::string& word, const NextValue& value)>& option) {
+  std::vector<std::filesystem::path> paths;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const NextValue value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::cout << usage;
+      std::exit(0);
+    }
+    if (arg.empty() || arg[0] != '-') {
+      paths.emplace_back(arg);
+    } else if (!option(arg, value)) {
+      throw UsageError("unknown option " + arg + "\n" + std::string(usage));
+    }
+  }
+  return paths;
+}
+
 /// The 1, 5 and 15 minute load averages as /proc/loadavg prints them.
 inline std::string load_average() {
   std::ifstream in("/proc/loadavg");
@@ -280,6 +314,20 @@ class ByteReader {
   std::span<const std::byte> bytes_;
   std::size_t position_ = 0;
 };
+
+/// A trivially copyable value as bytes, and back (a child's whole result).
+template <class T>
+std::vector<std::byte> to_bytes(const T& value) {
+  ByteWriter out;
+  out.put(value);
+  return out.bytes();
+}
+
+template <class T>
+T from_bytes(std::span<const std::byte> bytes) {
+  ByteReader in(bytes);
+  return in.get<T>();
+}
 
 // ---------------------------------------------------------------------------
 // One measurement in a forked child process
@@ -529,6 +577,63 @@ inline std::vector<Index> random_vertex_sites(const TriangleMesh& mesh, std::siz
     vertices.push_back(site.element);
   }
   return vertices;
+}
+
+// ---------------------------------------------------------------------------
+// The figures of one remesh (trivially copyable: sent back from a child)
+
+/// One mesh's figures of shared/DESIGN.md; the distances are to the input
+/// (NaN for the input itself).
+struct QualityFigures {
+  std::int64_t vertices = 0, faces = 0, euler_characteristic = 0, boundary_loops = 0, nonmanifold_edges = 0;
+  double q_min = 0, q_avg = 0, theta_min_deg = 0, theta_min_avg_deg = 0, pct_angles_lt30 = 0, p30 = 0;
+  double pct_valence6 = std::numeric_limits<double>::quiet_NaN();
+  double hausdorff_pct = std::numeric_limits<double>::quiet_NaN();
+  double rms_pct = std::numeric_limits<double>::quiet_NaN();
+};
+
+inline QualityFigures figures_of(const quality::TriangleQuality& q) {
+  QualityFigures f;
+  f.vertices = q.vertices;
+  f.faces = q.faces;
+  f.euler_characteristic = q.euler_characteristic;
+  f.boundary_loops = q.boundary_loops;
+  f.nonmanifold_edges = q.nonmanifold_edges;
+  f.q_min = q.q_min;
+  f.q_avg = q.q_avg;
+  f.theta_min_deg = q.theta_min_deg;
+  f.theta_min_avg_deg = q.theta_min_avg_deg;
+  f.pct_angles_lt30 = q.pct_angles_lt30;
+  f.p30 = q.p30;
+  if (q.pct_valence6) f.pct_valence6 = *q.pct_valence6;
+  return f;
+}
+
+/// What one remesh run reports: its vertex count and cost, and (when
+/// measured) the quality of its output and of the input.
+struct RemeshRun {
+  std::int64_t vertices = 0;  ///< of the output
+  double seconds = 0, cpu_seconds = 0;
+  std::int64_t peak_rss = 0;
+  std::int64_t sites_added = 0;
+  int lloyd_iterations = 0;
+  int warm_start_iterations = 0;
+  bool has_figures = false;
+  QualityFigures output;
+  QualityFigures input;  ///< the reference side of compare_meshes, distances NaN
+};
+
+/// Fills run.output and run.input from quality::compare_meshes(input, output)
+/// with `samples` points per side.
+inline void add_figures(RemeshRun& run, const TriangleMesh& input, const TriangleMesh& output, std::int64_t samples) {
+  quality::QualityOptions quality;
+  quality.samples_per_side = samples;
+  const quality::QualityReport report = quality::compare_meshes(input, output, quality);
+  run.output = figures_of(report.candidate);
+  run.output.hausdorff_pct = report.hausdorff_pct;
+  run.output.rms_pct = report.rms_pct;
+  run.input = figures_of(report.reference);
+  run.has_figures = true;
 }
 
 }  // namespace geodual::bench

@@ -1,7 +1,7 @@
 #pragma once
 // CGAL's isotropic remeshing as the benchmarks run it: a TriangleMesh to and
-// from a CGAL Surface_mesh, and the search for the target edge length that
-// gives a wanted vertex count.
+// from a CGAL Surface_mesh, one isotropic remesh, and the search for the
+// target edge length that gives a wanted vertex count.
 //
 // The search: a triangle mesh of n vertices has about 2 n faces, each of
 // area sqrt(3)/4 L^2 if equilateral, so L0 = sqrt(4 A / (sqrt(3) 2 n)) for a
@@ -14,8 +14,11 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <Eigen/Geometry>
@@ -24,8 +27,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <iostream>
+#include <iterator>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -166,5 +174,126 @@ class EdgeLengthSearch {
   double too_many_log_length_ = -std::numeric_limits<double>::infinity();
   double too_few_log_length_ = std::numeric_limits<double>::infinity();
 };
+
+/// How the remesh treats the input's borders. keep: CGAL's own handling
+/// (border edges are constrained: split and collapsed along the border but
+/// never flipped, their vertices not smoothed). protect: CGAL's example
+/// (border edges first split to at most L, then kept as they are).
+enum class CgalBorder { keep, protect };
+
+struct CgalRemeshOptions {
+  unsigned iterations = 3;  ///< number_of_iterations
+  CgalBorder border = CgalBorder::keep;
+};
+
+/// CGAL::Polygon_mesh_processing::isotropic_remeshing of `input` (as
+/// to_cgal builds it) with target edge length `length`, read back.
+inline TriangleMesh cgal_isotropic_remesh(const TriangleMesh& input, double length, const CgalRemeshOptions& options) {
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  CgalMesh mesh = to_cgal(input);
+  if (options.border == CgalBorder::protect) {
+    std::vector<CgalMesh::Halfedge_index> border;
+    PMP::border_halfedges(mesh.faces(), mesh, std::back_inserter(border));
+    std::vector<CgalMesh::Edge_index> border_edges;
+    for (const auto h : border) border_edges.push_back(mesh.edge(h));
+    PMP::split_long_edges(border_edges, length, mesh);
+  }
+  PMP::isotropic_remeshing(mesh.faces(), length, mesh,
+                           CGAL::parameters::number_of_iterations(options.iterations)
+                               .protect_constraints(options.border == CgalBorder::protect));
+  return from_cgal(mesh);
+}
+
+/// What the benchmarks that set CGAL beside geodual share, and their options.
+struct ComparisonOptions {
+  CgalRemeshOptions cgal;      ///< --cgal-iterations N (default 3)
+  double tolerance_pct = 3.0;  ///< --tolerance PCT: CGAL's vertex count within this % of geodual's
+  int max_runs = 8;            ///< --max-runs R: remeshes to find CGAL's edge length
+  std::int64_t samples = quality::QualityOptions{}.samples_per_side;  ///< --samples S: per side, for the distances
+  unsigned time_limit_seconds = 1800;                                 ///< --time-limit S: per run
+};
+
+/// Reads `word` (and its value) into `options` when it is one of
+/// ComparisonOptions' options; false when it is not.
+inline bool parse_comparison_option(const std::string& word, const NextValue& value, ComparisonOptions& options) {
+  if (word == "--cgal-iterations") {
+    options.cgal.iterations = static_cast<unsigned>(parse_integer(word, value(), 1, 1000));
+  } else if (word == "--tolerance") {
+    options.tolerance_pct = parse_number(word, value());
+    if (!(options.tolerance_pct > 0)) throw UsageError("--tolerance must be > 0");
+  } else if (word == "--max-runs") {
+    options.max_runs = static_cast<int>(parse_integer(word, value(), 1, 100));
+  } else if (word == "--samples") {
+    options.samples = parse_integer(word, value(), 0, quality::max_samples_per_side);
+  } else if (word == "--time-limit") {
+    options.time_limit_seconds = static_cast<unsigned>(parse_integer(word, value(), 1, 1'000'000));
+  } else {
+    return false;
+  }
+  return true;
+}
+
+/// 100 * |vertices / target - 1|.
+inline double miss_pct(std::int64_t vertices, std::int64_t target) {
+  return 100.0 * std::abs(static_cast<double>(vertices - target)) / static_cast<double>(target);
+}
+
+/// What search_edge_length found.
+template <class Run>
+struct EdgeLengthSearchResult {
+  std::optional<Run> result;          ///< the run reported (with figures)
+  double length = 0;                  ///< its target edge length
+  int runs = 0;                       ///< remeshes done, the reported one included
+  double search_seconds = 0;          ///< wall time of all of them
+  std::string failure;                ///< why there is no result
+  std::int64_t failed_child_rss = 0;  ///< the failed run's peak RSS
+};
+
+/// The remesh whose vertex count is within the tolerance of `target`: runs
+/// `run_at(length, force_figures)` at the lengths EdgeLengthSearch proposes
+/// for a surface of area `area`, at most `max_runs` times, until a run comes
+/// back with figures; if none does, the closest length once more with
+/// force_figures. `run_at` runs one remesh in a forked child and returns its
+/// outcome, whose payload is a Run (trivially copyable, with `vertices`,
+/// `seconds` and `has_figures`; the child measures the figures when the count
+/// lands within the tolerance, or when forced). The first failed run ends the
+/// search. Each run is logged on stderr after `log_prefix`.
+template <class Run>
+EdgeLengthSearchResult<Run> search_edge_length(double area, std::int64_t target, int max_runs,
+                                               std::string_view log_prefix,
+                                               const std::function<ChildOutcome(double, bool)>& run_at) {
+  EdgeLengthSearchResult<Run> search;
+  const auto start = Clock::now();
+  const auto run_once = [&](double length, bool force_figures) -> std::optional<Run> {
+    const ChildOutcome outcome = run_at(length, force_figures);
+    ++search.runs;
+    search.search_seconds = seconds_since(start);
+    if (outcome.status != ChildOutcome::Status::ok) {
+      search.failure = outcome.message;
+      search.failed_child_rss = outcome.child_max_rss_bytes;
+      return std::nullopt;
+    }
+    const Run result = from_bytes<Run>(outcome.payload);
+    std::cerr << log_prefix << "CGAL L = " << scientific(length, 4) << ": " << result.vertices << " vertices ("
+              << fixed(100 * (static_cast<double>(result.vertices) / static_cast<double>(target) - 1), 2) << " %), "
+              << fixed(result.seconds, 2) << " s\n";
+    return result;
+  };
+  EdgeLengthSearch lengths(area, target);
+  for (int run = 0; run < max_runs; ++run) {
+    const double length = lengths.length();
+    const std::optional<Run> result = run_once(length, false);
+    if (!result) return search;
+    if (result->has_figures) {
+      search.result = result;
+      search.length = length;
+      return search;
+    }
+    lengths.record(result->vertices);
+  }
+  search.length = lengths.best_length();
+  search.result = run_once(search.length, true);
+  return search;
+}
 
 }  // namespace geodual::bench

@@ -78,11 +78,7 @@ struct Options {
   double sharp_angle_deg = 60.0;
   double feature_tolerance_pct = quality::QualityOptions{}.feature_tolerance_pct;
   std::optional<double> geodual_sharp_angle;  ///< RemeshOptions::sharp_angle; empty: its default
-  unsigned cgal_iterations = 3;
-  double tolerance_pct = 3.0;
-  int max_runs = 8;
-  std::int64_t samples = quality::QualityOptions{}.samples_per_side;
-  unsigned time_limit_seconds = 1800;
+  ComparisonOptions comparison;               ///< CGAL's iterations (3) and search, the statistics, the time limit
   std::vector<std::filesystem::path> meshes;
 };
 
@@ -100,20 +96,9 @@ struct RunResult {
   double feature_length_pct = 0;   ///< their total length in % of the input's diagonal
 };
 
-std::vector<std::byte> to_bytes(const RunResult& run) {
-  ByteWriter out;
-  out.put(run);
-  return out.bytes();
-}
-
-RunResult from_bytes(const std::vector<std::byte>& bytes) {
-  ByteReader in(bytes);
-  return in.get<RunResult>();
-}
-
 void add_figures(RunResult& run, const TriangleMesh& input, const TriangleMesh& output, const Options& options) {
   quality::QualityOptions quality;
-  quality.samples_per_side = options.samples;
+  quality.samples_per_side = options.comparison.samples;
   quality.sharp_angle_deg = options.sharp_angle_deg;
   quality.feature_tolerance_pct = options.feature_tolerance_pct;
   const quality::QualityReport report = quality::compare_meshes(input, output, quality);
@@ -166,7 +151,7 @@ RunResult run_cgal(const TriangleMesh& input, double length, bool protect, std::
   run.constrained_edges = static_cast<std::int64_t>(sharp.size());
   PMP::split_long_edges(sharp, length, mesh, CGAL::parameters::edge_is_constrained_map(constrained));
   PMP::isotropic_remeshing(mesh.faces(), length, mesh,
-                           CGAL::parameters::number_of_iterations(options.cgal_iterations)
+                           CGAL::parameters::number_of_iterations(options.comparison.cgal.iterations)
                                .edge_is_constrained_map(constrained)
                                .protect_constraints(protect));
   const TriangleMesh output = from_cgal(mesh);
@@ -174,55 +159,23 @@ RunResult run_cgal(const TriangleMesh& input, double length, bool protect, std::
   run.cpu_seconds = process_cpu_seconds() - cpu_start;
   run.peak_rss = peak_rss_bytes().value_or(0);
   run.vertices = output.num_vertices();
-  const double miss = 100.0 * std::abs(static_cast<double>(run.vertices - target)) / static_cast<double>(target);
-  if (force_figures || miss <= options.tolerance_pct) add_figures(run, input, output, options);
+  if (force_figures || miss_pct(run.vertices, target) <= options.comparison.tolerance_pct)
+    add_figures(run, input, output, options);
   return run;
 }
 
-struct CgalSearch {
-  std::optional<RunResult> result;    ///< the run reported (with figures)
-  double length = 0;                  ///< its target edge length
-  int runs = 0;                       ///< remeshes done, the reported one included
-  std::string failure;                ///< why there is no result
-  std::int64_t failed_child_rss = 0;  ///< the failed run's peak RSS
-};
-
 /// CGAL's run whose vertex count is within the tolerance of `target`, or the
 /// closest one.
-CgalSearch search_cgal(const TriangleMesh& input, bool protect, std::int64_t target, const Options& options) {
-  CgalSearch search;
-  EdgeLengthSearch lengths(surface_area(input), target);
+EdgeLengthSearchResult<RunResult> search_cgal(const TriangleMesh& input, bool protect, std::int64_t target,
+                                              const Options& options) {
   ChildLimits limits;
-  limits.time_limit_seconds = options.time_limit_seconds;
-  const auto run_at = [&](double length, bool force_figures) {
-    const ChildOutcome outcome = run_in_child(
-        limits, [&] { return to_bytes(run_cgal(input, length, protect, target, force_figures, options)); });
-    ++search.runs;
-    if (outcome.status != ChildOutcome::Status::ok) {
-      search.failure = outcome.message;
-      search.failed_child_rss = outcome.child_max_rss_bytes;
-      return std::optional<RunResult>();
-    }
-    const RunResult result = from_bytes(outcome.payload);
-    std::cerr << "feature_bench:   CGAL L = " << scientific(length, 4) << ": " << result.vertices << " vertices ("
-              << fixed(100 * (static_cast<double>(result.vertices) / static_cast<double>(target) - 1), 2) << " %), "
-              << fixed(result.seconds, 2) << " s\n";
-    return std::optional<RunResult>(result);
-  };
-  for (int run = 0; run < options.max_runs; ++run) {
-    const double length = lengths.length();
-    const std::optional<RunResult> result = run_at(length, false);
-    if (!result) return search;
-    if (result->has_figures) {
-      search.result = result;
-      search.length = length;
-      return search;
-    }
-    lengths.record(result->vertices);
-  }
-  search.length = lengths.best_length();
-  search.result = run_at(search.length, true);
-  return search;
+  limits.time_limit_seconds = options.comparison.time_limit_seconds;
+  return search_edge_length<RunResult>(
+      surface_area(input), target, options.comparison.max_runs,
+      "feature_bench:   ", [&](double length, bool force_figures) {
+        return run_in_child(limits,
+                            [&] { return to_bytes(run_cgal(input, length, protect, target, force_figures, options)); });
+      });
 }
 
 TextTable make_table() {
@@ -261,12 +214,12 @@ int run_benchmark(const Options& options) {
             << (options.geodual_sharp_angle ? " but sharp_angle " + fixed(*options.geodual_sharp_angle, 1)
                                             : std::string())
             << "; CGAL detect_sharp_edges " << options.sharp_angle_deg << " deg, split_long_edges, isotropic_remeshing "
-            << options.cgal_iterations
+            << options.comparison.cgal.iterations
             << " iterations with the sharp edges constrained (protected or collapsible), vertex count within "
-            << options.tolerance_pct << " % of geodual's; recall within " << options.feature_tolerance_pct
-            << " % of the diagonal; " << grouped(options.samples) << " samples per side\n";
+            << options.comparison.tolerance_pct << " % of geodual's; recall within " << options.feature_tolerance_pct
+            << " % of the diagonal; " << grouped(options.comparison.samples) << " samples per side\n";
   ChildLimits limits;
-  limits.time_limit_seconds = options.time_limit_seconds;
+  limits.time_limit_seconds = options.comparison.time_limit_seconds;
   int failures = 0;
   for (const auto& path : options.meshes) {
     const io::LoadedMesh input = io::read_mesh(path);
@@ -280,7 +233,7 @@ int run_benchmark(const Options& options) {
       const ChildOutcome outcome = run_in_child(limits, [&] { return to_bytes(run_geodual(input, count, options)); });
       std::int64_t target = count;
       if (outcome.status == ChildOutcome::Status::ok) {
-        const RunResult run = from_bytes(outcome.payload);
+        const RunResult run = from_bytes<RunResult>(outcome.payload);
         any = run;
         target = run.vertices;
         add_run_row(table, "geodual", run,
@@ -293,7 +246,7 @@ int run_benchmark(const Options& options) {
       for (const bool protect : {true, false}) {
         const std::string method = protect ? "CGAL protected" : "CGAL collapsible";
         std::cerr << "feature_bench:   " << method << " to " << target << " vertices\n";
-        const CgalSearch search = search_cgal(input.mesh, protect, target, options);
+        const EdgeLengthSearchResult<RunResult> search = search_cgal(input.mesh, protect, target, options);
         if (!search.result) {
           add_failed_row(table, method, search.failure, search.failed_child_rss);
           ++failures;
@@ -304,7 +257,7 @@ int run_benchmark(const Options& options) {
         const double miss = 100.0 * (static_cast<double>(run.vertices) / static_cast<double>(target) - 1.0);
         std::string notes = "L=" + scientific(search.length, 4) + ", " + (miss >= 0 ? "+" : "") + fixed(miss, 2) +
                             " % of " + grouped(target) + " vertices after " + std::to_string(search.runs) + " runs";
-        if (std::abs(miss) > options.tolerance_pct) notes += ", NOT within the tolerance";
+        if (std::abs(miss) > options.comparison.tolerance_pct) notes += ", NOT within the tolerance";
         if (run.constrained_edges != run.feature_edges) {
           notes += ", CGAL finds " + grouped(run.constrained_edges) + " sharp edges";
         }
@@ -332,47 +285,27 @@ constexpr const char* usage =
 
 Options parse_options(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--vertices") {
-      options.vertex_counts = parse_integer_list(arg, value(), 4, 100'000'000);
-    } else if (arg == "--sharp-angle") {
-      options.sharp_angle_deg = parse_number(arg, value());
+  options.meshes = parse_command_line(argc, argv, usage, [&](const std::string& word, const NextValue& value) {
+    if (word == "--vertices") {
+      options.vertex_counts = parse_integer_list(word, value(), 4, 100'000'000);
+    } else if (word == "--sharp-angle") {
+      options.sharp_angle_deg = parse_number(word, value());
       if (!(options.sharp_angle_deg > 0 && options.sharp_angle_deg <= 180)) {
         throw UsageError("--sharp-angle must be in (0, 180]");
       }
-    } else if (arg == "--feature-tolerance") {
-      options.feature_tolerance_pct = parse_number(arg, value());
+    } else if (word == "--feature-tolerance") {
+      options.feature_tolerance_pct = parse_number(word, value());
       if (!(options.feature_tolerance_pct > 0)) throw UsageError("--feature-tolerance must be > 0");
-    } else if (arg == "--geodual-sharp-angle") {
-      options.geodual_sharp_angle = parse_number(arg, value());
+    } else if (word == "--geodual-sharp-angle") {
+      options.geodual_sharp_angle = parse_number(word, value());
       if (!(*options.geodual_sharp_angle >= 0 && *options.geodual_sharp_angle <= 180)) {
         throw UsageError("--geodual-sharp-angle must be in [0, 180]");
       }
-    } else if (arg == "--cgal-iterations") {
-      options.cgal_iterations = static_cast<unsigned>(parse_integer(arg, value(), 1, 1000));
-    } else if (arg == "--tolerance") {
-      options.tolerance_pct = parse_number(arg, value());
-      if (!(options.tolerance_pct > 0)) throw UsageError("--tolerance must be > 0");
-    } else if (arg == "--max-runs") {
-      options.max_runs = static_cast<int>(parse_integer(arg, value(), 1, 100));
-    } else if (arg == "--samples") {
-      options.samples = parse_integer(arg, value(), 0, quality::max_samples_per_side);
-    } else if (arg == "--time-limit") {
-      options.time_limit_seconds = static_cast<unsigned>(parse_integer(arg, value(), 1, 1'000'000));
-    } else if (arg == "--help" || arg == "-h") {
-      std::cout << usage;
-      std::exit(0);
-    } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError("unknown option " + arg + "\n" + usage);
     } else {
-      options.meshes.emplace_back(arg);
+      return parse_comparison_option(word, value, options.comparison);
     }
-  }
+    return true;
+  });
   if (options.meshes.empty()) throw UsageError(std::string("give at least one mesh\n") + usage);
   return options;
 }
