@@ -54,6 +54,13 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
   return movable;
 }
 
+/// Frees a field's windows: of a relaxation's fields, only the last one's
+/// are needed (for the dual's queries), and they are most of a field's memory.
+void release_windows(voronoi::GeodesicField& field) {
+  std::vector<voronoi::EdgeWindow>().swap(field.windows);
+  std::vector<Index>().swap(field.window_begin);
+}
+
 /// Lloyd's steps, `factor` times each cell's (density-weighted) mean log map.
 std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, const std::vector<bool>& movable,
                                          double factor) {
@@ -275,6 +282,10 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
 
   StepControl control = initial_control(options);
   const double stop_fraction = std::max(options.tolerance, options.geodesic_tolerance);
+  // A trial step's diagram is computed while the current one is held, whose
+  // windows go first (the peak memory is then about one diagram's). If the
+  // relaxation ends on a rejected step they are computed again, the same.
+  bool windows_released = false;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const double previous = result.energy.back();
     std::vector<bool> movable = boundary_fixed;
@@ -283,12 +294,15 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
       const auto start = std::chrono::steady_clock::now();
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, result.sites, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!windows_released) release_windows(result.diagram.field);
+      windows_released = true;
       voronoi::VoronoiDiagram next = diagram_of(moved);
       detail::WeightedCells next_cells = cells_of(moved, next);
       const double energy = next_cells.total_energy();
       if (!(energy < previous - least_decrease)) return false;
       result.sites = std::move(moved);
       result.diagram = std::move(next);
+      windows_released = false;
       cells = std::move(next_cells);
       result.energy.push_back(energy);
       return true;
@@ -306,6 +320,11 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     ++result.iterations;
     if (previous - result.energy.back() < stop_fraction * previous) break;
     tell(false);
+  }
+  if (windows_released) {
+    voronoi::GeodesicField field = voronoi::compute_geodesic_field(surface, result.sites, options.voronoi.geodesic);
+    result.geodesic_seconds += field.stats.total_seconds;
+    result.diagram.field = std::move(field);
   }
   tell(true);
   return result;

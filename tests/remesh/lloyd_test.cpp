@@ -299,3 +299,40 @@ TEST(Lloyd, WarmStartBringsTheSitesCloserToACentroidalTessellation) {
 
 }  // namespace
 }  // namespace geodual
+
+namespace geodual {
+namespace {
+
+TEST(Lloyd, EndingOnARejectedStepKeepsTheWholeDiagramOfTheSitesReached) {
+  // A trial step's diagram is computed after the current one's windows are
+  // freed; when the last step is rejected, the windows the result holds must
+  // be those of its sites, as a fresh field has them. Sites on the boundary
+  // stay, so every step of these is rejected.
+  const TriangleMesh disk = test::disk(8, 32);
+  const double radius = disk.vertices.leftCols<2>().rowwise().norm().maxCoeff();
+  std::vector<SurfacePoint> sites;
+  for (Index v = 0; v < disk.num_vertices(); ++v) {
+    if (disk.vertices.row(v).head<2>().norm() > radius - 1e-9 && v % 3 == 0)
+      sites.push_back(SurfacePoint::at_vertex(v));
+  }
+  ASSERT_GT(sites.size(), 5u);
+  const remesh::LloydResult relaxed = remesh::lloyd_relax(disk, sites, {});
+  ASSERT_EQ(relaxed.iterations, 0);
+  ASSERT_GT(relaxed.diagrams, 1);  // the first diagram, then the rejected steps'
+  const voronoi::GeodesicField fresh = voronoi::compute_geodesic_field(disk, relaxed.sites);
+  const voronoi::GeodesicField& held = relaxed.diagram.field;
+  ASSERT_FALSE(held.windows.empty());
+  EXPECT_EQ(held.window_begin, fresh.window_begin);
+  ASSERT_EQ(held.windows.size(), fresh.windows.size());
+  for (std::size_t w = 0; w < held.windows.size(); ++w) {
+    const voronoi::EdgeWindow &a = held.windows[w], &b = fresh.windows[w];
+    EXPECT_TRUE(a.b0 == b.b0 && a.b1 == b.b1 && a.source_x == b.source_x && a.source_y == b.source_y &&
+                a.sigma == b.sigma && a.site == b.site)
+        << "window " << w;
+  }
+  EXPECT_EQ(held.distance, fresh.distance);
+  EXPECT_EQ(held.nearest_site, fresh.nearest_site);
+}
+
+}  // namespace
+}  // namespace geodual
