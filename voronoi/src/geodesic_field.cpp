@@ -3,7 +3,11 @@
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "prepared_surface.hpp"
+#include "site_groups.hpp"
 #include "window_vtp.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -11,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -137,9 +142,9 @@ void to_caller_numbering(const std::vector<Index>& old_vertex, std::vector<Value
 /// the field's per-face results in the caller's numbering, its per-vertex
 /// ones still in the propagation's. Returns the windows; the rest of the
 /// propagation's state is freed.
-detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::LocalityOrder& order,
-                              const std::vector<SurfacePoint>& local_sites, const GeodesicOptions& options,
-                              GeodesicField& field) {
+detail::WindowStore propagate_at_once(const detail::PropagationMesh& pm, const detail::LocalityOrder& order,
+                                      const std::vector<SurfacePoint>& local_sites, const GeodesicOptions& options,
+                                      GeodesicField& field) {
   const auto start = Clock::now();
   detail::WindowVtp vtp(pm, options);
   vtp.add_sites(local_sites);
@@ -157,6 +162,245 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
   std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
                    [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return vtp.take_windows();
+}
+
+/// A window one group kept, with its edge.
+struct GroupWindow {
+  Index edge = -1;
+  EdgeWindow window;
+};
+
+/// What a group hands to the merge once its propagation is over.
+struct GroupResult {
+  std::vector<GroupWindow> windows;  ///< sorted by edge, as on each edge
+  std::vector<FacePointSource> point_sources;
+  GeodesicStats stats;
+};
+
+/// Per edge, the lower envelope of the groups' windows, in group order (the
+/// store's MMP trimming, ties to the earlier group): the same for any thread
+/// count. Edges a group freed hold none: that group's site is strictly
+/// nearest on both their faces (WindowVtp::away_from_other_groups), where
+/// every other group's windows are longer.
+void merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
+                         const std::vector<std::uint8_t>& freed, GeodesicField& field) {
+  const Index num_edges = pm.num_edges();
+  constexpr Index kChunk = 8192;
+  const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
+  struct Chunk {
+    std::vector<EdgeWindow> windows;
+    std::vector<Index> count;  ///< per edge of the chunk
+  };
+  std::vector<Chunk> chunks(static_cast<std::size_t>(num_chunks));
+  tbb::enumerable_thread_specific<detail::WindowStore> scratch([] { return detail::WindowStore(1, false); });
+  tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
+    const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
+    Chunk& chunk = chunks[static_cast<std::size_t>(c)];
+    chunk.count.assign(static_cast<std::size_t>(end_edge - first_edge), 0);
+    std::vector<std::size_t> cursor(groups.size());
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      const std::vector<GroupWindow>& w = groups[g].windows;
+      cursor[g] = static_cast<std::size_t>(
+          std::lower_bound(w.begin(), w.end(), first_edge, [](const GroupWindow& a, Index e) { return a.edge < e; }) -
+          w.begin());
+    }
+    detail::WindowStore& store = scratch.local();
+    std::vector<detail::WindowStore::Piece> created;
+    for (Index e = first_edge; e < end_edge; ++e) {
+      // This edge's windows of each group: [cursor[g], end[g]).
+      std::size_t holders = 0, holder = 0;
+      std::array<std::size_t, 64> end_small{};
+      std::vector<std::size_t> end_large;
+      std::size_t* end = end_small.data();
+      if (groups.size() > end_small.size()) {
+        end_large.resize(groups.size());
+        end = end_large.data();
+      }
+      for (std::size_t g = 0; g < groups.size(); ++g) {
+        const std::vector<GroupWindow>& w = groups[g].windows;
+        std::size_t i = cursor[g];
+        while (i < w.size() && w[i].edge == e) ++i;
+        end[g] = i;
+        if (i > cursor[g]) ++holders, holder = g;
+      }
+      const std::size_t before = chunk.windows.size();
+      if (freed[static_cast<std::size_t>(e)] == 0 && holders == 1) {
+        for (std::size_t i = cursor[holder]; i < end[holder]; ++i)
+          chunk.windows.push_back(groups[holder].windows[i].window);
+      } else if (freed[static_cast<std::size_t>(e)] == 0 && holders > 1) {
+        const double length = pm.edge_length(e);
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+          for (std::size_t i = cursor[g]; i < end[g]; ++i) {
+            const EdgeWindow& w = groups[g].windows[i].window;
+            const std::uint32_t source = store.add_source(w.sigma, w.site);
+            created.clear();
+            store.insert(0, {w.b0, w.b1, w.source_x, w.source_y, source, 0}, {w.sigma, w.site}, length, created);
+          }
+        }
+        for (const detail::Window& w : store.on_edge(0)) {
+          const detail::WindowSource& source = store.source_of(w);
+          chunk.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site});
+        }
+        store.clear_edge(0);
+        store.clear_sources();
+      }
+      chunk.count[static_cast<std::size_t>(e - first_edge)] = static_cast<Index>(chunk.windows.size() - before);
+      for (std::size_t g = 0; g < groups.size(); ++g) cursor[g] = end[g];
+    }
+  });
+  for (GroupResult& group : groups) group.windows = std::vector<GroupWindow>();
+
+  std::size_t total = 0;
+  for (const Chunk& chunk : chunks) total += chunk.windows.size();
+  field.windows.reserve(total);
+  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
+  Index e = 0;
+  for (Chunk& chunk : chunks) {
+    for (const Index count : chunk.count) {
+      field.window_begin[static_cast<std::size_t>(e) + 1] = field.window_begin[static_cast<std::size_t>(e)] + count;
+      ++e;
+    }
+    field.windows.insert(field.windows.end(), chunk.windows.begin(), chunk.windows.end());
+    chunk = Chunk();
+  }
+}
+
+/// RWR on the merged field, as window-VTP ends it (every face inactive): a
+/// face is redundant where its corners and every window on its edges have
+/// one site (Definition 3.1); the windows of edges whose faces are all
+/// redundant go. Returns per face (propagation numbering) whether it is valid.
+std::vector<bool> drop_redundant_windows(const detail::PropagationMesh& pm, const std::vector<Index>& label,
+                                         GeodesicField& field) {
+  const Index num_faces = pm.num_faces();
+  std::vector<std::uint8_t> redundant(static_cast<std::size_t>(num_faces), 0);
+  tbb::parallel_for(Index{0}, num_faces, [&](Index f) {
+    if (!pm.included(f)) return;
+    const Index site = label[pm.vertex(f, 0)];
+    if (site < 0 || label[pm.vertex(f, 1)] != site || label[pm.vertex(f, 2)] != site) return;
+    for (const Index e : pm.face_edges(f)) {
+      for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
+        if (field.windows[i].site != site) return;
+      }
+    }
+    redundant[static_cast<std::size_t>(f)] = 1;
+  });
+  const Index num_edges = pm.num_edges();
+  Index kept = 0;
+  for (Index e = 0; e < num_edges; ++e) {
+    const Index begin = field.window_begin[e], end = field.window_begin[e + 1];
+    field.window_begin[e] = kept;
+    const std::array<Index, 2> faces = pm.edge_faces[e];
+    const bool drop = (faces[0] < 0 || redundant[faces[0]]) && (faces[1] < 0 || redundant[faces[1]]);
+    if (drop) continue;
+    for (Index i = begin; i < end; ++i) field.windows[kept++] = field.windows[i];
+  }
+  field.window_begin[num_edges] = kept;
+  field.windows.resize(static_cast<std::size_t>(kept));
+  field.windows.shrink_to_fit();
+  std::vector<bool> valid(static_cast<std::size_t>(num_faces), false);
+  for (Index f = 0; f < num_faces; ++f) {
+    valid[f] = pm.included(f) && label[pm.vertex(f, 0)] >= 0 && redundant[static_cast<std::size_t>(f)] == 0;
+  }
+  return valid;
+}
+
+/// Window-VTP in `num_groups` groups of sites at once (docs/algorithms.md,
+/// "Parallel propagation"), merged into the field as propagate_at_once
+/// leaves it, windows included.
+void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh& pm,
+                         const detail::LocalityOrder& order, const std::vector<SurfacePoint>& local_sites,
+                         int num_groups, const GeodesicOptions& options, GeodesicField& field) {
+  const auto start = Clock::now();
+  std::vector<Eigen::Vector3d> positions(field.sites.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = field.sites[i].position(mesh);
+  const std::vector<int> group_of = detail::partition_sites(positions, num_groups);
+  const detail::SiteTree tree(positions, group_of);
+  const std::vector<double> bound = detail::edge_path_upper_bound(pm, local_sites);
+
+  const auto num_vertices = static_cast<std::size_t>(pm.num_vertices());
+  field.distance.assign(num_vertices, std::numeric_limits<double>::infinity());
+  field.nearest_site.assign(num_vertices, -1);
+  std::vector<std::uint8_t> freed(static_cast<std::size_t>(pm.num_edges()), 0);
+  std::vector<GroupResult> results(static_cast<std::size_t>(num_groups));
+  // Progress: the groups done, and each running one's share of the faces.
+  std::mutex mutex;  // guards the merged vertex arrays, `freed` and progress
+  std::vector<double> group_progress(static_cast<std::size_t>(num_groups), 0.0);
+  double reported = 0;
+
+  tbb::parallel_for(0, num_groups, 1, [&](int g) {
+    std::vector<SurfacePoint> sites;
+    std::vector<Index> labels;
+    for (std::size_t i = 0; i < local_sites.size(); ++i) {
+      if (group_of[i] != g) continue;
+      sites.push_back(local_sites[i]);
+      labels.push_back(static_cast<Index>(i));
+    }
+    GeodesicOptions group_options = options;
+    if (options.progress) {
+      group_options.progress = [&, g](double fraction) {
+        const std::lock_guard lock(mutex);
+        group_progress[static_cast<std::size_t>(g)] = std::min(1.0, fraction * num_groups);
+        double sum = 0;
+        for (const double p : group_progress) sum += p;
+        reported = std::max(reported, std::min(1.0, sum / num_groups));
+        return options.progress(reported);
+      };
+    }
+    const detail::GroupLimits limits{bound, &tree, g, &mesh, order.old_vertex};
+    detail::WindowVtp vtp(pm, group_options, &limits);
+    vtp.add_sites(sites, labels);
+    vtp.run();
+    GroupResult& result = results[static_cast<std::size_t>(g)];
+    result.stats = vtp.stats();
+    result.point_sources = vtp.point_sources();
+    detail::WindowStore store = vtp.take_windows();
+    result.windows.reserve(static_cast<std::size_t>(store.live()));
+    store.drain(
+        [&](Index e, std::span<const detail::Window> windows) {
+          for (const detail::Window& w : windows) {
+            const detail::WindowSource& source = store.source_of(w);
+            result.windows.push_back({e, {w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site}});
+          }
+        },
+        1);
+    const std::vector<double>& distance = vtp.distance();
+    const std::vector<Index>& label = vtp.label();
+    // Smallest distance, ties to the smaller site: the same in any order.
+    const std::lock_guard lock(mutex);
+    for (std::size_t v = 0; v < num_vertices; ++v) {
+      if (label[v] < 0) continue;
+      if (distance[v] < field.distance[v] || (distance[v] == field.distance[v] && label[v] < field.nearest_site[v])) {
+        field.distance[v] = distance[v];
+        field.nearest_site[v] = label[v];
+      }
+    }
+    for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
+  });
+
+  merge_group_windows(pm, results, freed, field);
+  const std::vector<bool> valid = drop_redundant_windows(pm, field.nearest_site, field);
+  field.valid_face.resize(order.old_face.size());
+  for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
+
+  GeodesicStats& stats = field.stats;
+  for (GroupResult& result : results) {
+    stats.windows_created += result.stats.windows_created;
+    stats.peak_windows += result.stats.peak_windows;
+    stats.peak_window_bytes += result.stats.peak_window_bytes;
+    stats.vertices_popped += result.stats.vertices_popped;
+    stats.pseudo_sources += result.stats.pseudo_sources;
+    stats.faces_inactive += result.stats.faces_inactive;
+    for (FacePointSource& source : result.point_sources) {
+      source.face = order.old_face[source.face];
+      field.face_point_sources.push_back(source);
+    }
+    result.point_sources = std::vector<FacePointSource>();
+  }
+  std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
+                   [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  stats.windows_stored = static_cast<std::int64_t>(field.windows.size());
+  stats.propagation_seconds = seconds_since(start);
+  if (options.progress && !options.progress(1.0)) throw Cancelled("geodesic computation cancelled");
 }
 
 /// The retained windows into the field, grouped by edge, emptying the store
@@ -205,8 +449,14 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   }
   const double setup_seconds = seconds_since(start);
 
-  detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
-  windows.compact();
+  const int num_groups = detail::site_group_count(local_sites.size(), options.site_groups);
+  std::optional<detail::WindowStore> windows;
+  if (num_groups == 1) {
+    windows.emplace(propagate_at_once(pm, order, local_sites, options, field));
+    windows->compact();
+  } else {
+    propagate_in_groups(mesh, pm, order, local_sites, num_groups, options, field);
+  }
   to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   field.stats.setup_seconds = setup_seconds;
   const Index num_edges = pm.num_edges();
@@ -227,7 +477,7 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   field.edge_length = field.topology->edge_length;
   field.face_edges = field.topology->face_edges;
   if (options.release_memory_between_phases) trim_heap();  // the propagation's state (and the surface given up)
-  move_windows(windows, num_edges, field);
+  if (windows) move_windows(*windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;
 }
