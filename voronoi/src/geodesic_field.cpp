@@ -206,16 +206,10 @@ void merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupRes
     }
     detail::WindowStore& store = scratch.local();
     std::vector<detail::WindowStore::Piece> created;
+    std::vector<std::size_t> end(groups.size());
     for (Index e = first_edge; e < end_edge; ++e) {
       // This edge's windows of each group: [cursor[g], end[g]).
       std::size_t holders = 0, holder = 0;
-      std::array<std::size_t, 64> end_small{};
-      std::vector<std::size_t> end_large;
-      std::size_t* end = end_small.data();
-      if (groups.size() > end_small.size()) {
-        end_large.resize(groups.size());
-        end = end_large.data();
-      }
       for (std::size_t g = 0; g < groups.size(); ++g) {
         const std::vector<GroupWindow>& w = groups[g].windows;
         std::size_t i = cursor[g];
