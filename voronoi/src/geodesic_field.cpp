@@ -181,17 +181,25 @@ struct GroupResult {
 /// store's MMP trimming, ties to the earlier group): the same for any thread
 /// count. Edges a group freed hold none: that group's site is strictly
 /// nearest on both their faces (WindowVtp::away_from_other_groups), where
-/// every other group's windows are longer.
-void merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
-                         const std::vector<std::uint8_t>& freed, GeodesicField& field) {
+/// every other group's windows are longer. Then RWR over the merged field as
+/// window-VTP ends it (every face inactive): a face is redundant where its
+/// corners and every window on its edges have one site (Definition 3.1), and
+/// the windows of edges whose faces are all redundant go. Fills the field's
+/// windows and returns per face (propagation numbering) whether it is valid.
+std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
+                                      const std::vector<std::uint8_t>& freed, const std::vector<Index>& label,
+                                      GeodesicField& field) {
   const Index num_edges = pm.num_edges();
   constexpr Index kChunk = 8192;
   const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
+  constexpr Index kNoSite = detail::WindowStore::kNoSite, kMixedSites = detail::WindowStore::kMixedSites;
   struct Chunk {
     std::vector<EdgeWindow> windows;
     std::vector<Index> count;  ///< per edge of the chunk
+    Index kept = 0;            ///< windows left after RWR
   };
   std::vector<Chunk> chunks(static_cast<std::size_t>(num_chunks));
+  std::vector<Index> edge_site(static_cast<std::size_t>(num_edges), kNoSite);  // as WindowStore::edge_site
   tbb::enumerable_thread_specific<detail::WindowStore> scratch([] { return detail::WindowStore(1, false); });
   tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
     const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
@@ -219,8 +227,9 @@ void merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupRes
       }
       const std::size_t before = chunk.windows.size();
       if (freed[static_cast<std::size_t>(e)] == 0 && holders == 1) {
-        for (std::size_t i = cursor[holder]; i < end[holder]; ++i)
+        for (std::size_t i = cursor[holder]; i < end[holder]; ++i) {
           chunk.windows.push_back(groups[holder].windows[i].window);
+        }
       } else if (freed[static_cast<std::size_t>(e)] == 0 && holders > 1) {
         const double length = pm.edge_length(e);
         for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -238,33 +247,18 @@ void merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupRes
         store.clear_edge(0);
         store.clear_sources();
       }
+      Index& site = edge_site[static_cast<std::size_t>(e)];
+      for (std::size_t i = before; i < chunk.windows.size(); ++i) {
+        const Index s = chunk.windows[i].site;
+        site = site == kNoSite || site == s ? s : kMixedSites;
+      }
       chunk.count[static_cast<std::size_t>(e - first_edge)] = static_cast<Index>(chunk.windows.size() - before);
       for (std::size_t g = 0; g < groups.size(); ++g) cursor[g] = end[g];
     }
   });
   for (GroupResult& group : groups) group.windows = std::vector<GroupWindow>();
 
-  std::size_t total = 0;
-  for (const Chunk& chunk : chunks) total += chunk.windows.size();
-  field.windows.reserve(total);
-  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
-  Index e = 0;
-  for (Chunk& chunk : chunks) {
-    for (const Index count : chunk.count) {
-      field.window_begin[static_cast<std::size_t>(e) + 1] = field.window_begin[static_cast<std::size_t>(e)] + count;
-      ++e;
-    }
-    field.windows.insert(field.windows.end(), chunk.windows.begin(), chunk.windows.end());
-    chunk = Chunk();
-  }
-}
-
-/// RWR on the merged field, as window-VTP ends it (every face inactive): a
-/// face is redundant where its corners and every window on its edges have
-/// one site (Definition 3.1); the windows of edges whose faces are all
-/// redundant go. Returns per face (propagation numbering) whether it is valid.
-std::vector<bool> drop_redundant_windows(const detail::PropagationMesh& pm, const std::vector<Index>& label,
-                                         GeodesicField& field) {
+  // Redundant faces, and the edges between them.
   const Index num_faces = pm.num_faces();
   std::vector<std::uint8_t> redundant(static_cast<std::size_t>(num_faces), 0);
   tbb::parallel_for(Index{0}, num_faces, [&](Index f) {
@@ -272,25 +266,46 @@ std::vector<bool> drop_redundant_windows(const detail::PropagationMesh& pm, cons
     const Index site = label[pm.vertex(f, 0)];
     if (site < 0 || label[pm.vertex(f, 1)] != site || label[pm.vertex(f, 2)] != site) return;
     for (const Index e : pm.face_edges(f)) {
-      for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
-        if (field.windows[i].site != site) return;
-      }
+      const Index summary = edge_site[static_cast<std::size_t>(e)];
+      if (summary != kNoSite && summary != site) return;
     }
     redundant[static_cast<std::size_t>(f)] = 1;
   });
-  const Index num_edges = pm.num_edges();
-  Index kept = 0;
-  for (Index e = 0; e < num_edges; ++e) {
-    const Index begin = field.window_begin[e], end = field.window_begin[e + 1];
-    field.window_begin[e] = kept;
+  auto dropped = [&](Index e) {
     const std::array<Index, 2> faces = pm.edge_faces[e];
-    const bool drop = (faces[0] < 0 || redundant[faces[0]]) && (faces[1] < 0 || redundant[faces[1]]);
-    if (drop) continue;
-    for (Index i = begin; i < end; ++i) field.windows[kept++] = field.windows[i];
-  }
-  field.window_begin[num_edges] = kept;
-  field.windows.resize(static_cast<std::size_t>(kept));
-  field.windows.shrink_to_fit();
+    return (faces[0] < 0 || redundant[faces[0]] != 0) && (faces[1] < 0 || redundant[faces[1]] != 0);
+  };
+  tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
+    Chunk& chunk = chunks[static_cast<std::size_t>(c)];
+    for (std::size_t i = 0; i < chunk.count.size(); ++i) {
+      if (dropped(c * kChunk + static_cast<Index>(i)))
+        chunk.count[i] = -chunk.count[i] - 1;  // marked
+      else
+        chunk.kept += chunk.count[i];
+    }
+  });
+  std::vector<Index> chunk_begin(static_cast<std::size_t>(num_chunks) + 1, 0);
+  for (Index c = 0; c < num_chunks; ++c) chunk_begin[c + 1] = chunk_begin[c] + chunks[c].kept;
+  field.windows.resize(static_cast<std::size_t>(chunk_begin[num_chunks]));
+  field.window_begin.resize(static_cast<std::size_t>(num_edges) + 1);
+  field.window_begin[num_edges] = chunk_begin[num_chunks];
+  tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
+    Chunk& chunk = chunks[static_cast<std::size_t>(c)];
+    Index out = chunk_begin[c];
+    std::size_t in = 0;
+    for (std::size_t i = 0; i < chunk.count.size(); ++i) {
+      field.window_begin[c * kChunk + static_cast<Index>(i)] = out;
+      const Index count = chunk.count[i];
+      if (count < 0) {
+        in += static_cast<std::size_t>(-count - 1);
+        continue;
+      }
+      std::copy_n(chunk.windows.begin() + static_cast<std::ptrdiff_t>(in), count, field.windows.begin() + out);
+      in += static_cast<std::size_t>(count);
+      out += count;
+    }
+    chunk = Chunk();
+  });
   std::vector<bool> valid(static_cast<std::size_t>(num_faces), false);
   for (Index f = 0; f < num_faces; ++f) {
     valid[f] = pm.included(f) && label[pm.vertex(f, 0)] >= 0 && redundant[static_cast<std::size_t>(f)] == 0;
@@ -330,6 +345,9 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
       labels.push_back(static_cast<Index>(i));
     }
     GeodesicOptions group_options = options;
+    // A group's store is small; trimming the heap, which is process-wide,
+    // would only hold up the other groups.
+    group_options.release_memory_between_phases = false;
     if (options.progress) {
       group_options.progress = [&, g](double fraction) {
         const std::lock_guard lock(mutex);
@@ -347,16 +365,18 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
     GroupResult& result = results[static_cast<std::size_t>(g)];
     result.stats = vtp.stats();
     result.point_sources = vtp.point_sources();
-    detail::WindowStore store = vtp.take_windows();
-    result.windows.reserve(static_cast<std::size_t>(store.live()));
-    store.drain(
-        [&](Index e, std::span<const detail::Window> windows) {
-          for (const detail::Window& w : windows) {
-            const detail::WindowSource& source = store.source_of(w);
-            result.windows.push_back({e, {w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site}});
-          }
-        },
-        1);
+    {
+      // Edge by edge (not WindowStore::drain, which sorts every edge of the
+      // mesh by address: a group holds windows on a few of them).
+      const detail::WindowStore store = vtp.take_windows();
+      result.windows.reserve(static_cast<std::size_t>(store.live()));
+      for (Index e = 0; e < pm.num_edges(); ++e) {
+        for (const detail::Window& w : store.on_edge(e)) {
+          const detail::WindowSource& source = store.source_of(w);
+          result.windows.push_back({e, {w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site}});
+        }
+      }
+    }
     const std::vector<double>& distance = vtp.distance();
     const std::vector<Index>& label = vtp.label();
     // Smallest distance, ties to the smaller site: the same in any order.
@@ -371,8 +391,7 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
     for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
   });
 
-  merge_group_windows(pm, results, freed, field);
-  const std::vector<bool> valid = drop_redundant_windows(pm, field.nearest_site, field);
+  const std::vector<bool> valid = merge_group_windows(pm, results, freed, field.nearest_site, field);
   field.valid_face.resize(order.old_face.size());
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
 

@@ -2,8 +2,13 @@
 
 #include "geodual/mesh/detail/morton_code.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -54,58 +59,96 @@ std::vector<double> edge_path_upper_bound(const PropagationMesh& pm, std::span<c
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::vector<double> bound(static_cast<std::size_t>(pm.num_vertices()), kInfinity);
   // Label-correcting shortest paths with a bucket queue (Dial's algorithm on
-  // buckets two mean edges long, each visited in vertex order): a vertex may
-  // be expanded again if it is lowered later. Whatever the order, the result is the smallest over all
-  // edge paths of the distance summed along the path, so it is the same as
-  // Dijkstra's, at a fraction of a heap's cost.
+  // buckets two mean edges long), each bucket's vertices expanded in
+  // parallel, in vertex order (locality order: in the order they came, a
+  // bucket's vertices lie all over the mesh, a cache miss each); a vertex is
+  // expanded again if it is lowered later. Whatever the order, a vertex ends
+  // at the smallest over all edge paths of the lengths summed along the path
+  // (each value it takes is such a sum, and each lowering is passed on), so
+  // the result is Dijkstra's, and the same on any number of threads.
   double total_length = 0;
   for (const double length : pm.edge_lengths) total_length += length;
   const double width = pm.num_edges() > 0 ? 2 * total_length / static_cast<double>(pm.num_edges()) : 1.0;
   // Beyond the last bucket everything goes in it (then a FIFO: still exact).
   const std::size_t max_buckets = 4 * static_cast<std::size_t>(pm.num_vertices()) + 1;
-  std::vector<std::vector<std::pair<double, Index>>> buckets;
-  auto reach = [&](Index v, double d) {
-    if (!(d < bound[v])) return;
-    bound[v] = d;
+  auto bucket_of = [&](double d) {
     const double slot = width > 0 ? d / width : 0.0;
-    const std::size_t b =
-        slot < static_cast<double>(max_buckets - 1) ? static_cast<std::size_t>(slot) : max_buckets - 1;
-    if (b >= buckets.size()) buckets.resize(b + 1);
-    buckets[b].push_back({d, v});
+    return slot < static_cast<double>(max_buckets - 1) ? static_cast<std::size_t>(slot) : max_buckets - 1;
+  };
+  using Entry = std::pair<double, Index>;
+  struct Reached {
+    std::size_t bucket;
+    Entry entry;
+  };
+  /// Lowers bound[v] to d if d is lower (from any thread); true if it did.
+  auto lower = [&](Index v, double d) {
+    std::atomic_ref<double> slot(bound[static_cast<std::size_t>(v)]);
+    double old = slot.load(std::memory_order_relaxed);
+    while (d < old) {
+      if (slot.compare_exchange_weak(old, d, std::memory_order_relaxed)) return true;
+    }
+    return false;
+  };
+  std::vector<std::vector<Entry>> buckets;
+  auto add = [&](const Reached& r) {
+    if (r.bucket >= buckets.size()) buckets.resize(r.bucket + 1);
+    buckets[r.bucket].push_back(r.entry);
   };
   for (const SurfacePoint& site : local_sites) {
+    std::array<std::pair<Index, double>, 3> starts{};
+    int count = 0;
     if (site.kind == SurfacePoint::Kind::vertex) {
-      reach(site.element, 0.0);
-      continue;
-    }
-    // The same straight lines window-VTP's add_face_site measures.
-    const FaceInPlane plane = lay_out_face(pm, site.element, 0);
-    const Eigen::Vector2d p = site.barycentric[0] * plane.corner[0] + site.barycentric[1] * plane.corner[1] +
-                              site.barycentric[2] * plane.corner[2];
-    for (int c = 0; c < 3; ++c) reach(pm.vertex(site.element, c), (p - plane.corner[c]).norm());
-  }
-  std::vector<Index> fan;
-  for (std::size_t b = 0; b < buckets.size(); ++b) {
-    // In vertex order, which is locality order: a bucket's vertices lie all
-    // over the mesh, and visiting them as they came is a cache miss each.
-    std::sort(buckets[b].begin(), buckets[b].end(),
-              [](const std::pair<double, Index>& x, const std::pair<double, Index>& y) {
-                return x.second != y.second ? x.second < y.second : x.first < y.first;
-              });
-    // The bucket may grow while it is read (reach() into the same bucket).
-    for (std::size_t i = 0; i < buckets[b].size(); ++i) {
-      const auto [d, v] = buckets[b][i];
-      if (d > bound[v]) continue;  // lowered since
-      pm.faces_around(v, fan);
-      for (const Index f : fan) {
-        const FaceRecord& face = pm.face_records[f];
-        const int c = face.vertex[0] == v ? 0 : face.vertex[1] == v ? 1 : 2;
-        // Local edge c joins corners c and c + 1, local edge c + 2 corners c + 2 and c.
-        reach(face.vertex[(c + 1) % 3], d + pm.edge_length(face.edge(c)));
-        reach(face.vertex[(c + 2) % 3], d + pm.edge_length(face.edge((c + 2) % 3)));
+      starts[static_cast<std::size_t>(count++)] = {site.element, 0.0};
+    } else {
+      // The same straight lines window-VTP's add_face_site measures.
+      const FaceInPlane plane = lay_out_face(pm, site.element, 0);
+      const Eigen::Vector2d p = site.barycentric[0] * plane.corner[0] + site.barycentric[1] * plane.corner[1] +
+                                site.barycentric[2] * plane.corner[2];
+      for (int c = 0; c < 3; ++c) {
+        starts[static_cast<std::size_t>(count++)] = {pm.vertex(site.element, c), (p - plane.corner[c]).norm()};
       }
     }
-    buckets[b] = std::vector<std::pair<double, Index>>();
+    for (int i = 0; i < count; ++i) {
+      const auto [v, d] = starts[static_cast<std::size_t>(i)];
+      if (lower(v, d)) add({bucket_of(d), {d, v}});
+    }
+  }
+  tbb::enumerable_thread_specific<std::vector<Reached>> reached;
+  tbb::enumerable_thread_specific<std::vector<Index>> fans;
+  for (std::size_t b = 0; b < buckets.size(); ++b) {
+    while (!buckets[b].empty()) {
+      std::vector<Entry> current = std::move(buckets[b]);
+      buckets[b] = std::vector<Entry>();
+      std::sort(current.begin(), current.end(), [](const Entry& x, const Entry& y) {
+        return x.second != y.second ? x.second < y.second : x.first < y.first;
+      });
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, current.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+            std::vector<Reached>& out = reached.local();
+            std::vector<Index>& fan = fans.local();
+            for (std::size_t i = range.begin(); i < range.end(); ++i) {
+              const auto [d, v] = current[i];
+              if (d > std::atomic_ref<double>(bound[static_cast<std::size_t>(v)]).load(std::memory_order_relaxed)) {
+                continue;  // lowered since
+              }
+              pm.faces_around(v, fan);
+              for (const Index f : fan) {
+                const FaceRecord& face = pm.face_records[f];
+                const int c = face.vertex[0] == v ? 0 : face.vertex[1] == v ? 1 : 2;
+                // Local edge c joins corners c and c + 1, local edge c + 2 corners c + 2 and c.
+                const Index u1 = face.vertex[(c + 1) % 3], u2 = face.vertex[(c + 2) % 3];
+                const double d1 = d + pm.edge_length(face.edge(c));
+                const double d2 = d + pm.edge_length(face.edge((c + 2) % 3));
+                if (lower(u1, d1)) out.push_back({bucket_of(d1), {d1, u1}});
+                if (lower(u2, d2)) out.push_back({bucket_of(d2), {d2, u2}});
+              }
+            }
+          });
+      for (std::vector<Reached>& out : reached) {
+        for (const Reached& r : out) add(r);
+        out.clear();
+      }
+    }
   }
   double longest = 0;
   for (const double length : pm.edge_lengths) longest = std::max(longest, length);
