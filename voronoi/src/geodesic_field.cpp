@@ -164,17 +164,54 @@ detail::WindowStore propagate_at_once(const detail::PropagationMesh& pm, const d
   return vtp.take_windows();
 }
 
-/// A window one group kept, with its edge.
-struct GroupWindow {
-  Index edge = -1;
-  EdgeWindow window;
+/// The merge takes the edges in chunks of this many (in every group alike).
+constexpr Index kMergeChunk = 8192;
+
+/// One group's windows on the edges of one chunk.
+struct GroupChunk {
+  /// The edges holding windows, increasing; edge_end[i] is where the windows
+  /// of edges[i] end in `windows` (each edge's sorted along it).
+  std::vector<Index> edges;
+  std::vector<Index> edge_end;
+  std::vector<detail::Window> windows;  ///< Window::source indexes GroupResult::sources
 };
 
 /// What a group hands to the merge once its propagation is over.
 struct GroupResult {
-  std::vector<GroupWindow> windows;  ///< sorted by edge, as on each edge
+  std::vector<GroupChunk> chunks;  ///< by chunk of edges (freed as the merge writes them)
+  std::vector<detail::WindowSource> sources;
   std::vector<FacePointSource> point_sources;
   GeodesicStats stats;
+};
+
+/// Walks the groups' windows in one chunk of edges, in increasing edge
+/// order: for each edge, the groups holding windows there.
+class GroupCursor {
+ public:
+  GroupCursor(const std::vector<GroupResult>& groups, Index chunk)
+      : groups_(groups), chunk_(static_cast<std::size_t>(chunk)), at_(groups.size(), 0) {}
+  /// Calls visit(g, windows of g on e) for each group holding windows on e,
+  /// in group order, and returns how many did; e must not decrease.
+  template <class Visit>
+  int visit(Index e, Visit&& visit) {
+    int holders = 0;
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      const GroupChunk& chunk = groups_[g].chunks[chunk_];
+      std::size_t& i = at_[g];
+      while (i < chunk.edges.size() && chunk.edges[i] < e) ++i;
+      if (i == chunk.edges.size() || chunk.edges[i] != e) continue;
+      const Index begin = i > 0 ? chunk.edge_end[i - 1] : 0;
+      visit(g, std::span<const detail::Window>(chunk.windows.data() + begin,
+                                               static_cast<std::size_t>(chunk.edge_end[i] - begin)));
+      ++holders;
+    }
+    return holders;
+  }
+
+ private:
+  const std::vector<GroupResult>& groups_;
+  std::size_t chunk_;
+  std::vector<std::size_t> at_;
 };
 
 /// Per edge, the lower envelope of the groups' windows, in group order (the
@@ -186,77 +223,75 @@ struct GroupResult {
 /// corners and every window on its edges have one site (Definition 3.1), and
 /// the windows of edges whose faces are all redundant go. Fills the field's
 /// windows and returns per face (propagation numbering) whether it is valid.
+/// Two passes over the edges (count, then write in place), so that the
+/// merged windows are never held twice.
 std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
                                       const std::vector<std::uint8_t>& freed, const std::vector<Index>& label,
                                       GeodesicField& field) {
   const Index num_edges = pm.num_edges();
-  constexpr Index kChunk = 8192;
+  constexpr Index kChunk = kMergeChunk;
   const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
   constexpr Index kNoSite = detail::WindowStore::kNoSite, kMixedSites = detail::WindowStore::kMixedSites;
-  struct Chunk {
-    std::vector<EdgeWindow> windows;
-    std::vector<Index> count;  ///< per edge of the chunk
-    Index kept = 0;            ///< windows left after RWR
-  };
-  std::vector<Chunk> chunks(static_cast<std::size_t>(num_chunks));
-  std::vector<Index> edge_site(static_cast<std::size_t>(num_edges), kNoSite);  // as WindowStore::edge_site
   tbb::enumerable_thread_specific<detail::WindowStore> scratch([] { return detail::WindowStore(1, false); });
+  tbb::enumerable_thread_specific<std::vector<detail::WindowStore::Piece>> pieces;
+  // Calls emit(window) for each merged window of edge e, in order.
+  auto merge_edge = [&](GroupCursor& cursor, Index e, auto&& emit) {
+    if (freed[static_cast<std::size_t>(e)] != 0) {
+      cursor.visit(e, [](std::size_t, std::span<const detail::Window>) {});
+      return;
+    }
+    std::array<std::pair<std::size_t, std::span<const detail::Window>>, 8> held;
+    int holders = 0, extra = 0;
+    cursor.visit(e, [&](std::size_t g, std::span<const detail::Window> windows) {
+      if (holders < static_cast<int>(held.size()))
+        held[static_cast<std::size_t>(holders++)] = {g, windows};
+      else
+        ++extra;  // more than 8 groups on one edge: merged below with a fresh walk
+    });
+    if (holders == 1) {  // as the group left it
+      const GroupResult& group = groups[held[0].first];
+      for (const detail::Window& w : held[0].second) emit(w, group.sources[w.source]);
+      return;
+    }
+    if (holders == 0) return;
+    detail::WindowStore& store = scratch.local();
+    std::vector<detail::WindowStore::Piece>& created = pieces.local();
+    const double length = pm.edge_length(e);
+    auto insert = [&](std::size_t g, std::span<const detail::Window> windows) {
+      for (const detail::Window& w : windows) {
+        const detail::WindowSource& source = groups[g].sources[w.source];
+        detail::Window copy = w;
+        copy.source = store.add_source(source.sigma, source.site);
+        created.clear();
+        store.insert(0, copy, source, length, created);
+      }
+    };
+    if (extra == 0) {
+      for (int i = 0; i < holders; ++i)
+        insert(held[static_cast<std::size_t>(i)].first, held[static_cast<std::size_t>(i)].second);
+    } else {
+      GroupCursor again(groups, e / kChunk);
+      again.visit(e, insert);
+    }
+    for (const detail::Window& w : store.on_edge(0)) emit(w, store.source_of(w));
+    store.clear_edge(0);
+    store.clear_sources();
+  };
+
+  // Pass 1: how many windows each edge keeps, and their sites.
+  std::vector<Index> count(static_cast<std::size_t>(num_edges), 0);
+  std::vector<Index> edge_site(static_cast<std::size_t>(num_edges), kNoSite);  // as WindowStore::edge_site
   tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
     const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
-    Chunk& chunk = chunks[static_cast<std::size_t>(c)];
-    chunk.count.assign(static_cast<std::size_t>(end_edge - first_edge), 0);
-    std::vector<std::size_t> cursor(groups.size());
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      const std::vector<GroupWindow>& w = groups[g].windows;
-      cursor[g] = static_cast<std::size_t>(
-          std::lower_bound(w.begin(), w.end(), first_edge, [](const GroupWindow& a, Index e) { return a.edge < e; }) -
-          w.begin());
-    }
-    detail::WindowStore& store = scratch.local();
-    std::vector<detail::WindowStore::Piece> created;
-    std::vector<std::size_t> end(groups.size());
+    GroupCursor cursor(groups, c);
     for (Index e = first_edge; e < end_edge; ++e) {
-      // This edge's windows of each group: [cursor[g], end[g]).
-      std::size_t holders = 0, holder = 0;
-      for (std::size_t g = 0; g < groups.size(); ++g) {
-        const std::vector<GroupWindow>& w = groups[g].windows;
-        std::size_t i = cursor[g];
-        while (i < w.size() && w[i].edge == e) ++i;
-        end[g] = i;
-        if (i > cursor[g]) ++holders, holder = g;
-      }
-      const std::size_t before = chunk.windows.size();
-      if (freed[static_cast<std::size_t>(e)] == 0 && holders == 1) {
-        for (std::size_t i = cursor[holder]; i < end[holder]; ++i) {
-          chunk.windows.push_back(groups[holder].windows[i].window);
-        }
-      } else if (freed[static_cast<std::size_t>(e)] == 0 && holders > 1) {
-        const double length = pm.edge_length(e);
-        for (std::size_t g = 0; g < groups.size(); ++g) {
-          for (std::size_t i = cursor[g]; i < end[g]; ++i) {
-            const EdgeWindow& w = groups[g].windows[i].window;
-            const std::uint32_t source = store.add_source(w.sigma, w.site);
-            created.clear();
-            store.insert(0, {w.b0, w.b1, w.source_x, w.source_y, source, 0}, {w.sigma, w.site}, length, created);
-          }
-        }
-        for (const detail::Window& w : store.on_edge(0)) {
-          const detail::WindowSource& source = store.source_of(w);
-          chunk.windows.push_back({w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site});
-        }
-        store.clear_edge(0);
-        store.clear_sources();
-      }
       Index& site = edge_site[static_cast<std::size_t>(e)];
-      for (std::size_t i = before; i < chunk.windows.size(); ++i) {
-        const Index s = chunk.windows[i].site;
-        site = site == kNoSite || site == s ? s : kMixedSites;
-      }
-      chunk.count[static_cast<std::size_t>(e - first_edge)] = static_cast<Index>(chunk.windows.size() - before);
-      for (std::size_t g = 0; g < groups.size(); ++g) cursor[g] = end[g];
+      merge_edge(cursor, e, [&](const detail::Window&, const detail::WindowSource& source) {
+        ++count[static_cast<std::size_t>(e)];
+        site = site == kNoSite || site == source.site ? source.site : kMixedSites;
+      });
     }
   });
-  for (GroupResult& group : groups) group.windows = std::vector<GroupWindow>();
 
   // Redundant faces, and the edges between them.
   const Index num_faces = pm.num_faces();
@@ -271,41 +306,37 @@ std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::ve
     }
     redundant[static_cast<std::size_t>(f)] = 1;
   });
-  auto dropped = [&](Index e) {
+  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
+  for (Index e = 0; e < num_edges; ++e) {
     const std::array<Index, 2> faces = pm.edge_faces[e];
-    return (faces[0] < 0 || redundant[faces[0]] != 0) && (faces[1] < 0 || redundant[faces[1]] != 0);
-  };
-  tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
-    Chunk& chunk = chunks[static_cast<std::size_t>(c)];
-    for (std::size_t i = 0; i < chunk.count.size(); ++i) {
-      if (dropped(c * kChunk + static_cast<Index>(i)))
-        chunk.count[i] = -chunk.count[i] - 1;  // marked
-      else
-        chunk.kept += chunk.count[i];
-    }
-  });
-  std::vector<Index> chunk_begin(static_cast<std::size_t>(num_chunks) + 1, 0);
-  for (Index c = 0; c < num_chunks; ++c) chunk_begin[c + 1] = chunk_begin[c] + chunks[c].kept;
-  field.windows.resize(static_cast<std::size_t>(chunk_begin[num_chunks]));
-  field.window_begin.resize(static_cast<std::size_t>(num_edges) + 1);
-  field.window_begin[num_edges] = chunk_begin[num_chunks];
-  tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
-    Chunk& chunk = chunks[static_cast<std::size_t>(c)];
-    Index out = chunk_begin[c];
-    std::size_t in = 0;
-    for (std::size_t i = 0; i < chunk.count.size(); ++i) {
-      field.window_begin[c * kChunk + static_cast<Index>(i)] = out;
-      const Index count = chunk.count[i];
-      if (count < 0) {
-        in += static_cast<std::size_t>(-count - 1);
-        continue;
+    const bool dropped = (faces[0] < 0 || redundant[faces[0]] != 0) && (faces[1] < 0 || redundant[faces[1]] != 0);
+    field.window_begin[e + 1] = field.window_begin[e] + (dropped ? 0 : count[static_cast<std::size_t>(e)]);
+  }
+  count = std::vector<Index>();
+  edge_site = std::vector<Index>();
+
+  // Pass 2: the windows, in place, a wave of chunks at a time: each wave's
+  // part of the array is touched (made resident) only as the groups' windows
+  // of those chunks go, so that the two are not held whole at once.
+  field.windows.reserve(static_cast<std::size_t>(field.window_begin[num_edges]));
+  constexpr Index kWave = 16;
+  for (Index wave = 0; wave < num_chunks; wave += kWave) {
+    const Index wave_end = std::min(num_chunks, wave + kWave);
+    field.windows.resize(static_cast<std::size_t>(field.window_begin[std::min(num_edges, wave_end * kChunk)]));
+    tbb::parallel_for(wave, wave_end, [&](Index c) {
+      const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
+      GroupCursor cursor(groups, c);
+      for (Index e = first_edge; e < end_edge; ++e) {
+        if (field.window_begin[e] == field.window_begin[e + 1]) continue;  // none kept
+        Index out = field.window_begin[e];
+        merge_edge(cursor, e, [&](const detail::Window& w, const detail::WindowSource& source) {
+          field.windows[static_cast<std::size_t>(out++)] = {w.b0,       w.b1,         w.source_x,
+                                                            w.source_y, source.sigma, source.site};
+        });
       }
-      std::copy_n(chunk.windows.begin() + static_cast<std::ptrdiff_t>(in), count, field.windows.begin() + out);
-      in += static_cast<std::size_t>(count);
-      out += count;
-    }
-    chunk = Chunk();
-  });
+      for (GroupResult& group : groups) group.chunks[static_cast<std::size_t>(c)] = GroupChunk();
+    });
+  }
   std::vector<bool> valid(static_cast<std::size_t>(num_faces), false);
   for (Index f = 0; f < num_faces; ++f) {
     valid[f] = pm.included(f) && label[pm.vertex(f, 0)] >= 0 && redundant[static_cast<std::size_t>(f)] == 0;
@@ -367,14 +398,35 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
     result.point_sources = vtp.point_sources();
     {
       // Edge by edge (not WindowStore::drain, which sorts every edge of the
-      // mesh by address: a group holds windows on a few of them).
+      // mesh by address: a group holds windows on a few of them), each chunk
+      // sized first.
       const detail::WindowStore store = vtp.take_windows();
-      result.windows.reserve(static_cast<std::size_t>(store.live()));
-      for (Index e = 0; e < pm.num_edges(); ++e) {
-        for (const detail::Window& w : store.on_edge(e)) {
-          const detail::WindowSource& source = store.source_of(w);
-          result.windows.push_back({e, {w.b0, w.b1, w.source_x, w.source_y, source.sigma, source.site}});
+      const Index num_edges = pm.num_edges();
+      result.chunks.resize(static_cast<std::size_t>((num_edges + kMergeChunk - 1) / kMergeChunk));
+      for (Index c = 0; c < static_cast<Index>(result.chunks.size()); ++c) {
+        const Index first_edge = c * kMergeChunk, end_edge = std::min(num_edges, first_edge + kMergeChunk);
+        std::size_t edges = 0, windows = 0;
+        for (Index e = first_edge; e < end_edge; ++e) {
+          const std::size_t n = store.on_edge(e).size();
+          edges += n > 0 ? 1 : 0;
+          windows += n;
         }
+        if (edges == 0) continue;
+        GroupChunk& chunk = result.chunks[static_cast<std::size_t>(c)];
+        chunk.edges.reserve(edges);
+        chunk.edge_end.reserve(edges);
+        chunk.windows.reserve(windows);
+        for (Index e = first_edge; e < end_edge; ++e) {
+          const std::span<const detail::Window> on_edge = store.on_edge(e);
+          if (on_edge.empty()) continue;
+          chunk.windows.insert(chunk.windows.end(), on_edge.begin(), on_edge.end());
+          chunk.edges.push_back(e);
+          chunk.edge_end.push_back(static_cast<Index>(chunk.windows.size()));
+        }
+      }
+      result.sources.resize(store.num_sources());
+      for (std::size_t i = 0; i < store.num_sources(); ++i) {
+        result.sources[i] = store.source(static_cast<std::uint32_t>(i));
       }
     }
     const std::vector<double>& distance = vtp.distance();
