@@ -39,6 +39,9 @@ struct OracleCase {
   int face_sites = 0;
   std::uint64_t seed = 0;
   int edge_sites = 0;  ///< face points with one zero barycentric coordinate
+  /// GeodesicOptions::site_groups to check against the one CGAL run (0: as
+  /// many as the default picks).
+  std::vector<int> site_groups = {0};
 };
 
 struct Timer {
@@ -55,6 +58,10 @@ constexpr std::size_t kMaxTieChecks = 4;  // single-site CGAL runs allowed per c
 std::vector<SurfacePoint> random_query_points(const TriangleMesh& mesh, std::uint64_t seed) {
   return test::random_face_sites(mesh, kQueryPoints, seed);
 }
+
+void check_groups(const std::string& file, const TriangleMesh& mesh, const OracleCase& c,
+                  const std::vector<SurfacePoint>& sites, const std::vector<SurfacePoint>& queries,
+                  const test::OracleResult& cgal, int site_groups, double tol, double diag);
 
 void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCase& c) {
   const double diag = test::bbox_diagonal(mesh);
@@ -74,13 +81,23 @@ void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCas
        << c.edge_sites << " edge sites)";
   SCOPED_TRACE(what.str());
 
-  Timer ours_timer;
-  const GeodesicField field = compute_geodesic_field(mesh, sites);
-  const double ours_wall = ours_timer.wall_seconds(), ours_cpu = ours_timer.cpu_seconds();
   Timer cgal_timer;
   const test::OracleResult cgal = test::cgal_geodesic(mesh, sites, queries);
-  const double cgal_wall = cgal_timer.wall_seconds(), cgal_cpu = cgal_timer.cpu_seconds();
+  std::cout << std::setprecision(3) << "[oracle] CGAL " << cgal.solve_seconds << " s (wall "
+            << cgal_timer.wall_seconds() << ", cpu " << cgal_timer.cpu_seconds() << ")\n";
 
+  for (const int site_groups : c.site_groups) check_groups(file, mesh, c, sites, queries, cgal, site_groups, tol, diag);
+}
+
+void check_groups(const std::string& file, const TriangleMesh& mesh, const OracleCase& c,
+                  const std::vector<SurfacePoint>& sites, const std::vector<SurfacePoint>& queries,
+                  const test::OracleResult& cgal, int site_groups, double tol, double diag) {
+  GeodesicOptions options;
+  options.site_groups = site_groups;
+  SCOPED_TRACE("site_groups " + std::to_string(site_groups));
+  Timer ours_timer;
+  const GeodesicField field = compute_geodesic_field(mesh, sites, options);
+  const double ours_wall = ours_timer.wall_seconds(), ours_cpu = ours_timer.cpu_seconds();
   ASSERT_EQ(field.distance.size(), static_cast<std::size_t>(mesh.num_vertices()));
   ASSERT_EQ(field.nearest_site.size(), static_cast<std::size_t>(mesh.num_vertices()));
 
@@ -182,13 +199,12 @@ void run_case(const std::string& file, const TriangleMesh& mesh, const OracleCas
     }
   }
 
-  std::cout << std::setprecision(3) << "[oracle] " << file << " seed " << c.seed << ": " << sites.size() << " sites ("
-            << c.vertex_sites << " vertex, " << c.face_sites << " face, " << c.edge_sites
+  std::cout << std::setprecision(3) << "[oracle] " << file << " seed " << c.seed << " groups " << site_groups << ": "
+            << sites.size() << " sites (" << c.vertex_sites << " vertex, " << c.face_sites << " face, " << c.edge_sites
             << " edge), max |ours - CGAL| = " << max_error / diag << " of the diagonal (vertex " << worst
             << "), max query error " << max_query_error << " over " << exact_queries << " valid-face points, "
             << differing_vertices << " vertices / " << differing_query_count << " queries with a tied label; ours "
-            << field.stats.total_seconds << " s (wall " << ours_wall << ", cpu " << ours_cpu << "), CGAL "
-            << cgal.solve_seconds << " s (wall " << cgal_wall << ", cpu " << cgal_cpu << "); peak windows "
+            << field.stats.total_seconds << " s (wall " << ours_wall << ", cpu " << ours_cpu << "); peak windows "
             << field.stats.peak_windows << ", stored " << field.stats.windows_stored << "\n";
 }
 
@@ -244,28 +260,31 @@ void run_mesh(const std::string& file, const std::vector<OracleCase>& cases) {
   for (const OracleCase& c : cases) run_case(file, mesh, c);
 }
 
+// Each case checks one field per entry of site_groups against the same CGAL
+// run: the default (a single group below 512 sites) and sites propagated in
+// groups apart and merged (a few, and many small ones).
 // Chosen to keep CGAL's share of the suite near a minute and a half of CPU
 // time: every mesh gets 30 sites (a third each at vertices, inside faces and
 // on edges), the closed ones also 300 (half at vertices, half inside faces),
 // and the armadillo, where CGAL is quickest with one source, a single vertex
 // site and a single face site.
 TEST(GeodesicOracle, Armadillo86k) {
-  run_mesh("armadillo_86k.ply", {{1, 0, 101}, {0, 1, 102}, {10, 10, 103, 10}, {150, 150, 104}});
+  run_mesh("armadillo_86k.ply", {{1, 0, 101}, {0, 1, 102}, {10, 10, 103, 10}, {150, 150, 104, 0, {0, 4}}});
 }
 
 // (CGAL needs 20-30 s of CPU for a single source on the horse or Nefertiti:
 // those runs are in the DISABLED_ tests below.)
-TEST(GeodesicOracle, Horse) { run_mesh("horse.ply", {{10, 10, 203, 10}, {150, 150, 204}}); }
+TEST(GeodesicOracle, Horse) { run_mesh("horse.ply", {{10, 10, 203, 10, {0, 2}}, {150, 150, 204, 0, {0, 3, 16}}}); }
 
 TEST(GeodesicOracle, Nefertiti100k) {
   // Needle triangles down to 0.06 degrees, float64 coordinates.
-  run_mesh("nefertiti_100k.ply", {{10, 10, 303, 10}, {150, 150, 304}});
+  run_mesh("nefertiti_100k.ply", {{10, 10, 303, 10}, {150, 150, 304, 0, {0, 5}}});
 }
 
 TEST(GeodesicOracle, BunnyWithHoles) {
   // 5 boundary loops (boundary vertices are pseudo-sources) and 1113
   // unreferenced vertices (+inf on both sides).
-  run_mesh("bunny.ply", {{10, 10, 801, 10}});
+  run_mesh("bunny.ply", {{10, 10, 801, 10, {0, 3}}});
 }
 
 // Heavier runs, not part of the default suite (several CGAL minutes each on

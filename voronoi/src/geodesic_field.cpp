@@ -3,7 +3,11 @@
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "prepared_surface.hpp"
+#include "site_groups.hpp"
 #include "window_vtp.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -11,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -137,9 +142,9 @@ void to_caller_numbering(const std::vector<Index>& old_vertex, std::vector<Value
 /// the field's per-face results in the caller's numbering, its per-vertex
 /// ones still in the propagation's. Returns the windows; the rest of the
 /// propagation's state is freed.
-detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::LocalityOrder& order,
-                              const std::vector<SurfacePoint>& local_sites, const GeodesicOptions& options,
-                              GeodesicField& field) {
+detail::WindowStore propagate_at_once(const detail::PropagationMesh& pm, const detail::LocalityOrder& order,
+                                      const std::vector<SurfacePoint>& local_sites, const GeodesicOptions& options,
+                                      GeodesicField& field) {
   const auto start = Clock::now();
   detail::WindowVtp vtp(pm, options);
   vtp.add_sites(local_sites);
@@ -157,6 +162,310 @@ detail::WindowStore propagate(const detail::PropagationMesh& pm, const detail::L
   std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
                    [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return vtp.take_windows();
+}
+
+/// The merge takes the edges in chunks of this many (in every group alike).
+constexpr Index kMergeChunk = 8192;
+
+/// One group's windows on the edges of one chunk.
+struct GroupChunk {
+  /// The edges holding windows, increasing; edge_end[i] is where the windows
+  /// of edges[i] end in `windows` (each edge's sorted along it).
+  std::vector<Index> edges;
+  std::vector<Index> edge_end;
+  std::vector<detail::Window> windows;  ///< Window::source indexes GroupResult::sources
+};
+
+/// What a group hands to the merge once its propagation is over.
+struct GroupResult {
+  std::vector<GroupChunk> chunks;  ///< by chunk of edges (freed as the merge writes them)
+  std::vector<detail::WindowSource> sources;
+  std::vector<FacePointSource> point_sources;
+  GeodesicStats stats;
+};
+
+/// Walks the groups' windows in one chunk of edges, in increasing edge
+/// order: for each edge, the groups holding windows there.
+class GroupCursor {
+ public:
+  GroupCursor(const std::vector<GroupResult>& groups, Index chunk)
+      : groups_(groups), chunk_(static_cast<std::size_t>(chunk)), at_(groups.size(), 0) {}
+  /// Calls visit(g, windows of g on e) for each group holding windows on e,
+  /// in group order, and returns how many did; e must not decrease.
+  template <class Visit>
+  int visit(Index e, Visit&& visit) {
+    int holders = 0;
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      const GroupChunk& chunk = groups_[g].chunks[chunk_];
+      std::size_t& i = at_[g];
+      while (i < chunk.edges.size() && chunk.edges[i] < e) ++i;
+      if (i == chunk.edges.size() || chunk.edges[i] != e) continue;
+      const Index begin = i > 0 ? chunk.edge_end[i - 1] : 0;
+      visit(g, std::span<const detail::Window>(chunk.windows.data() + begin,
+                                               static_cast<std::size_t>(chunk.edge_end[i] - begin)));
+      ++holders;
+    }
+    return holders;
+  }
+
+ private:
+  const std::vector<GroupResult>& groups_;
+  std::size_t chunk_;
+  std::vector<std::size_t> at_;
+};
+
+/// Per edge, the lower envelope of the groups' windows, in group order (the
+/// store's MMP trimming, ties to the earlier group): the same for any thread
+/// count. Edges a group freed hold none: that group's site is strictly
+/// nearest on both their faces (WindowVtp::away_from_other_groups), where
+/// every other group's windows are longer. Then RWR over the merged field as
+/// window-VTP ends it (every face inactive): a face is redundant where its
+/// corners and every window on its edges have one site (Definition 3.1), and
+/// the windows of edges whose faces are all redundant go. Fills the field's
+/// windows and returns per face (propagation numbering) whether it is valid.
+/// Two passes over the edges (count, then write in place), so that the
+/// merged windows are never held twice.
+std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
+                                      const std::vector<std::uint8_t>& freed, const std::vector<Index>& label,
+                                      GeodesicField& field) {
+  const Index num_edges = pm.num_edges();
+  constexpr Index kChunk = kMergeChunk;
+  const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
+  constexpr Index kNoSite = detail::WindowStore::kNoSite, kMixedSites = detail::WindowStore::kMixedSites;
+  tbb::enumerable_thread_specific<detail::WindowStore> scratch([] { return detail::WindowStore(1, false); });
+  tbb::enumerable_thread_specific<std::vector<detail::WindowStore::Piece>> pieces;
+  // Calls emit(window) for each merged window of edge e, in order.
+  auto merge_edge = [&](GroupCursor& cursor, Index e, auto&& emit) {
+    if (freed[static_cast<std::size_t>(e)] != 0) {
+      cursor.visit(e, [](std::size_t, std::span<const detail::Window>) {});
+      return;
+    }
+    std::array<std::pair<std::size_t, std::span<const detail::Window>>, 8> held;
+    int holders = 0, extra = 0;
+    cursor.visit(e, [&](std::size_t g, std::span<const detail::Window> windows) {
+      if (holders < static_cast<int>(held.size()))
+        held[static_cast<std::size_t>(holders++)] = {g, windows};
+      else
+        ++extra;  // more than 8 groups on one edge: merged below with a fresh walk
+    });
+    if (holders == 1) {  // as the group left it
+      const GroupResult& group = groups[held[0].first];
+      for (const detail::Window& w : held[0].second) emit(w, group.sources[w.source]);
+      return;
+    }
+    if (holders == 0) return;
+    detail::WindowStore& store = scratch.local();
+    std::vector<detail::WindowStore::Piece>& created = pieces.local();
+    const double length = pm.edge_length(e);
+    auto insert = [&](std::size_t g, std::span<const detail::Window> windows) {
+      for (const detail::Window& w : windows) {
+        const detail::WindowSource& source = groups[g].sources[w.source];
+        detail::Window copy = w;
+        copy.source = store.add_source(source.sigma, source.site);
+        created.clear();
+        store.insert(0, copy, source, length, created);
+      }
+    };
+    if (extra == 0) {
+      for (int i = 0; i < holders; ++i)
+        insert(held[static_cast<std::size_t>(i)].first, held[static_cast<std::size_t>(i)].second);
+    } else {
+      GroupCursor again(groups, e / kChunk);
+      again.visit(e, insert);
+    }
+    for (const detail::Window& w : store.on_edge(0)) emit(w, store.source_of(w));
+    store.clear_edge(0);
+    store.clear_sources();
+  };
+
+  // Pass 1: how many windows each edge keeps, and their sites.
+  std::vector<Index> count(static_cast<std::size_t>(num_edges), 0);
+  std::vector<Index> edge_site(static_cast<std::size_t>(num_edges), kNoSite);  // as WindowStore::edge_site
+  tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
+    const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
+    GroupCursor cursor(groups, c);
+    for (Index e = first_edge; e < end_edge; ++e) {
+      Index& site = edge_site[static_cast<std::size_t>(e)];
+      merge_edge(cursor, e, [&](const detail::Window&, const detail::WindowSource& source) {
+        ++count[static_cast<std::size_t>(e)];
+        site = site == kNoSite || site == source.site ? source.site : kMixedSites;
+      });
+    }
+  });
+
+  // Redundant faces, and the edges between them.
+  const Index num_faces = pm.num_faces();
+  std::vector<std::uint8_t> redundant(static_cast<std::size_t>(num_faces), 0);
+  tbb::parallel_for(Index{0}, num_faces, [&](Index f) {
+    if (!pm.included(f)) return;
+    const Index site = label[pm.vertex(f, 0)];
+    if (site < 0 || label[pm.vertex(f, 1)] != site || label[pm.vertex(f, 2)] != site) return;
+    for (const Index e : pm.face_edges(f)) {
+      const Index summary = edge_site[static_cast<std::size_t>(e)];
+      if (summary != kNoSite && summary != site) return;
+    }
+    redundant[static_cast<std::size_t>(f)] = 1;
+  });
+  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
+  for (Index e = 0; e < num_edges; ++e) {
+    const std::array<Index, 2> faces = pm.edge_faces[e];
+    const bool dropped = (faces[0] < 0 || redundant[faces[0]] != 0) && (faces[1] < 0 || redundant[faces[1]] != 0);
+    field.window_begin[e + 1] = field.window_begin[e] + (dropped ? 0 : count[static_cast<std::size_t>(e)]);
+  }
+  count = std::vector<Index>();
+  edge_site = std::vector<Index>();
+
+  // Pass 2: the windows, in place, a wave of chunks at a time: each wave's
+  // part of the array is touched (made resident) only as the groups' windows
+  // of those chunks go, so that the two are not held whole at once.
+  field.windows.reserve(static_cast<std::size_t>(field.window_begin[num_edges]));
+  constexpr Index kWave = 16;
+  for (Index wave = 0; wave < num_chunks; wave += kWave) {
+    const Index wave_end = std::min(num_chunks, wave + kWave);
+    field.windows.resize(static_cast<std::size_t>(field.window_begin[std::min(num_edges, wave_end * kChunk)]));
+    tbb::parallel_for(wave, wave_end, [&](Index c) {
+      const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
+      GroupCursor cursor(groups, c);
+      for (Index e = first_edge; e < end_edge; ++e) {
+        if (field.window_begin[e] == field.window_begin[e + 1]) continue;  // none kept
+        Index out = field.window_begin[e];
+        merge_edge(cursor, e, [&](const detail::Window& w, const detail::WindowSource& source) {
+          field.windows[static_cast<std::size_t>(out++)] = {w.b0,       w.b1,         w.source_x,
+                                                            w.source_y, source.sigma, source.site};
+        });
+      }
+      for (GroupResult& group : groups) group.chunks[static_cast<std::size_t>(c)] = GroupChunk();
+    });
+  }
+  std::vector<bool> valid(static_cast<std::size_t>(num_faces), false);
+  for (Index f = 0; f < num_faces; ++f) {
+    valid[f] = pm.included(f) && label[pm.vertex(f, 0)] >= 0 && redundant[static_cast<std::size_t>(f)] == 0;
+  }
+  return valid;
+}
+
+/// Window-VTP in `num_groups` groups of sites at once (docs/algorithms.md,
+/// "Parallel propagation"), merged into the field as propagate_at_once
+/// leaves it, windows included.
+void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh& pm,
+                         const detail::LocalityOrder& order, const std::vector<SurfacePoint>& local_sites,
+                         int num_groups, const GeodesicOptions& options, GeodesicField& field) {
+  const auto start = Clock::now();
+  std::vector<Eigen::Vector3d> positions(field.sites.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = field.sites[i].position(mesh);
+  const std::vector<int> group_of = detail::partition_sites(positions, num_groups);
+  const detail::SiteTree tree(positions, group_of);
+  const std::vector<double> bound = detail::edge_path_upper_bound(pm, local_sites);
+
+  const auto num_vertices = static_cast<std::size_t>(pm.num_vertices());
+  field.distance.assign(num_vertices, std::numeric_limits<double>::infinity());
+  field.nearest_site.assign(num_vertices, -1);
+  std::vector<std::uint8_t> freed(static_cast<std::size_t>(pm.num_edges()), 0);
+  std::vector<GroupResult> results(static_cast<std::size_t>(num_groups));
+  // Progress: the groups done, and each running one's share of the faces.
+  std::mutex mutex;  // guards the merged vertex arrays, `freed` and progress
+  std::vector<double> group_progress(static_cast<std::size_t>(num_groups), 0.0);
+  double reported = 0;
+
+  tbb::parallel_for(0, num_groups, 1, [&](int g) {
+    std::vector<SurfacePoint> sites;
+    std::vector<Index> labels;
+    for (std::size_t i = 0; i < local_sites.size(); ++i) {
+      if (group_of[i] != g) continue;
+      sites.push_back(local_sites[i]);
+      labels.push_back(static_cast<Index>(i));
+    }
+    GeodesicOptions group_options = options;
+    // A group's store is small; trimming the heap, which is process-wide,
+    // would only hold up the other groups.
+    group_options.release_memory_between_phases = false;
+    if (options.progress) {
+      group_options.progress = [&, g](double fraction) {
+        const std::lock_guard lock(mutex);
+        group_progress[static_cast<std::size_t>(g)] = std::min(1.0, fraction * num_groups);
+        double sum = 0;
+        for (const double p : group_progress) sum += p;
+        reported = std::max(reported, std::min(1.0, sum / num_groups));
+        return options.progress(reported);
+      };
+    }
+    const detail::GroupLimits limits{bound, &tree, g, &mesh, order.old_vertex};
+    detail::WindowVtp vtp(pm, group_options, &limits);
+    vtp.add_sites(sites, labels);
+    vtp.run();
+    GroupResult& result = results[static_cast<std::size_t>(g)];
+    result.stats = vtp.stats();
+    result.point_sources = vtp.point_sources();
+    {
+      // Edge by edge (not WindowStore::drain, which sorts every edge of the
+      // mesh by address: a group holds windows on a few of them), each chunk
+      // sized first.
+      const detail::WindowStore store = vtp.take_windows();
+      const Index num_edges = pm.num_edges();
+      result.chunks.resize(static_cast<std::size_t>((num_edges + kMergeChunk - 1) / kMergeChunk));
+      for (Index c = 0; c < static_cast<Index>(result.chunks.size()); ++c) {
+        const Index first_edge = c * kMergeChunk, end_edge = std::min(num_edges, first_edge + kMergeChunk);
+        std::size_t edges = 0, windows = 0;
+        for (Index e = first_edge; e < end_edge; ++e) {
+          const std::size_t n = store.on_edge(e).size();
+          edges += n > 0 ? 1 : 0;
+          windows += n;
+        }
+        if (edges == 0) continue;
+        GroupChunk& chunk = result.chunks[static_cast<std::size_t>(c)];
+        chunk.edges.reserve(edges);
+        chunk.edge_end.reserve(edges);
+        chunk.windows.reserve(windows);
+        for (Index e = first_edge; e < end_edge; ++e) {
+          const std::span<const detail::Window> on_edge = store.on_edge(e);
+          if (on_edge.empty()) continue;
+          chunk.windows.insert(chunk.windows.end(), on_edge.begin(), on_edge.end());
+          chunk.edges.push_back(e);
+          chunk.edge_end.push_back(static_cast<Index>(chunk.windows.size()));
+        }
+      }
+      result.sources.resize(store.num_sources());
+      for (std::size_t i = 0; i < store.num_sources(); ++i) {
+        result.sources[i] = store.source(static_cast<std::uint32_t>(i));
+      }
+    }
+    const std::vector<double>& distance = vtp.distance();
+    const std::vector<Index>& label = vtp.label();
+    // Smallest distance, ties to the smaller site: the same in any order.
+    const std::lock_guard lock(mutex);
+    for (std::size_t v = 0; v < num_vertices; ++v) {
+      if (label[v] < 0) continue;
+      if (distance[v] < field.distance[v] || (distance[v] == field.distance[v] && label[v] < field.nearest_site[v])) {
+        field.distance[v] = distance[v];
+        field.nearest_site[v] = label[v];
+      }
+    }
+    for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
+  });
+
+  const std::vector<bool> valid = merge_group_windows(pm, results, freed, field.nearest_site, field);
+  field.valid_face.resize(order.old_face.size());
+  for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
+
+  GeodesicStats& stats = field.stats;
+  for (GroupResult& result : results) {
+    stats.windows_created += result.stats.windows_created;
+    stats.peak_windows += result.stats.peak_windows;
+    stats.peak_window_bytes += result.stats.peak_window_bytes;
+    stats.vertices_popped += result.stats.vertices_popped;
+    stats.pseudo_sources += result.stats.pseudo_sources;
+    stats.faces_inactive += result.stats.faces_inactive;
+    for (FacePointSource& source : result.point_sources) {
+      source.face = order.old_face[source.face];
+      field.face_point_sources.push_back(source);
+    }
+    result.point_sources = std::vector<FacePointSource>();
+  }
+  std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
+                   [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
+  stats.windows_stored = static_cast<std::int64_t>(field.windows.size());
+  stats.propagation_seconds = seconds_since(start);
+  if (options.progress && !options.progress(1.0)) throw Cancelled("geodesic computation cancelled");
 }
 
 /// The retained windows into the field, grouped by edge, emptying the store
@@ -205,8 +514,14 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   }
   const double setup_seconds = seconds_since(start);
 
-  detail::WindowStore windows = propagate(pm, order, local_sites, options, field);
-  windows.compact();
+  const int num_groups = detail::site_group_count(local_sites.size(), options.site_groups);
+  std::optional<detail::WindowStore> windows;
+  if (num_groups == 1) {
+    windows.emplace(propagate_at_once(pm, order, local_sites, options, field));
+    windows->compact();
+  } else {
+    propagate_in_groups(mesh, pm, order, local_sites, num_groups, options, field);
+  }
   to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
   field.stats.setup_seconds = setup_seconds;
   const Index num_edges = pm.num_edges();
@@ -227,7 +542,7 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   field.edge_length = field.topology->edge_length;
   field.face_edges = field.topology->face_edges;
   if (options.release_memory_between_phases) trim_heap();  // the propagation's state (and the surface given up)
-  move_windows(windows, num_edges, field);
+  if (windows) move_windows(*windows, num_edges, field);
   field.stats.total_seconds = seconds_since(start);
   return field;
 }

@@ -54,6 +54,8 @@ class WindowStore {
   std::uint32_t add_source(double sigma, Index site);
   std::size_t num_sources() const { return sources_.size(); }
   void reserve_sources(std::size_t count) { sources_.reserve(count); }
+  /// Forgets the sources (no window may refer to them any more).
+  void clear_sources() { sources_.clear(); }
   const WindowSource& source(std::uint32_t id) const { return sources_[id]; }
   const WindowSource& source_of(const Window& w) const { return sources_[w.source]; }
   void prefetch_source([[maybe_unused]] const Window& w) const {

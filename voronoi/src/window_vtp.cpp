@@ -19,9 +19,10 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 }  // namespace
 
-WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options)
+WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options, const GroupLimits* limits)
     : pm_(mesh),
       options_(options),
+      limits_(limits),
       distance_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
       label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
       vertex_flags_(static_cast<std::size_t>(mesh.num_vertices()), 0),
@@ -35,21 +36,25 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
   std::vector<FaceEvent> face_events;
   if (options.remove_redundant_windows) face_events.reserve(static_cast<std::size_t>(mesh.num_faces()));
   face_events_ = decltype(face_events_)(std::greater<>(), std::move(face_events));
+  // A path longer than the bound is not a shortest path to any site: starting
+  // from it, relax() and Xin & Wang's filter in submit() drop such paths.
+  if (limits_ != nullptr) std::copy(limits_->distance_bound.begin(), limits_->distance_bound.end(), distance_.begin());
 }
 
 // ---------------------------------------------------------------- seeding --
 
-void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites) {
+void WindowVtp::add_sites(const std::vector<SurfacePoint>& sites, std::span<const Index> labels) {
   // Each pseudo-source emits once (again only if its distance falls after),
   // a face site up to twice: room for that, rather than a doubling array's.
   const auto pseudo_sources = std::count(pm_.is_pseudo_source.begin(), pm_.is_pseudo_source.end(), std::uint8_t{1});
   store_.reserve_sources(static_cast<std::size_t>(pseudo_sources) + 2 * sites.size());
   for (Index i = 0; i < static_cast<Index>(sites.size()); ++i) {
     const SurfacePoint& site = sites[i];
+    const Index label = labels.empty() ? i : labels[static_cast<std::size_t>(i)];
     if (site.kind == SurfacePoint::Kind::vertex) {
-      add_vertex_site(site.element, i);
+      add_vertex_site(site.element, label);
     } else {
-      add_face_site(site.element, site.barycentric, i);
+      add_face_site(site.element, site.barycentric, label);
     }
   }
 }
@@ -409,6 +414,21 @@ bool WindowVtp::face_is_redundant(Index face) const {
   return true;
 }
 
+// For a point x of the face, d(x) <= d_min + |e_max| through its nearest
+// corner, and every site of another group is at least |x - c0| - |e_max| away
+// from x in space (c0 = corner 0), so at least that far on the surface:
+// where no such site lies within d_min + 2 |e_max| of c0, this group's site
+// is strictly nearest all over the face, and its windows there are final.
+bool WindowVtp::away_from_other_groups(Index face) const {
+  if (limits_ == nullptr || limits_->sites == nullptr) return true;
+  double d_min = kInfinity;
+  for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
+  const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
+  const double radius = (d_min + 2 * std::max({lengths[0], lengths[1], lengths[2]})) * (1 + 1e-9);
+  const Index corner = limits_->old_vertex[static_cast<std::size_t>(pm_.vertex(face, 0))];
+  return !limits_->sites->other_group_within(limits_->mesh->vertices.row(corner).transpose(), radius, limits_->group);
+}
+
 // RWR, the paper's Procedure 1: Step 1 (Proposition 3.1, below) finds the faces
 // now inactive, Step 2 (Definition 3.1) frees the windows of the redundant
 // edges among them: edges whose two faces are both inactive and redundant.
@@ -423,13 +443,14 @@ void WindowVtp::remove_redundant_windows(double lower_bound) {
     if (face_flags_[f] & kInactive) continue;
     face_flags_[f] |= kInactive;
     ++stats_.faces_inactive;
-    if (!face_is_redundant(f)) continue;
+    if (!face_is_redundant(f) || !away_from_other_groups(f)) continue;
     face_flags_[f] |= kRedundant;
     for (int k = 0; k < 3; ++k) {
       const Index e = pm_.face_edges(f)[k];
       const Index other = pm_.edge_faces[e][1 - pm_.side_of(e, f)];
       if (other < 0 || ((face_flags_[other] & kInactive) && (face_flags_[other] & kRedundant))) {
         store_.clear_edge(e);
+        if (limits_ != nullptr) freed_edges_.push_back(e);
       }
     }
   }

@@ -15,6 +15,7 @@
 #include "event_queue.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "propagation_mesh.hpp"
+#include "site_groups.hpp"
 #include "window_store.hpp"
 
 #include <Eigen/Core>
@@ -22,17 +23,37 @@
 #include <array>
 #include <cstdint>
 #include <queue>
+#include <span>
 #include <utility>
 #include <vector>
 
 namespace geodual::voronoi::detail {
 
+/// One group's share of a propagation split into groups of sites (see
+/// site_groups.hpp): paths longer than `distance_bound` are dropped, and a
+/// redundant face's windows are freed only where no site of another group
+/// can be nearer anywhere on the face.
+struct GroupLimits {
+  /// Per vertex: an upper bound of the distance to the nearest site of any
+  /// group (edge_path_upper_bound).
+  std::span<const double> distance_bound;
+  const SiteTree* sites = nullptr;
+  int group = 0;
+  /// Per vertex of the propagation mesh, its position (for the SiteTree).
+  const TriangleMesh* mesh = nullptr;
+  std::span<const Index> old_vertex;
+};
+
 class WindowVtp {
  public:
-  WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options);
+  /// With `limits`, propagates one group of sites (add_sites gets only that
+  /// group's sites, with their global indices as labels): distances start at
+  /// the bound, so a vertex keeps label -1 where the group cannot be nearest.
+  WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options, const GroupLimits* limits = nullptr);
 
-  /// Seeds the propagation from the sites (already validated; index = label).
-  void add_sites(const std::vector<SurfacePoint>& sites);
+  /// Seeds the propagation from the sites (already validated; index = label,
+  /// or labels[index] where given).
+  void add_sites(const std::vector<SurfacePoint>& sites, std::span<const Index> labels = {});
   /// Runs the propagation to the end.
   void run();
 
@@ -50,6 +71,8 @@ class WindowVtp {
   /// Point sources (sites, and pseudo-sources on zero-area faces) lying in a
   /// face or on its edges, which queries inside that face must consider.
   const std::vector<FacePointSource>& point_sources() const { return point_sources_; }
+  /// With limits: the edges whose windows RWR freed (with repeats).
+  const std::vector<Index>& freed_edges() const { return freed_edges_; }
 
  private:
   /// kFaceWaits: a traversed face at the vertex waits for its key until one
@@ -98,10 +121,14 @@ class WindowVtp {
   double next_event_key() const;
   void remove_redundant_windows(double lower_bound);
   bool face_is_redundant(Index face) const;
+  /// True unless limits are set and a site of another group may be nearer
+  /// somewhere on the face.
+  bool away_from_other_groups(Index face) const;
   void report_progress();
 
   const PropagationMesh& pm_;
   const GeodesicOptions& options_;
+  const GroupLimits* limits_ = nullptr;
   GeodesicStats stats_;
 
   std::vector<double> distance_;
@@ -133,6 +160,7 @@ class WindowVtp {
   std::int64_t peak_window_bytes_ = 0;
   std::int64_t steps_ = 0;
   std::vector<FacePointSource> point_sources_;
+  std::vector<Index> freed_edges_;
 };
 
 }  // namespace geodual::voronoi::detail

@@ -46,6 +46,11 @@ struct GeodesicOptions {
   /// resident memory low on large meshes. false leaves the heap to the
   /// allocator, for callers that trim on their own schedule.
   bool release_memory_between_phases = true;
+  /// The sites propagate in this many groups, each on its own (in parallel,
+  /// on the threads of the caller's TBB arena), and the groups' results are
+  /// merged; 0 picks one group per 256 sites, at most 16. The result depends
+  /// on this number (never on the thread count) and is exact for any.
+  int site_groups = 0;
   /// Called now and then with the fraction of faces reached, in [0, 1];
   /// returning false cancels the computation (geodual::Cancelled is thrown).
   std::function<bool(double fraction)> progress;
