@@ -211,8 +211,8 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
       figures_of_first = run;
     }
     if (run.lloyd_iterations > 0 || run.warm_start_iterations > 0) {
-      row.notes = std::to_string(run.lloyd_iterations) + " Lloyd iterations after " +
-                  std::to_string(run.warm_start_iterations) + " warm-start steps";
+      row.notes = std::to_string(run.warm_start_iterations) + " warm-start steps, " +
+                  std::to_string(run.lloyd_iterations) + " Lloyd iteration(s)";
     }
     if (run.sites_added > 0) {
       row.notes += (row.notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");

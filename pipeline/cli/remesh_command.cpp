@@ -539,12 +539,14 @@ class RemeshCommand final : public Command {
                                 " corners, lined with " + with_thousands(run.feature_sites) + " of the sites");
     }
     if (!relaxation.energy.empty()) {
-      table.add("lloyd", std::to_string(relaxation.iterations) + " iterations" +
-                             (relaxation.warm_start_iterations > 0
-                                  ? " after " + std::to_string(relaxation.warm_start_iterations) + " warm-start steps"
-                                  : std::string()) +
-                             ", CVT energy " + significant(relaxation.energy.front(), 4) + " -> " +
-                             significant(relaxation.energy.back(), 4));
+      auto count = [](int n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); };
+      table.add(
+          "lloyd",
+          (relaxation.warm_start_iterations > 0 ? count(relaxation.warm_start_iterations, "warm-start step") + ", then "
+                                                : std::string()) +
+              count(relaxation.iterations, "iteration") + " (" + count(relaxation.diagrams, "geodesic diagram") +
+              "), CVT energy " + significant(relaxation.energy.front(), 5) + " -> " +
+              significant(relaxation.energy.back(), 5));
     }
     table.add("output", output_path + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
