@@ -262,14 +262,14 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     return detail::weighted_cells(mesh, points, diagram, options.density);
   };
   const voronoi::SurfaceTopology& topology = *surface.topology();
-  const std::vector<bool> boundary_fixed = movable_sites(mesh, sites, topology, options);
+  const std::vector<bool> movable_at_start = movable_sites(mesh, sites, topology, options);
   result.sites = std::move(sites);
   // The warm start needs no geodesics: the first diagram is that of the
   // sites it reaches (issue #17: no diagram just to judge it).
   if (options.iterations > 0 && options.warm_start_iterations > 0) {
     const auto start = std::chrono::steady_clock::now();
     result.sites =
-        warm_start(mesh, topology, std::move(result.sites), boundary_fixed, options, result.warm_start_iterations);
+        warm_start(mesh, topology, std::move(result.sites), movable_at_start, options, result.warm_start_iterations);
     result.warm_start_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   result.diagram = diagram_of(result.sites);
@@ -288,7 +288,8 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   bool windows_released = false;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const double previous = result.energy.back();
-    std::vector<bool> movable = boundary_fixed;
+    // Judged again each iteration: a walk may have ended on the boundary.
+    std::vector<bool> movable = movable_sites(mesh, result.sites, topology, options);
     for (std::size_t i = 0; i < movable.size(); ++i) movable[i] = movable[i] && result.diagram.cell_area[i] > 0;
     auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       const auto start = std::chrono::steady_clock::now();

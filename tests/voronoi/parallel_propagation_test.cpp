@@ -171,3 +171,33 @@ TEST(ParallelPropagation, AgreesWithPropagationAtOnce) {
 
 }  // namespace
 }  // namespace geodual::voronoi
+
+namespace geodual::voronoi {
+namespace {
+
+TEST(ParallelPropagation, GroupsKeepTheirWindowsWithoutRedundantWindowRemoval) {
+  // With RWR off the merge keeps every edge's windows; with it on, an edge
+  // keeps the same windows or none.
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path("fertility.ply"));
+  const std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 120, 3);
+  GeodesicOptions kept, removed;
+  kept.site_groups = removed.site_groups = 3;
+  kept.remove_redundant_windows = false;
+  const GeodesicField all = compute_geodesic_field(mesh, sites, kept);
+  const GeodesicField some = compute_geodesic_field(mesh, sites, removed);
+  EXPECT_GT(all.windows.size(), some.windows.size() * 3 / 2);
+  ASSERT_EQ(all.window_begin.size(), some.window_begin.size());
+  Index edges_kept = 0;
+  for (std::size_t e = 0; e + 1 < all.window_begin.size(); ++e) {
+    const Index n = some.window_begin[e + 1] - some.window_begin[e];
+    if (n == 0) continue;
+    ++edges_kept;
+    EXPECT_EQ(n, all.window_begin[e + 1] - all.window_begin[e]) << "edge " << e;
+  }
+  EXPECT_GT(edges_kept, 0);
+  EXPECT_EQ(all.distance, some.distance);
+  EXPECT_EQ(all.nearest_site, some.nearest_site);
+}
+
+}  // namespace
+}  // namespace geodual::voronoi

@@ -221,13 +221,14 @@ class GroupCursor {
 /// every other group's windows are longer. Then RWR over the merged field as
 /// window-VTP ends it (every face inactive): a face is redundant where its
 /// corners and every window on its edges have one site (Definition 3.1), and
-/// the windows of edges whose faces are all redundant go. Fills the field's
+/// the windows of edges whose faces are all redundant go (unless
+/// `remove_redundant_windows` is false). Fills the field's
 /// windows and returns per face (propagation numbering) whether it is valid.
 /// Two passes over the edges (count, then write in place), so that the
 /// merged windows are never held twice.
 std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
                                       const std::vector<std::uint8_t>& freed, const std::vector<Index>& label,
-                                      GeodesicField& field) {
+                                      bool remove_redundant_windows, GeodesicField& field) {
   const Index num_edges = pm.num_edges();
   constexpr Index kChunk = kMergeChunk;
   const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
@@ -309,7 +310,8 @@ std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::ve
   field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
   for (Index e = 0; e < num_edges; ++e) {
     const std::array<Index, 2> faces = pm.edge_faces[e];
-    const bool dropped = (faces[0] < 0 || redundant[faces[0]] != 0) && (faces[1] < 0 || redundant[faces[1]] != 0);
+    const bool dropped = remove_redundant_windows && (faces[0] < 0 || redundant[faces[0]] != 0) &&
+                         (faces[1] < 0 || redundant[faces[1]] != 0);
     field.window_begin[e + 1] = field.window_begin[e] + (dropped ? 0 : count[static_cast<std::size_t>(e)]);
   }
   count = std::vector<Index>();
@@ -443,7 +445,8 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
     for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
   });
 
-  const std::vector<bool> valid = merge_group_windows(pm, results, freed, field.nearest_site, field);
+  const std::vector<bool> valid =
+      merge_group_windows(pm, results, freed, field.nearest_site, options.remove_redundant_windows, field);
   field.valid_face.resize(order.old_face.size());
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
 

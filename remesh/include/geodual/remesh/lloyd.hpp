@@ -31,7 +31,7 @@ struct LloydOptions {
   double tolerance = 1e-5;
   /// The iterations, each an exact geodesic diagram, also stop once one
   /// lowers the energy by less than this fraction of it. From a converged
-  /// warm start the first lowers it by about 1e-4 and the triangles no longer
+  /// warm start the first lowers it by about 2e-4 and the triangles no longer
   /// change measurably (docs/algorithms.md#lloydnewton-relaxation); where the
   /// restricted diagram is far from the geodesic one (few sites on a curved
   /// or thin surface) the iterations go on. 0: only `tolerance` stops them.

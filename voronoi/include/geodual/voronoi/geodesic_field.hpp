@@ -36,10 +36,13 @@ namespace geodual::voronoi {
 struct GeodesicOptions {
   /// Free the windows that cannot matter for the Voronoi diagram as soon as
   /// their faces are inactive ([QYZ17] §3.2, Proposition 3.1). Off keeps every window, as MMP and
-  /// [LCT11] do; distances and labels are the same either way.
+  /// [LCT11] do (with several site groups: every window no longer than the
+  /// groups' distance bound); distances and labels are the same either way.
   bool remove_redundant_windows = true;
   /// Stop with a geodual::Error when the windows held at one time need more
   /// than this many bytes (a clear error instead of being killed for memory).
+  /// With several site groups the limit holds for each group: as many groups
+  /// as threads may hold their windows at once.
   std::size_t window_memory_limit_bytes = std::size_t{8} << 30;
   /// Hand freed heap memory back to the system between the computation's
   /// phases (glibc's malloc_trim, which is process-wide): keeps the peak
@@ -48,21 +51,24 @@ struct GeodesicOptions {
   bool release_memory_between_phases = true;
   /// The sites propagate in this many groups, each on its own (in parallel,
   /// on the threads of the caller's TBB arena), and the groups' results are
-  /// merged; 0 picks one group per 256 sites, at most 16. The result depends
-  /// on this number (never on the thread count) and is exact for any.
+  /// merged; 0 (or less) picks one group per 256 sites, at most 16. The
+  /// result depends on this number (never on the thread count) and is exact
+  /// for any.
   int site_groups = 0;
   /// Called now and then with the fraction of faces reached, in [0, 1];
   /// returning false cancels the computation (geodual::Cancelled is thrown).
+  /// With several site groups it is called from the worker threads, one call
+  /// at a time.
   std::function<bool(double fraction)> progress;
 };
 
 struct GeodesicStats {
   std::int64_t windows_created = 0;  ///< windows that survived insertion on an edge
   std::int64_t windows_stored = 0;   ///< windows held at the end
-  std::int64_t peak_windows = 0;     ///< most windows held at one time
+  std::int64_t peak_windows = 0;     ///< most windows held at one time (several groups: the sum of theirs)
   /// Peak bytes of window storage (live windows, unused block capacity and
   /// freed blocks awaiting reuse); window_memory_limit_bytes is checked
-  /// against the same figure.
+  /// against the same figure, per group (several groups: the sum of theirs).
   std::int64_t peak_window_bytes = 0;
   std::int64_t vertices_popped = 0;  ///< vertices taken from the priority queue to expand
   std::int64_t pseudo_sources = 0;   ///< saddle / boundary vertices that emitted windows
