@@ -56,10 +56,14 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
 
 /// Frees a field's windows: of a relaxation's fields, only the last one's
 /// are needed (for the dual's queries), and they are most of a field's memory.
+/// A field keeps one window_begin entry per edge and one more, so an empty
+/// window_begin marks the field as released.
 void release_windows(voronoi::GeodesicField& field) {
   std::vector<voronoi::EdgeWindow>().swap(field.windows);
   std::vector<Index>().swap(field.window_begin);
 }
+
+bool windows_released(const voronoi::GeodesicField& field) { return field.window_begin.empty(); }
 
 /// Lloyd's steps, `factor` times each cell's (density-weighted) mean log map.
 std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, const std::vector<bool>& movable,
@@ -262,14 +266,13 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     return detail::weighted_cells(mesh, points, diagram, options.density);
   };
   const voronoi::SurfaceTopology& topology = *surface.topology();
-  const std::vector<bool> movable_at_start = movable_sites(mesh, sites, topology, options);
   result.sites = std::move(sites);
   // The warm start needs no geodesics: the first diagram is that of the
   // sites it reaches (issue #17: no diagram just to judge it).
   if (options.iterations > 0 && options.warm_start_iterations > 0) {
     const auto start = std::chrono::steady_clock::now();
-    result.sites =
-        warm_start(mesh, topology, std::move(result.sites), movable_at_start, options, result.warm_start_iterations);
+    const std::vector<bool> movable = movable_sites(mesh, result.sites, topology, options);
+    result.sites = warm_start(mesh, topology, std::move(result.sites), movable, options, result.warm_start_iterations);
     result.warm_start_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   result.diagram = diagram_of(result.sites);
@@ -285,7 +288,6 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   // A trial step's diagram is computed while the current one is held, whose
   // windows go first (the peak memory is then about one diagram's). If the
   // relaxation ends on a rejected step they are computed again, the same.
-  bool windows_released = false;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const double previous = result.energy.back();
     // Judged again each iteration: a walk may have ended on the boundary.
@@ -295,15 +297,13 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
       const auto start = std::chrono::steady_clock::now();
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, result.sites, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (!windows_released) release_windows(result.diagram.field);
-      windows_released = true;
+      release_windows(result.diagram.field);
       voronoi::VoronoiDiagram next = diagram_of(moved);
       detail::WeightedCells next_cells = cells_of(moved, next);
       const double energy = next_cells.total_energy();
       if (!(energy < previous - least_decrease)) return false;
       result.sites = std::move(moved);
       result.diagram = std::move(next);
-      windows_released = false;
       cells = std::move(next_cells);
       result.energy.push_back(energy);
       return true;
@@ -322,7 +322,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     if (previous - result.energy.back() < stop_fraction * previous) break;
     tell(false);
   }
-  if (windows_released) {
+  if (windows_released(result.diagram.field)) {
     voronoi::GeodesicField field = voronoi::compute_geodesic_field(surface, result.sites, options.voronoi.geodesic);
     result.geodesic_seconds += field.stats.total_seconds;
     result.diagram.field = std::move(field);
