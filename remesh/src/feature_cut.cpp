@@ -368,6 +368,60 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
   return missing;
 }
 
+namespace {
+
+/// Removes the pairs of faces on the same three vertices with opposite
+/// orientations, returning how many: where the cells round the end of a
+/// chain or a narrow wedge reach the same three sites from both sides, the
+/// weld makes a triangle and its mirror image, a flap of no area folded onto
+/// itself. Without both, the edges they shared keep the triangles of the
+/// surface on either side.
+std::int64_t remove_folded_pairs(TriangleMesh& mesh) {
+  const Index num_faces = mesh.num_faces();
+  // Per face: its corners sorted and whether sorting them took an odd permutation.
+  std::vector<std::pair<std::array<Index, 3>, bool>> key(static_cast<std::size_t>(num_faces));
+  for (Index f = 0; f < num_faces; ++f) {
+    std::array<Index, 3> c{mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
+    bool odd = false;
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2 - i; ++j) {
+        if (c[j] > c[j + 1]) {
+          std::swap(c[j], c[j + 1]);
+          odd = !odd;
+        }
+      }
+    }
+    key[static_cast<std::size_t>(f)] = {c, odd};
+  }
+  std::vector<Index> order(static_cast<std::size_t>(num_faces));
+  std::iota(order.begin(), order.end(), Index{0});
+  std::sort(order.begin(), order.end(),
+            [&](Index a, Index b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
+  std::vector<std::uint8_t> removed(static_cast<std::size_t>(num_faces), 0);
+  std::int64_t pairs = 0;
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i;
+    while (j < order.size() && key[order[j]].first == key[order[i]].first) ++j;
+    // Within one vertex triple: the even ones first, then the odd ones; pair them off in order.
+    std::size_t even = i, odd = i;
+    while (odd < j && !key[order[odd]].second) ++odd;
+    for (std::size_t k = odd; even < odd && k < j; ++even, ++k) {
+      removed[order[even]] = removed[order[k]] = 1;
+      ++pairs;
+    }
+    i = j;
+  }
+  if (pairs == 0) return 0;
+  Index kept = 0;
+  for (Index f = 0; f < num_faces; ++f) {
+    if (!removed[f]) mesh.faces.row(kept++) = mesh.faces.row(f);
+  }
+  mesh.faces.conservativeResize(kept, 3);
+  return pairs;
+}
+
+}  // namespace
+
 WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
   WeldedDual welded;
@@ -403,6 +457,16 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     if (!has_repeated_corner(welded.mesh, kept)) ++kept;
   }
   welded.mesh.faces.conservativeResize(kept, 3);
+  welded.folded_pairs = remove_folded_pairs(welded.mesh);
+  if (welded.folded_pairs > 0) {
+    std::vector<std::uint8_t> used(site_of_vertex.size(), 0);
+    for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
+      for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(welded.mesh.faces(f, k))] = 1;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!used[static_cast<std::size_t>(welded.vertex_of_site[i])]) welded.unused_sites.push_back(i);
+    }
+  }
 
   // Cracks: boundary edges of the weld with an end off the surface's boundary.
   const MeshTopology surface_topology = build_mesh_topology(surface);
@@ -508,6 +572,28 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     if (welded.nonmanifold_edges > 0) {
       throw Error("the remesh welded along the sharp features has " + std::to_string(welded.nonmanifold_edges) +
                   " edges with three or more triangles");
+    }
+    if (!welded.unused_sites.empty()) {
+      // Sites whose triangles all folded away: left out, the diagram computed again.
+      if (round >= options.max_rounds) {
+        throw Error("the remesh welded along the sharp features leaves " + std::to_string(welded.unused_sites.size()) +
+                    " sites in no triangle after " + std::to_string(round) + " rounds");
+      }
+      std::vector<std::uint8_t> unused(result.sites.size(), 0);
+      for (const std::size_t site : welded.unused_sites) unused[site] = 1;
+      sites.clear();
+      for (std::size_t i = 0; i < result.sites.size(); ++i) {
+        if (!unused[i]) sites.push_back(result.sites[i]);
+      }
+      sites_left_out += static_cast<std::int64_t>(welded.unused_sites.size());
+      repair_rounds += result.repair_rounds + 1;
+      repair_problems.push_back(std::to_string(welded.unused_sites.size()) +
+                                " sites in no triangle once welded (left out)");
+      dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
+      geodesic_seconds += diagram.stats.geodesic_seconds;
+      diagram_seconds += diagram.stats.extraction_seconds;
+      continue;
     }
     for (const auto& [site, point] : welded.site_moves) result.sites[site] = point;
     const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);

@@ -1,8 +1,10 @@
 #include "geodual/remesh/features.hpp"
 
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/sharp_edges.hpp"
+#include "geodual/mesh/union_find.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 
 #include <Eigen/Geometry>
@@ -180,12 +182,49 @@ Chains walk_chains(const TriangleMesh& surface, const FeatureGraph& graph, doubl
   return result;
 }
 
+/// The sharp edges (indices into topology's edges, `sharp`) that border a
+/// region narrower than `min_width`: the regions are the faces joined across
+/// edges with two faces that are not sharp, and a region's width is twice its
+/// area over the length of its border (sharp and boundary edges), the width
+/// of a strip or the radius of a disc. Such a region (a sliver boxed in by
+/// noisy creases, a chamfer far narrower than the spacing) has no room for a
+/// cell of its own.
+std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, const MeshTopology& topology,
+                                                    const std::vector<std::uint8_t>& is_sharp, double min_width) {
+  const Index num_faces = mesh.num_faces();
+  UnionFind regions(static_cast<std::size_t>(num_faces));
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto faces = topology.edge_faces(e);
+    if (faces.size() == 2 && !is_sharp[e]) regions.unite(faces[0], faces[1]);
+  }
+  std::vector<double> area(static_cast<std::size_t>(num_faces), 0.0), border(static_cast<std::size_t>(num_faces), 0.0);
+  for (Index f = 0; f < num_faces; ++f) area[regions.find(f)] += face_area(mesh, f);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto faces = topology.edge_faces(e);
+    if (!is_sharp[e] && faces.size() != 1) continue;
+    const double length = edge_length(mesh, topology.edge_vertices[e][0], topology.edge_vertices[e][1]);
+    for (const Index f : faces) border[regions.find(f)] += length;
+  }
+  std::vector<std::uint8_t> drop(is_sharp.size(), 0);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (!is_sharp[e]) continue;
+    for (const Index f : topology.edge_faces(e)) {
+      const Index region = regions.find(f);
+      if (2 * area[region] < min_width * border[region]) drop[e] = 1;
+    }
+  }
+  return drop;
+}
+
 }  // namespace
 
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
                                       double min_length) {
   const double spacing = uniform_spacing(surface, sites);
-  return {.sharp_angle = sharp_angle, .scale = 0.5 * spacing, .min_chain_length = min_length * spacing};
+  return {.sharp_angle = sharp_angle,
+          .scale = 0.5 * spacing,
+          .min_chain_length = min_length * spacing,
+          .min_region_width = 0.25 * spacing};
 }
 
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {
@@ -196,14 +235,18 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
   if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
   const Index num_vertices = static_cast<Index>(surface.vertices.rows());
 
-  // Chains shorter than min_chain_length go, until none is left: the chains
+  // Chains shorter than min_chain_length go, and then the chains round
+  // regions narrower than min_region_width, until none is left: the chains
   // they ended at may join up into longer ones.
   std::vector<std::array<Index, 2>> edges;
-  for (const Index e : sharp) edges.push_back(topology.edge_vertices[e]);
-  while (!edges.empty()) {
+  std::vector<std::uint8_t> is_sharp(static_cast<std::size_t>(topology.num_edges()), 0);
+  for (const Index e : sharp) is_sharp[e] = 1;
+  while (!sharp.empty()) {
+    edges.clear();
+    for (const Index e : sharp) edges.push_back(topology.edge_vertices[e]);
     const FeatureGraph graph = build_graph(num_vertices, edges, std::vector<std::uint8_t>(edges.size(), 0));
     const Chains chains = walk_chains(surface, graph, options.corner_angle);
-    std::vector<std::uint8_t> drop(edges.size(), 0);
+    std::vector<std::uint8_t> drop(sharp.size(), 0);
     bool dropped = false;
     // A lone edge whose ends are on no other sharp edge and off the boundary
     // cannot be cut open (its faces still share both ends): it goes too.
@@ -216,14 +259,27 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
       for (const Index e : chains.chain_edges[c]) drop[e] = 1;
       dropped = true;
     }
-    if (!dropped) break;
-    std::vector<std::array<Index, 2>> kept;
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      if (!drop[e]) kept.push_back(edges[e]);
+    if (!dropped && options.min_region_width > 0) {
+      const std::vector<std::uint8_t> narrow =
+          borders_of_narrow_regions(surface, topology, is_sharp, options.min_region_width);
+      for (std::size_t i = 0; i < sharp.size(); ++i) {
+        if (!narrow[sharp[i]]) continue;
+        drop[i] = 1;
+        dropped = true;
+      }
     }
-    edges = std::move(kept);
+    if (!dropped) break;
+    std::vector<Index> kept;
+    for (std::size_t i = 0; i < sharp.size(); ++i) {
+      if (drop[i]) {
+        is_sharp[sharp[i]] = 0;
+      } else {
+        kept.push_back(sharp[i]);
+      }
+    }
+    sharp = std::move(kept);
   }
-  if (edges.empty()) return features;
+  if (sharp.empty()) return features;
   features.sharp_edges = edges;  // in edge order: sorted by vertex pair
   std::vector<std::uint8_t> touched(static_cast<std::size_t>(num_vertices), 0);
   for (const auto& [a, b] : edges) {

@@ -6,6 +6,7 @@
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
 
@@ -73,6 +74,42 @@ TEST(Features, BoundaryLoopsThatCreasesRunIntoBecomeChains) {
   EXPECT_EQ(features.corners.size(), 8u);
 }
 
+TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
+  // A slab 1 x 1 x 0.05: its rims are long creases, but the band between
+  // them (the four sides, joined once their short vertical creases go) is
+  // 0.05 wide: twice its area over its border, 2 (4 x 0.05) / 8.
+  const std::vector<double> xy = bench::hard_case_detail::even_steps(0.0, 1.0, 5);
+  const TriangleMesh slab =
+      bench::hard_case_detail::voxel_surface({xy, xy, {0.0, 0.05}}, [](int, int, int) { return true; });
+  const remesh::FeatureOptions options{.min_chain_length = 0.5};
+  EXPECT_EQ(remesh::detect_features(slab, options).sharp_chains, 8);  // the two rims, four sides each
+  remesh::FeatureOptions narrow = options;
+  narrow.min_region_width = 0.04;
+  EXPECT_EQ(remesh::detect_features(slab, narrow).sharp_chains, 8);
+  narrow.min_region_width = 0.06;
+  EXPECT_TRUE(remesh::detect_features(slab, narrow).empty());
+  // A box's sides are 1 wide (a square's width: twice 1 over 4): kept at a width under a half.
+  EXPECT_EQ(remesh::detect_features(cube(4), {.min_region_width = 0.49}).sharp_chains, 12);
+  EXPECT_TRUE(remesh::detect_features(cube(4), {.min_region_width = 0.51}).empty());
+  // The remesh's detection asks for a quarter of the spacing.
+  const remesh::FeatureOptions remesh_options = remesh::remesh_feature_options(slab, 100, 60, 0.5);
+  EXPECT_DOUBLE_EQ(remesh_options.min_region_width, 0.5 * remesh_options.scale);
+}
+
+/// A site at the centre of each side of a cut cube(8) (a face there).
+void add_side_centres(const remesh::FeatureCut& cut, std::vector<SurfacePoint>& sites) {
+  const MeshTopology topology = build_mesh_topology(cut.mesh);
+  std::set<Index> seen;
+  for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
+    const Eigen::Vector3d centre = SurfacePoint::in_face(f, 1.0 / 3, 1.0 / 3, 1.0 / 3).position(cut.mesh);
+    int at_middle = 0;
+    for (int d = 0; d < 3; ++d) at_middle += std::abs(centre[d] - 0.5) < 0.07;
+    if (at_middle == 2 && seen.insert(topology.face_component[static_cast<std::size_t>(f)]).second) {
+      sites.push_back(SurfacePoint::in_face(f, 1.0 / 3, 1.0 / 3, 1.0 / 3));
+    }
+  }
+}
+
 TEST(FeatureCut, BoxFallsIntoSixSidesAndSitesComeInTwins) {
   const TriangleMesh box = cube(6);
   const remesh::FeatureSet features = remesh::detect_features(box);
@@ -120,20 +157,10 @@ TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
   const remesh::FeatureSet features = remesh::detect_features(box);
   const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
   remesh::FeatureSites sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5});
-  // A site at each side's centre.
   const voronoi::GeodesicSurface surface(cut.mesh);
   std::vector<SurfacePoint> all = sites.sites;
-  const MeshTopology topology = build_mesh_topology(cut.mesh);
-  std::set<Index> seen;
-  for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
-    const Eigen::Vector3d centre = SurfacePoint::in_face(f, 1.0 / 3, 1.0 / 3, 1.0 / 3).position(cut.mesh);
-    int at_middle = 0;
-    for (int d = 0; d < 3; ++d) at_middle += std::abs(centre[d] - 0.5) < 0.07;
-    if (at_middle == 2 && seen.insert(topology.face_component[static_cast<std::size_t>(f)]).second) {
-      all.push_back(SurfacePoint::in_face(f, 1.0 / 3, 1.0 / 3, 1.0 / 3));
-    }
-  }
-  ASSERT_EQ(seen.size(), 6u);
+  add_side_centres(cut, all);
+  ASSERT_EQ(all.size(), sites.sites.size() + 6);
   const remesh::RepairedDual dual =
       remesh::welded_dual_with_repair(surface, box, features, cut, all, voronoi::compute_voronoi(surface, all));
   const MeshTopology welded = build_mesh_topology(dual.mesh);
@@ -148,6 +175,39 @@ TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
     positions.insert({p.x(), p.y(), p.z()});
   }
   EXPECT_EQ(dual.mesh.vertices.rows(), static_cast<Index>(positions.size()));
+}
+
+TEST(FeatureCut, WeldLeavesOutAFlapFoldedOntoItselfAndTheSitesOnlyItHeld) {
+  // The box's sides' dual, welded: then the same with a triangle and its
+  // mirror image added on a new site, as cells reaching the same three sites
+  // from both sides of a chain make them.
+  const TriangleMesh box = cube(8);
+  const remesh::FeatureSet features = remesh::detect_features(box);
+  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
+  std::vector<SurfacePoint> sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5}).sites;
+  add_side_centres(cut, sites);
+  const voronoi::GeodesicSurface surface(cut.mesh);
+  const TriangleMesh dual = remesh::dual_delaunay(cut.mesh, voronoi::compute_voronoi(surface, sites)).mesh;
+  const remesh::WeldedDual plain = remesh::weld_along_features(box, features, cut, dual, sites);
+  ASSERT_EQ(plain.cracked_edges, 0);
+  ASSERT_EQ(plain.nonmanifold_edges, 0);
+  EXPECT_EQ(plain.folded_pairs, 0);
+  EXPECT_TRUE(plain.unused_sites.empty());
+
+  TriangleMesh folded = dual;
+  const Index a = dual.faces(0, 0), b = dual.faces(0, 1), extra = dual.num_vertices();
+  sites.push_back(SurfacePoint::in_face(0, 0.2, 0.3, 0.5));
+  folded.vertices.conservativeResize(extra + 1, 3);
+  folded.vertices.row(extra) = sites.back().position(cut.mesh).transpose();
+  folded.faces.conservativeResize(dual.num_faces() + 2, 3);
+  folded.faces.row(dual.num_faces()) << a, b, extra;
+  folded.faces.row(dual.num_faces() + 1) << b, a, extra;
+  const remesh::WeldedDual welded = remesh::weld_along_features(box, features, cut, folded, sites);
+  EXPECT_EQ(welded.folded_pairs, 1);
+  EXPECT_EQ(welded.nonmanifold_edges, 0);
+  EXPECT_EQ(welded.cracked_edges, 0);
+  EXPECT_EQ(welded.mesh.faces, plain.mesh.faces);
+  EXPECT_EQ(welded.unused_sites, std::vector<std::size_t>{sites.size() - 1});
 }
 
 }  // namespace

@@ -69,6 +69,13 @@ struct WeldedDual {
   std::vector<std::pair<std::size_t, SurfacePoint>> site_moves;
   std::int64_t cracked_edges = 0;      ///< boundary edges of `mesh` off the surface's boundary
   std::int64_t nonmanifold_edges = 0;  ///< edges of `mesh` with three or more triangles
+  /// Pairs of triangles on the same three vertices in opposite orientations
+  /// (a flap folded onto itself where cells reach the same sites from both
+  /// sides of a chain), left out of `mesh`.
+  std::int64_t folded_pairs = 0;
+  /// Sites whose vertex is left in no triangle once the folds are out: the
+  /// weld is a remesh only when there are none.
+  std::vector<std::size_t> unused_sites;
 };
 
 /// Welds `dual` (vertex i is sites[i], on cut.mesh) along the chains. A

@@ -32,6 +32,11 @@ struct FeatureOptions {
   /// join into a longer one): scan noise and details below the remesh's
   /// resolution.
   double min_chain_length = 0;
+  /// The chains round a region narrower than this are dropped too: the
+  /// region's width is twice its area over its border's length (the width of
+  /// a strip, the radius of a disc), its faces joined across edges that are
+  /// not sharp. A sliver boxed in by noisy creases has no room for a cell.
+  double min_region_width = 0;
   /// A chain that turns by at least this many degrees at a vertex has a corner there.
   double corner_angle = 60;
 };
@@ -62,7 +67,8 @@ struct FeatureSet {
 
 /// The options the remesh pipeline detects features with for `sites` sites
 /// on `surface`: sharpness judged at half the remesh's spacing, chains at
-/// least min_length spacings long.
+/// least min_length spacings long, regions between them at least a quarter
+/// spacing wide.
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
                                       double min_length);
 
