@@ -21,6 +21,7 @@
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
+#include "geodual/pipeline/feature_file.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
 #include "geodual/pipeline/version.hpp"
@@ -143,6 +144,9 @@ class RemeshCommand final : public Command {
                     "remesh spacing long) as chains of edges, corners included (0: none; ignored with --site-file)")
         ->capture_default_str()
         ->check(number_between(0, 180));
+    command.add_option("--feature-file", feature_file_,
+                       "Also keep these edges as features, whatever their angle: one polyline of the mesh's vertex "
+                       "indices per line, 'A B C ...' (0-based; '#' starts a comment line; ignored with --site-file)");
     command
         .add_option("--max-repair-rounds", options_.max_repair_rounds,
                     "Rounds of adding sites where the dual fails before giving up")
@@ -192,14 +196,14 @@ class RemeshCommand final : public Command {
     const std::string& mesh_path = mesh_paths_.front();
     // Every output checked before any work: nothing is written unless all can be.
     io::require_output_path(output_path_, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
-    io::refuse_to_overwrite_inputs(output_path_, {mesh_path, sites_.file()});
+    io::refuse_to_overwrite_inputs(output_path_, {mesh_path, sites_.file(), feature_file_});
     if (!preview_path_.empty()) {
       io::require_output_path(preview_path_, {".png"}, "a preview");
-      io::refuse_to_overwrite_inputs(preview_path_, {mesh_path, sites_.file()});
+      io::refuse_to_overwrite_inputs(preview_path_, {mesh_path, sites_.file(), feature_file_});
     }
     if (!report_path_.empty()) {
       io::require_output_path(report_path_, {".json"}, "a report");
-      io::refuse_to_overwrite_inputs(report_path_, {mesh_path, sites_.file()});
+      io::refuse_to_overwrite_inputs(report_path_, {mesh_path, sites_.file(), feature_file_});
     }
     const nlohmann::ordered_json json = remesh_scan(mesh_path, output_path_, {std::cout, std::cerr, true});
     if (json_) std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
@@ -214,7 +218,8 @@ class RemeshCommand final : public Command {
   int run_batch() {
     for (const auto& [option, given] : {std::pair<const char*, bool>{"--preview", !preview_path_.empty()},
                                         {"--report", !report_path_.empty()},
-                                        {"--site-file", !sites_.file().empty()}}) {
+                                        {"--site-file", !sites_.file().empty()},
+                                        {"--feature-file", !feature_file_.empty()}}) {
       if (given) throw UsageError(std::string("remesh: ") + option + " names one file; it cannot go with --output-dir");
     }
     // Every output named and checked before any work.
@@ -387,6 +392,7 @@ class RemeshCommand final : public Command {
       }
     }
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
+    if (!feature_file_.empty()) options.remesh.feature_edges = read_feature_file(feature_file_, loaded.mesh);
     options.edge_length = sites_.edge_length(loaded.mesh);
     options.faces = sites_.faces();
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
@@ -533,8 +539,10 @@ class RemeshCommand final : public Command {
             (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : "") +
             (result.sites_left_out > 0 ? ", " + with_thousands(result.sites_left_out) + " left out by repair" : ""));
     if (!run.features.empty()) {
-      table.add("features", with_thousands(run.features.sharp_chains) + " sharp chains (" +
-                                significant(options_.sharp_angle, 3) + " deg), " +
+      const std::string angle = options_.sharp_angle > 0 ? significant(options_.sharp_angle, 3) + " deg" : "";
+      const std::string file = feature_file_.empty() ? "" : "the feature file's";
+      table.add("features", with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
+                                (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
                                 with_thousands(static_cast<std::int64_t>(run.features.corners.size())) +
                                 " corners, lined with " + with_thousands(run.feature_sites) + " of the sites");
     }
@@ -604,6 +612,9 @@ class RemeshCommand final : public Command {
     options["newton"] = options_.lloyd.newton;
     options["curvature_adaptation"] = options_.curvature_adaptation;
     options["max_repair_rounds"] = options_.max_repair_rounds;
+    options["sharp_angle"] = options_.sharp_angle;
+    options["feature_file"] =
+        feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();
     options["window_memory"] = geodesic_.window_memory_mib();
     options["statistics"] = samples_ >= 0;
@@ -643,6 +654,7 @@ class RemeshCommand final : public Command {
   bool json_ = false;
   bool quiet_ = false;
   std::string report_path_;
+  std::string feature_file_;
   std::string color_ = "none";
   std::string attributes_ = "all";
 };

@@ -5,6 +5,7 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
+#include "geodual/pipeline/feature_file.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/sizing.hpp"
 
@@ -102,6 +103,28 @@ RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, con
 
 namespace {
 
+/// The input's edges `edges` (vertex pairs) on the surface cut to a manifold:
+/// every pair of copies of their ends (the detection keeps those that are edges).
+std::vector<std::array<Index, 2>> edges_on_cut(const remesh::ManifoldCut& cut, Index num_input_vertices,
+                                               const std::vector<std::array<Index, 2>>& edges) {
+  if (edges.empty()) return {};
+  // Per input vertex, its copies (CSR).
+  std::vector<Index> begin(static_cast<std::size_t>(num_input_vertices) + 1, 0), copies(cut.original_vertex.size());
+  for (const Index v : cut.original_vertex) ++begin[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v + 1 < begin.size(); ++v) begin[v + 1] += begin[v];
+  std::vector<Index> next(begin.begin(), begin.end() - 1);
+  for (std::size_t w = 0; w < cut.original_vertex.size(); ++w) {
+    copies[static_cast<std::size_t>(next[static_cast<std::size_t>(cut.original_vertex[w])]++)] = static_cast<Index>(w);
+  }
+  std::vector<std::array<Index, 2>> on_cut;
+  for (const auto& [a, b] : edges) {
+    for (Index i = begin[a]; i < begin[a + 1]; ++i) {
+      for (Index j = begin[b]; j < begin[b + 1]; ++j) on_cut.push_back({copies[i], copies[j]});
+    }
+  }
+  return on_cut;
+}
+
 /// The stages after `load` on result.input, filling in `result`.
 void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
   report(options.progress, Stage::sample, 0.0);
@@ -138,11 +161,13 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     // Sharp features: cut open and lined with sites, the rest sampled around them.
     const TriangleMesh& manifold = result.surface.mesh;
     std::optional<remesh::FeatureSites> feature_sites;
-    if (options.remesh.sharp_angle > 0 && sites >= 4) {
+    if ((options.remesh.sharp_angle > 0 || !options.remesh.feature_edges.empty()) && sites >= 4) {
       const double spacing = remesh::uniform_spacing(manifold, sites);
-      result.features =
-          remesh::detect_features(manifold, remesh::remesh_feature_options(manifold, sites, options.remesh.sharp_angle,
-                                                                           options.remesh.min_feature_length));
+      remesh::FeatureOptions feature_options = remesh::remesh_feature_options(
+          manifold, sites, options.remesh.sharp_angle, options.remesh.min_feature_length);
+      feature_options.given_edges =
+          edges_on_cut(result.surface, result.input.mesh.num_vertices(), options.remesh.feature_edges);
+      result.features = remesh::detect_features(manifold, feature_options);
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
         // Chords within 0.05 % of the diagonal: the statistics' feature recall tolerance is 0.1 %.
@@ -263,6 +288,7 @@ std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& r
 
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
   require_one_site_source(options);
+  require_edges_of(input.mesh, options.remesh.feature_edges, "feature edge");
   RemeshPipelineResult result;
   result.input = std::move(input);
   result.input_report = analyze_mesh(result.input.mesh);
@@ -281,6 +307,7 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     result.timings.clear();
     RemeshPipelineOptions without = options;
     without.remesh.sharp_angle = 0;
+    without.remesh.feature_edges.clear();
     run_stages(result, without);
   }
   return result;

@@ -3,9 +3,9 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/random.hpp"
+#include "parse_token.hpp"
 
 #include <array>
-#include <charconv>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -14,16 +14,7 @@
 #include <unordered_set>
 
 namespace geodual {
-namespace {
-
-template <typename T>
-bool parse(std::string_view token, T& value) {
-  const char* end = token.data() + token.size();
-  auto [ptr, ec] = std::from_chars(token.data(), end, value);
-  return ec == std::errc() && ptr == end;
-}
-
-}  // namespace
+using detail::parse_token;
 
 std::vector<SurfacePoint> random_vertex_sites(const TriangleMesh& mesh, std::int64_t count, std::uint64_t seed) {
   // Candidates: vertices of faces with three distinct corners (the others
@@ -82,7 +73,8 @@ std::vector<SurfacePoint> read_site_file(const std::filesystem::path& path, cons
     if (words.empty() || words[0][0] == '#') continue;
     if (words.size() == 1) {
       Index v = 0;
-      if (!parse(words[0], v)) throw Error(where + "expected a vertex index or 'f FACE U V W', got '" + line + "'");
+      if (!parse_token(words[0], v))
+        throw Error(where + "expected a vertex index or 'f FACE U V W', got '" + line + "'");
       if (v < 0 || v >= mesh.num_vertices()) {
         throw Error(where + "vertex " + words[0] + " is out of range [0, " + std::to_string(mesh.num_vertices()) + ")");
       }
@@ -91,8 +83,8 @@ std::vector<SurfacePoint> read_site_file(const std::filesystem::path& path, cons
     }
     Index f = 0;
     double u = 0, v = 0, w = 0;
-    if (words.size() != 5 || words[0] != "f" || !parse(words[1], f) || !parse(words[2], u) || !parse(words[3], v) ||
-        !parse(words[4], w)) {
+    if (words.size() != 5 || words[0] != "f" || !parse_token(words[1], f) || !parse_token(words[2], u) ||
+        !parse_token(words[3], v) || !parse_token(words[4], w)) {
       throw Error(where + "expected a vertex index or 'f FACE U V W', got '" + line + "'");
     }
     if (f < 0 || f >= mesh.num_faces()) {

@@ -229,10 +229,27 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
 
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {
   FeatureSet features;
-  if (!(options.sharp_angle > 0)) return features;
+  if (!(options.sharp_angle > 0) && options.given_edges.empty()) return features;
   const MeshTopology topology = build_mesh_topology(surface);
-  std::vector<Index> sharp = sharp_edges(surface, topology, options.sharp_angle);
-  if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
+  std::vector<Index> sharp;
+  if (options.sharp_angle > 0) {
+    sharp = sharp_edges(surface, topology, options.sharp_angle);
+    if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
+  }
+  // The given edges join them, marked as kept whatever the filters below say.
+  std::vector<std::uint8_t> given(static_cast<std::size_t>(topology.num_edges()), 0);
+  for (std::array<Index, 2> pair : options.given_edges) {
+    if (pair[0] > pair[1]) std::swap(pair[0], pair[1]);
+    const auto it = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(), pair);
+    if (it == topology.edge_vertices.end() || *it != pair) continue;
+    const auto e = static_cast<Index>(it - topology.edge_vertices.begin());
+    if (topology.edge_faces(e).size() == 2) given[e] = 1;
+  }
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (given[e]) sharp.push_back(e);
+  }
+  std::sort(sharp.begin(), sharp.end());
+  sharp.erase(std::unique(sharp.begin(), sharp.end()), sharp.end());
   const Index num_vertices = static_cast<Index>(surface.vertices.rows());
 
   // Chains shorter than min_chain_length go, and then the chains round
@@ -256,14 +273,17 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
       const bool lone =
           chain.vertices.size() == 2 && lone_end(chain.vertices.front()) && lone_end(chain.vertices.back());
       if (chain.length >= options.min_chain_length && !lone) continue;
-      for (const Index e : chains.chain_edges[c]) drop[e] = 1;
-      dropped = true;
+      for (const Index e : chains.chain_edges[c]) {
+        if (given[sharp[e]] && !lone) continue;
+        drop[e] = 1;
+        dropped = true;
+      }
     }
     if (!dropped && options.min_region_width > 0) {
       const std::vector<std::uint8_t> narrow =
           borders_of_narrow_regions(surface, topology, is_sharp, options.min_region_width);
       for (std::size_t i = 0; i < sharp.size(); ++i) {
-        if (!narrow[sharp[i]]) continue;
+        if (!narrow[sharp[i]] || given[sharp[i]]) continue;
         drop[i] = 1;
         dropped = true;
       }

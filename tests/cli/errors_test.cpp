@@ -142,6 +142,25 @@ TEST_F(CliBadInput, CoordinatesBeyondWhatDoublesComputeWith) {
   EXPECT_EQ(run_cli({"info", far.string()}).exit_status, 0);
 }
 
+TEST_F(CliBadInput, FeatureFileLinesThatAreNoEdgesOfTheMesh) {
+  // Line 1 of the first file is an edge of woody.ply's first face.
+  const auto out = folder_.path() / "out.ply";
+  for (const auto& [text, mention] :
+       std::vector<std::pair<std::string, std::string>>{{"166 96\n7 banana\n", ":2: expected vertex indices"},
+                                                        {"0 99999999\n", ":1: vertex 99999999 is out of range"},
+                                                        {"# one vertex\n5\n", ":2: a polyline needs two vertices"}}) {
+    const auto features = folder_.write("features.txt", text);
+    expect_error(run_cli({"remesh", "tests/data/woody.ply", "--sites", "50", "--feature-file", features.string(), "-o",
+                          out.string()}),
+                 exit_failure, features.string() + mention);
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  const auto missing = folder_.path() / "no-such-features.txt";
+  expect_error(run_cli({"remesh", "tests/data/woody.ply", "--sites", "50", "--feature-file", missing.string(), "-o",
+                        out.string()}),
+               exit_failure, missing.string());
+}
+
 TEST_F(CliBadInput, FaceIndexOutOfRange) {
   expect_rejected(folder_.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"));
   expect_rejected(folder_.write("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"));

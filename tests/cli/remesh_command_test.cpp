@@ -752,6 +752,12 @@ TEST(RemeshCommand, BatchUsageErrorsComeBeforeAnyWork) {
     EXPECT_EQ(run.exit_status, 2) << args.back() << ": " << run.err;
     EXPECT_NE(run.err.find(named), std::string::npos) << run.err;
   }
+  const auto features = folder.write("features.txt", "0 1\n");
+  const CliRun with_features =
+      run_cli({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--feature-file", features.string(),
+               "--sites", "40", "--lloyd", "0", "--samples", "-1"});
+  EXPECT_EQ(with_features.exit_status, 2) << with_features.err;
+  EXPECT_NE(with_features.err.find("--feature-file"), std::string::npos) << with_features.err;
   const auto sites = folder.write("sites.txt", "0 0.2 0.3 0.5\n");
   const CliRun run = run_cli({"remesh", small_scan, genus_four, "--output-dir", dir.string(), "--site-file",
                               sites.string(), "--lloyd", "0", "--samples", "-1"});

@@ -5,6 +5,7 @@
 
 #include "hard_cases.hpp"
 
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
@@ -78,6 +79,40 @@ TEST(FeaturePipeline, BoxKeepsEveryCreaseAndCorner) {
   EXPECT_NEAR(static_cast<double>(remesh.num_vertices()), 400.0 + static_cast<double>(result.remesh.sites_added), 4.0);
   // Sites added anywhere, the weld's twins included, come with a reason.
   EXPECT_TRUE(result.remesh.sites_added == 0 || !result.remesh.repair_problems.empty());
+}
+
+TEST(FeaturePipeline, GivenFeatureEdgesAreKeptWithoutAnAngle) {
+  // The box's crease edges given as the input's vertex pairs, with no sharp angle.
+  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 9);
+  const TriangleMesh box =
+      bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+  const MeshTopology input = build_mesh_topology(box);
+  const auto on_faces = [&](Index v) {
+    int mask = 0;  // bit d set where coordinate d is 0 or 1
+    for (int d = 0; d < 3; ++d) mask |= (box.vertices(v, d) == 0.0 || box.vertices(v, d) == 1.0) << d;
+    return mask;
+  };
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 300;
+  options.remesh.lloyd.iterations = 3;
+  options.statistics = false;
+  for (const auto& [a, b] : input.edge_vertices) {
+    const int common = on_faces(a) & on_faces(b);
+    if (common == 3 || common == 5 || common == 6 || common == 7) options.remesh.feature_edges.push_back({a, b});
+  }
+  ASSERT_EQ(options.remesh.feature_edges.size(), 12u * 8u);
+  io::LoadedMesh loaded;
+  loaded.mesh = box;
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(loaded, options);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  EXPECT_EQ(result.features.sharp_chains, 12);
+  EXPECT_EQ(result.features.corners.size(), 8u);
+  const MeshTopology topology = build_mesh_topology(result.remesh.mesh);
+  EXPECT_EQ(topology.num_components(), 1);
+  EXPECT_EQ(topology.num_boundary_loops, 0);
+  // A pair of vertices that is no edge of the input is refused before any work.
+  options.remesh.feature_edges.push_back({0, static_cast<Index>(box.vertices.rows()) - 1});
+  EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
 }
 
 TEST(FeaturePipeline, WhereCreasesCannotBeKeptTheRemeshFallsBackWithoutThemAndSaysWhy) {

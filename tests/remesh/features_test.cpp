@@ -96,6 +96,39 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   EXPECT_DOUBLE_EQ(remesh_options.min_region_width, 0.5 * remesh_options.scale);
 }
 
+/// The vertex of `mesh` at p (exactly), or -1.
+Index vertex_at(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.vertices.row(v).transpose() == p) return v;
+  }
+  return -1;
+}
+
+TEST(Features, GivenEdgesAreKeptWhateverTheirAngleOrLength) {
+  // A path across the bottom of the box, along y = 1/2 from one crease to the opposite one.
+  const TriangleMesh box = cube(4);
+  std::vector<std::array<Index, 2>> path;
+  for (int i = 0; i < 4; ++i) {
+    path.push_back({vertex_at(box, {i / 4.0, 0.5, 0}), vertex_at(box, {(i + 1) / 4.0, 0.5, 0})});
+    ASSERT_GE(std::min(path.back()[0], path.back()[1]), 0);
+  }
+  // Alone (no angle): one chain, kept though shorter than the minimum length.
+  const remesh::FeatureSet alone =
+      remesh::detect_features(box, {.sharp_angle = 0, .min_chain_length = 1.5, .given_edges = path});
+  EXPECT_EQ(alone.sharp_chains, 1);
+  EXPECT_EQ(alone.corners.size(), 2u);
+  EXPECT_NEAR(alone.sharp_length, 1.0, 1e-12);
+  // With the creases: the two it ends on are split there.
+  const remesh::FeatureSet both = remesh::detect_features(box, {.given_edges = path});
+  EXPECT_EQ(both.sharp_chains, 12 + 2 + 1);
+  EXPECT_EQ(both.corners.size(), 8u + 2u);
+  EXPECT_NEAR(both.sharp_length, 13.0, 1e-12);
+  // One edge whose ends touch nothing cannot be cut open: left out.
+  EXPECT_TRUE(remesh::detect_features(box, {.sharp_angle = 0, .given_edges = {path[1]}}).empty());
+  // A pair that is not an edge is ignored.
+  EXPECT_TRUE(remesh::detect_features(box, {.sharp_angle = 0, .given_edges = {{path[0][0], path[3][1]}}}).empty());
+}
+
 /// A site at the centre of each side of a cut cube(8) (a face there).
 void add_side_centres(const remesh::FeatureCut& cut, std::vector<SurfacePoint>& sites) {
   const MeshTopology topology = build_mesh_topology(cut.mesh);

@@ -39,6 +39,11 @@ struct FeatureOptions {
   double min_region_width = 0;
   /// A chain that turns by at least this many degrees at a vertex has a corner there.
   double corner_angle = 60;
+  /// Edges kept as features whatever their angle, length or neighbours
+  /// (vertex pairs of the surface, such as a user's feature file): only an
+  /// edge whose ends touch no other feature or boundary, which cannot be cut
+  /// open, is left out. Pairs that are not edges with two faces are ignored.
+  std::vector<std::array<Index, 2>> given_edges = {};
 };
 
 /// A polyline of mesh vertices between two corners (first and last, the same

@@ -15,6 +15,7 @@
 #include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -83,6 +84,9 @@ struct RemeshOptions {
   /// scans' quality: see docs/algorithms.md#sharp-features).
   double sharp_angle = 0;
   double min_feature_length = 0.5;
+  /// Edges of the input (vertex index pairs) kept as features too, whatever
+  /// their angle (a feature file's), sharp_angle 0 included.
+  std::vector<std::array<Index, 2>> feature_edges = {};
 };
 
 /// The Lloyd options remesh_from_sites relaxes `site_count` sites on
