@@ -557,6 +557,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
   RepairedDual result;
   std::int64_t sites_added = 0, sites_left_out = 0;
   int repair_rounds = 0;  // of the rounds before the last
+  int leave_out_rounds = 0;
   std::vector<std::string> repair_problems;
   double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
   for (int round = 0;; ++round) {
@@ -574,8 +575,9 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                   " edges with three or more triangles");
     }
     if (!welded.unused_sites.empty()) {
-      // Sites whose triangles all folded away: left out, the diagram computed again.
-      if (round >= options.max_rounds) {
+      // Sites whose triangles all folded away: left out, the diagram computed
+      // again, twice at most (where folds keep coming, the weld will not close).
+      if (round >= options.max_rounds || ++leave_out_rounds > 2) {
         throw Error("the remesh welded along the sharp features leaves " + std::to_string(welded.unused_sites.size()) +
                     " sites in no triangle after " + std::to_string(round) + " rounds");
       }
