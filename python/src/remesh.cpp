@@ -10,8 +10,10 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -38,9 +40,32 @@ std::int64_t positive_count(const py::handle& value, const char* name) {
   return count;
 }
 
+/// Vertex pairs from a k x 2 integer array (or anything numpy makes one of).
+std::vector<std::array<Index, 2>> edges_from_object(const py::object& object) {
+  const py::array array = py::array::ensure(object);
+  if (array && array.size() == 0) return {};
+  const bool integers = array && (array.dtype().kind() == 'i' || array.dtype().kind() == 'u');
+  if (!integers || array.ndim() != 2 || array.shape(1) != 2) {
+    throw py::type_error("feature_edges must be a k x 2 array of vertex indices, got " + std::string(py::repr(object)));
+  }
+  const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> pairs(array);
+  std::vector<std::array<Index, 2>> edges(static_cast<std::size_t>(pairs.size() / 2));
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    for (int k = 0; k < 2; ++k) {
+      const std::int64_t v = pairs.data()[2 * i + static_cast<std::size_t>(k)];
+      if (v < 0 || v > std::numeric_limits<Index>::max()) {
+        throw py::value_error("feature_edges: vertex " + std::to_string(v) + " is out of range");
+      }
+      edges[i][static_cast<std::size_t>(k)] = static_cast<Index>(v);
+    }
+  }
+  return edges;
+}
+
 RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
                     const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
-                    const py::object& colors, double sharp_angle, const py::object& progress, bool statistics) {
+                    const py::object& colors, double sharp_angle, const py::object& feature_edges,
+                    const py::object& progress, bool statistics) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
   if (sizings > 1) {
     throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
@@ -76,6 +101,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   options.remesh.lloyd.iterations = lloyd;
   options.sampling.seed = static_cast<std::uint64_t>(seed);
   options.remesh.sharp_angle = sharp_angle;
+  if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
   ProgressBridge bridge(progress);
   options.progress = [&bridge](pipeline::Stage stage, double fraction) {
@@ -135,7 +161,7 @@ void add_remesh(py::module_& module) {
   module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
              py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
              py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = 0.0,
-             py::arg("progress") = py::none(), py::arg("statistics") = true,
+             py::arg("feature_edges") = py::none(), py::arg("progress") = py::none(), py::arg("statistics") = true,
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
@@ -160,6 +186,9 @@ colors: None or the input's per-vertex colours (n x 3 / n x 4, floats in
 [0, 1] or uint8), interpolated to the remesh's vertices (result.colors).
 sharp_angle: keep sharp creases where the normals turn by at least this many
 degrees (0: none).
+feature_edges: None or a k x 2 integer array of vertex pairs, edges of F kept
+as features too whatever their angle (sharp_angle 0: only these); a pair that
+is no edge of F raises geodual.UsageError.
 progress: None or progress(stage, fraction) with stage one of "sample",
 "relax", "dual", "statistics"; return False to cancel (geodual.Cancelled).
 Ctrl-C raises KeyboardInterrupt.

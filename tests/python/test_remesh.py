@@ -111,6 +111,29 @@ def test_colors_of_a_linear_field_come_back_linear():
     np.testing.assert_allclose(result.colors[:, 3], 0.5, atol=1e-6)
 
 
+def test_feature_edges_are_kept_as_edges_of_the_remesh():
+    # A flat grid with its middle row given as a feature: no angle, still kept.
+    n = 21
+    V, F = grid_plane(n)
+    row = np.arange(n) + (n // 2) * n  # y = 0.5, from x = 0 to 1
+    edges = np.column_stack([row[:-1], row[1:]])
+    result = geodual.remesh(V, F, sites=120, lloyd=2, feature_edges=edges, statistics=False)
+    a = result.vertices[result.faces[:, [0, 1, 2]].ravel()]
+    b = result.vertices[result.faces[:, [1, 2, 0]].ravel()]
+    for x in np.linspace(0.0, 1.0, 41):
+        p = np.array([x, 0.5, 0.0])
+        d = b - a
+        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0, 1)
+        gap = np.min(np.linalg.norm(a + t[:, None] * d - p, axis=1))
+        assert gap < 1e-9, (x, gap)
+    with pytest.raises(geodual.UsageError, match="feature edge 0 2: not an edge"):
+        geodual.remesh(V, F, sites=120, feature_edges=[[0, 2]])
+    with pytest.raises(TypeError, match="feature_edges must be a k x 2 array"):
+        geodual.remesh(V, F, sites=120, feature_edges=[[0.0, 1.0]])
+    with pytest.raises(TypeError, match="feature_edges must be a k x 2 array"):
+        geodual.remesh(V, F, sites=120, feature_edges=[0, 1, 2])
+
+
 def test_remesh_argument_errors(woody):
     V, F = woody
     with pytest.raises(ValueError, match="at most one of sites, edge_length and faces"):
