@@ -228,7 +228,7 @@ class GroupCursor {
 /// merged windows are never held twice.
 std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
                                       const std::vector<std::uint8_t>& freed, const std::vector<Index>& label,
-                                      bool remove_redundant_windows, GeodesicField& field) {
+                                      bool remove_redundant_windows, bool release_memory, GeodesicField& field) {
   const Index num_edges = pm.num_edges();
   constexpr Index kChunk = kMergeChunk;
   const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
@@ -338,6 +338,10 @@ std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::ve
       }
       for (GroupResult& group : groups) group.chunks[static_cast<std::size_t>(c)] = GroupChunk();
     });
+    // The groups' chunks just freed lie in the heap (their threads' arenas)
+    // while the merged windows take fresh pages: hand them back, or the two
+    // would be resident together.
+    if (release_memory) trim_heap();
   }
   std::vector<bool> valid(static_cast<std::size_t>(num_faces), false);
   for (Index f = 0; f < num_faces; ++f) {
@@ -369,7 +373,7 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
   std::vector<double> group_progress(static_cast<std::size_t>(num_groups), 0.0);
   double reported = 0;
 
-  tbb::parallel_for(0, num_groups, 1, [&](int g) {
+  auto run_group = [&](int g) {
     std::vector<SurfacePoint> sites;
     std::vector<Index> labels;
     for (std::size_t i = 0; i < local_sites.size(); ++i) {
@@ -443,10 +447,17 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
       }
     }
     for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
+  };
+  tbb::parallel_for(0, num_groups, 1, [&](int g) {
+    run_group(g);
+    // The group's propagation state is freed now, in its thread's arena:
+    // handed back, it is not resident beside the groups that follow.
+    if (options.release_memory_between_phases) trim_heap();
   });
 
   const std::vector<bool> valid =
-      merge_group_windows(pm, results, freed, field.nearest_site, options.remove_redundant_windows, field);
+      merge_group_windows(pm, results, freed, field.nearest_site, options.remove_redundant_windows,
+                          options.release_memory_between_phases, field);
   field.valid_face.resize(order.old_face.size());
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
 
