@@ -50,7 +50,8 @@ std::array<Index, 3> carrier(const TriangleMesh& mesh, const SurfacePoint& site)
 /// Checks every site and brings it to a canonical form: a face point with two
 /// zero barycentric coordinates becomes a vertex site.
 std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail::PropagationMesh& pm,
-                                          const detail::LocalityOrder& locality, std::span<const SurfacePoint> sites) {
+                                          const std::vector<Index>& new_face, const std::vector<Index>& new_vertex,
+                                          std::span<const SurfacePoint> sites) {
   std::vector<SurfacePoint> result(sites.begin(), sites.end());
   for (std::size_t i = 0; i < result.size(); ++i) {
     SurfacePoint& site = result[i];
@@ -71,7 +72,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       }
       for (int c = 0; c < 3; ++c) b[c] = b[c] < 1e-14 ? 0.0 : b[c];
       b /= b.sum();
-      const Index local_face = locality.new_face[site.element];
+      const Index local_face = new_face[site.element];
       if (!pm.included(local_face)) {
         throw Error(site_name(i) + ": face " + std::to_string(site.element) +
                     " repeats a vertex index and takes no part in the surface");
@@ -87,7 +88,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
                     " has zero area; place the site on a neighbouring face");
       }
     }
-    if (site.kind == SurfacePoint::Kind::vertex && pm.vertex_face[locality.new_vertex[site.element]] < 0) {
+    if (site.kind == SurfacePoint::Kind::vertex && pm.vertex_face[new_vertex[site.element]] < 0) {
       throw Error(site_name(i) + ": vertex " + std::to_string(site.element) + " is used by no triangle");
     }
   }
@@ -118,6 +119,13 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
     }
   }
   return result;
+}
+
+/// The inverse of a permutation of 0 .. n-1.
+std::vector<Index> inverse(const std::vector<Index>& permutation) {
+  std::vector<Index> inverse(permutation.size());
+  for (std::size_t i = 0; i < permutation.size(); ++i) inverse[permutation[i]] = static_cast<Index>(i);
+  return inverse;
 }
 
 /// Renumbers per-vertex values in place: value v goes to old_vertex[v]
@@ -514,17 +522,16 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   const detail::PropagationMesh& pm = prepared.propagation;
   const detail::LocalityOrder& order = prepared.order;
   GeodesicField field;
-  field.sites = validated_sites(mesh, pm, order, sites);
-  std::vector<SurfacePoint> local_sites = field.sites;
-  for (SurfacePoint& site : local_sites) {
-    site.element =
-        site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
-  }
-  if (disposable != nullptr) {
-    // Only the maps back to the caller's numbering are needed from here on.
-    // (Assigning {} would keep a vector's memory.)
-    (*disposable)->order.new_vertex = std::vector<Index>();
-    (*disposable)->order.new_face = std::vector<Index>();
+  std::vector<SurfacePoint> local_sites;
+  {
+    // The maps from the caller's numbering, needed for the sites alone: made
+    // for each field rather than held with the surface.
+    const std::vector<Index> new_face = inverse(order.old_face), new_vertex = inverse(order.old_vertex);
+    field.sites = validated_sites(mesh, pm, new_face, new_vertex, sites);
+    local_sites = field.sites;
+    for (SurfacePoint& site : local_sites) {
+      site.element = site.kind == SurfacePoint::Kind::vertex ? new_vertex[site.element] : new_face[site.element];
+    }
   }
   const double setup_seconds = seconds_since(start);
 
