@@ -195,10 +195,20 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
 
+  // Where the cut changed nothing, its mesh is a copy of the input's: the
+  // later stages (the relaxation is the peak of the memory) work on the
+  // input's, and the copy is made again after them.
+  const bool cut_is_input = result.surface.mesh.vertices.rows() == result.input.mesh.vertices.rows() &&
+                            result.surface.mesh.faces.rows() == result.input.mesh.faces.rows() &&
+                            result.surface.mesh.vertices == result.input.mesh.vertices &&
+                            result.surface.mesh.faces == result.input.mesh.faces;
+  if (cut_is_input) result.surface.mesh = TriangleMesh{};
+  const TriangleMesh& manifold_surface = cut_is_input ? result.input.mesh : result.surface.mesh;
+
   // Relaxation: the geodesic engine reports the fraction of faces reached in
   // each diagram; Lloyd's accepted iterations split the stage.
   const bool features = !result.features.empty();
-  const TriangleMesh& surface = features ? result.feature_cut.mesh : result.surface.mesh;
+  const TriangleMesh& surface = features ? result.feature_cut.mesh : manifold_surface;
   remesh::LloydOptions lloyd =
       remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
   // From the warm start the iterations mostly stop after one or two (LloydOptions::geodesic_tolerance).
@@ -230,7 +240,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   StageClock dual_clock(result.timings, Stage::dual);
   // The relaxed diagram moves on to the dual (its first round's diagram).
   try {
-    result.remesh = features ? remesh::welded_dual_with_repair(*geodesic_surface, result.surface.mesh, result.features,
+    result.remesh = features ? remesh::welded_dual_with_repair(*geodesic_surface, manifold_surface, result.features,
                                                                result.feature_cut, result.relaxation.sites,
                                                                std::move(result.relaxation.diagram), repair)
                              : remesh::dual_with_repair(*geodesic_surface, result.relaxation.sites,
@@ -240,7 +250,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   } catch (const Error& e) {
     // The message names the surface's pieces and loops: say where loops the
     // input does not have come from.
-    const std::string note = loops_from_cut(build_mesh_topology(result.surface.mesh).num_boundary_loops);
+    const std::string note = loops_from_cut(build_mesh_topology(manifold_surface).num_boundary_loops);
     if (note.empty()) throw;
     throw Error(e.what() + note);
   }
@@ -263,6 +273,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     statistics_clock.stop();
     report(options.progress, Stage::statistics, 1.0);
   }
+  if (cut_is_input) result.surface.mesh = result.input.mesh;
 }
 
 }  // namespace

@@ -54,16 +54,21 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
   return movable;
 }
 
-/// Frees a field's windows: of a relaxation's fields, only the last one's
-/// are needed (for the dual's queries), and they are most of a field's memory.
-/// A field keeps one window_begin entry per edge and one more, so an empty
-/// window_begin marks the field as released.
-void release_windows(voronoi::GeodesicField& field) {
+/// Frees a field's windows and per-vertex results: of a relaxation's fields,
+/// only the last one is needed (for the dual), and a held diagram's field is
+/// computed again where the relaxation ends on it. The topology stays (the
+/// steps read it). A field keeps one window_begin entry per edge and one
+/// more, so an empty window_begin marks the field as released.
+void release_field(voronoi::GeodesicField& field) {
   std::vector<voronoi::EdgeWindow>().swap(field.windows);
   std::vector<Index>().swap(field.window_begin);
+  std::vector<double>().swap(field.distance);
+  std::vector<Index>().swap(field.nearest_site);
+  std::vector<bool>().swap(field.valid_face);
+  std::vector<voronoi::FacePointSource>().swap(field.face_point_sources);
 }
 
-bool windows_released(const voronoi::GeodesicField& field) { return field.window_begin.empty(); }
+bool field_released(const voronoi::GeodesicField& field) { return field.window_begin.empty(); }
 
 /// Lloyd's steps, `factor` times each cell's (density-weighted) mean log map.
 std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, const std::vector<bool>& movable,
@@ -286,8 +291,9 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   StepControl control = initial_control(options);
   const double stop_fraction = std::max(options.tolerance, options.geodesic_tolerance);
   // A trial step's diagram is computed while the current one is held, whose
-  // windows go first (the peak memory is then about one diagram's). If the
-  // relaxation ends on a rejected step they are computed again, the same.
+  // field (windows, distances) goes first (the peak memory is then about one
+  // diagram's). If the relaxation ends on a rejected step it is computed
+  // again, the same.
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const double previous = result.energy.back();
     // Judged again each iteration: a walk may have ended on the boundary.
@@ -297,7 +303,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
       const auto start = std::chrono::steady_clock::now();
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, result.sites, steps);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      release_windows(result.diagram.field);
+      release_field(result.diagram.field);
       voronoi::VoronoiDiagram next = diagram_of(moved);
       detail::WeightedCells next_cells = cells_of(moved, next);
       const double energy = next_cells.total_energy();
@@ -322,7 +328,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     if (previous - result.energy.back() < stop_fraction * previous) break;
     tell(false);
   }
-  if (windows_released(result.diagram.field)) {
+  if (field_released(result.diagram.field)) {
     voronoi::GeodesicField field = voronoi::compute_geodesic_field(surface, result.sites, options.voronoi.geodesic);
     result.geodesic_seconds += field.stats.total_seconds;
     result.diagram.field = std::move(field);

@@ -94,5 +94,35 @@ TEST(WindowStore, CompactKeepsEveryEdgesWindows) {
   }
 }
 
+TEST(WindowStore, EdgeSiteSummarisesTheSitesInsertedSinceCleared) {
+  // The slots start as zeroed pages: an edge never touched, and one cleared,
+  // must read as holding no site, and the marks must start false.
+  WindowStore store(3);
+  for (Index e = 0; e < 3; ++e) {
+    EXPECT_EQ(store.edge_site(e), WindowStore::kNoSite);
+    EXPECT_FALSE(store.marked(e));
+    EXPECT_TRUE(store.on_edge(e).empty());
+  }
+  fill_edge(store, 1, 2);  // site 1
+  EXPECT_EQ(store.edge_site(1), 1);
+  EXPECT_EQ(store.edge_site(0), WindowStore::kNoSite);
+  // Site 0, beyond edge 1's windows (each fill_edge window is one unit long).
+  const std::uint32_t id = store.add_source(0.0, 0);
+  Window w;
+  w.b0 = 2;
+  w.b1 = 3;
+  w.source_x = 2.5;
+  w.source_y = -1;
+  w.source = id;
+  std::vector<WindowStore::Piece> created;
+  store.insert(1, w, {0.0, 0}, 3.0, created);
+  EXPECT_EQ(store.edge_site(1), WindowStore::kMixedSites);
+  store.set_marked(1, true);
+  store.clear_edge(1);
+  EXPECT_EQ(store.edge_site(1), WindowStore::kNoSite);
+  EXPECT_TRUE(store.marked(1));  // the mark stays
+  EXPECT_TRUE(store.on_edge(1).empty());
+}
+
 }  // namespace
 }  // namespace geodual::voronoi::detail

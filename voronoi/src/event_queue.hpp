@@ -6,6 +6,7 @@
 // true smallest pending key, which RWR needs as its lower bound.
 
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "zeroed_array.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -32,7 +33,7 @@ class EventQueue {
  public:
   /// Reserves room for every entry at once: address space costs no memory
   /// until used, whereas a doubling array leaves its outgrown copies behind.
-  explicit EventQueue(Index num_vertices) : position_(2 * static_cast<std::size_t>(num_vertices), kAbsent) {
+  explicit EventQueue(Index num_vertices) : position_(2 * static_cast<std::size_t>(num_vertices)) {
     heap_.reserve(position_.size());
   }
 
@@ -42,14 +43,14 @@ class EventQueue {
   /// Inserts the event, or lowers the key of the vertex's pending event of the
   /// same kind (a key that is not lower is ignored).
   void push_or_decrease(const Event& event) {
-    std::uint32_t& slot = position_[slot_index(event)];
-    if (slot == kAbsent) {
-      slot = static_cast<std::uint32_t>(heap_.size());
+    const std::uint32_t position = position_[slot_index(event)];
+    std::size_t slot = heap_.size();
+    if (position == kAbsent) {
       heap_.push_back(event);
-    } else if (event.key < heap_[slot].key) {
-      heap_[slot].key = event.key;
     } else {
-      return;
+      slot = position - 1;
+      if (!(event.key < heap_[slot].key)) return;
+      heap_[slot].key = event.key;
     }
     sift_up(slot);
   }
@@ -60,12 +61,12 @@ class EventQueue {
     heap_.pop_back();
     if (heap_.empty()) return;
     heap_.front() = last;
-    position_[slot_index(last)] = 0;
+    position_[slot_index(last)] = 1;
     sift_down(0);
   }
 
  private:
-  static constexpr std::uint32_t kAbsent = 0xffffffffu;
+  static constexpr std::uint32_t kAbsent = 0;
   static constexpr std::size_t kArity = 4;
 
   static std::size_t slot_index(const Event& e) {
@@ -74,7 +75,7 @@ class EventQueue {
 
   void place(std::size_t i, const Event& e) {
     heap_[i] = e;
-    position_[slot_index(e)] = static_cast<std::uint32_t>(i);
+    position_[slot_index(e)] = static_cast<std::uint32_t>(i + 1);
   }
 
   void sift_up(std::size_t i) {
@@ -107,7 +108,10 @@ class EventQueue {
   }
 
   std::vector<Event> heap_;
-  std::vector<std::uint32_t> position_;  ///< per vertex and kind: index in heap_, or kAbsent
+  /// Per vertex and kind: index in heap_ plus one, or kAbsent (0). Zeroed
+  /// pages: a propagation that reaches part of the mesh makes only that
+  /// part resident.
+  ZeroedArray<std::uint32_t> position_;
 };
 
 }  // namespace geodual::voronoi::detail

@@ -12,6 +12,7 @@
 #include "axis_nearest_site.hpp"
 #include "cell_moments.hpp"
 #include "face_distance.hpp"
+#include "zeroed_array.hpp"
 
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
@@ -79,14 +80,23 @@ BoundaryNode edge_crossing_node(const TriangleMesh& mesh, const GeodesicField& f
 
 /// The crossings of the mesh edges computed so far, each edge's contiguous.
 struct EdgeCrossingStore {
-  std::vector<Index> first;  ///< per edge: its first crossing, -1 until computed
-  std::vector<Index> count;
+  /// Per edge: its first crossing plus one, 0 until computed; and how many.
+  /// Zeroed pages: only the edges near cell boundaries, those computed,
+  /// become resident.
+  ZeroedArray<Index> first_plus_one;
+  ZeroedArray<Index> count;
   std::vector<EdgeCrossing> crossings;
 
-  explicit EdgeCrossingStore(std::size_t num_edges) : first(num_edges, -1), count(num_edges, 0) {}
-  bool computed(Index edge) const { return first[edge] >= 0; }
+  explicit EdgeCrossingStore(std::size_t num_edges) : first_plus_one(num_edges), count(num_edges) {}
+  bool computed(Index edge) const { return first_plus_one[edge] != 0; }
+  Index first(Index edge) const { return first_plus_one[edge] - 1; }
+  /// Records that the crossings of `edge` are crossings[first .. first + n).
+  void set(Index edge, Index first, Index n) {
+    first_plus_one[edge] = first + 1;
+    count[edge] = n;
+  }
   std::span<const EdgeCrossing> of(Index edge) const {
-    return {crossings.data() + first[edge], static_cast<std::size_t>(count[edge])};
+    return {crossings.data() + first(edge), static_cast<std::size_t>(count[edge])};
   }
 };
 

@@ -50,7 +50,8 @@ std::array<Index, 3> carrier(const TriangleMesh& mesh, const SurfacePoint& site)
 /// Checks every site and brings it to a canonical form: a face point with two
 /// zero barycentric coordinates becomes a vertex site.
 std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail::PropagationMesh& pm,
-                                          const detail::LocalityOrder& locality, std::span<const SurfacePoint> sites) {
+                                          const std::vector<Index>& new_face, const std::vector<Index>& new_vertex,
+                                          std::span<const SurfacePoint> sites) {
   std::vector<SurfacePoint> result(sites.begin(), sites.end());
   for (std::size_t i = 0; i < result.size(); ++i) {
     SurfacePoint& site = result[i];
@@ -71,7 +72,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
       }
       for (int c = 0; c < 3; ++c) b[c] = b[c] < 1e-14 ? 0.0 : b[c];
       b /= b.sum();
-      const Index local_face = locality.new_face[site.element];
+      const Index local_face = new_face[site.element];
       if (!pm.included(local_face)) {
         throw Error(site_name(i) + ": face " + std::to_string(site.element) +
                     " repeats a vertex index and takes no part in the surface");
@@ -87,7 +88,7 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
                     " has zero area; place the site on a neighbouring face");
       }
     }
-    if (site.kind == SurfacePoint::Kind::vertex && pm.vertex_face[locality.new_vertex[site.element]] < 0) {
+    if (site.kind == SurfacePoint::Kind::vertex && pm.vertex_face[new_vertex[site.element]] < 0) {
       throw Error(site_name(i) + ": vertex " + std::to_string(site.element) + " is used by no triangle");
     }
   }
@@ -118,6 +119,13 @@ std::vector<SurfacePoint> validated_sites(const TriangleMesh& mesh, const detail
     }
   }
   return result;
+}
+
+/// The inverse of a permutation of 0 .. n-1.
+std::vector<Index> inverse(const std::vector<Index>& permutation) {
+  std::vector<Index> inverse(permutation.size());
+  for (std::size_t i = 0; i < permutation.size(); ++i) inverse[permutation[i]] = static_cast<Index>(i);
+  return inverse;
 }
 
 /// Renumbers per-vertex values in place: value v goes to old_vertex[v]
@@ -228,7 +236,7 @@ class GroupCursor {
 /// merged windows are never held twice.
 std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::vector<GroupResult>& groups,
                                       const std::vector<std::uint8_t>& freed, const std::vector<Index>& label,
-                                      bool remove_redundant_windows, GeodesicField& field) {
+                                      bool remove_redundant_windows, bool release_memory, GeodesicField& field) {
   const Index num_edges = pm.num_edges();
   constexpr Index kChunk = kMergeChunk;
   const Index num_chunks = (num_edges + kChunk - 1) / kChunk;
@@ -338,6 +346,10 @@ std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::ve
       }
       for (GroupResult& group : groups) group.chunks[static_cast<std::size_t>(c)] = GroupChunk();
     });
+    // The groups' chunks just freed lie in the heap (their threads' arenas)
+    // while the merged windows take fresh pages: hand them back, or the two
+    // would be resident together.
+    if (release_memory) trim_heap();
   }
   std::vector<bool> valid(static_cast<std::size_t>(num_faces), false);
   for (Index f = 0; f < num_faces; ++f) {
@@ -369,7 +381,7 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
   std::vector<double> group_progress(static_cast<std::size_t>(num_groups), 0.0);
   double reported = 0;
 
-  tbb::parallel_for(0, num_groups, 1, [&](int g) {
+  auto run_group = [&](int g) {
     std::vector<SurfacePoint> sites;
     std::vector<Index> labels;
     for (std::size_t i = 0; i < local_sites.size(); ++i) {
@@ -443,10 +455,17 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
       }
     }
     for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
+  };
+  tbb::parallel_for(0, num_groups, 1, [&](int g) {
+    run_group(g);
+    // The group's propagation state is freed now, in its thread's arena:
+    // handed back, it is not resident beside the groups that follow.
+    if (options.release_memory_between_phases) trim_heap();
   });
 
   const std::vector<bool> valid =
-      merge_group_windows(pm, results, freed, field.nearest_site, options.remove_redundant_windows, field);
+      merge_group_windows(pm, results, freed, field.nearest_site, options.remove_redundant_windows,
+                          options.release_memory_between_phases, field);
   field.valid_face.resize(order.old_face.size());
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
 
@@ -503,17 +522,16 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
   const detail::PropagationMesh& pm = prepared.propagation;
   const detail::LocalityOrder& order = prepared.order;
   GeodesicField field;
-  field.sites = validated_sites(mesh, pm, order, sites);
-  std::vector<SurfacePoint> local_sites = field.sites;
-  for (SurfacePoint& site : local_sites) {
-    site.element =
-        site.kind == SurfacePoint::Kind::vertex ? order.new_vertex[site.element] : order.new_face[site.element];
-  }
-  if (disposable != nullptr) {
-    // Only the maps back to the caller's numbering are needed from here on.
-    // (Assigning {} would keep a vector's memory.)
-    (*disposable)->order.new_vertex = std::vector<Index>();
-    (*disposable)->order.new_face = std::vector<Index>();
+  std::vector<SurfacePoint> local_sites;
+  {
+    // The maps from the caller's numbering, needed for the sites alone: made
+    // for each field rather than held with the surface.
+    const std::vector<Index> new_face = inverse(order.old_face), new_vertex = inverse(order.old_vertex);
+    field.sites = validated_sites(mesh, pm, new_face, new_vertex, sites);
+    local_sites = field.sites;
+    for (SurfacePoint& site : local_sites) {
+      site.element = site.kind == SurfacePoint::Kind::vertex ? new_vertex[site.element] : new_face[site.element];
+    }
   }
   const double setup_seconds = seconds_since(start);
 

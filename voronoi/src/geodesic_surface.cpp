@@ -12,7 +12,11 @@ PreparedSurface prepare_surface(const TriangleMesh& mesh) {
   PreparedSurface prepared;
   prepared.order = locality_order(mesh);
   prepared.propagation = build_propagation_mesh(prepared.order.mesh);
-  prepared.order.mesh = TriangleMesh{};  // only the numbering is needed from here on
+  // Only the maps back to the caller's numbering are held from here on (each
+  // field inverts them for its sites). Assigning {} would keep the memory.
+  prepared.order.mesh = TriangleMesh{};
+  std::vector<Index>().swap(prepared.order.new_face);
+  std::vector<Index>().swap(prepared.order.new_vertex);
   return prepared;
 }
 
@@ -61,9 +65,8 @@ std::size_t GeodesicSurface::memory_bytes() const {
   const detail::LocalityOrder& order = prepared_->order;
   return bytes_of(pm.face_records) + bytes_of(pm.edge_faces) + bytes_of(pm.edge_length_storage) +
          bytes_of(pm.vertex_face) + bytes_of(pm.fan_offsets) + bytes_of(pm.extra_fans) + bytes_of(pm.is_pseudo_source) +
-         bytes_of(order.new_face) + bytes_of(order.old_face) + bytes_of(order.new_vertex) + bytes_of(order.old_vertex) +
-         bytes_of(topology_->edge_vertices) + bytes_of(topology_->edge_faces) + bytes_of(topology_->edge_length) +
-         bytes_of(topology_->face_edges);
+         bytes_of(order.old_face) + bytes_of(order.old_vertex) + bytes_of(topology_->edge_vertices) +
+         bytes_of(topology_->edge_faces) + bytes_of(topology_->edge_length) + bytes_of(topology_->face_edges);
 }
 
 }  // namespace geodual::voronoi

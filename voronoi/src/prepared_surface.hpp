@@ -11,7 +11,8 @@ namespace geodual::voronoi::detail {
 struct PreparedSurface {
   /// Faces and vertices in locality order (see locality_order.hpp).
   PropagationMesh propagation;
-  /// The numbering between the two (its renumbered mesh copy is not kept).
+  /// The numbering between the two: old_face and old_vertex alone (its
+  /// renumbered mesh copy and the inverse maps are not kept).
   LocalityOrder order;
 };
 

@@ -101,8 +101,7 @@ void compute_edge_crossings(const std::vector<std::uint8_t>& needed, Tracers& tr
     if (release_memory && c % kChunksBetweenTrims == kChunksBetweenTrims - 1) trim_heap();
     Index next = static_cast<Index>(store.crossings.size());
     for (std::size_t i = 0; i < chunk.edges.size(); ++i) {
-      store.first[chunk.edges[i]] = next;
-      store.count[chunk.edges[i]] = chunk.counts[i];
+      store.set(chunk.edges[i], next, chunk.counts[i]);
       next += chunk.counts[i];
     }
     store.crossings.insert(store.crossings.end(), chunk.crossings.begin(), chunk.crossings.end());
@@ -122,16 +121,16 @@ class GraphMerger {
   /// another in order would.
   std::span<const detail::EdgeCrossing> crossings(Index edge, FaceBoundaryTracer& tracer) {
     if (!store_.computed(edge)) {
-      store_.first[edge] = static_cast<Index>(store_.crossings.size());
+      const auto first = static_cast<Index>(store_.crossings.size());
       tracer.find_edge_crossings(edge, store_.crossings);
-      store_.count[edge] = static_cast<Index>(store_.crossings.size()) - store_.first[edge];
+      store_.set(edge, first, static_cast<Index>(store_.crossings.size()) - first);
     }
     give_nodes(edge);
     return store_.of(edge);
   }
 
   void give_nodes(Index edge) {
-    const Index first = store_.first[edge], count = store_.count[edge];
+    const Index first = store_.first(edge), count = store_.count[edge];
     if (count == 0) return;
     node_of_crossing_.resize(store_.crossings.size(), -1);
     if (node_of_crossing_[first] >= 0) return;

@@ -476,11 +476,11 @@ void WindowStore::split_overlap(const Window& candidate, double candidate_sigma,
 void WindowStore::insert(Index edge, const Window& candidate, const WindowSource& candidate_source, double edge_length,
                          std::vector<Piece>& created) {
   min_length_ = 1e-12 * edge_length;
-  Index& site_summary = slots_[edge].site;
-  if (site_summary == kNoSite) {
-    site_summary = candidate_source.site;
-  } else if (site_summary != candidate_source.site) {
-    site_summary = kMixedSites;
+  Index& not_site = slots_[edge].not_site;  // the site summary, negated (see Slot)
+  if (not_site == ~kNoSite) {
+    not_site = ~candidate_source.site;
+  } else if (not_site != ~candidate_source.site) {
+    not_site = ~kMixedSites;
   }
   const std::span<const Window> windows = on_edge(edge);
   const auto n = static_cast<std::uint32_t>(windows.size());

@@ -18,6 +18,7 @@
 // the pages and a new page is due, the blocks are packed together instead.
 
 #include "window.hpp"
+#include "zeroed_array.hpp"
 
 #include <array>
 #include <cstddef>
@@ -84,7 +85,7 @@ class WindowStore {
   /// The site of every window ever inserted on the edge since it was last
   /// cleared, kNoSite if none, kMixedSites if several (the windows held now
   /// may still all share one site).
-  Index edge_site(Index edge) const { return slots_[edge].site; }
+  Index edge_site(Index edge) const { return ~slots_[edge].not_site; }
 
   /// Frees every window of the edge (its mark stays).
   void clear_edge(Index edge);
@@ -142,15 +143,17 @@ class WindowStore {
   /// The smallest class that holds `count` > 0 windows.
   static std::uint32_t class_for(std::uint32_t count);
 
-  /// An edge's block and site summary, together (12 bytes): inserting reads both.
+  /// An edge's block and site summary, together (12 bytes): inserting reads
+  /// both. All-zero bytes are an empty slot (see slots_).
   static constexpr std::uint32_t kMaxCount = (std::uint32_t{1} << 24) - 1;
   struct Slot {
     std::uint32_t begin = 0;
     std::uint32_t count : 24 = 0;
     std::uint32_t block_class : 7 = kNoBlock;
     std::uint32_t marked : 1 = 0;  ///< see marked()
-    Index site = kNoSite;
+    Index not_site = ~kNoSite;     ///< edge_site(), bitwise negated: 0 is kNoSite
   };
+  static_assert(kNoBlock == 0 && ~kNoSite == 0, "an all-zero Slot is an empty one");
   static_assert(kClasses <= 128, "block classes fit in Slot::block_class");
   struct Segment {
     double lo, hi;
@@ -208,7 +211,9 @@ class WindowStore {
   static constexpr std::int64_t kRepackFraction = 16;
   std::int64_t repacks_ = 0;
   bool release_memory_ = true;
-  std::vector<Slot> slots_;
+  /// Zeroed pages: a propagation that reaches part of the mesh (one group
+  /// of sites) makes only that part's slots resident.
+  ZeroedArray<Slot> slots_;
   std::vector<WindowSource> sources_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
   std::int64_t live_ = 0;

@@ -25,8 +25,8 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
       limits_(limits),
       distance_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
       label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
-      vertex_flags_(static_cast<std::size_t>(mesh.num_vertices()), 0),
-      face_flags_(static_cast<std::size_t>(mesh.num_faces()), 0),
+      vertex_flags_(static_cast<std::size_t>(mesh.num_vertices())),
+      face_flags_(static_cast<std::size_t>(mesh.num_faces())),
       store_(mesh.num_edges(), options.release_memory_between_phases),
       events_(mesh.num_vertices()) {
   window_bytes_limit_ = static_cast<std::int64_t>(

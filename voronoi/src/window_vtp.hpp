@@ -17,6 +17,7 @@
 #include "propagation_mesh.hpp"
 #include "site_groups.hpp"
 #include "window_store.hpp"
+#include "zeroed_array.hpp"
 
 #include <Eigen/Core>
 
@@ -135,8 +136,8 @@ class WindowVtp {
   std::vector<Index> label_;
   /// Per vertex: expanded; emitted windows as a pseudo-source (or vertex
   /// site) at its current distance.
-  std::vector<std::uint8_t> vertex_flags_;
-  std::vector<std::uint8_t> face_flags_;
+  ZeroedArray<std::uint8_t> vertex_flags_;
+  ZeroedArray<std::uint8_t> face_flags_;
   Index faces_traversed_ = 0;
 
   WindowStore store_;
