@@ -3,6 +3,7 @@
 
 #include "geodual/pipeline/feature_file.hpp"
 #include "geodual/mesh/error.hpp"
+#include "small_grid.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,30 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A 3 x 3 grid of vertices in the plane, two triangles per cell (diagonals a -> a + 4).
-TriangleMesh grid() {
-  TriangleMesh mesh;
-  mesh.vertices.resize(9, 3);
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < 3; ++i) mesh.vertices.row(j * 3 + i) << i, j, 0;
-  }
-  mesh.faces.resize(8, 3);
-  int f = 0;
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 2; ++i) {
-      const int a = j * 3 + i;
-      mesh.faces.row(f++) << a, a + 1, a + 4;
-      mesh.faces.row(f++) << a, a + 4, a + 3;
-    }
-  }
-  return mesh;
-}
+TriangleMesh grid() { return test::small_grid(false); }
 
-fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("geodual_feature_file_test_" + name);
-  std::ofstream(path) << text;
-  return path;
-}
+using test::write_temp;
 
 TEST(ReadFeatureFile, PolylinesBecomeTheirEdges) {
   const fs::path path = write_temp("ok.txt", "# the middle row, then a diagonal\n3 4 5\n\n  0 4 8  \n");

@@ -2,6 +2,7 @@
 
 #include "geodual/pipeline/sites.hpp"
 #include "geodual/mesh/error.hpp"
+#include "small_grid.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,31 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A 3 x 3 grid of vertices (8 triangles) plus one vertex no face uses.
-TriangleMesh grid_with_unreferenced_vertex() {
-  TriangleMesh mesh;
-  mesh.vertices.resize(10, 3);
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < 3; ++i) mesh.vertices.row(j * 3 + i) << i, j, 0;
-  }
-  mesh.vertices.row(9) << 5, 5, 5;
-  mesh.faces.resize(8, 3);
-  int f = 0;
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 2; ++i) {
-      const int a = j * 3 + i;
-      mesh.faces.row(f++) << a, a + 1, a + 4;
-      mesh.faces.row(f++) << a, a + 4, a + 3;
-    }
-  }
-  return mesh;
-}
+TriangleMesh grid_with_unreferenced_vertex() { return test::small_grid(true); }
 
-fs::path write_temp(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("geodual_sites_test_" + name);
-  std::ofstream(path) << text;
-  return path;
-}
+using test::write_temp;
 
 TEST(RandomVertexSites, DistinctReferencedAndDeterministic) {
   const TriangleMesh mesh = grid_with_unreferenced_vertex();
