@@ -534,6 +534,9 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
     }
   }
   const double setup_seconds = seconds_since(start);
+  // What the caller freed before (and the inverse maps) goes back too: the
+  // groups propagate on worker threads, whose heaps cannot reuse this one's.
+  if (options.release_memory_between_phases) trim_heap();
 
   const int num_groups = detail::site_group_count(local_sites.size(), options.site_groups);
   std::optional<detail::WindowStore> windows;
