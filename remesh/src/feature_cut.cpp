@@ -23,10 +23,8 @@ namespace {
 /// makes them), kept 2^-20 off the edge's ends, so that a twin's
 /// coordinates, 1 - t on the other face, are exact.
 constexpr double kLattice = 0x1p32;
-double lattice_parameter(double t) {
-  constexpr double kMargin = 0x1p-20;
-  return std::round(std::clamp(t, kMargin, 1 - kMargin) * kLattice) / kLattice;
-}
+constexpr double kMargin = 0x1p-20;
+double lattice_parameter(double t) { return std::round(std::clamp(t, kMargin, 1 - kMargin) * kLattice) / kLattice; }
 
 bool is_sharp(const FeatureSet& features, Index a, Index b) {
   const std::array<Index, 2> key = {std::min(a, b), std::max(a, b)};
@@ -264,8 +262,11 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
   std::vector<double> at;
   const auto refine = [&](const ChainWalk& walk, double from, double to) {
     if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return;
+    const int most_parts =
+        options.min_spacing > 0 ? static_cast<int>(std::min(16.0, std::floor((to - from) / options.min_spacing))) : 16;
+    if (most_parts < 2) return;
     int parts = 2;
-    for (; parts < 16; ++parts) {
+    for (; parts < most_parts; ++parts) {
       bool fits = true;
       for (int k = 0; k < parts && fits; ++k) {
         fits =
@@ -487,24 +488,26 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
   const MeshTopology topology = build_mesh_topology(welded.mesh);
   // Twins that made a triangle or an edge in two pieces: not a remesh.
   for (Index e = 0; e < topology.num_edges(); ++e) welded.nonmanifold_edges += topology.is_manifold_edge(e) ? 0 : 1;
-  std::vector<std::uint8_t> needs(n, 0);
+  const auto on_cut_boundary = [&](std::size_t s) {
+    const SiteKey& key = keys[s];
+    return key.lo >= 0 && (key.lo == key.hi ? vertex_split[key.lo] || on_surface_boundary(s)
+                                            : is_sharp(features, key.lo, key.hi) || on_surface_boundary(s));
+  };
+  // The ends of cracked edges inside a piece of the cut surface (not on any
+  // of its boundaries) need a site on the boundary; each with the other ends
+  // of its cracked edges.
+  std::vector<std::pair<std::size_t, std::size_t>> crack_neighbours;
   for (Index e = 0; e < topology.num_edges(); ++e) {
     if (!topology.is_boundary_edge(e)) continue;
     const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
     const std::size_t sa = site_of_vertex[a], sb = site_of_vertex[b];
     if (on_surface_boundary(sa) && on_surface_boundary(sb)) continue;
     ++welded.cracked_edges;
-    // The ends inside a piece of the cut surface (not on any of its
-    // boundaries) need a site on the boundary.
-    for (const std::size_t s : {sa, sb}) {
-      const SiteKey& key = keys[s];
-      const bool on_cut_boundary =
-          key.lo >= 0 && (key.lo == key.hi ? vertex_split[key.lo] || on_surface_boundary(s)
-                                           : is_sharp(features, key.lo, key.hi) || on_surface_boundary(s));
-      if (!on_cut_boundary) needs[s] = 1;
-    }
+    if (!on_cut_boundary(sa)) crack_neighbours.emplace_back(sa, sb);
+    if (!on_cut_boundary(sb)) crack_neighbours.emplace_back(sb, sa);
   }
   if (welded.cracked_edges == 0) return welded;
+  std::sort(crack_neighbours.begin(), crack_neighbours.end());
   std::vector<SiteKey> held;  // a move onto a point a site holds would make two sites one
   for (const SiteKey& key : keys) {
     if (key.lo >= 0) held.push_back(key);
@@ -519,10 +522,18 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
       boundary_edges.push_back(e);
     }
   }
-  for (std::size_t s = 0; s < n; ++s) {
-    if (!needs[s]) continue;
+  for (auto first = crack_neighbours.begin(); first != crack_neighbours.end();) {
+    const std::size_t s = first->first;
+    const auto last = std::find_if(first, crack_neighbours.end(), [&](const auto& pair) { return pair.first != s; });
+    // The site's cell reaches the boundary between its two neighbours along
+    // the crack: where they are on the boundary, it moves halfway between
+    // them (to its nearest point there, it could land next to one of them).
+    const bool between = last - first == 2 && on_cut_boundary(first->second) && on_cut_boundary((first + 1)->second);
     const Index piece = cut_topology.face_component[static_cast<std::size_t>(sites[s].element)];
-    const Eigen::Vector3d x = sites[s].position(cut.mesh);
+    const Eigen::Vector3d x = between ? Eigen::Vector3d(0.5 * (sites[first->second].position(cut.mesh) +
+                                                               sites[(first + 1)->second].position(cut.mesh)))
+                                      : sites[s].position(cut.mesh);
+    first = last;
     double best = std::numeric_limits<double>::infinity();
     SurfacePoint nearest;
     for (const Index e : boundary_edges) {
@@ -535,11 +546,17 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
       const double distance = (a + t * d - x).norm();
       if (distance < best) {
         best = distance;
-        // As a point of the surface's edge, lattice-rounded like every edge site.
+        // As a point of the surface's edge, lattice-rounded like every edge
+        // site; within the lattice's margin of an end, that end (the key of
+        // a site there, which `held` may have).
         Index lo = cut.original_vertex[p], hi = cut.original_vertex[q];
         double along = t;
         if (lo > hi) std::swap(lo, hi), along = 1 - t;
-        nearest = point_on_edge(surface, f, lo, hi, lattice_parameter(along));
+        if (t < kMargin || t > 1 - kMargin) {
+          nearest = SurfacePoint::at_vertex(t < kMargin ? p : q);
+        } else {
+          nearest = point_on_edge(surface, f, lo, hi, lattice_parameter(along));
+        }
       }
     }
     if (!(best < std::numeric_limits<double>::infinity())) continue;
@@ -600,6 +617,15 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     for (const auto& [site, point] : welded.site_moves) result.sites[site] = point;
     const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
     if (welded.cracked_edges == 0 && more.empty()) {
+      // Each piece's dual has only triangles of positive area; welded, three
+      // sites on one straight stretch of a chain could still make one flat.
+      for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
+        if (has_positive_area(welded.mesh, f)) continue;
+        const auto corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
+        throw Error("the remesh welded along the sharp features has a triangle of zero area, at (" +
+                    std::to_string(corner.x()) + ", " + std::to_string(corner.y()) + ", " + std::to_string(corner.z()) +
+                    ")");
+      }
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);
       break;

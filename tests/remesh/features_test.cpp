@@ -13,7 +13,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 
 namespace geodual {
@@ -183,6 +185,37 @@ TEST(FeatureCut, BoxFallsIntoSixSidesAndSitesComeInTwins) {
   EXPECT_EQ(static_cast<std::ptrdiff_t>(remesh::missing_twins(box, features, cut, at_copy).size()), copies - 1);
 }
 
+TEST(FeatureCut, ChordRefinementOfACurvedChainKeepsTheMinimumSpacing) {
+  // A cone's base rim is a circular crease of length 2 pi: at spacing 0.5,
+  // 13 stretches whose chords leave the circle by about 0.03.
+  const TriangleMesh cone =
+      bench::hard_case_detail::closed_cone({0, 0, 0}, {0, 0, 1}, 1.0, 1.0, /*segments=*/256, /*rings=*/8);
+  const remesh::FeatureSet features = remesh::detect_features(cone);
+  ASSERT_EQ(features.sharp_chains, 1);
+  ASSERT_TRUE(features.chains[0].closed);
+  const remesh::FeatureCut cut = remesh::cut_along_features(cone, features);
+  // The smallest gap between the rim's points (by angle, as a chord).
+  const auto smallest_gap = [&](const remesh::FeatureSiteOptions& options) {
+    std::vector<double> angles;
+    for (const SurfacePoint& site : remesh::feature_sites(cone, features, cut, options).sites) {
+      const Eigen::Vector3d p = site.position(cut.mesh);
+      angles.push_back(std::atan2(p.y(), p.x()));
+    }
+    std::sort(angles.begin(), angles.end());
+    angles.erase(std::unique(angles.begin(), angles.end()), angles.end());  // twins
+    double gap = 2 * std::numbers::pi + angles.front() - angles.back();
+    for (std::size_t k = 1; k < angles.size(); ++k) gap = std::min(gap, angles[k] - angles[k - 1]);
+    return 2 * std::sin(gap / 2);
+  };
+  EXPECT_GT(smallest_gap({.spacing = 0.5}), 0.45);
+  // A chord error of 1e-3 asks for 6 parts a stretch...
+  EXPECT_LT(smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3}), 0.1);
+  // ... but none closer than the minimum spacing: 2 parts of 0.24.
+  const double floored = smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2});
+  EXPECT_GT(floored, 0.2 * (1 - 1e-3));
+  EXPECT_LT(floored, 0.3);
+}
+
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
   // Sites at the corners, the crease midpoints and each side's centre: the
   // sides' duals must weld into one closed surface.
@@ -241,6 +274,75 @@ TEST(FeatureCut, WeldLeavesOutAFlapFoldedOntoItselfAndTheSitesOnlyItHeld) {
   EXPECT_EQ(welded.cracked_edges, 0);
   EXPECT_EQ(welded.mesh.faces, plain.mesh.faces);
   EXPECT_EQ(welded.unused_sites, std::vector<std::size_t>{sites.size() - 1});
+}
+
+TEST(FeatureCut, ASiteThatCracksTheWeldBetweenTwoChainSitesMovesHalfwayBetweenThem) {
+  // The box's sides' dual with one triangle (corner A, crease midpoint B,
+  // side centre C) split at a site X next to A inside the side: X's cell
+  // would reach the crease between A and B, so the weld cracks along A-X-B.
+  const TriangleMesh box = cube(8);
+  const remesh::FeatureSet features = remesh::detect_features(box);
+  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
+  std::vector<SurfacePoint> sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5}).sites;
+  add_side_centres(cut, sites);
+  const voronoi::GeodesicSurface surface(cut.mesh);
+  TriangleMesh dual = remesh::dual_delaunay(cut.mesh, voronoi::compute_voronoi(surface, sites)).mesh;
+  const Eigen::Vector3d a(0, 0, 0), b(0.5, 0, 0);
+  const auto at = [&](Index v, const Eigen::Vector3d& p) {
+    return (dual.vertices.row(v).transpose() - p).norm() < 1e-6;
+  };
+  Index split = -1;
+  int rotation = 0;  // where A is in the split triangle
+  for (Index f = 0; f < dual.num_faces() && split < 0; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Index next = dual.faces(f, (k + 1) % 3), after = dual.faces(f, (k + 2) % 3);
+      const bool bottom = dual.vertices(next, 2) == 0 && dual.vertices(after, 2) == 0;
+      if (at(dual.faces(f, k), a) && (at(next, b) || at(after, b)) && bottom) {
+        split = f;
+        rotation = k;
+      }
+    }
+  }
+  ASSERT_GE(split, 0);
+  const Index va = dual.faces(split, rotation), next = dual.faces(split, (rotation + 1) % 3),
+              after = dual.faces(split, (rotation + 2) % 3);
+  // X at (0.1, 0.05, 0), on the bottom side's face holding it.
+  const Eigen::Vector2d x(0.1, 0.05);
+  SurfacePoint at_x;
+  for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
+    Eigen::Matrix<double, 3, 3> corners;
+    for (int k = 0; k < 3; ++k) corners.col(k) = cut.mesh.vertices.row(cut.mesh.faces(f, k)).transpose();
+    if (corners.row(2).cwiseAbs().maxCoeff() != 0) continue;
+    Eigen::Matrix2d edges;
+    edges << corners.block<2, 1>(0, 1) - corners.block<2, 1>(0, 0),
+        corners.block<2, 1>(0, 2) - corners.block<2, 1>(0, 0);
+    const Eigen::Vector2d uv = edges.inverse() * (x - corners.block<2, 1>(0, 0));
+    if (uv.minCoeff() > 0 && uv.sum() < 1) at_x = SurfacePoint::in_face(f, 1 - uv.sum(), uv.x(), uv.y());
+  }
+  ASSERT_EQ(at_x.kind, SurfacePoint::Kind::face);
+  sites.push_back(at_x);
+  const Index vx = dual.num_vertices();
+  dual.vertices.conservativeResize(vx + 1, 3);
+  dual.vertices.row(vx) = at_x.position(cut.mesh).transpose();
+  // X on edge A-B of the triangle, the orientation kept.
+  dual.faces.conservativeResize(dual.num_faces() + 1, 3);
+  if (at(next, b)) {  // A, B, C
+    dual.faces.row(split) << va, vx, after;
+    dual.faces.row(dual.num_faces() - 1) << vx, next, after;
+  } else {  // A, C, B
+    dual.faces.row(split) << va, next, vx;
+    dual.faces.row(dual.num_faces() - 1) << vx, next, after;
+  }
+
+  const remesh::WeldedDual welded = remesh::weld_along_features(box, features, cut, dual, sites);
+  EXPECT_GT(welded.cracked_edges, 0);
+  ASSERT_EQ(welded.site_moves.size(), 1u);
+  EXPECT_EQ(welded.site_moves[0].first, sites.size() - 1);
+  // Not the crease's point nearest X, (0.1, 0, 0): the middle of A-B (to
+  // the lattice's margin: there it is the mesh vertex at (0.25, 0, 0)).
+  const Eigen::Vector3d middle =
+      (dual.vertices.row(va) + dual.vertices.row(at(next, b) ? next : after)).transpose() / 2;
+  EXPECT_LT((welded.site_moves[0].second.position(cut.mesh) - middle).norm(), 1e-6);
 }
 
 }  // namespace

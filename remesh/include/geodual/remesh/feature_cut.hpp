@@ -37,8 +37,11 @@ FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& fea
 struct FeatureSiteOptions {
   double spacing = 0;  ///< the remesh's edge length (> 0)
   /// Sites are added along a curved chain until its polyline stays within
-  /// this distance of the chords between consecutive sites.
+  /// this distance of the chords between consecutive sites (a stretch split
+  /// into 16 parts at most) ...
   double max_chord_error = 0;
+  /// ... but no closer than this along it (0: no bound).
+  double min_spacing = 0;
 };
 
 struct FeatureSites {
@@ -63,9 +66,10 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
 struct WeldedDual {
   TriangleMesh mesh;                  ///< twins merged into one vertex
   std::vector<Index> vertex_of_site;  ///< per site, its vertex in `mesh`
-  /// Sites inside a piece that reached its boundary, each with the point of
-  /// that boundary nearest it: moved there (and given twins), they close the
-  /// cracks. The weld is a remesh only when there are none.
+  /// Sites inside a piece that reached its boundary, each with a point of
+  /// that boundary: halfway between its two neighbours along the crack where
+  /// both are on the boundary, else nearest the site. Moved there (and given
+  /// twins), they close the cracks. The weld is a remesh only when there are none.
   std::vector<std::pair<std::size_t, SurfacePoint>> site_moves;
   std::int64_t cracked_edges = 0;      ///< boundary edges of `mesh` off the surface's boundary
   std::int64_t nonmanifold_edges = 0;  ///< edges of `mesh` with three or more triangles
