@@ -4,6 +4,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/vertex_copies.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
 #include "geodual/remesh/curvature_density.hpp"
@@ -108,18 +109,11 @@ namespace {
 std::vector<std::array<Index, 2>> edges_on_cut(const remesh::ManifoldCut& cut, Index num_input_vertices,
                                                const std::vector<std::array<Index, 2>>& edges) {
   if (edges.empty()) return {};
-  // Per input vertex, its copies (CSR).
-  std::vector<Index> begin(static_cast<std::size_t>(num_input_vertices) + 1, 0), copies(cut.original_vertex.size());
-  for (const Index v : cut.original_vertex) ++begin[static_cast<std::size_t>(v) + 1];
-  for (std::size_t v = 0; v + 1 < begin.size(); ++v) begin[v + 1] += begin[v];
-  std::vector<Index> next(begin.begin(), begin.end() - 1);
-  for (std::size_t w = 0; w < cut.original_vertex.size(); ++w) {
-    copies[static_cast<std::size_t>(next[static_cast<std::size_t>(cut.original_vertex[w])]++)] = static_cast<Index>(w);
-  }
+  const VertexCopies copies = group_vertex_copies(cut.original_vertex, num_input_vertices);
   std::vector<std::array<Index, 2>> on_cut;
   for (const auto& [a, b] : edges) {
-    for (Index i = begin[a]; i < begin[a + 1]; ++i) {
-      for (Index j = begin[b]; j < begin[b + 1]; ++j) on_cut.push_back({copies[i], copies[j]});
+    for (const Index i : copies.of(a)) {
+      for (const Index j : copies.of(b)) on_cut.push_back({i, j});
     }
   }
   return on_cut;

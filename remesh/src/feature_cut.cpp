@@ -4,6 +4,7 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/union_find.hpp"
+#include "geodual/mesh/vertex_copies.hpp"
 
 #include <Eigen/Geometry>
 
@@ -75,14 +76,12 @@ SiteKey site_key(const TriangleMesh& surface, const FeatureCut& cut, const Surfa
 
 /// Appends to `out` the point `key` on each face of its edge (at each copy
 /// of its vertex), unless `held` (sorted) has it already; then holds it.
-void add_twins(const TriangleMesh& surface, const MeshTopology& topology, std::span<const Index> copy_begin,
-               std::span<const Index> copies, const SiteKey& key, std::vector<SiteKey>& held,
-               std::vector<SurfacePoint>& out) {
+void add_twins(const TriangleMesh& surface, const MeshTopology& topology, const VertexCopies& copies,
+               const SiteKey& key, std::vector<SiteKey>& held, std::vector<SurfacePoint>& out) {
   if (key.lo < 0) return;
   if (std::binary_search(held.begin(), held.end(), key)) return;
   if (key.lo == key.hi) {
-    for (Index i = copy_begin[key.lo]; i < copy_begin[key.lo + 1]; ++i)
-      out.push_back(SurfacePoint::at_vertex(copies[i]));
+    for (const Index copy : copies.of(key.lo)) out.push_back(SurfacePoint::at_vertex(copy));
   } else {
     const auto edge = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(),
                                        std::array<Index, 2>{key.lo, key.hi});
@@ -94,23 +93,14 @@ void add_twins(const TriangleMesh& surface, const MeshTopology& topology, std::s
   held.insert(std::upper_bound(held.begin(), held.end(), key), key);
 }
 
-/// Per surface vertex, its copies in cut.mesh that faces use (CSR).
-void vertex_copies(const FeatureCut& cut, Index num_vertices, std::vector<Index>& begin, std::vector<Index>& copies) {
+/// Per surface vertex, its copies in cut.mesh that faces use.
+VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
   std::vector<std::uint8_t> used(cut.original_vertex.size(), 0);
   for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
     if (has_repeated_corner(cut.mesh, f)) continue;
     for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(cut.mesh.faces(f, k))] = 1;
   }
-  begin.assign(static_cast<std::size_t>(num_vertices) + 1, 0);
-  for (std::size_t w = 0; w < used.size(); ++w) {
-    if (used[w]) ++begin[static_cast<std::size_t>(cut.original_vertex[w]) + 1];
-  }
-  for (Index v = 0; v < num_vertices; ++v) begin[v + 1] += begin[v];
-  copies.resize(static_cast<std::size_t>(begin.back()));
-  std::vector<Index> next(begin.begin(), begin.end() - 1);
-  for (std::size_t w = 0; w < used.size(); ++w) {
-    if (used[w]) copies[static_cast<std::size_t>(next[cut.original_vertex[w]]++)] = static_cast<Index>(w);
-  }
+  return group_vertex_copies(cut.original_vertex, num_vertices, used);
 }
 
 /// A chain's points by arc length.
@@ -213,13 +203,12 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
                            const FeatureSiteOptions& options) {
   if (!(options.spacing > 0)) throw UsageError("feature_sites: the spacing must be positive");
   const MeshTopology topology = build_mesh_topology(surface);
-  std::vector<Index> copy_begin, copies;
-  vertex_copies(cut, static_cast<Index>(surface.vertices.rows()), copy_begin, copies);
+  const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
   FeatureSites result;
   std::vector<SiteKey> held;
   const auto add = [&](const SiteKey& key) {
     const std::size_t before = held.size();
-    add_twins(surface, topology, copy_begin, copies, key, held, result.sites);
+    add_twins(surface, topology, copies, key, held, result.sites);
     if (held.size() > before) ++result.points;
   };
   for (const Index v : features.corners) add({v, v, 0});
@@ -316,13 +305,12 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
   if (features.empty()) return missing;
   const MeshTopology topology = build_mesh_topology(surface);
   // Sites at a vertex the cut split: every copy needs one.
-  std::vector<Index> copy_begin, copies;
-  vertex_copies(cut, static_cast<Index>(surface.vertices.rows()), copy_begin, copies);
+  const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
   std::vector<Index> at_vertex_held;    // cut vertices holding a site
   std::vector<Index> at_vertex_wanted;  // surface vertices with more than one copy holding one
   for (const SurfacePoint& site : sites) {
     const SiteKey key = site_key(surface, cut, site);
-    if (key.lo < 0 || key.lo != key.hi || copy_begin[key.lo + 1] - copy_begin[key.lo] < 2) continue;
+    if (key.lo < 0 || key.lo != key.hi || copies.of(key.lo).size() < 2) continue;
     at_vertex_wanted.push_back(key.lo);
     if (site.kind == SurfacePoint::Kind::vertex) {
       at_vertex_held.push_back(site.element);
@@ -336,9 +324,9 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
   std::sort(at_vertex_wanted.begin(), at_vertex_wanted.end());
   at_vertex_wanted.erase(std::unique(at_vertex_wanted.begin(), at_vertex_wanted.end()), at_vertex_wanted.end());
   for (const Index v : at_vertex_wanted) {
-    for (Index i = copy_begin[v]; i < copy_begin[v + 1]; ++i) {
-      if (!std::binary_search(at_vertex_held.begin(), at_vertex_held.end(), copies[i])) {
-        missing.push_back(SurfacePoint::at_vertex(copies[i]));
+    for (const Index copy : copies.of(v)) {
+      if (!std::binary_search(at_vertex_held.begin(), at_vertex_held.end(), copy)) {
+        missing.push_back(SurfacePoint::at_vertex(copy));
       }
     }
   }
