@@ -243,17 +243,29 @@ TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
   EXPECT_EQ(dual.mesh.vertices.rows(), static_cast<Index>(positions.size()));
 }
 
+/// cube(8) cut along its creases, sites at spacing 0.5 on the creases and
+/// at each side's centre, and the dual of their diagram on the cut surface:
+/// the sides' duals, which weld into one closed surface.
+struct CutBoxDual {
+  TriangleMesh box = cube(8);
+  remesh::FeatureSet features = remesh::detect_features(box);
+  remesh::FeatureCut cut = remesh::cut_along_features(box, features);
+  std::vector<SurfacePoint> sites;
+  TriangleMesh dual;
+  CutBoxDual() {
+    sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5}).sites;
+    add_side_centres(cut, sites);
+    const voronoi::GeodesicSurface surface(cut.mesh);
+    dual = remesh::dual_delaunay(cut.mesh, voronoi::compute_voronoi(surface, sites)).mesh;
+  }
+};
+
 TEST(FeatureCut, WeldLeavesOutAFlapFoldedOntoItselfAndTheSitesOnlyItHeld) {
   // The box's sides' dual, welded: then the same with a triangle and its
   // mirror image added on a new site, as cells reaching the same three sites
   // from both sides of a chain make them.
-  const TriangleMesh box = cube(8);
-  const remesh::FeatureSet features = remesh::detect_features(box);
-  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
-  std::vector<SurfacePoint> sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5}).sites;
-  add_side_centres(cut, sites);
-  const voronoi::GeodesicSurface surface(cut.mesh);
-  const TriangleMesh dual = remesh::dual_delaunay(cut.mesh, voronoi::compute_voronoi(surface, sites)).mesh;
+  CutBoxDual cut_box;
+  auto& [box, features, cut, sites, dual] = cut_box;
   const remesh::WeldedDual plain = remesh::weld_along_features(box, features, cut, dual, sites);
   ASSERT_EQ(plain.cracked_edges, 0);
   ASSERT_EQ(plain.nonmanifold_edges, 0);
@@ -277,16 +289,12 @@ TEST(FeatureCut, WeldLeavesOutAFlapFoldedOntoItselfAndTheSitesOnlyItHeld) {
 }
 
 TEST(FeatureCut, ASiteThatCracksTheWeldBetweenTwoChainSitesMovesHalfwayBetweenThem) {
-  // The box's sides' dual with one triangle (corner A, crease midpoint B,
-  // side centre C) split at a site X next to A inside the side: X's cell
-  // would reach the crease between A and B, so the weld cracks along A-X-B.
-  const TriangleMesh box = cube(8);
-  const remesh::FeatureSet features = remesh::detect_features(box);
-  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
-  std::vector<SurfacePoint> sites = remesh::feature_sites(box, features, cut, {.spacing = 0.5}).sites;
-  add_side_centres(cut, sites);
-  const voronoi::GeodesicSurface surface(cut.mesh);
-  TriangleMesh dual = remesh::dual_delaunay(cut.mesh, voronoi::compute_voronoi(surface, sites)).mesh;
+  // The box's sides' dual with its triangle on corner A = (0, 0, 0), the
+  // crease midpoint B = (0.5, 0, 0) and a third site of the bottom side split
+  // at a site X next to A inside that side: X's cell would reach the crease
+  // between A and B, so the weld cracks along A-X-B.
+  CutBoxDual cut_box;
+  auto& [box, features, cut, sites, dual] = cut_box;
   const Eigen::Vector3d a(0, 0, 0), b(0.5, 0, 0);
   const auto at = [&](Index v, const Eigen::Vector3d& p) {
     return (dual.vertices.row(v).transpose() - p).norm() < 1e-6;
