@@ -72,6 +72,31 @@ std::string seconds_column(double seconds) {
   return text.str();
 }
 
+/// Each stage's seconds summed over the remeshes made (--max-error makes
+/// several), in the order the stages first ran.
+std::vector<std::pair<pipeline::Stage, double>> seconds_per_stage(const std::vector<pipeline::StageTiming>& timings) {
+  std::vector<std::pair<pipeline::Stage, double>> sums;
+  for (const pipeline::StageTiming& timing : timings) {
+    const auto found =
+        std::find_if(sums.begin(), sums.end(), [&](const auto& sum) { return sum.first == timing.stage; });
+    if (found == sums.end()) {
+      sums.emplace_back(timing.stage, timing.seconds);
+    } else {
+      found->second += timing.seconds;
+    }
+  }
+  return sums;
+}
+
+/// "3 remeshes (4,000, 4,620 and 5,310 sites)".
+std::string error_rounds_line(const std::vector<pipeline::ErrorRound>& rounds) {
+  std::string sites;
+  for (std::size_t i = 0; i < rounds.size(); ++i) {
+    sites += (i == 0 ? "" : i + 1 == rounds.size() ? " and " : ", ") + with_thousands(rounds[i].sites);
+  }
+  return std::to_string(rounds.size()) + (rounds.size() == 1 ? " remesh (" : " remeshes (") + sites + " sites)";
+}
+
 class RemeshCommand final : public Command {
  public:
   CLI::App& add_to(CLI::App& app) override {
@@ -148,6 +173,18 @@ class RemeshCommand final : public Command {
                        "Also keep these edges as features, whatever their angle: one polyline of the mesh's vertex "
                        "indices per line, 'A B C ...' (0-based; '#' starts a comment line; ignored with --site-file)");
     command
+        .add_option("--max-error", max_error_pct_,
+                    "Remesh again with more sites where the remesh strays farther from the input than this "
+                    "Hausdorff distance, in % of the bounding-box diagonal, until it does not (0: no bound). "
+                    "Exit status 4, the closest remesh written, when --max-sites stops it first")
+        ->capture_default_str()
+        ->check(number_between(0, 100));
+    command
+        .add_option("--max-sites", max_sites_,
+                    "With --max-error: the most sites a remesh may ask for (0: 8 times the first remesh's)")
+        ->capture_default_str()
+        ->check(integer_between(0, 100'000'000));
+    command
         .add_option("--max-repair-rounds", options_.max_repair_rounds,
                     "Rounds of adding sites where the dual fails before giving up")
         ->capture_default_str()
@@ -187,6 +224,7 @@ class RemeshCommand final : public Command {
 
   int run() override {
     sites_.validate("remesh");
+    check_error_bound_flags();
     if (!output_dir_.empty()) return run_batch();
     if (output_path_.empty()) throw UsageError("remesh: give the output: -o OUT, or --output-dir DIR");
     if (mesh_paths_.size() > 1) {
@@ -207,7 +245,20 @@ class RemeshCommand final : public Command {
     }
     const nlohmann::ordered_json json = remesh_scan(mesh_path, output_path_, {std::cout, std::cerr, true});
     if (json_) std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
-    return 0;
+    return json["error_bound_met"] == false ? kErrorBoundMissed : 0;
+  }
+
+  /// The exit status of a remesh written whose Hausdorff distance is still
+  /// above --max-error (docs/cli.md).
+  static constexpr int kErrorBoundMissed = 4;
+
+  /// --max-error's refusals, before any work.
+  void check_error_bound_flags() const {
+    if (max_error_pct_ == 0) return;
+    if (samples_ < 0) throw UsageError("remesh: --max-error is checked by the statistics: drop --no-statistics");
+    if (!sites_.file().empty()) {
+      throw UsageError("remesh: --max-error adds sites where the remesh strays: it cannot go with --site-file");
+    }
   }
 
  private:
@@ -260,16 +311,18 @@ class RemeshCommand final : public Command {
 
     ColumnTable summary({"scan", "vertices", "Qavg", "H %", "time s", "status"});
     nlohmann::ordered_json results = nlohmann::ordered_json::array();
-    std::size_t failed = 0;
+    std::size_t failed = 0, missed = 0;
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const std::string& mesh_path = mesh_paths_[i];
       const ScanRun& scan = runs[i];
       if (scan.json) {
         const nlohmann::ordered_json& json = *scan.json;
+        const bool met = json["error_bound_met"] != false;
+        missed += met ? 0 : 1;
         summary.add({mesh_path, with_thousands(json["vertices"].get<std::int64_t>()),
                      significant(json["q_avg"].get<double>(), 3),
                      json.contains("hausdorff_pct") ? significant(json["hausdorff_pct"].get<double>(), 3) : "-",
-                     seconds_column(scan.seconds), "ok"});
+                     seconds_column(scan.seconds), met ? "ok" : "above --max-error"});
         results.push_back(json);
       } else {
         ++failed;
@@ -284,7 +337,7 @@ class RemeshCommand final : public Command {
       std::cout << mesh_paths_.size() - failed << " of " << mesh_paths_.size() << " scans remeshed into " << output_dir_
                 << '\n';
     }
-    return failed > 0 ? 1 : 0;
+    return failed > 0 ? 1 : missed > 0 ? kErrorBoundMissed : 0;
   }
 
   /// Where one scan's messages go: the terminal, or buffers in a batch.
@@ -379,6 +432,8 @@ class RemeshCommand final : public Command {
     options.attributes = attributes_ == "all";
     options.statistics = samples_ >= 0;
     options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
+    options.max_error_pct = max_error_pct_;
+    options.max_sites = max_sites_;
     options.progress = [&](pipeline::Stage stage, double fraction) {
       return bar.update(pipeline::stage_name(stage), fraction);
     };
@@ -415,6 +470,12 @@ class RemeshCommand final : public Command {
                   << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "")
                   << " in " << result.repair_rounds
                   << " rounds, where the dual of the Voronoi diagram was not a valid remesh (" << problems << ")\n";
+    }
+    if (!run.error_bound_met) {
+      streams.err << "geodual remesh: warning: " << mesh_path << ": the Hausdorff distance is "
+                  << significant(run.statistics->hausdorff_pct, 3) << " %, above --max-error "
+                  << significant(max_error_pct_, 3) << " %, after " << error_rounds_line(run.error_rounds)
+                  << "; the closest remesh is written (raise --max-sites to go on)\n";
     }
     if (run.dropped.area_pct > options.max_dropped_area_pct) {
       streams.err << "geodual remesh: warning: " << mesh_path << ": " << run.dropped.faces << " faces ("
@@ -470,6 +531,15 @@ class RemeshCommand final : public Command {
     figures["p30"] = quality.p30;
     figures["pct_valence6"] =
         quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
+    figures["max_error_pct"] =
+        max_error_pct_ > 0 ? nlohmann::ordered_json(max_error_pct_) : nlohmann::ordered_json(nullptr);
+    figures["error_bound_met"] =
+        max_error_pct_ > 0 ? nlohmann::ordered_json(run.error_bound_met) : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json error_rounds = nlohmann::ordered_json::array();
+    for (const pipeline::ErrorRound& round : run.error_rounds) {
+      error_rounds.push_back({{"sites", round.sites}, {"hausdorff_pct", round.hausdorff_pct}});
+    }
+    figures["error_rounds"] = error_rounds;
     if (run.statistics) {
       figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
       figures["rms_pct"] = run.statistics->rms_pct;
@@ -493,8 +563,8 @@ class RemeshCommand final : public Command {
     json["output"] = output_path;
     json["attributes"] = pipeline::attribute_list(run.attributes);
     json.update(figures);
-    for (const pipeline::StageTiming& timing : run.timings) {
-      json[std::string(pipeline::stage_name(timing.stage)) + "_s"] = timing.seconds;
+    for (const auto& [stage, seconds] : seconds_per_stage(run.timings)) {
+      json[std::string(pipeline::stage_name(stage)) + "_s"] = seconds;
     }
     json["geodesic_s"] = relaxation.geodesic_seconds + result.geodesic_seconds;
     json["diagram_s"] = relaxation.diagram_seconds + result.diagram_seconds;
@@ -579,10 +649,14 @@ class RemeshCommand final : public Command {
                       " % of the bounding-box diagonal");
       }
     }
+    if (!run.error_rounds.empty()) {
+      table.add("error bound", "Hausdorff " + significant(run.statistics->hausdorff_pct, 3) + " %" +
+                                   (run.error_bound_met ? " <= " : " > ") + significant(max_error_pct_, 3) +
+                                   " % after " + error_rounds_line(run.error_rounds));
+    }
     std::string stages;
-    for (const pipeline::StageTiming& timing : run.timings) {
-      stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(timing.stage)) + " " +
-                duration(timing.seconds);
+    for (const auto& [stage, seconds] : seconds_per_stage(run.timings)) {
+      stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(stage)) + " " + duration(seconds);
     }
     table.add("time", duration(seconds_since(start)) + " (" + stages + ", write " + duration(write_seconds) + ")");
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
@@ -612,6 +686,9 @@ class RemeshCommand final : public Command {
     options["newton"] = options_.lloyd.newton;
     options["curvature_adaptation"] = options_.curvature_adaptation;
     options["max_repair_rounds"] = options_.max_repair_rounds;
+    options["max_error"] =
+        max_error_pct_ > 0 ? nlohmann::ordered_json(max_error_pct_) : nlohmann::ordered_json(nullptr);
+    options["max_sites"] = max_sites_ > 0 ? nlohmann::ordered_json(max_sites_) : nlohmann::ordered_json(nullptr);
     options["sharp_angle"] = options_.sharp_angle;
     options["feature_file"] =
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
@@ -650,6 +727,8 @@ class RemeshCommand final : public Command {
   remesh::RemeshOptions options_;
   GeodesicFlags geodesic_;
   std::int64_t samples_ = 1'000'000;
+  double max_error_pct_ = 0;
+  std::int64_t max_sites_ = 0;
   bool strict_ = false;
   bool json_ = false;
   bool quiet_ = false;

@@ -8,6 +8,7 @@
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
 #include "geodual/remesh/curvature_density.hpp"
+#include "geodual/remesh/error_density.hpp"
 #include "geodual/remesh/sizing.hpp"
 
 #include <Eigen/Geometry>
@@ -16,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -49,6 +51,20 @@ void require_one_site_source(const RemeshPipelineOptions& options) {
   if (given > 1) {
     throw UsageError("give the sites one way only: an edge length, a face count or the sites themselves");
   }
+}
+
+/// \throw UsageError for an error bound out of range or without what it needs.
+void require_error_bound_options(const RemeshPipelineOptions& options) {
+  if (!std::isfinite(options.max_error_pct) || options.max_error_pct < 0 || options.max_error_pct > 100) {
+    throw UsageError("max error " + std::to_string(options.max_error_pct) + " %: must be in (0, 100] (0: unused)");
+  }
+  if (options.max_error_pct == 0) return;
+  if (options.max_sites < 0) throw UsageError("max sites " + std::to_string(options.max_sites) + ": must be >= 0");
+  if (options.max_error_rounds < 1) {
+    throw UsageError("max error rounds " + std::to_string(options.max_error_rounds) + ": must be at least 1");
+  }
+  if (options.given_sites) throw UsageError("an error bound adds sites: it cannot be used with given sites");
+  if (!options.statistics) throw UsageError("an error bound is checked by the statistics: they cannot be off");
 }
 
 void report(const ProgressCallback& progress, Stage stage, double fraction) {
@@ -119,8 +135,10 @@ std::vector<std::array<Index, 2>> edges_on_cut(const remesh::ManifoldCut& cut, I
   return on_cut;
 }
 
-/// The stages after `load` on result.input, filling in `result`.
-void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
+/// The stages after `load` on result.input, filling in `result`; Lloyd's
+/// density is multiplied by `input_density` (per input vertex; empty: 1).
+void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                std::span<const double> input_density) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -208,6 +226,17 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   const TriangleMesh& surface = features ? result.feature_cut.mesh : manifold_surface;
   remesh::LloydOptions lloyd =
       remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
+  if (!input_density.empty() && lloyd.iterations > 0) {
+    // Each vertex of the surface copies one of the input's (through the cuts).
+    std::vector<double> density(static_cast<std::size_t>(surface.num_vertices()));
+    for (std::size_t v = 0; v < density.size(); ++v) {
+      Index original = static_cast<Index>(v);
+      if (features) original = result.feature_cut.original_vertex[static_cast<std::size_t>(original)];
+      if (!cut_is_input) original = result.surface.original_vertex[static_cast<std::size_t>(original)];
+      density[v] = input_density[static_cast<std::size_t>(original)] * (lloyd.density.empty() ? 1.0 : lloyd.density[v]);
+    }
+    lloyd.density = std::move(density);
+  }
   // From the warm start the iterations mostly stop after one or two (LloydOptions::geodesic_tolerance).
   const int diagrams = std::min(lloyd.iterations, 2) + 1;
   int diagrams_done = 0;  // the first diagram, then one per accepted iteration
@@ -294,20 +323,19 @@ std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& r
   return points;
 }
 
-RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
-  require_one_site_source(options);
-  require_edges_of(input.mesh, options.remesh.feature_edges, "feature edge");
-  RemeshPipelineResult result;
-  result.input = std::move(input);
-  result.input_report = analyze_mesh(result.input.mesh);
+namespace {
+
+/// One remesh of result.input (run_stages); where the features cannot be
+/// kept, the remesh without them, and why.
+void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                 std::span<const double> input_density) {
   try {
-    run_stages(result, options);
+    run_stages(result, options, input_density);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
     // Only a failure of the remesh that keeps the features (not of the statistics after it) falls back.
     if (result.features.empty() || result.remesh.mesh.num_faces() > 0) throw;
-    // The features could not be kept: the remesh without them, and why.
     result.features_dropped_reason = e.what();
     result.features = {};
     result.feature_cut = {};
@@ -316,8 +344,66 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
     RemeshPipelineOptions without = options;
     without.remesh.sharp_angle = 0;
     without.remesh.feature_edges.clear();
-    run_stages(result, without);
+    run_stages(result, without, input_density);
   }
+}
+
+/// Remeshes until the Hausdorff distance is within options.max_error_pct:
+/// each round's density is the last one's refined where the last remesh
+/// strayed beyond the bound (remesh::refine_density), with the sites that
+/// keep the spacing elsewhere (remesh::sites_for_density).
+RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const RemeshPipelineOptions& options) {
+  RemeshPipelineOptions round = options;
+  round.quality.deviation_at_vertices = true;
+  const double bound = options.max_error_pct / 100 * result.input_report.bbox_diagonal;
+  std::vector<double> density;  // per input vertex; empty: 1
+  std::vector<ErrorRound> rounds;
+  std::vector<StageTiming> timings;
+  std::optional<RemeshPipelineResult> best;  // the closest remesh so far (the input stays with `result`)
+  std::int64_t max_sites = options.max_sites;
+  for (;;) {
+    remesh_once(result, round, density);
+    const std::int64_t sites = result.sites_for_sizing > 0 ? result.sites_for_sizing : round.sites;
+    if (max_sites == 0) max_sites = 8 * sites;
+    const double error_pct = result.statistics->hausdorff_pct;
+    rounds.push_back({sites, error_pct});
+    timings.insert(timings.end(), result.timings.begin(), result.timings.end());
+    const bool met = error_pct <= options.max_error_pct;
+    const bool last = met || static_cast<int>(rounds.size()) == options.max_error_rounds || sites >= max_sites;
+    std::vector<double> deviation = std::move(result.statistics->deviation_at_vertices);
+    // The next round fills in a fresh result, which takes the input over.
+    RemeshPipelineResult next;
+    next.input = std::move(result.input);
+    next.input_report = result.input_report;
+    if (met || !best || error_pct < best->statistics->hausdorff_pct) best = std::move(result);
+    result = std::move(next);
+    if (last) break;
+    const TriangleMesh& mesh = result.input.mesh;
+    std::vector<double> refined = remesh::refine_density(
+        mesh, density, deviation, {.max_error = bound, .spacing = remesh::uniform_spacing(mesh, sites)});
+    round.sites = std::min(max_sites, remesh::sites_for_density(mesh, sites, density, refined));
+    round.edge_length = 0;
+    round.faces = 0;
+    density = std::move(refined);
+  }
+  best->input = std::move(result.input);
+  best->error_rounds = std::move(rounds);
+  best->error_bound_met = best->statistics->hausdorff_pct <= options.max_error_pct;
+  best->timings = std::move(timings);
+  return std::move(*best);
+}
+
+}  // namespace
+
+RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
+  require_one_site_source(options);
+  require_error_bound_options(options);
+  require_edges_of(input.mesh, options.remesh.feature_edges, "feature edge");
+  RemeshPipelineResult result;
+  result.input = std::move(input);
+  result.input_report = analyze_mesh(result.input.mesh);
+  if (options.max_error_pct > 0) return remesh_within_error(std::move(result), options);
+  remesh_once(result, options, {});
   return result;
 }
 

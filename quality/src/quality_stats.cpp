@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -247,6 +248,7 @@ class Surface {
       const Eigen::Vector3d p2 = mesh.vertices.row(c);
       triangles_.emplace_back(Point(p0.x(), p0.y(), p0.z()), Point(p1.x(), p1.y(), p1.z()),
                               Point(p2.x(), p2.y(), p2.z()));
+      face_.push_back(f);
       total += area;
       cumulative_area_.push_back(total);
     }
@@ -254,6 +256,7 @@ class Surface {
     for (Index v = 0; v < mesh.num_vertices(); ++v) {
       if (referenced[v]) {
         vertices_.emplace_back(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2));
+        vertex_index_.push_back(v);
       }
     }
     tree_.insert(triangles_.begin(), triangles_.end());
@@ -266,17 +269,22 @@ class Surface {
 
   std::int64_t vertex_count() const { return static_cast<std::int64_t>(vertices_.size()); }
   const Point& vertex(std::int64_t i) const { return vertices_[static_cast<std::size_t>(i)]; }
+  /// The mesh's index of vertex(i), and the mesh's face that is triangle t.
+  Index vertex_index(std::int64_t i) const { return vertex_index_[static_cast<std::size_t>(i)]; }
+  Index face_index(std::size_t t) const { return face_[t]; }
 
   /// Sample number `i` of stream `stream`: a face chosen with probability
   /// proportional to its area, then a uniform point in it
-  /// ((1 - sqrt(r1)) a + sqrt(r1) (1 - r2) b + sqrt(r1) r2 c).
-  Point sample(std::uint64_t stream, std::int64_t i) const {
+  /// ((1 - sqrt(r1)) a + sqrt(r1) (1 - r2) b + sqrt(r1) r2 c). `triangle` is
+  /// set to the face's triangle.
+  Point sample(std::uint64_t stream, std::int64_t i, std::size_t& triangle) const {
     const auto counter = 3 * static_cast<std::uint64_t>(i);
     const double target = uniform(stream, counter) * cumulative_area_.back();
     const auto found = std::upper_bound(cumulative_area_.begin(), cumulative_area_.end(), target);
     const auto face =
         std::min<std::ptrdiff_t>(found - cumulative_area_.begin(), static_cast<std::ptrdiff_t>(triangles_.size()) - 1);
-    const Triangle& t = triangles_[static_cast<std::size_t>(face)];
+    triangle = static_cast<std::size_t>(face);
+    const Triangle& t = triangles_[triangle];
     const double s = std::sqrt(uniform(stream, counter + 1));
     const double r = uniform(stream, counter + 2);
     const double wa = 1.0 - s;
@@ -301,8 +309,10 @@ class Surface {
 
  private:
   std::vector<Triangle> triangles_;
+  std::vector<Index> face_;  ///< per triangle
   std::vector<double> cumulative_area_;
   std::vector<Point> vertices_;
+  std::vector<Index> vertex_index_;  ///< per vertex
   TriangleTree tree_;
   CGAL::Bbox_3 bbox_;
 };
@@ -313,6 +323,16 @@ struct OneSided {
   std::int64_t count = 0;
 };
 
+/// Per point measured (vertices first, then samples): where it lies on the
+/// `from` side (the vertex of `from`'s mesh, or the face it was drawn on) and
+/// the face of the `to` side nearest to it, and its squared distance.
+struct MeasuredPoints {
+  std::vector<Index> from_vertex;  ///< -1 for a sample
+  std::vector<Index> from_face;    ///< -1 for a vertex
+  std::vector<Index> to_face;
+  std::vector<double> squared;
+};
+
 /// Distances from `from`'s vertices and `samples` area-uniform samples of it
 /// to `to`. Fixed blocks of points, each summed in order, then the blocks
 /// summed in order: the same bits for any number of threads. The points of
@@ -321,7 +341,7 @@ struct OneSided {
 /// times fewer boxes visited, and the same distances. Every block of queries
 /// asks `progress`; a cancel stops every thread at its next block.
 OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, std::uint64_t stream,
-                 ProgressCheck& progress) {
+                 ProgressCheck& progress, MeasuredPoints* points_measured = nullptr) {
   constexpr std::int64_t block = 4096;
   constexpr std::int64_t blocks_per_run = 16;
   const std::int64_t vertices = from.vertex_count();
@@ -336,6 +356,13 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
   auto cell = [&](double x, double low) {
     return static_cast<std::uint64_t>(std::clamp((x - low) * cells_per_unit, 0.0, 2097151.0));
   };
+  if (points_measured) {
+    const auto size = static_cast<std::size_t>(count);
+    points_measured->from_vertex.assign(size, -1);
+    points_measured->from_face.assign(size, -1);
+    points_measured->to_face.assign(size, -1);
+    points_measured->squared.assign(size, 0.0);
+  }
   std::atomic<std::int64_t> measured{0};
   const auto keep_going = [&] {
     return progress.keep_going(static_cast<double>(measured.load(std::memory_order_relaxed)) /
@@ -343,6 +370,7 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
   };
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<Point> points;
+    std::vector<std::size_t> drawn_on;  // per sample, its triangle of `from`
     std::vector<std::pair<std::uint64_t, std::int32_t>> order;
     std::vector<double> squared;
     for (std::size_t run = range.begin(); run != range.end(); ++run) {
@@ -351,11 +379,12 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
       const std::int64_t last = std::min(first + block * blocks_per_run, count);
       const auto size = static_cast<std::size_t>(last - first);
       points.resize(size);
+      drawn_on.resize(size);
       order.resize(size);
       squared.resize(size);
       for (std::size_t k = 0; k < size; ++k) {
         const std::int64_t i = first + static_cast<std::int64_t>(k);
-        const Point p = i < vertices ? from.vertex(i) : from.sample(stream, i - vertices);
+        const Point p = i < vertices ? from.vertex(i) : from.sample(stream, i - vertices, drawn_on[k]);
         points[k] = p;
         order[k] = {morton_code(cell(p.x(), box.xmin()), cell(p.y(), box.ymin()), cell(p.z(), box.zmin())),
                     static_cast<std::int32_t>(k)};
@@ -370,6 +399,16 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
         }
         const auto at = static_cast<std::size_t>(order[j].second);
         squared[at] = to.squared_distance(points[at], near);
+        if (points_measured) {
+          const auto i = static_cast<std::size_t>(first) + at;
+          if (static_cast<std::int64_t>(i) < vertices) {
+            points_measured->from_vertex[i] = from.vertex_index(static_cast<std::int64_t>(i));
+          } else {
+            points_measured->from_face[i] = from.face_index(drawn_on[at]);
+          }
+          points_measured->to_face[i] = to.face_index(near);
+          points_measured->squared[i] = squared[at];
+        }
       }
       for (std::int64_t b = first / block; b * block < last; ++b) {
         double max_squared = 0.0;
@@ -392,6 +431,30 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
     result.sum_squared += block_sum[b];
   }
   return result;
+}
+
+/// Per vertex of `reference`, the largest distance measured at it: of the
+/// vertex itself and of the reference's samples on its faces (`forward`, from
+/// the reference), and of the candidate's points whose nearest face of the
+/// reference is one of its faces (`backward`). In the order of the points: the
+/// same whatever the threads.
+std::vector<double> deviation_at_vertices(const TriangleMesh& reference, const MeasuredPoints& forward,
+                                          const MeasuredPoints& backward) {
+  std::vector<double> squared(static_cast<std::size_t>(reference.num_vertices()), 0.0);
+  auto raise = [&](Index v, double d2) { squared[v] = std::max(squared[v], d2); };
+  auto raise_face = [&](Index f, double d2) {
+    for (int c = 0; c < 3; ++c) raise(reference.faces(f, c), d2);
+  };
+  for (std::size_t i = 0; i < forward.squared.size(); ++i) {
+    if (forward.from_vertex[i] >= 0) {
+      raise(forward.from_vertex[i], forward.squared[i]);
+    } else {
+      raise_face(forward.from_face[i], forward.squared[i]);
+    }
+  }
+  for (std::size_t i = 0; i < backward.squared.size(); ++i) raise_face(backward.to_face[i], backward.squared[i]);
+  for (double& d : squared) d = std::sqrt(d);
+  return squared;
 }
 
 /// Runs `f`, prefixing the message of a geodual::Error with `which`.
@@ -630,12 +693,18 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     progress.check(0.0);
     const Surface candidate_surface = naming("candidate mesh", [&] { return Surface(candidate, progress); });
     const std::uint64_t stream = splitmix64_mix(options.seed);
+    std::optional<MeasuredPoints> forward_points, backward_points;
+    if (options.deviation_at_vertices) forward_points.emplace(), backward_points.emplace();
     progress.phase(0.2, 0.38);
-    const OneSided forward =
-        measure(reference_surface, candidate_surface, options.samples_per_side, splitmix64_mix(stream), progress);
+    const OneSided forward = measure(reference_surface, candidate_surface, options.samples_per_side,
+                                     splitmix64_mix(stream), progress, forward_points ? &*forward_points : nullptr);
     progress.phase(0.58, 0.38);
     const OneSided backward =
-        measure(candidate_surface, reference_surface, options.samples_per_side, splitmix64_mix(stream + 1), progress);
+        measure(candidate_surface, reference_surface, options.samples_per_side, splitmix64_mix(stream + 1), progress,
+                backward_points ? &*backward_points : nullptr);
+    if (options.deviation_at_vertices) {
+      report.deviation_at_vertices = deviation_at_vertices(reference, *forward_points, *backward_points);
+    }
     report.hausdorff_reference_to_candidate = std::sqrt(forward.max_squared);
     report.hausdorff_candidate_to_reference = std::sqrt(backward.max_squared);
     report.hausdorff = std::max(report.hausdorff_reference_to_candidate, report.hausdorff_candidate_to_reference);

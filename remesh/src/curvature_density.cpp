@@ -2,6 +2,7 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
+#include "vertex_fields.hpp"
 
 #include <Eigen/Geometry>
 
@@ -16,32 +17,6 @@ namespace {
 
 Eigen::Vector3d corner(const TriangleMesh& mesh, Index f, int c) {
   return mesh.vertices.row(mesh.faces(f, c)).transpose();
-}
-
-/// Per vertex, a third of the area of the faces around it.
-std::vector<double> vertex_areas(const TriangleMesh& mesh) {
-  std::vector<double> area(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (has_repeated_corner(mesh, f)) continue;
-    const double third = face_area(mesh, f) / 3;
-    for (int c = 0; c < 3; ++c) area[mesh.faces(f, c)] += third;
-  }
-  return area;
-}
-
-/// The undirected edges (low, high, face), sorted: an edge's faces are adjacent.
-std::vector<std::array<Index, 3>> edge_sides(const TriangleMesh& mesh) {
-  std::vector<std::array<Index, 3>> sides;
-  sides.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (has_repeated_corner(mesh, f)) continue;
-    for (int c = 0; c < 3; ++c) {
-      const Index u = mesh.faces(f, c), v = mesh.faces(f, (c + 1) % 3);
-      sides.push_back({std::min(u, v), std::max(u, v), f});
-    }
-  }
-  std::sort(sides.begin(), sides.end());
-  return sides;
 }
 
 /// |k1| + |k2| per vertex: sum over its edges of |dihedral angle| * length,
@@ -73,30 +48,6 @@ std::vector<double> total_curvature(const TriangleMesh& mesh, const std::vector<
   return k;
 }
 
-/// `passes` Jacobi sweeps of area-weighted one-ring averaging; vertices
-/// without area keep their value.
-void smooth(std::vector<double>& value, const std::vector<std::array<Index, 3>>& sides, const std::vector<double>& area,
-            int passes) {
-  std::vector<double> sum(value.size()), weight(value.size());
-  for (int pass = 0; pass < passes; ++pass) {
-    for (std::size_t v = 0; v < value.size(); ++v) {
-      sum[v] = area[v] * value[v];
-      weight[v] = area[v];
-    }
-    for (std::size_t i = 0; i < sides.size(); ++i) {
-      if (i > 0 && sides[i][0] == sides[i - 1][0] && sides[i][1] == sides[i - 1][1]) continue;  // each edge once
-      const Index u = sides[i][0], v = sides[i][1];
-      sum[u] += area[v] * value[v];
-      weight[u] += area[v];
-      sum[v] += area[u] * value[u];
-      weight[v] += area[u];
-    }
-    for (std::size_t v = 0; v < value.size(); ++v) {
-      if (weight[v] > 0) value[v] = sum[v] / weight[v];
-    }
-  }
-}
-
 }  // namespace
 
 double uniform_spacing(const TriangleMesh& mesh, std::int64_t sites) {
@@ -121,25 +72,19 @@ std::vector<double> curvature_density(const TriangleMesh& mesh, const CurvatureD
   std::vector<double> density(static_cast<std::size_t>(mesh.num_vertices()), 1.0);
   if (options.strength == 0 || options.max_ratio == 1) return density;
 
-  const std::vector<double> area = vertex_areas(mesh);
-  const std::vector<std::array<Index, 3>> sides = edge_sides(mesh);
-  double edge_sum = 0;
-  for (const auto& side : sides) edge_sum += (mesh.vertices.row(side[0]) - mesh.vertices.row(side[1])).norm();
-  if (sides.empty() || !(edge_sum > 0)) return density;
-  // One averaging pass diffuses over about one mesh edge; n passes over
-  // sqrt(n) edges: (spacing / edge)^2 passes smooth over one spacing.
-  const double edge = edge_sum / static_cast<double>(sides.size());
-  constexpr int kMaxPasses = 400;
-  const int passes =
-      static_cast<int>(std::clamp(std::ceil(std::pow(options.spacing / edge, 2)), 1.0, double(kMaxPasses)));
+  const std::vector<double> area = detail::vertex_areas(mesh);
+  const std::vector<std::array<Index, 3>> sides = detail::edge_sides(mesh);
+  const double edge = detail::mean_edge_length(mesh, sides);
+  if (!(edge > 0)) return density;
+  const int passes = detail::smoothing_passes(options.spacing, edge);  // over one spacing
 
   std::vector<double> k = total_curvature(mesh, sides, area);
-  smooth(k, sides, area, passes);
+  detail::smooth(k, sides, area, passes);
   for (std::size_t v = 0; v < density.size(); ++v) {
     const double scaled = options.spacing * k[v];
     density[v] = std::min(options.max_ratio, 1 + options.strength * scaled * scaled);
   }
-  smooth(density, sides, area, passes);
+  detail::smooth(density, sides, area, passes);
   return density;
 }
 

@@ -638,6 +638,47 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
   return a;
 }
 
+TEST(RemeshCommand, MaxErrorRemeshesUntilTheBoundHoldsOrExitsFourWithTheClosest) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "bounded.ply";
+  // 200 sites are 2.8 % off fertility's surface: more sites where it strays.
+  const std::vector<std::string> args = {"remesh", genus_four,    "--sites", "200", "--samples",
+                                         "20000",  "--max-error", "1.5",     "-o",  out.string()};
+  const CliRun met = run_cli(concat(args, {"--json"}));
+  ASSERT_EQ(met.exit_status, 0) << met.err;
+  const nlohmann::json json = nlohmann::json::parse(met.out);
+  EXPECT_EQ(json["max_error_pct"].get<double>(), 1.5);
+  EXPECT_TRUE(json["error_bound_met"].get<bool>());
+  EXPECT_LE(json["hausdorff_pct"].get<double>(), 1.5);
+  const nlohmann::json& rounds = json["error_rounds"];
+  ASSERT_GE(rounds.size(), 2u);
+  EXPECT_EQ(rounds[0]["sites"].get<std::int64_t>(), 200);
+  EXPECT_GT(rounds[0]["hausdorff_pct"].get<double>(), 1.5);
+  EXPECT_EQ(rounds.back()["hausdorff_pct"].get<double>(), json["hausdorff_pct"].get<double>());
+  EXPECT_EQ(analyze_mesh(io::read_mesh(out).mesh).vertices, json["vertices"].get<std::int64_t>());
+
+  // Stopped by the site limit: the closest remesh is written, a warning
+  // says how far it is, and the exit status is 4.
+  std::filesystem::remove(out);
+  const CliRun missed = run_cli(concat(args, {"--max-sites", "250"}));
+  EXPECT_EQ(missed.exit_status, 4) << missed.err;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  EXPECT_NE(missed.err.find("above --max-error 1.5 %"), std::string::npos) << missed.err;
+  EXPECT_NE(missed.err.find("250 sites"), std::string::npos) << missed.err;
+  EXPECT_NE(missed.out.find("error bound"), std::string::npos) << missed.out;
+
+  // It needs the statistics and chooses the sites itself.
+  const CliRun no_statistics =
+      run_cli({"remesh", genus_four, "--sites", "200", "--max-error", "1", "--no-statistics", "-o", out.string()});
+  EXPECT_EQ(no_statistics.exit_status, 2) << no_statistics.err;
+  EXPECT_NE(no_statistics.err.find("--no-statistics"), std::string::npos) << no_statistics.err;
+  const auto site_file = folder.write("sites.txt", "0\n1\n2\n3\n");
+  const CliRun given =
+      run_cli({"remesh", genus_four, "--site-file", site_file.string(), "--max-error", "1", "-o", out.string()});
+  EXPECT_EQ(given.exit_status, 2) << given.err;
+  EXPECT_NE(given.err.find("--site-file"), std::string::npos) << given.err;
+}
+
 TEST(RemeshCommand, ABatchWritesEveryOutputTheSameBytesAsSingleRuns) {
   ScratchFolder folder;
   const auto dir = folder.path() / "out";

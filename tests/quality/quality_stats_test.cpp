@@ -474,6 +474,45 @@ TEST(CompareMeshes, DeterministicForAnyThreadCount) {
   EXPECT_NEAR(many.rms, reseeded.rms, 0.02 * many.rms);
 }
 
+TEST(CompareMeshes, DeviationAtVerticesLocatesTheDistanceAndPeaksAtTheHausdorff) {
+  // A flat 10 x 10 grid with one vertex raised into a spike, against the flat
+  // square: the distance is the spike's, on the faces around it only.
+  TriangleMesh spiked = plane_grid(10);
+  const Index spike = 5 * 11 + 5;
+  spiked.vertices(spike, 2) = 0.3;
+  const TriangleMesh flat = plane_grid(1);
+  QualityOptions options = samples(20000);
+  EXPECT_TRUE(compare_meshes(spiked, flat, options).deviation_at_vertices.empty());  // not asked
+
+  options.deviation_at_vertices = true;
+  const QualityReport report = compare_meshes(spiked, flat, options);
+  const std::vector<double>& deviation = report.deviation_at_vertices;
+  ASSERT_EQ(deviation.size(), static_cast<std::size_t>(spiked.num_vertices()));
+  EXPECT_DOUBLE_EQ(deviation[spike], 0.3);
+  EXPECT_DOUBLE_EQ(*std::max_element(deviation.begin(), deviation.end()), report.hausdorff);
+  for (Index v = 0; v < spiked.num_vertices(); ++v) {
+    // The spike's one-ring (the grid's diagonals run from (i, j) to (i + 1, j + 1)).
+    const Index di = v % 11 - 5, dj = v / 11 - 5;
+    const bool around_spike = std::abs(di) + std::abs(dj) == 1 || (di == dj && std::abs(di) == 1);
+    if (v == spike) continue;
+    if (around_spike) {
+      EXPECT_GT(deviation[v], 0.0) << "vertex " << v;  // its faces' samples are off the flat square
+      EXPECT_LT(deviation[v], 0.3) << "vertex " << v;
+    } else {
+      EXPECT_LT(deviation[v], 1e-15) << "vertex " << v;  // rounding only
+    }
+  }
+  // The other way round, the flat square's samples over the spike are
+  // charged to the spike's faces; its far corners see nothing.
+  const QualityReport reverse = compare_meshes(flat, spiked, options);
+  ASSERT_EQ(reverse.deviation_at_vertices.size(), 4u);
+  EXPECT_DOUBLE_EQ(*std::max_element(reverse.deviation_at_vertices.begin(), reverse.deviation_at_vertices.end()),
+                   reverse.hausdorff);
+  // The same bits on one thread.
+  const tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+  EXPECT_EQ(compare_meshes(spiked, flat, options).deviation_at_vertices, deviation);
+}
+
 TEST(CompareMeshes, ProgressChangesNothingAndCancels) {
   const TriangleMesh sphere = test::icosphere(3);
   TriangleMesh bumpy = sphere;

@@ -144,6 +144,22 @@ TriangleMesh disk(int rings, int segments) {
   return mesh_from_lists(vertices, faces);
 }
 
+TriangleMesh unit_square(int n) {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<Index, 3>> faces;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) vertices.emplace_back(double(i) / n, double(j) / n, 0.0);
+  }
+  const auto at = [n](int i, int j) { return Index(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  return mesh_from_lists(vertices, faces);
+}
+
 TriangleMesh slit_square(int n) {
   if (n < 2 || n % 2 != 0) throw std::invalid_argument("slit_square: n must be even and >= 2");
   std::vector<Eigen::Vector3d> vertices;

@@ -27,6 +27,9 @@ TriangleMesh double_torus(double R, double r, int n, int m, int k);
 /// central fan (one boundary loop, chi = 1).
 TriangleMesh disk(int rings, int segments);
 /// The unit square [0, 1]^2 in z = 0 as an n x n grid of two triangles per
+/// cell (diagonals from (i, j) to (i + 1, j + 1)); vertex (i, j) is j (n + 1) + i.
+TriangleMesh unit_square(int n);
+/// The unit square [0, 1]^2 in z = 0 as an n x n grid of two triangles per
 /// cell (n even), slit along y = 1/2 from its left side to the centre: the
 /// grid vertices there (but the centre) are doubled, those above the slit
 /// using the copies. One boundary loop (chi = 1), which runs into the slit

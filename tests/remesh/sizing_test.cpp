@@ -17,25 +17,8 @@
 namespace geodual::remesh {
 namespace {
 
-/// The unit square [0, 1]^2 in z = 0, an n x n grid of two triangles per cell.
-TriangleMesh unit_square(int n) {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<Index, 3>> faces;
-  for (int j = 0; j <= n; ++j) {
-    for (int i = 0; i <= n; ++i) vertices.emplace_back(double(i) / n, double(j) / n, 0.0);
-  }
-  const auto at = [n](int i, int j) { return Index(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  }
-  return test::mesh_from_lists(vertices, faces);
-}
-
 TEST(Sizing, TheUnitSquareGetsTheFormulasCount) {
-  const TriangleMesh square = unit_square(8);
+  const TriangleMesh square = test::unit_square(8);
   const SizingMeasures measures = sizing_measures(square);
   EXPECT_NEAR(measures.area, 1.0, 1e-12);
   EXPECT_NEAR(measures.boundary_length, 4.0, 1e-12);
@@ -69,7 +52,7 @@ TEST(Sizing, AClosedSphereHasHalfTheFacesPlusTwo) {
 }
 
 TEST(Sizing, FacesWithARepeatedCornerTakeNoPart) {
-  TriangleMesh square = unit_square(8);
+  TriangleMesh square = test::unit_square(8);
   const Index far = square.num_vertices();
   square.vertices.conservativeResize(far + 1, 3);
   square.vertices.row(far) = Eigen::RowVector3d(5, 5, 0);
@@ -83,7 +66,7 @@ TEST(Sizing, FacesWithARepeatedCornerTakeNoPart) {
 }
 
 TEST(Sizing, BadTargetsAreUsageErrors) {
-  const TriangleMesh square = unit_square(4);
+  const TriangleMesh square = test::unit_square(4);
   for (const double length :
        {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     EXPECT_THROW(sites_for_edge_length(square, length), UsageError) << length;

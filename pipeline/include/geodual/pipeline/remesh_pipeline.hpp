@@ -71,7 +71,23 @@ struct RemeshPipelineOptions {
   bool attributes = true;
   bool statistics = true;           ///< compare the remesh with the input (quality, Hausdorff)
   quality::QualityOptions quality;  ///< 10^6 samples per side
+  /// An error bound (0: none): the two-sided Hausdorff distance between the
+  /// remesh and the input, in % of the input's bounding-box diagonal (the
+  /// statistics' hausdorff_pct). Where a remesh strays farther, the next is
+  /// made with more sites there (remesh::refine_density), until the bound
+  /// holds, after at most max_error_rounds remeshes, or once one had
+  /// max_sites sites (0: 8 times the first's). Needs statistics; not with
+  /// given_sites.
+  double max_error_pct = 0;
+  std::int64_t max_sites = 0;
+  int max_error_rounds = 8;
   ProgressCallback progress;
+};
+
+/// One remesh made under an error bound.
+struct ErrorRound {
+  std::int64_t sites = 0;  ///< asked (sites added for topology or by repair aside)
+  double hausdorff_pct = 0;
 };
 
 struct StageTiming {
@@ -127,7 +143,12 @@ struct RemeshPipelineResult {
   /// empty when the input has none or options.attributes is false.
   VertexAttributes attributes;
   std::optional<quality::QualityReport> statistics;
-  std::vector<StageTiming> timings;
+  /// With options.max_error_pct: every remesh made, in order, and whether
+  /// the one returned (the last if it meets the bound, else the closest)
+  /// meets it.
+  std::vector<ErrorRound> error_rounds;
+  bool error_bound_met = true;
+  std::vector<StageTiming> timings;  ///< of every remesh made, in order
 };
 
 /// Each vertex of `result.remesh.mesh` as a point of the input mesh (the cuts

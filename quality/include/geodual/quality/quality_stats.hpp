@@ -58,6 +58,10 @@ struct QualityOptions {
   /// passes within this distance, in % of the reference's bounding-box
   /// diagonal (> 0).
   double feature_tolerance_pct = 0.1;
+  /// Also give, per vertex of the reference, the largest distance measured
+  /// at it (QualityReport::deviation_at_vertices): where a remesh needs
+  /// more vertices to come closer.
+  bool deviation_at_vertices = false;
 };
 
 /// Figures of one mesh alone. Percentages are in [0, 100].
@@ -172,6 +176,12 @@ struct QualityReport {
 
   /// Feature recall (see FeatureRecall); empty when options.sharp_angle_deg is 0.
   std::optional<FeatureRecall> features;
+  /// With options.deviation_at_vertices, per vertex of the reference (0 for
+  /// one no face uses), the largest of these distances: its own to the
+  /// candidate, those of the reference's samples on its faces, and those of
+  /// the candidate's samples and vertices whose nearest point of the
+  /// reference lies on one of its faces. Their maximum is `hausdorff`.
+  std::vector<double> deviation_at_vertices;
 };
 
 /// Compares `candidate` with `reference`. Throws geodual::Error (naming which

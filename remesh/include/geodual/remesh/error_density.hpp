@@ -1,0 +1,51 @@
+#pragma once
+// Error-driven sizing: a density for the weighted CVT (lloyd.hpp) that puts
+// more sites where a remesh strays farther than a bound from the surface, and
+// the site count that keeps the spacing elsewhere. What `--max-error` repeats
+// until the bound holds (docs/algorithms.md#error-bound).
+//
+//   auto rho = refine_density(mesh, previous_rho, deviation, {.max_error = e, .spacing = h});
+//   auto sites = sites_for_density(mesh, previous_sites, previous_rho, rho);
+//
+// A remesh's vertices lie on the surface, so its distance to it is a chord
+// error, which falls like h^2 with the spacing h; the weighted CVT spaces its
+// sites like rho^(-1/4) (curvature_density.hpp). Where the deviation is r
+// times `aim` times the bound (r > 1), the density is multiplied by r^2 (at
+// most max_ratio). The aim is below the bound because a remesh's deviation
+// at a place also depends on where its vertices happen to fall there: the
+// next remesh, sampled afresh, may fall less well.
+// The factor is spread over a spacing (one-ring maxima, so that the
+// neighbourhood of a narrow peak is refined too) and then smoothed over a
+// spacing (the weighted Lloyd step assumes the density nearly linear across
+// a cell).
+
+#include "geodual/mesh/triangle_mesh.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace geodual::remesh {
+
+struct ErrorDensityOptions {
+  double max_error = 0;   ///< the bound, in mesh units (> 0)
+  double spacing = 0;     ///< the remesh's mean edge length (> 0): the length the factor spreads over
+  double aim = 0.75;      ///< the fraction of the bound the density aims at, in (0, 1]
+  double max_ratio = 16;  ///< the largest factor at a vertex (>= 1)
+};
+
+/// `density` (one per vertex of `mesh`; empty: all 1) refined where
+/// `deviation` (one per vertex: the largest distance between the remesh and
+/// the surface measured at it, quality::QualityReport::deviation_at_vertices)
+/// is above options.max_error. \throw UsageError for options out of range or
+/// sizes that do not match the mesh.
+std::vector<double> refine_density(const TriangleMesh& mesh, std::span<const double> density,
+                                   std::span<const double> deviation, const ErrorDensityOptions& options);
+
+/// The sites that space density `to` as `sites` sites space density `from`
+/// (empty: all 1): sites * int sqrt(to) dA / int sqrt(from) dA, rounded, at
+/// least `sites` + 1 when `to` is larger somewhere.
+std::int64_t sites_for_density(const TriangleMesh& mesh, std::int64_t sites, std::span<const double> from,
+                               std::span<const double> to);
+
+}  // namespace geodual::remesh

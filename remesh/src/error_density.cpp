@@ -1,0 +1,82 @@
+#include "geodual/remesh/error_density.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
+#include "vertex_fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace geodual::remesh {
+namespace {
+
+void require_per_vertex(const TriangleMesh& mesh, std::span<const double> field, const char* name, bool may_be_empty) {
+  if (may_be_empty && field.empty()) return;
+  if (field.size() != static_cast<std::size_t>(mesh.num_vertices())) {
+    throw UsageError(std::string("error density: ") + name + " has " + std::to_string(field.size()) +
+                     " values for a mesh of " + std::to_string(mesh.num_vertices()) + " vertices");
+  }
+}
+
+double value_at(std::span<const double> field, Index v) { return field.empty() ? 1.0 : field[v]; }
+
+}  // namespace
+
+std::vector<double> refine_density(const TriangleMesh& mesh, std::span<const double> density,
+                                   std::span<const double> deviation, const ErrorDensityOptions& options) {
+  auto require = [](bool holds, const std::string& what) {
+    if (!holds) throw UsageError("error density: " + what);
+  };
+  require(options.max_error > 0 && std::isfinite(options.max_error),
+          "max_error must be a finite number > 0, got " + std::to_string(options.max_error));
+  require(options.spacing > 0 && std::isfinite(options.spacing),
+          "spacing must be a finite number > 0, got " + std::to_string(options.spacing));
+  require(options.aim > 0 && options.aim <= 1, "aim must be in (0, 1], got " + std::to_string(options.aim));
+  require(options.max_ratio >= 1 && std::isfinite(options.max_ratio),
+          "max_ratio must be a finite number >= 1, got " + std::to_string(options.max_ratio));
+  require_per_vertex(mesh, density, "density", true);
+  require_per_vertex(mesh, deviation, "deviation", false);
+
+  std::vector<double> factor(deviation.size());
+  for (std::size_t v = 0; v < factor.size(); ++v) {
+    const double ratio = std::max(1.0, deviation[v] / (options.aim * options.max_error));
+    factor[v] = std::min(options.max_ratio, ratio * ratio);  // chord error ~ h^2, h ~ rho^(-1/4)
+  }
+  const std::vector<double> area = detail::vertex_areas(mesh);
+  const std::vector<std::array<Index, 3>> sides = detail::edge_sides(mesh);
+  const double edge = detail::mean_edge_length(mesh, sides);
+  if (edge > 0) {
+    detail::dilate(factor, sides, static_cast<int>(std::ceil(options.spacing / edge)));
+    detail::smooth(factor, sides, area, detail::smoothing_passes(options.spacing, edge));
+  }
+  for (std::size_t v = 0; v < factor.size(); ++v) factor[v] *= value_at(density, static_cast<Index>(v));
+  return factor;
+}
+
+std::int64_t sites_for_density(const TriangleMesh& mesh, std::int64_t sites, std::span<const double> from,
+                               std::span<const double> to) {
+  require_per_vertex(mesh, from, "the previous density", true);
+  require_per_vertex(mesh, to, "the density", true);
+  // int sqrt(rho) dA with rho linear in each face, by its corners' mean.
+  double before = 0, after = 0;
+  bool larger = false;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (has_repeated_corner(mesh, f)) continue;
+    const double area = face_area(mesh, f);
+    double a = 0, b = 0;
+    for (int c = 0; c < 3; ++c) {
+      const Index v = mesh.faces(f, c);
+      a += std::sqrt(value_at(from, v)) / 3;
+      b += std::sqrt(value_at(to, v)) / 3;
+      larger = larger || value_at(to, v) > value_at(from, v);
+    }
+    before += area * a;
+    after += area * b;
+  }
+  if (!(before > 0)) return sites;
+  const auto scaled = static_cast<std::int64_t>(std::llround(static_cast<double>(sites) * after / before));
+  return larger ? std::max(scaled, sites + 1) : scaled;
+}
+
+}  // namespace geodual::remesh

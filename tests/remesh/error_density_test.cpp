@@ -1,0 +1,97 @@
+// Error-driven sizing: the density grows by (deviation / (aim * bound))^2
+// where a remesh strayed beyond the bound, spread over a spacing, and nowhere
+// else; the site count keeps the spacing where the density is unchanged.
+
+#include "analytic_surfaces.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "geodual/remesh/error_density.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace geodual::remesh {
+namespace {
+
+constexpr int kGrid = 40;  // 40 x 40 cells on the unit square: edges of 0.025
+constexpr Index kCentre = (kGrid / 2) * (kGrid + 1) + kGrid / 2;
+
+double distance_to_centre(const TriangleMesh& mesh, Index v) {
+  return (mesh.vertices.row(v) - mesh.vertices.row(kCentre)).norm();
+}
+
+TEST(ErrorDensity, GrowsAroundAPeakOfTheDeviationAndNowhereElse) {
+  const TriangleMesh square = test::unit_square(kGrid);
+  std::vector<double> deviation(static_cast<std::size_t>(square.num_vertices()), 0.0);
+  deviation[kCentre] = 0.015;  // twice the aim of 0.75 * 0.01: a factor 4
+  const ErrorDensityOptions options{.max_error = 0.01, .spacing = 0.1};
+  const std::vector<double> density = refine_density(square, {}, deviation, options);
+  ASSERT_EQ(density.size(), deviation.size());
+  // Spread over a spacing (4 edges) by maxima, then smoothed over a spacing
+  // (16 one-ring passes): at most 20 edges out, the factor is still 1.
+  EXPECT_GT(density[kCentre], 2.0);
+  EXPECT_LE(*std::max_element(density.begin(), density.end()), 4.0);
+  for (Index v = 0; v < square.num_vertices(); ++v) {
+    EXPECT_GE(density[v], 1.0) << "vertex " << v;
+    if (distance_to_centre(square, v) > 21 * 0.025 * std::sqrt(2.0)) {
+      EXPECT_EQ(density[v], 1.0) << "vertex " << v;
+    }
+  }
+  // Within the spread the whole neighbourhood of the peak is refined.
+  for (Index v = 0; v < square.num_vertices(); ++v) {
+    if (distance_to_centre(square, v) < 0.05) {
+      EXPECT_GT(density[v], 1.5) << "vertex " << v;
+    }
+  }
+
+  // The factor multiplies the density given.
+  const std::vector<double> twice(deviation.size(), 2.0);
+  const std::vector<double> on_twice = refine_density(square, twice, deviation, options);
+  for (std::size_t v = 0; v < density.size(); ++v) EXPECT_DOUBLE_EQ(on_twice[v], 2 * density[v]);
+
+  // A deviation within the aim everywhere changes nothing.
+  const std::vector<double> within(deviation.size(), 0.0075);
+  EXPECT_EQ(refine_density(square, twice, within, options), twice);
+  // The factor stops at max_ratio.
+  deviation[kCentre] = 1.0;
+  const std::vector<double> capped = refine_density(square, {}, deviation, {.max_error = 0.01, .spacing = 0.025});
+  EXPECT_LE(*std::max_element(capped.begin(), capped.end()), 16.0);
+}
+
+TEST(ErrorDensity, SitesKeepTheSpacingWhereTheDensityIsUnchanged) {
+  const TriangleMesh square = test::unit_square(kGrid);
+  const std::size_t n = static_cast<std::size_t>(square.num_vertices());
+  const std::vector<double> ones(n, 1.0), fours(n, 4.0);
+  // Spacing ~ rho^(-1/4): 4 times the density everywhere is twice the sites.
+  EXPECT_EQ(sites_for_density(square, 1000, {}, fours), 2000);
+  EXPECT_EQ(sites_for_density(square, 1000, ones, fours), 2000);
+  EXPECT_EQ(sites_for_density(square, 1000, fours, fours), 1000);
+  EXPECT_EQ(sites_for_density(square, 1000, fours, ones), 500);
+  // 4 times on the left half (x < 1/2, the column x = 1/2 between): about 1.5 times.
+  std::vector<double> left(n, 1.0);
+  for (Index v = 0; v < square.num_vertices(); ++v) {
+    if (square.vertices(v, 0) < 0.5) left[v] = 4.0;
+  }
+  EXPECT_NEAR(static_cast<double>(sites_for_density(square, 1000, {}, left)), 1500.0, 15.0);
+  // A little more somewhere is at least one site more.
+  std::vector<double> slightly(n, 1.0);
+  slightly[kCentre] = 1.0001;
+  EXPECT_EQ(sites_for_density(square, 1000, {}, slightly), 1001);
+}
+
+TEST(ErrorDensity, OptionsOutOfRangeAreUsageErrors) {
+  const TriangleMesh square = test::unit_square(4);
+  const std::vector<double> deviation(static_cast<std::size_t>(square.num_vertices()), 0.0);
+  EXPECT_THROW(refine_density(square, {}, deviation, {.max_error = 0, .spacing = 0.1}), UsageError);
+  EXPECT_THROW(refine_density(square, {}, deviation, {.max_error = 0.1, .spacing = 0}), UsageError);
+  EXPECT_THROW(refine_density(square, {}, deviation, {.max_error = 0.1, .spacing = 0.1, .aim = 1.5}), UsageError);
+  EXPECT_THROW(refine_density(square, {}, deviation, {.max_error = 0.1, .spacing = 0.1, .max_ratio = 0.5}), UsageError);
+  EXPECT_THROW(refine_density(square, {}, std::vector<double>(3, 0.0), {.max_error = 0.1, .spacing = 0.1}), UsageError);
+  EXPECT_THROW(sites_for_density(square, 10, std::vector<double>(3, 1.0), {}), UsageError);
+}
+
+}  // namespace
+}  // namespace geodual::remesh
