@@ -1,8 +1,10 @@
 #include "cvt_newton.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
-#include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <cmath>
 
 namespace geodual::remesh::detail {
@@ -25,30 +27,73 @@ Eigen::Vector3d face_normal(const TriangleMesh& mesh, Index face) {
   return (b - a).cross(c - a);
 }
 
-/// int over the boundary of (x - a)(x - b)^T ds, exact for straight segments:
-/// on a segment from p to q of length L, with u = p - a, v = q - a,
-/// u' = p - b, v' = q - b, it is L (u u'^T / 3 + (u v'^T + v u'^T) / 6 + v v'^T / 3).
-Eigen::Matrix3d second_moment(const CvtBoundary& boundary, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+/// The integrals over a boundary of (x - a)(x - a)^T, (x - b)(x - b)^T and
+/// (x - a)(x - b)^T ds, exact for straight segments: on a segment from p to
+/// q of length L, with u = p - a, v = q - a, u' = p - b, v' = q - b, the last
+/// is L (u u'^T / 3 + (u v'^T + v u'^T) / 6 + v v'^T / 3).
+struct SecondMoments {
+  Eigen::Matrix3d aa = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d bb = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d ab = Eigen::Matrix3d::Zero();
+};
+
+SecondMoments second_moments(const CvtBoundary& boundary, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const std::span<const Eigen::Vector3d> points = boundary.points;
   const std::size_t stride = boundary.separate_segments ? 2 : 1;
-  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  SecondMoments sums;
+  auto add = [](Eigen::Matrix3d& sum, double length, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                const Eigen::Vector3d& u2, const Eigen::Vector3d& v2) {
+    sum += length * ((u * u2.transpose() + v * v2.transpose()) / 3 + (u * v2.transpose() + v * u2.transpose()) / 6);
+  };
   for (std::size_t k = 1; k < points.size(); k += stride) {
     const Eigen::Vector3d& p = points[k - 1];
     const Eigen::Vector3d& q = points[k];
     const double length = (q - p).norm();
     const Eigen::Vector3d u = p - a, v = q - a, u2 = p - b, v2 = q - b;
-    sum += length * ((u * u2.transpose() + v * v2.transpose()) / 3 + (u * v2.transpose() + v * u2.transpose()) / 6);
+    add(sums.aa, length, u, v, u, v);
+    add(sums.bb, length, u2, v2, u2, v2);
+    add(sums.ab, length, u, v, u2, v2);
   }
-  return sum;
+  return sums;
 }
+
+/// A matrix of 2x2 blocks, one block row per unknown site, in compressed
+/// rows with the block columns in increasing order.
+struct BlockRows {
+  std::vector<Index> begin;  ///< per block row, its first block; one more at the end
+  std::vector<Index> column;
+  std::vector<Eigen::Matrix2d> block;
+
+  /// The block at (row, column), which must be in the pattern.
+  Eigen::Matrix2d& at(Index row, Index col) {
+    const auto first = column.begin() + begin[row], last = column.begin() + begin[row + 1];
+    return block[static_cast<std::size_t>(std::lower_bound(first, last, col) - column.begin())];
+  }
+  /// out = this x, each row summed over its columns in increasing order.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
+    for (Index row = 0; row + 1 < static_cast<Index>(begin.size()); ++row) {
+      double first = 0, second = 0;
+      for (Index b = begin[row]; b < begin[row + 1]; ++b) {
+        const Eigen::Matrix2d& m = block[static_cast<std::size_t>(b)];
+        const Index col = column[static_cast<std::size_t>(b)];
+        first += m(0, 0) * x[2 * col];
+        first += m(0, 1) * x[2 * col + 1];
+        second += m(1, 0) * x[2 * col];
+        second += m(1, 1) * x[2 * col + 1];
+      }
+      out[2 * row] = first;
+      out[2 * row + 1] = second;
+    }
+  }
+};
 
 /// Solves (H + damping D) x = b, D = diag(scale) repeated per coordinate pair,
 /// by conjugate gradients preconditioned with D (whose first iterate is
 /// Lloyd's direction), stopping at a direction of negative curvature
 /// (Steihaug 1983): far from a CVT H is indefinite, and the iterate reached
 /// there is still a descent direction.
-Eigen::VectorXd truncated_newton(const Eigen::SparseMatrix<double>& hessian, const Eigen::VectorXd& scale,
-                                 const Eigen::VectorXd& b, double damping) {
+Eigen::VectorXd truncated_newton(const BlockRows& hessian, const Eigen::VectorXd& scale, const Eigen::VectorXd& b,
+                                 double damping) {
   const Eigen::VectorXd lloyd = scale.replicate(1, 2).transpose().reshaped();  // per unknown
   const Eigen::VectorXd damped_diagonal = damping * lloyd;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
@@ -59,7 +104,7 @@ Eigen::VectorXd truncated_newton(const Eigen::SparseMatrix<double>& hessian, con
   double rz = r.dot(z);
   const double stop = kRelativeResidual * kRelativeResidual * rz;
   for (int iteration = 0; iteration < kMaximumIterations; ++iteration) {
-    hp.noalias() = hessian * p;
+    hessian.multiply(p, hp);
     hp += damped_diagonal.cwiseProduct(p);
     const double curvature = p.dot(hp);
     if (!(curvature > 0)) {
@@ -125,39 +170,89 @@ std::vector<Eigen::Vector3d> cvt_newton_steps(const CvtCells& cells, std::span<c
 
   const auto& frame = cells.frame;
   const auto& position = cells.position;
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(unknowns) * 2 + boundaries.size() * 16);
-  auto add_block = [&](Index row_site, Index column_site, const Eigen::Matrix2d& block) {
-    const Index row = unknown[row_site], column = unknown[column_site];
-    if (row < 0 || column < 0) return;  // a fixed site: its coordinates are not unknowns
-    for (int r = 0; r < 2; ++r) {
-      for (int c = 0; c < 2; ++c) entries.emplace_back(2 * row + r, 2 * column + c, block(r, c));
-    }
-  };
   Eigen::VectorXd rhs(2 * unknowns);
   Eigen::VectorXd lloyd_scale(unknowns);  // 2 A_i (the weighted mass): Lloyd's Hessian
   for (std::size_t s = 0; s < site_count; ++s) {
     const Index k = unknown[s];
     if (k < 0) continue;
     lloyd_scale[k] = 2 * cells.mass[s];
-    add_block(static_cast<Index>(s), static_cast<Index>(s), lloyd_scale[k] * Eigen::Matrix2d::Identity());
     rhs.segment<2>(2 * k) = 2 * frame[s].transpose() * cells.moment[s];  // -g
   }
-  for (const CvtBoundary& boundary : boundaries) {
-    const Index i = boundary.i, j = boundary.j;
-    if (i < 0 || j < 0 || i == j || (unknown[i] < 0 && unknown[j] < 0)) continue;
-    const double separation = (position[i] - position[j]).norm();
-    if (!(separation > 0)) continue;
-    const double weight = 2 * boundary.density / separation;
-    add_block(i, i, -weight * frame[i].transpose() * second_moment(boundary, position[i], position[i]) * frame[i]);
-    add_block(j, j, -weight * frame[j].transpose() * second_moment(boundary, position[j], position[j]) * frame[j]);
-    const Eigen::Matrix2d coupling =
-        weight * frame[i].transpose() * second_moment(boundary, position[i], position[j]) * frame[j];
-    add_block(i, j, coupling);
-    add_block(j, i, coupling.transpose());
+  // Each boundary's blocks, on all threads.
+  struct BoundaryBlocks {
+    bool used = false;
+    Eigen::Matrix2d ii, jj, ij;
+  };
+  std::vector<BoundaryBlocks> blocks(boundaries.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boundaries.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t b = range.begin(); b != range.end(); ++b) {
+                        const CvtBoundary& boundary = boundaries[b];
+                        const Index i = boundary.i, j = boundary.j;
+                        if (i < 0 || j < 0 || i == j || (unknown[i] < 0 && unknown[j] < 0)) continue;
+                        const double separation = (position[i] - position[j]).norm();
+                        if (!(separation > 0)) continue;
+                        const double weight = 2 * boundary.density / separation;
+                        const SecondMoments moments = second_moments(boundary, position[i], position[j]);
+                        blocks[b] = {true, -weight * frame[i].transpose() * moments.aa * frame[i],
+                                     -weight * frame[j].transpose() * moments.bb * frame[j],
+                                     weight * frame[i].transpose() * moments.ab * frame[j]};
+                      }
+                    });
+  // The pattern: each unknown site with itself and with the unknown sites it
+  // shares a boundary with.
+  BlockRows hessian;
+  hessian.begin.assign(static_cast<std::size_t>(unknowns) + 1, 0);
+  auto coupled = [&](std::size_t b) {
+    return blocks[b].used && unknown[boundaries[b].i] >= 0 && unknown[boundaries[b].j] >= 0;
+  };
+  for (Index k = 0; k < unknowns; ++k) hessian.begin[k + 1] = 1;
+  for (std::size_t b = 0; b < boundaries.size(); ++b) {
+    if (!coupled(b)) continue;
+    ++hessian.begin[unknown[boundaries[b].i] + 1];
+    ++hessian.begin[unknown[boundaries[b].j] + 1];
   }
-  Eigen::SparseMatrix<double> hessian(2 * unknowns, 2 * unknowns);
-  hessian.setFromTriplets(entries.begin(), entries.end());
+  for (Index k = 0; k < unknowns; ++k) hessian.begin[k + 1] += hessian.begin[k];
+  hessian.column.resize(static_cast<std::size_t>(hessian.begin[unknowns]));
+  {
+    std::vector<Index> fill(hessian.begin.begin(), hessian.begin.end() - 1);
+    for (Index k = 0; k < unknowns; ++k) hessian.column[fill[k]++] = k;
+    for (std::size_t b = 0; b < boundaries.size(); ++b) {
+      if (!coupled(b)) continue;
+      const Index ki = unknown[boundaries[b].i], kj = unknown[boundaries[b].j];
+      hessian.column[fill[ki]++] = kj;
+      hessian.column[fill[kj]++] = ki;
+    }
+  }
+  // Sorted, and a pair of sites met along several boundaries once.
+  Index kept = 0;
+  for (Index k = 0; k < unknowns; ++k) {
+    const auto first = hessian.column.begin() + hessian.begin[k], last = hessian.column.begin() + hessian.begin[k + 1];
+    std::sort(first, last);
+    const Index row_begin = kept;
+    for (auto it = first, end = std::unique(first, last); it != end; ++it) hessian.column[kept++] = *it;
+    hessian.begin[k] = row_begin;
+  }
+  hessian.begin[unknowns] = kept;
+  hessian.column.resize(static_cast<std::size_t>(kept));
+  // The values, each entry summed in a fixed order (Lloyd's term first,
+  // then the boundaries in their order), so that they do not depend on the
+  // threads.
+  hessian.block.assign(static_cast<std::size_t>(kept), Eigen::Matrix2d::Zero());
+  for (std::size_t s = 0; s < site_count; ++s) {
+    const Index k = unknown[s];
+    if (k >= 0) hessian.at(k, k) += lloyd_scale[k] * Eigen::Matrix2d::Identity();
+  }
+  for (std::size_t b = 0; b < boundaries.size(); ++b) {
+    if (!blocks[b].used) continue;
+    const Index ki = unknown[boundaries[b].i], kj = unknown[boundaries[b].j];
+    if (ki >= 0) hessian.at(ki, ki) += blocks[b].ii;
+    if (kj >= 0) hessian.at(kj, kj) += blocks[b].jj;
+    if (ki >= 0 && kj >= 0) {
+      hessian.at(ki, kj) += blocks[b].ij;
+      hessian.at(kj, ki) += blocks[b].ij.transpose();
+    }
+  }
 
   const Eigen::VectorXd solution = truncated_newton(hessian, lloyd_scale, rhs, damping);
   for (std::size_t s = 0; s < site_count; ++s) {

@@ -188,7 +188,8 @@ bool relaxation_step(const LloydOptions& options, double energy, StepControl& co
 std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::vector<SurfacePoint> sites, const std::vector<bool>& movable,
                                      const LloydOptions& options, int& steps_taken) {
-  detail::RestrictedCells cells = detail::restricted_voronoi(mesh, topology, sites, options.density);
+  const detail::RestrictedSurface surface = detail::prepare_restricted_surface(mesh, topology, options.density);
+  detail::RestrictedCells cells = detail::restricted_voronoi(surface, sites);
   StepControl control = initial_control(options);
   for (steps_taken = 0; steps_taken < options.warm_start_iterations;) {
     const double previous = cells.total_energy();
@@ -197,7 +198,7 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
     for (std::size_t i = 0; i < moving.size(); ++i) moving[i] = moving[i] && cells.mass[i] > 0;
     auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, sites, steps);
-      detail::RestrictedCells next = detail::restricted_voronoi(mesh, topology, moved, options.density);
+      detail::RestrictedCells next = detail::restricted_voronoi(surface, moved);
       if (!(next.total_energy() < previous - least_decrease)) return false;
       sites = std::move(moved);
       cells = std::move(next);

@@ -93,8 +93,24 @@ struct Scratch {
 
 double RestrictedCells::total_energy() const { return std::accumulate(energy.begin(), energy.end(), 0.0); }
 
-RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
-                                   std::span<const SurfacePoint> sites, std::span<const double> density) {
+RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
+                                             std::span<const double> density) {
+  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_fans(mesh, topology)};
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (topology.face_edges[f][0] < 0) continue;
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)).transpose();
+    const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1)).transpose();
+    const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2)).transpose();
+    surface.area += (b - a).cross(c - a).norm() / 2;
+  }
+  return surface;
+}
+
+RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites) {
+  const TriangleMesh& mesh = surface.mesh;
+  const voronoi::SurfaceTopology& topology = surface.topology;
+  const std::span<const double> density = surface.density;
+  const VertexFans& fans = surface.fans;
   const std::size_t site_count = sites.size();
   std::vector<Eigen::Vector3d> position(site_count);
   for (std::size_t s = 0; s < site_count; ++s) position[s] = sites[s].position(mesh);
@@ -106,20 +122,11 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Surf
     return p;
   };
   // Grid cells twice as wide as the sites' spacing: the first search (twice
-  // the spacing) looks at 27 of them.
-  double area = 0;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (topology.face_edges[f][0] < 0) continue;
-    area += (corner(f, 1) - corner(f, 0)).head<3>().cross((corner(f, 2) - corner(f, 0)).head<3>()).norm() / 2;
-  }
-  const double spacing = area > 0 ? std::sqrt(area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
+  // the spacing) looks at 27 of them. (The cells found do not depend on the
+  // spacing: a search that falls short is widened.)
+  const double spacing =
+      surface.area > 0 ? std::sqrt(surface.area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
   const PointGrid grid(position, 2 * spacing);
-  // A vertex site's cell starts from every face around it.
-  VertexFans fans;
-  if (std::any_of(sites.begin(), sites.end(),
-                  [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
-    fans = vertex_fans(mesh, topology);
-  }
 
   RestrictedCells cells;
   cells.area.assign(site_count, 0.0);
@@ -193,10 +200,10 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Surf
         auto& clipped_label = scratch.clipped_label;
         clipped.clear();
         clipped_label.clear();
-        for (std::size_t k = 0; k < polygon.size(); ++k) {
-          const Corner& from = polygon[(k + polygon.size() - 1) % polygon.size()];
+        for (std::size_t k = 0, previous = polygon.size() - 1; k < polygon.size(); previous = k++) {
+          const Corner& from = polygon[previous];
           const Corner& to = polygon[k];
-          const double a = side[(k + polygon.size() - 1) % polygon.size()], b = side[k];
+          const double a = side[previous], b = side[k];
           if (a <= 0 && b <= 0) {
             clipped.push_back(to);
             clipped_label.push_back(label[k]);
@@ -217,6 +224,9 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Surf
       }
       return 4 * reach2 <= searched * searched;
     };
+    // The cell's integrals, summed here and stored once.
+    double area = 0, mass = 0, energy = 0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
     for (std::size_t next = 0; next < queue.size(); ++next) {
       const Index face = queue[next];
       while (!clip(face)) {
@@ -230,17 +240,17 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Surf
         const Corner& b = polygon[k];
         const Corner& c = polygon[k + 1];
         const double piece = (b.head<3>() - a.head<3>()).cross(c.head<3>() - a.head<3>()).norm() / 2;
-        cells.area[s] += piece;
+        area += piece;
         for (const Corner& m : {Corner((a + b) / 2), Corner((b + c) / 2), Corner((c + a) / 2)}) {
           const Eigen::Vector3d offset = m.head<3>() - site;
           const double weight = piece / 3 * m[3];
-          cells.mass[s] += weight;
-          cells.moment[s] += weight * offset;
-          cells.energy[s] += weight * offset.squaredNorm();
+          mass += weight;
+          moment += weight * offset;
+          energy += weight * offset.squaredNorm();
         }
       }
-      for (std::size_t k = 0; k < polygon.size(); ++k) {
-        const Corner& from = polygon[(k + polygon.size() - 1) % polygon.size()];
+      for (std::size_t k = 0, previous = polygon.size() - 1; k < polygon.size(); previous = k++) {
+        const Corner& from = polygon[previous];
         const Corner& to = polygon[k];
         if (from.head<3>() == to.head<3>()) continue;
         if (label[k] >= 0) {
@@ -254,10 +264,20 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Surf
         if (across >= 0 && scratch.reached.insert(across)) queue.push_back(across);
       }
     }
-    // One boundary per other site, its segments together.
+    cells.area[s] = area;
+    cells.mass[s] = mass;
+    cells.moment[s] = moment;
+    cells.energy[s] = energy;
+    // One boundary per other site, its segments together in the order they
+    // were found: an insertion sort, stable and without the buffer that
+    // std::stable_sort would allocate per cell (a cell has tens of segments).
     auto& segments = scratch.segments;
-    std::stable_sort(segments.begin(), segments.end(),
-                     [](const Scratch::Segment& a, const Scratch::Segment& b) { return a.other < b.other; });
+    for (std::size_t k = 1; k < segments.size(); ++k) {
+      const Scratch::Segment segment = segments[k];
+      std::size_t at = k;
+      for (; at > 0 && segments[at - 1].other > segment.other; --at) segments[at] = segments[at - 1];
+      segments[at] = segment;
+    }
     for (std::size_t first = 0; first < segments.size();) {
       std::size_t last = first;
       double length = 0, weighted = 0;
@@ -303,22 +323,41 @@ RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::Surf
                         block.segment_ends = scratch.segment_ends;
                       }
                     });
+  // The boundaries in the order of the sites: each cell's place in the
+  // output from the counts before it, then the copies on all threads.
   std::vector<Index> slot_of(site_count);
   for (Index slot = 0; slot < static_cast<Index>(site_count); ++slot) slot_of[grid.original(slot)] = slot;
+  auto block_of = [&](std::size_t s) -> const Block& { return blocks[static_cast<std::size_t>(slot_of[s]) / kBlock]; };
+  std::vector<Index> boundary_begin(site_count + 1, 0), end_begin(site_count + 1, 0);
   for (std::size_t s = 0; s < site_count; ++s) {
-    const auto slot = static_cast<std::size_t>(slot_of[s]);
-    const Block& block = blocks[slot / kBlock];
-    const std::size_t k = slot % kBlock;
-    for (Index b = block.cell_begin[k]; b < block.cell_begin[k + 1]; ++b) {
-      RestrictedBoundary boundary = block.boundaries[b];
-      const auto begin = static_cast<Index>(cells.segment_ends.size());
-      cells.segment_ends.insert(cells.segment_ends.end(), block.segment_ends.begin() + boundary.begin,
-                                block.segment_ends.begin() + boundary.end);
-      boundary.end = begin + (boundary.end - boundary.begin);
-      boundary.begin = begin;
-      cells.boundaries.push_back(boundary);
-    }
+    const Block& block = block_of(s);
+    const std::size_t k = static_cast<std::size_t>(slot_of[s]) % kBlock;
+    const Index first = block.cell_begin[k], last = block.cell_begin[k + 1];
+    boundary_begin[s + 1] = boundary_begin[s] + (last - first);
+    end_begin[s + 1] =
+        end_begin[s] + (last > first ? block.boundaries[last - 1].end - block.boundaries[first].begin : 0);
   }
+  cells.boundaries.resize(static_cast<std::size_t>(boundary_begin[site_count]));
+  cells.segment_ends.resize(static_cast<std::size_t>(end_begin[site_count]));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, site_count, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t s = range.begin(); s != range.end(); ++s) {
+                        const Block& block = block_of(s);
+                        const std::size_t k = static_cast<std::size_t>(slot_of[s]) % kBlock;
+                        const Index first = block.cell_begin[k], last = block.cell_begin[k + 1];
+                        if (first == last) continue;
+                        const Index shift = end_begin[s] - block.boundaries[first].begin;
+                        std::copy(block.segment_ends.begin() + block.boundaries[first].begin,
+                                  block.segment_ends.begin() + block.boundaries[last - 1].end,
+                                  cells.segment_ends.begin() + end_begin[s]);
+                        for (Index b = first; b < last; ++b) {
+                          RestrictedBoundary boundary = block.boundaries[b];
+                          boundary.begin += shift;
+                          boundary.end += shift;
+                          cells.boundaries[static_cast<std::size_t>(boundary_begin[s] + (b - first))] = boundary;
+                        }
+                      }
+                    });
   return cells;
 }
 

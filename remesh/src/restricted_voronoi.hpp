@@ -22,6 +22,7 @@
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
+#include "surface_walk.hpp"
 
 #include <Eigen/Core>
 
@@ -52,11 +53,22 @@ struct RestrictedCells {
   double total_energy() const;
 };
 
-/// The cells of `sites` on `mesh`, crossing edges as the surface's
-/// `topology` joins faces. `density`: one value per mesh
-/// vertex, or empty for 1. A site that shares its position with another
-/// gets an empty cell. Bit-identical for any number of threads.
-RestrictedCells restricted_voronoi(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
-                                   std::span<const SurfacePoint> sites, std::span<const double> density);
+/// The surface as restricted_voronoi needs it, prepared once for the many
+/// diagrams of a relaxation (prepare_restricted_surface); it refers to the
+/// mesh, topology and density, which must outlive it.
+struct RestrictedSurface {
+  const TriangleMesh& mesh;
+  const voronoi::SurfaceTopology& topology;  ///< how the cells cross edges
+  std::span<const double> density;           ///< one value per mesh vertex, or empty for 1
+  double area = 0;                           ///< of the faces the topology keeps
+  VertexFans fans;                           ///< where a vertex site's cell starts
+};
+
+RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
+                                             std::span<const double> density);
+
+/// The cells of `sites` on the surface. A site that shares its position with
+/// another gets an empty cell. Bit-identical for any number of threads.
+RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites);
 
 }  // namespace geodual::remesh::detail

@@ -38,8 +38,8 @@ TEST(RestrictedVoronoi, IsTheGeodesicDiagramOnAPlane) {
   const std::vector<SurfacePoint> sites =
       remesh::sample_sites(disk, 150, {.strategy = remesh::SamplingStrategy::poisson});
   const voronoi::VoronoiDiagram geodesic = voronoi::compute_voronoi(disk, sites);
-  const remesh::detail::RestrictedCells restricted =
-      remesh::detail::restricted_voronoi(disk, *geodesic.field.topology, sites, {});
+  const remesh::detail::RestrictedCells restricted = remesh::detail::restricted_voronoi(
+      remesh::detail::prepare_restricted_surface(disk, *geodesic.field.topology, {}), sites);
   const double area = surface_area(disk);
   for (std::size_t s = 0; s < sites.size(); ++s) {
     SCOPED_TRACE(s);
@@ -67,8 +67,8 @@ TEST(RestrictedVoronoi, CellsTileAClosedSurface) {
   const TriangleMesh sphere = test::icosphere(4);
   const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 300);
   const voronoi::GeodesicField topology = voronoi::compute_geodesic_field(sphere, sites);
-  const remesh::detail::RestrictedCells cells =
-      remesh::detail::restricted_voronoi(sphere, *topology.topology, sites, {});
+  const remesh::detail::RestrictedCells cells = remesh::detail::restricted_voronoi(
+      remesh::detail::prepare_restricted_surface(sphere, *topology.topology, {}), sites);
   double total = 0;
   for (std::size_t s = 0; s < sites.size(); ++s) {
     EXPECT_GT(cells.area[s], 0);
@@ -77,8 +77,8 @@ TEST(RestrictedVoronoi, CellsTileAClosedSurface) {
   EXPECT_NEAR(total, surface_area(sphere), 1e-12 * surface_area(sphere));
   // A density doubles the mass where it is 2, the moments and energies with it.
   const std::vector<double> two(static_cast<std::size_t>(sphere.num_vertices()), 2.0);
-  const remesh::detail::RestrictedCells weighted =
-      remesh::detail::restricted_voronoi(sphere, *topology.topology, sites, two);
+  const remesh::detail::RestrictedCells weighted = remesh::detail::restricted_voronoi(
+      remesh::detail::prepare_restricted_surface(sphere, *topology.topology, two), sites);
   for (std::size_t s = 0; s < sites.size(); ++s) {
     EXPECT_DOUBLE_EQ(weighted.area[s], cells.area[s]);
     EXPECT_NEAR(weighted.mass[s], 2 * cells.mass[s], 1e-12 * cells.mass[s]);
@@ -90,11 +90,11 @@ TEST(RestrictedVoronoi, OfTwoSitesAtOnePlaceTheFirstTakesTheCell) {
   const TriangleMesh sphere = test::icosphere(3);
   std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 50);
   const voronoi::GeodesicField topology = voronoi::compute_geodesic_field(sphere, sites);
-  const remesh::detail::RestrictedCells single =
-      remesh::detail::restricted_voronoi(sphere, *topology.topology, sites, {});
+  const remesh::detail::RestrictedCells single = remesh::detail::restricted_voronoi(
+      remesh::detail::prepare_restricted_surface(sphere, *topology.topology, {}), sites);
   sites.push_back(sites[7]);
-  const remesh::detail::RestrictedCells doubled =
-      remesh::detail::restricted_voronoi(sphere, *topology.topology, sites, {});
+  const remesh::detail::RestrictedCells doubled = remesh::detail::restricted_voronoi(
+      remesh::detail::prepare_restricted_surface(sphere, *topology.topology, {}), sites);
   EXPECT_EQ(doubled.area.back(), 0.0);
   EXPECT_EQ(doubled.mass.back(), 0.0);
   EXPECT_NEAR(doubled.area[7], single.area[7], 1e-12);
@@ -107,11 +107,13 @@ TEST(RestrictedVoronoi, OneOrTwoThreadsGiveTheSameCells) {
   remesh::detail::RestrictedCells one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = remesh::detail::restricted_voronoi(mesh, *topology.topology, sites, {});
+    one = remesh::detail::restricted_voronoi(remesh::detail::prepare_restricted_surface(mesh, *topology.topology, {}),
+                                             sites);
   }
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = remesh::detail::restricted_voronoi(mesh, *topology.topology, sites, {});
+    two = remesh::detail::restricted_voronoi(remesh::detail::prepare_restricted_surface(mesh, *topology.topology, {}),
+                                             sites);
   }
   EXPECT_EQ(one.area, two.area);
   EXPECT_EQ(one.moment, two.moment);
