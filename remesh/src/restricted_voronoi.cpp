@@ -68,14 +68,31 @@ using Corner = Eigen::Vector4d;
 /// of the face (-1 - k).
 using SideLabel = Index;
 
+/// A convex polygon being clipped: its corners, and the labels of the sides
+/// that end at them, in buffers sized once for the sites searched (a clip
+/// adds at most one corner), so that clipping a face allocates nothing.
+struct ClipPolygon {
+  std::vector<Corner> corner;
+  std::vector<SideLabel> label;
+  std::size_t size = 0;
+  void reserve(std::size_t capacity) {
+    if (corner.size() >= capacity) return;
+    corner.resize(capacity);
+    label.resize(capacity);
+  }
+  void add(const Corner& p, SideLabel side) {
+    corner[size] = p;
+    label[size++] = side;
+  }
+};
+
 struct Scratch {
   FaceSet reached;
   std::vector<Index> queue;
   std::vector<std::pair<double, Index>> near;  // the sites near the current one (squared distance, site), nearest first
   std::vector<Eigen::Vector4d> planes;         // and their bisectors: normal . (x - site) <= w
-  std::vector<Corner> polygon, clipped;
-  std::vector<double> side;
-  std::vector<SideLabel> label, clipped_label;
+  ClipPolygon polygon, clipped;
+  std::vector<double> side;  // per corner of the polygon
   // The current cell's boundary segments: the other site, the density at
   // the midpoint, the ends.
   struct Segment {
@@ -157,6 +174,10 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
         const Eigen::Vector3d normal = position[other] - site;
         scratch.planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.squaredNorm() / 2);
       }
+      const std::size_t most_corners = 3 + found.size();
+      scratch.polygon.reserve(most_corners);
+      scratch.clipped.reserve(most_corners);
+      if (scratch.side.size() < most_corners) scratch.side.resize(most_corners);
     };
     search();
     // Of two sites at one place, the first takes the cell.
@@ -172,19 +193,21 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
     scratch.reached.clear();
     for (const Index f : queue) scratch.reached.insert(f);
     scratch.segments.clear();
-    auto& polygon = scratch.polygon;
-    auto& label = scratch.label;
+    ClipPolygon& polygon = scratch.polygon;
     auto reach_squared = [&] {  // of the polygon from the site
       double r = 0;
-      for (const Corner& p : polygon) r = std::max(r, (p.head<3>() - site).squaredNorm());
+      for (std::size_t k = 0; k < polygon.size; ++k)
+        r = std::max(r, (polygon.corner[k].head<3>() - site).squaredNorm());
       return r;
     };
     // Clips the face to the cell; false when a site beyond the search might cut it.
     auto clip = [&](Index face) {
       // label[k] names the side from polygon[k - 1] to polygon[k]; face side
       // k joins corners k and k + 1.
-      polygon.assign({corner(face, 0), corner(face, 1), corner(face, 2)});
-      label.assign({-3, -1, -2});
+      polygon.size = 0;
+      polygon.add(corner(face, 0), -3);
+      polygon.add(corner(face, 1), -1);
+      polygon.add(corner(face, 2), -2);
       double reach2 = reach_squared();
       for (std::size_t n = 0; n < scratch.near.size(); ++n) {
         // Nearest first: once a bisector lies beyond the polygon's reach
@@ -192,34 +215,30 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
         const Eigen::Vector4d& plane = scratch.planes[n];
         if (2 * plane[3] >= 4 * reach2) return true;
         // Each corner's signed offset from the plane, positive beyond it.
-        auto& side = scratch.side;
-        side.clear();
-        for (const Corner& p : polygon) side.push_back(plane.head<3>().dot(p.head<3>() - site) - plane[3]);
-        if (std::none_of(side.begin(), side.end(), [](double offset) { return offset > 0; })) continue;
-        auto& clipped = scratch.clipped;
-        auto& clipped_label = scratch.clipped_label;
-        clipped.clear();
-        clipped_label.clear();
-        for (std::size_t k = 0, previous = polygon.size() - 1; k < polygon.size(); previous = k++) {
-          const Corner& from = polygon[previous];
-          const Corner& to = polygon[k];
+        double* side = scratch.side.data();
+        bool cut = false;
+        for (std::size_t k = 0; k < polygon.size; ++k) {
+          side[k] = plane.head<3>().dot(polygon.corner[k].head<3>() - site) - plane[3];
+          cut = cut || side[k] > 0;
+        }
+        if (!cut) continue;
+        ClipPolygon& clipped = scratch.clipped;
+        clipped.size = 0;
+        for (std::size_t k = 0, previous = polygon.size - 1; k < polygon.size; previous = k++) {
+          const Corner& from = polygon.corner[previous];
+          const Corner& to = polygon.corner[k];
           const double a = side[previous], b = side[k];
           if (a <= 0 && b <= 0) {
-            clipped.push_back(to);
-            clipped_label.push_back(label[k]);
+            clipped.add(to, polygon.label[k]);
           } else if (a <= 0) {
-            clipped.push_back(from + (a / (a - b)) * (to - from));
-            clipped_label.push_back(label[k]);
+            clipped.add(from + (a / (a - b)) * (to - from), polygon.label[k]);
           } else if (b <= 0) {
-            clipped.push_back(from + (a / (a - b)) * (to - from));
-            clipped_label.push_back(scratch.near[n].second);
-            clipped.push_back(to);
-            clipped_label.push_back(label[k]);
+            clipped.add(from + (a / (a - b)) * (to - from), scratch.near[n].second);
+            clipped.add(to, polygon.label[k]);
           }
         }
         std::swap(polygon, clipped);
-        std::swap(label, clipped_label);
-        if (polygon.size() < 3) return true;
+        if (polygon.size < 3) return true;
         reach2 = reach_squared();
       }
       return 4 * reach2 <= searched * searched;
@@ -233,12 +252,12 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
         searched = 2 * std::sqrt(reach_squared()) * (1 + 1e-9);
         search();
       }
-      if (polygon.size() < 3) continue;
+      if (polygon.size < 3) continue;
       // The three-edge-midpoint rule on the fan from polygon[0].
-      for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
-        const Corner& a = polygon[0];
-        const Corner& b = polygon[k];
-        const Corner& c = polygon[k + 1];
+      for (std::size_t k = 1; k + 1 < polygon.size; ++k) {
+        const Corner& a = polygon.corner[0];
+        const Corner& b = polygon.corner[k];
+        const Corner& c = polygon.corner[k + 1];
         const double piece = (b.head<3>() - a.head<3>()).cross(c.head<3>() - a.head<3>()).norm() / 2;
         area += piece;
         for (const Corner& m : {Corner((a + b) / 2), Corner((b + c) / 2), Corner((c + a) / 2)}) {
@@ -249,16 +268,17 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
           energy += weight * offset.squaredNorm();
         }
       }
-      for (std::size_t k = 0, previous = polygon.size() - 1; k < polygon.size(); previous = k++) {
-        const Corner& from = polygon[previous];
-        const Corner& to = polygon[k];
+      for (std::size_t k = 0, previous = polygon.size - 1; k < polygon.size; previous = k++) {
+        const Corner& from = polygon.corner[previous];
+        const Corner& to = polygon.corner[k];
+        const SideLabel label = polygon.label[k];
         if (from.head<3>() == to.head<3>()) continue;
-        if (label[k] >= 0) {
-          if (label[k] > s) scratch.segments.push_back({label[k], (from[3] + to[3]) / 2, from.head<3>(), to.head<3>()});
+        if (label >= 0) {
+          if (label > s) scratch.segments.push_back({label, (from[3] + to[3]) / 2, from.head<3>(), to.head<3>()});
           continue;
         }
         // A side on the face's side -1 - label: the cell goes on across it.
-        const Index edge = topology.face_edges[face][-1 - label[k]];
+        const Index edge = topology.face_edges[face][-1 - label];
         const Index across =
             topology.edge_faces[edge][0] == face ? topology.edge_faces[edge][1] : topology.edge_faces[edge][0];
         if (across >= 0 && scratch.reached.insert(across)) queue.push_back(across);
