@@ -30,6 +30,8 @@ struct RemeshResult {
   std::int64_t sites_added_for_topology = 0;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
+  py::object error_bound_met;
+  py::object error_rounds;
   py::object timings;
 };
 
@@ -65,7 +67,8 @@ std::vector<std::array<Index, 2>> edges_from_object(const py::object& object) {
 RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
                     const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
                     const py::object& colors, double sharp_angle, const py::object& feature_edges,
-                    const py::object& progress, bool statistics) {
+                    const py::object& progress, bool statistics, const py::object& max_error,
+                    const py::object& max_sites) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
   if (sizings > 1) {
     throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
@@ -103,6 +106,17 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   options.remesh.sharp_angle = sharp_angle;
   if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
+  if (!max_error.is_none()) {
+    options.max_error_pct = max_error.cast<double>();
+    if (!(options.max_error_pct > 0 && options.max_error_pct <= 100)) {
+      throw py::value_error("max_error must be in (0, 100] (% of the bounding-box diagonal), got " +
+                            std::string(py::repr(max_error)));
+    }
+  }
+  if (!max_sites.is_none()) {
+    if (max_error.is_none()) throw py::value_error("max_sites needs max_error");
+    options.max_sites = positive_count(max_sites, "max_sites");
+  }
   ProgressBridge bridge(progress);
   options.progress = [&bridge](pipeline::Stage stage, double fraction) {
     return bridge(pipeline::stage_name(stage), fraction);
@@ -124,9 +138,19 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.sites_added_for_topology = run.sites_added_for_topology;
   result.sites_added = run.remesh.sites_added;
   result.sites_left_out = run.remesh.sites_left_out;
+  result.error_bound_met = py::none();
+  result.error_rounds = py::list();
+  if (options.max_error_pct > 0) {
+    result.error_bound_met = py::bool_(run.error_bound_met);
+    py::list rounds;
+    for (const pipeline::ErrorRound& round : run.error_rounds)
+      rounds.append(py::make_tuple(round.sites, round.hausdorff_pct));
+    result.error_rounds = std::move(rounds);
+  }
   py::dict timings;
   for (const pipeline::StageTiming& timing : run.timings) {
-    timings[py::str(std::string(pipeline::stage_name(timing.stage)))] = timing.seconds;
+    const py::str stage(std::string(pipeline::stage_name(timing.stage)));
+    timings[stage] = (timings.contains(stage) ? timings[stage].cast<double>() : 0.0) + timing.seconds;
   }
   result.timings = std::move(timings);
   return result;
@@ -152,7 +176,13 @@ void add_remesh(py::module_& module) {
                     "sites the repair added where the dual was not a valid remesh")
       .def_readonly("sites_left_out", &RemeshResult::sites_left_out,
                     "given sites the repair left out (each cut a corner off a neighbour's cell)")
-      .def_readonly("timings", &RemeshResult::timings, "dict: seconds per stage (sample, relax, dual, statistics)")
+      .def_readonly("error_bound_met", &RemeshResult::error_bound_met,
+                    "with max_error: whether the remesh returned keeps within it (else it is the closest one "
+                    "made); None without max_error")
+      .def_readonly("error_rounds", &RemeshResult::error_rounds,
+                    "with max_error: (sites, hausdorff_pct) of every remesh made, in order; empty without it")
+      .def_readonly("timings", &RemeshResult::timings,
+                    "dict: seconds per stage (sample, relax, dual, statistics), summed over the remeshes made")
       .def("__repr__", [](const RemeshResult& result) {
         return "<geodual.RemeshResult: " + std::to_string(py::len(result.vertices)) + " vertices, " +
                std::to_string(py::len(result.faces)) + " faces>";
@@ -162,6 +192,7 @@ void add_remesh(py::module_& module) {
              py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
              py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = 0.0,
              py::arg("feature_edges") = py::none(), py::arg("progress") = py::none(), py::arg("statistics") = true,
+             py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
@@ -195,6 +226,12 @@ Ctrl-C raises KeyboardInterrupt.
 statistics: compare the remesh with the input (Hausdorff and RMS distance
 with 10^6 samples per side); result.stats then has the keys of
 `geodual stats --json`.
+max_error: None or a bound on the Hausdorff distance in % of the bounding-box
+diagonal (result.stats["hausdorff_pct"]): the remesh is made again with more
+sites where it strays furthest until it holds, or until max_sites (default 8
+times the first count) or 8 remeshes; then the closest remesh is returned
+with result.error_bound_met False, as `geodual remesh --max-error` writes it
+and exits with 4. Needs statistics=True and a site count, not given sites.
 
 Returns a RemeshResult: .vertices, .faces, .colors, .stats, .timings, and the
 site counts above. Raises ValueError/TypeError for bad arguments,

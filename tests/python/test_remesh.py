@@ -134,6 +134,42 @@ def test_feature_edges_are_kept_as_edges_of_the_remesh():
         geodual.remesh(V, F, sites=120, feature_edges=[0, 1, 2])
 
 
+def test_max_error_remeshes_until_the_bound_holds_or_returns_the_closest(fertility):
+    V, F = fertility
+    met = geodual.remesh(V, F, sites=200, max_error=2.0)
+    assert met.error_bound_met is True
+    assert met.stats["hausdorff_pct"] <= 2.0
+    counts = [sites for sites, _ in met.error_rounds]
+    distances = [distance for _, distance in met.error_rounds]
+    # 200 sites stray beyond the bound on fertility; each remesh after has
+    # more sites, and the one returned is the last, the first within it.
+    assert len(counts) >= 2 and counts[0] == 200 and distances[0] > 2.0
+    assert counts == sorted(set(counts))
+    assert distances[-1] == met.stats["hausdorff_pct"] and all(d > 2.0 for d in distances[:-1])
+    assert set(met.timings) == {"sample", "relax", "dual", "statistics"}
+
+    # Stopped by max_sites: the closest remesh made, and the bound reported missed.
+    missed = geodual.remesh(V, F, sites=200, max_error=0.5, max_sites=250)
+    assert missed.error_bound_met is False
+    assert missed.stats["hausdorff_pct"] > 0.5
+    assert missed.stats["hausdorff_pct"] == min(d for _, d in missed.error_rounds)
+    assert max(sites for sites, _ in missed.error_rounds) <= 250
+
+    plain = geodual.remesh(V, F, sites=200, statistics=False)
+    assert plain.error_bound_met is None and plain.error_rounds == []
+
+    with pytest.raises(ValueError, match=r"max_error must be in \(0, 100\]"):
+        geodual.remesh(V, F, sites=200, max_error=0.0)
+    with pytest.raises(ValueError, match="max_sites needs max_error"):
+        geodual.remesh(V, F, sites=200, max_sites=300)
+    with pytest.raises(ValueError, match="max_sites must be at least 1"):
+        geodual.remesh(V, F, sites=200, max_error=1.0, max_sites=0)
+    with pytest.raises(geodual.UsageError, match="statistics"):
+        geodual.remesh(V, F, sites=200, max_error=1.0, statistics=False)
+    with pytest.raises(geodual.UsageError, match="sites"):
+        geodual.remesh(V, F, sites=[0, 10, 20, 30], max_error=1.0)
+
+
 def test_remesh_argument_errors(woody):
     V, F = woody
     with pytest.raises(ValueError, match="at most one of sites, edge_length and faces"):
