@@ -87,6 +87,92 @@ struct BlockRows {
   }
 };
 
+/// One boundary's terms of the Hessian in its sites' frames (cvt_newton.hpp):
+/// the blocks at (i, i), (j, j) and (i, j); unused where it adds nothing.
+struct BoundaryBlocks {
+  bool used = false;
+  Eigen::Matrix2d ii, jj, ij;
+};
+
+/// Every boundary's blocks, on all threads. `unknown`: per site, its unknown's
+/// index, or -1 for a site that stays.
+std::vector<BoundaryBlocks> boundary_blocks(const CvtCells& cells, std::span<const CvtBoundary> boundaries,
+                                            std::span<const Index> unknown) {
+  const auto& frame = cells.frame;
+  const auto& position = cells.position;
+  std::vector<BoundaryBlocks> blocks(boundaries.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boundaries.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t b = range.begin(); b != range.end(); ++b) {
+                        const CvtBoundary& boundary = boundaries[b];
+                        const Index i = boundary.i, j = boundary.j;
+                        if (i < 0 || j < 0 || i == j || (unknown[i] < 0 && unknown[j] < 0)) continue;
+                        const double separation = (position[i] - position[j]).norm();
+                        if (!(separation > 0)) continue;
+                        const double weight = 2 * boundary.density / separation;
+                        const SecondMoments moments = second_moments(boundary, position[i], position[j]);
+                        blocks[b] = {true, -weight * frame[i].transpose() * moments.aa * frame[i],
+                                     -weight * frame[j].transpose() * moments.bb * frame[j],
+                                     weight * frame[i].transpose() * moments.ab * frame[j]};
+                      }
+                    });
+  return blocks;
+}
+
+/// H over the unknowns: Lloyd's term lloyd_scale[k] I on the diagonal plus
+/// the boundaries' blocks, each entry summed in a fixed order (Lloyd's term,
+/// then the boundaries in their order), so that it does not depend on the
+/// threads.
+BlockRows assemble_hessian(std::span<const Index> unknown, Index unknowns, const Eigen::VectorXd& lloyd_scale,
+                           std::span<const CvtBoundary> boundaries, const std::vector<BoundaryBlocks>& blocks) {
+  // The pattern: each unknown with itself and with the unknowns it shares a
+  // boundary with, in increasing order, once however many boundaries they share.
+  auto coupled = [&](std::size_t b) {
+    return blocks[b].used && unknown[boundaries[b].i] >= 0 && unknown[boundaries[b].j] >= 0;
+  };
+  BlockRows hessian;
+  hessian.begin.assign(static_cast<std::size_t>(unknowns) + 1, 0);
+  for (Index k = 0; k < unknowns; ++k) hessian.begin[k + 1] = 1;
+  for (std::size_t b = 0; b < boundaries.size(); ++b) {
+    if (!coupled(b)) continue;
+    ++hessian.begin[unknown[boundaries[b].i] + 1];
+    ++hessian.begin[unknown[boundaries[b].j] + 1];
+  }
+  for (Index k = 0; k < unknowns; ++k) hessian.begin[k + 1] += hessian.begin[k];
+  hessian.column.resize(static_cast<std::size_t>(hessian.begin[unknowns]));
+  std::vector<Index> fill(hessian.begin.begin(), hessian.begin.end() - 1);
+  for (Index k = 0; k < unknowns; ++k) hessian.column[fill[k]++] = k;
+  for (std::size_t b = 0; b < boundaries.size(); ++b) {
+    if (!coupled(b)) continue;
+    const Index ki = unknown[boundaries[b].i], kj = unknown[boundaries[b].j];
+    hessian.column[fill[ki]++] = kj;
+    hessian.column[fill[kj]++] = ki;
+  }
+  Index kept = 0;
+  for (Index k = 0; k < unknowns; ++k) {
+    const auto first = hessian.column.begin() + hessian.begin[k], last = hessian.column.begin() + hessian.begin[k + 1];
+    std::sort(first, last);
+    hessian.begin[k] = kept;
+    for (auto it = first, end = std::unique(first, last); it != end; ++it) hessian.column[kept++] = *it;
+  }
+  hessian.begin[unknowns] = kept;
+  hessian.column.resize(static_cast<std::size_t>(kept));
+
+  hessian.block.assign(static_cast<std::size_t>(kept), Eigen::Matrix2d::Zero());
+  for (Index k = 0; k < unknowns; ++k) hessian.at(k, k) += lloyd_scale[k] * Eigen::Matrix2d::Identity();
+  for (std::size_t b = 0; b < boundaries.size(); ++b) {
+    if (!blocks[b].used) continue;
+    const Index ki = unknown[boundaries[b].i], kj = unknown[boundaries[b].j];
+    if (ki >= 0) hessian.at(ki, ki) += blocks[b].ii;
+    if (kj >= 0) hessian.at(kj, kj) += blocks[b].jj;
+    if (ki >= 0 && kj >= 0) {
+      hessian.at(ki, kj) += blocks[b].ij;
+      hessian.at(kj, ki) += blocks[b].ij.transpose();
+    }
+  }
+  return hessian;
+}
+
 /// Solves (H + damping D) x = b, D = diag(scale) repeated per coordinate pair,
 /// by conjugate gradients preconditioned with D (whose first iterate is
 /// Lloyd's direction), stopping at a direction of negative curvature
@@ -169,7 +255,6 @@ std::vector<Eigen::Vector3d> cvt_newton_steps(const CvtCells& cells, std::span<c
   if (unknowns == 0) return steps;
 
   const auto& frame = cells.frame;
-  const auto& position = cells.position;
   Eigen::VectorXd rhs(2 * unknowns);
   Eigen::VectorXd lloyd_scale(unknowns);  // 2 A_i (the weighted mass): Lloyd's Hessian
   for (std::size_t s = 0; s < site_count; ++s) {
@@ -178,82 +263,8 @@ std::vector<Eigen::Vector3d> cvt_newton_steps(const CvtCells& cells, std::span<c
     lloyd_scale[k] = 2 * cells.mass[s];
     rhs.segment<2>(2 * k) = 2 * frame[s].transpose() * cells.moment[s];  // -g
   }
-  // Each boundary's blocks, on all threads.
-  struct BoundaryBlocks {
-    bool used = false;
-    Eigen::Matrix2d ii, jj, ij;
-  };
-  std::vector<BoundaryBlocks> blocks(boundaries.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boundaries.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t b = range.begin(); b != range.end(); ++b) {
-                        const CvtBoundary& boundary = boundaries[b];
-                        const Index i = boundary.i, j = boundary.j;
-                        if (i < 0 || j < 0 || i == j || (unknown[i] < 0 && unknown[j] < 0)) continue;
-                        const double separation = (position[i] - position[j]).norm();
-                        if (!(separation > 0)) continue;
-                        const double weight = 2 * boundary.density / separation;
-                        const SecondMoments moments = second_moments(boundary, position[i], position[j]);
-                        blocks[b] = {true, -weight * frame[i].transpose() * moments.aa * frame[i],
-                                     -weight * frame[j].transpose() * moments.bb * frame[j],
-                                     weight * frame[i].transpose() * moments.ab * frame[j]};
-                      }
-                    });
-  // The pattern: each unknown site with itself and with the unknown sites it
-  // shares a boundary with.
-  BlockRows hessian;
-  hessian.begin.assign(static_cast<std::size_t>(unknowns) + 1, 0);
-  auto coupled = [&](std::size_t b) {
-    return blocks[b].used && unknown[boundaries[b].i] >= 0 && unknown[boundaries[b].j] >= 0;
-  };
-  for (Index k = 0; k < unknowns; ++k) hessian.begin[k + 1] = 1;
-  for (std::size_t b = 0; b < boundaries.size(); ++b) {
-    if (!coupled(b)) continue;
-    ++hessian.begin[unknown[boundaries[b].i] + 1];
-    ++hessian.begin[unknown[boundaries[b].j] + 1];
-  }
-  for (Index k = 0; k < unknowns; ++k) hessian.begin[k + 1] += hessian.begin[k];
-  hessian.column.resize(static_cast<std::size_t>(hessian.begin[unknowns]));
-  {
-    std::vector<Index> fill(hessian.begin.begin(), hessian.begin.end() - 1);
-    for (Index k = 0; k < unknowns; ++k) hessian.column[fill[k]++] = k;
-    for (std::size_t b = 0; b < boundaries.size(); ++b) {
-      if (!coupled(b)) continue;
-      const Index ki = unknown[boundaries[b].i], kj = unknown[boundaries[b].j];
-      hessian.column[fill[ki]++] = kj;
-      hessian.column[fill[kj]++] = ki;
-    }
-  }
-  // Sorted, and a pair of sites met along several boundaries once.
-  Index kept = 0;
-  for (Index k = 0; k < unknowns; ++k) {
-    const auto first = hessian.column.begin() + hessian.begin[k], last = hessian.column.begin() + hessian.begin[k + 1];
-    std::sort(first, last);
-    const Index row_begin = kept;
-    for (auto it = first, end = std::unique(first, last); it != end; ++it) hessian.column[kept++] = *it;
-    hessian.begin[k] = row_begin;
-  }
-  hessian.begin[unknowns] = kept;
-  hessian.column.resize(static_cast<std::size_t>(kept));
-  // The values, each entry summed in a fixed order (Lloyd's term first,
-  // then the boundaries in their order), so that they do not depend on the
-  // threads.
-  hessian.block.assign(static_cast<std::size_t>(kept), Eigen::Matrix2d::Zero());
-  for (std::size_t s = 0; s < site_count; ++s) {
-    const Index k = unknown[s];
-    if (k >= 0) hessian.at(k, k) += lloyd_scale[k] * Eigen::Matrix2d::Identity();
-  }
-  for (std::size_t b = 0; b < boundaries.size(); ++b) {
-    if (!blocks[b].used) continue;
-    const Index ki = unknown[boundaries[b].i], kj = unknown[boundaries[b].j];
-    if (ki >= 0) hessian.at(ki, ki) += blocks[b].ii;
-    if (kj >= 0) hessian.at(kj, kj) += blocks[b].jj;
-    if (ki >= 0 && kj >= 0) {
-      hessian.at(ki, kj) += blocks[b].ij;
-      hessian.at(kj, ki) += blocks[b].ij.transpose();
-    }
-  }
-
+  const std::vector<BoundaryBlocks> blocks = boundary_blocks(cells, boundaries, unknown);
+  const BlockRows hessian = assemble_hessian(unknown, unknowns, lloyd_scale, boundaries, blocks);
   const Eigen::VectorXd solution = truncated_newton(hessian, lloyd_scale, rhs, damping);
   for (std::size_t s = 0; s < site_count; ++s) {
     const Index k = unknown[s];
