@@ -137,8 +137,17 @@ std::vector<std::array<Index, 2>> edges_on_cut(const remesh::ManifoldCut& cut, I
 
 /// The stages after `load` on result.input, filling in `result`; Lloyd's
 /// density is multiplied by `input_density` (per input vertex; empty: 1).
+/// A remesh that starts from the sites of the last (on the same cut surface),
+/// with `added` more where the last strayed furthest from the input
+/// (remesh_within_error).
+struct SiteRefinement {
+  std::vector<SurfacePoint> sites;
+  std::vector<double> deviation;  ///< per input vertex
+  std::int64_t added = 0;
+};
+
 void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
-                std::span<const double> input_density) {
+                std::span<const double> input_density, const SiteRefinement* refinement) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -169,6 +178,18 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   if (options.given_sites) {
     result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
     remesh::require_a_site_on_every_piece(result.surface.mesh, result.initial_sites);
+  } else if (refinement) {
+    const TriangleMesh& manifold = result.surface.mesh;
+    auto on_surface = [&](std::span<const double> field) {  // per input vertex -> per surface vertex
+      std::vector<double> values;
+      if (field.empty()) return values;
+      values.resize(static_cast<std::size_t>(manifold.num_vertices()));
+      for (std::size_t v = 0; v < values.size(); ++v) values[v] = field[result.surface.original_vertex[v]];
+      return values;
+    };
+    result.initial_sites = remesh::add_sites_at_deviations(manifold, refinement->sites,
+                                                           on_surface(refinement->deviation), on_surface(input_density),
+                                                           remesh::uniform_spacing(manifold, sites), refinement->added);
   } else {
     // Sharp features: cut open and lined with sites, the rest sampled around them.
     const TriangleMesh& manifold = result.surface.mesh;
@@ -328,9 +349,9 @@ namespace {
 /// One remesh of result.input (run_stages); where the features cannot be
 /// kept, the remesh without them, and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
-                 std::span<const double> input_density) {
+                 std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   try {
-    run_stages(result, options, input_density);
+    run_stages(result, options, input_density, refinement);
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
@@ -344,7 +365,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     RemeshPipelineOptions without = options;
     without.remesh.sharp_angle = 0;
     without.remesh.feature_edges.clear();
-    run_stages(result, without, input_density);
+    run_stages(result, without, input_density, nullptr);
   }
 }
 
@@ -361,8 +382,13 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
   std::vector<StageTiming> timings;
   std::optional<RemeshPipelineResult> best;  // the closest remesh so far (the input stays with `result`)
   std::int64_t max_sites = options.max_sites;
+  // Without features each remesh starts from the last one's sites, so that a
+  // narrow detail one remesh has a site on keeps it; with them (sites on the
+  // features' cut, which the fallback may drop) each samples afresh.
+  const bool reuse_sites = options.remesh.sharp_angle == 0 && options.remesh.feature_edges.empty();
+  std::optional<SiteRefinement> refinement;
   for (;;) {
-    remesh_once(result, round, density);
+    remesh_once(result, round, density, refinement ? &*refinement : nullptr);
     const std::int64_t sites = result.sites_for_sizing > 0 ? result.sites_for_sizing : round.sites;
     if (max_sites == 0) max_sites = 8 * sites;
     const double error_pct = result.statistics->hausdorff_pct;
@@ -371,6 +397,7 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
     const bool met = error_pct <= options.max_error_pct;
     const bool last = met || static_cast<int>(rounds.size()) == options.max_error_rounds || sites >= max_sites;
     std::vector<double> deviation = std::move(result.statistics->deviation_at_vertices);
+    std::vector<SurfacePoint> last_sites = result.remesh.sites;
     // The next round fills in a fresh result, which takes the input over.
     RemeshPipelineResult next;
     next.input = std::move(result.input);
@@ -381,7 +408,9 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
     const TriangleMesh& mesh = result.input.mesh;
     std::vector<double> refined = remesh::refine_density(
         mesh, density, deviation, {.max_error = bound, .spacing = remesh::uniform_spacing(mesh, sites)});
-    round.sites = std::min(max_sites, remesh::sites_for_density(mesh, sites, density, refined));
+    const std::int64_t next_sites = std::min(max_sites, remesh::sites_for_density(mesh, sites, density, refined));
+    if (reuse_sites) refinement = SiteRefinement{std::move(last_sites), std::move(deviation), next_sites - sites};
+    round.sites = next_sites;
     round.edge_length = 0;
     round.faces = 0;
     density = std::move(refined);

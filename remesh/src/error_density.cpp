@@ -2,10 +2,12 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
+#include "sampling_grid.hpp"
 #include "vertex_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace geodual::remesh {
@@ -77,6 +79,64 @@ std::int64_t sites_for_density(const TriangleMesh& mesh, std::int64_t sites, std
   if (!(before > 0)) return sites;
   const auto scaled = static_cast<std::int64_t>(std::llround(static_cast<double>(sites) * after / before));
   return larger ? std::max(scaled, sites + 1) : scaled;
+}
+
+std::vector<SurfacePoint> add_sites_at_deviations(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                                  std::span<const double> deviation, std::span<const double> density,
+                                                  double spacing, std::int64_t count) {
+  require_per_vertex(mesh, deviation, "deviation", false);
+  require_per_vertex(mesh, density, "density", true);
+  if (!(spacing > 0 && std::isfinite(spacing))) {
+    throw UsageError("error density: spacing must be a finite number > 0, got " + std::to_string(spacing));
+  }
+  if (count < 0) throw UsageError("error density: count must be >= 0, got " + std::to_string(count));
+  std::vector<SurfacePoint> result(sites.begin(), sites.end());
+  std::vector<Index> candidates;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    if (deviation[v] > 0) candidates.push_back(v);
+  }
+  std::stable_sort(candidates.begin(), candidates.end(), [&](Index a, Index b) { return deviation[a] > deviation[b]; });
+  auto clearance = [&](Index v) { return spacing / 2 / std::pow(value_at(density, v), 0.25); };
+  double widest = 0;
+  for (const Index v : candidates) widest = std::max(widest, clearance(v));
+  // The sites so far in a grid; those added go to `added`, in a grid of
+  // their own cells as wide as the widest clearance.
+  std::vector<Eigen::Vector3d> positions(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) positions[s] = sites[s].position(mesh);
+  const detail::PointGrid grid(positions, std::max(widest, spacing));
+  std::vector<Eigen::Vector3d> added;
+  std::vector<std::pair<std::array<std::int64_t, 3>, Index>> added_cells;  // sorted by cell
+  auto cell_of = [&](const Eigen::Vector3d& p) {
+    std::array<std::int64_t, 3> cell;
+    for (int a = 0; a < 3; ++a)
+      cell[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor(p[a] / widest));
+    return cell;
+  };
+  for (const Index v : candidates) {
+    if (static_cast<std::int64_t>(added.size()) >= count) break;
+    const Eigen::Vector3d p = mesh.vertices.row(v).transpose();
+    const double r = clearance(v);
+    bool near = false;
+    grid.for_each_within(p, r, [&](Index, double) { near = true; });
+    const std::array<std::int64_t, 3> cell = cell_of(p);
+    for (std::int64_t dx = -1; dx <= 1 && !near; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1 && !near; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1 && !near; ++dz) {
+          const std::array<std::int64_t, 3> key{cell[0] + dx, cell[1] + dy, cell[2] + dz};
+          auto it = std::lower_bound(added_cells.begin(), added_cells.end(), std::pair(key, Index{-1}));
+          for (; it != added_cells.end() && it->first == key && !near; ++it) {
+            near = (added[static_cast<std::size_t>(it->second)] - p).norm() <= r;
+          }
+        }
+      }
+    }
+    if (near) continue;
+    const std::pair entry(cell, static_cast<Index>(added.size()));
+    added_cells.insert(std::upper_bound(added_cells.begin(), added_cells.end(), entry), entry);
+    added.push_back(p);
+    result.push_back(SurfacePoint::at_vertex(v));
+  }
+  return result;
 }
 
 }  // namespace geodual::remesh

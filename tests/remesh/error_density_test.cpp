@@ -1,6 +1,7 @@
 // Error-driven sizing: the density grows by (deviation / (aim * bound))^2
 // where a remesh strayed beyond the bound, spread over a spacing, and nowhere
-// else; the site count keeps the spacing where the density is unchanged.
+// else; the site count keeps the spacing where the density is unchanged; the
+// sites it adds go to the largest deviations, half a local spacing apart.
 
 #include "analytic_surfaces.hpp"
 
@@ -80,6 +81,55 @@ TEST(ErrorDensity, SitesKeepTheSpacingWhereTheDensityIsUnchanged) {
   std::vector<double> slightly(n, 1.0);
   slightly[kCentre] = 1.0001;
   EXPECT_EQ(sites_for_density(square, 1000, {}, slightly), 1001);
+}
+
+TEST(ErrorDensity, SitesAreAddedAtTheLargestDeviationsHalfASpacingApart) {
+  const TriangleMesh square = test::unit_square(kGrid);
+  // The deviation falls off from the centre, positive within 0.3 of it.
+  std::vector<double> deviation(static_cast<std::size_t>(square.num_vertices()));
+  for (Index v = 0; v < square.num_vertices(); ++v) deviation[v] = std::max(0.0, 0.3 - distance_to_centre(square, v));
+  const std::vector<SurfacePoint> sites = {SurfacePoint::at_vertex(0), SurfacePoint::in_face(100, 0.2, 0.3, 0.5)};
+  auto position = [&](const SurfacePoint& p) { return p.position(square); };
+  auto check = [&](const std::vector<SurfacePoint>& result, double clearance) {
+    ASSERT_GE(result.size(), sites.size());
+    EXPECT_TRUE(std::equal(sites.begin(), sites.end(), result.begin(), [&](const auto& a, const auto& b) {
+      return a.kind == b.kind && a.element == b.element && a.barycentric == b.barycentric;
+    }));
+    for (std::size_t i = sites.size(); i < result.size(); ++i) {
+      ASSERT_EQ(result[i].kind, SurfacePoint::Kind::vertex);
+      EXPECT_GT(deviation[result[i].element], 0.0);
+      for (std::size_t j = 0; j < i; ++j) EXPECT_GT((position(result[i]) - position(result[j])).norm(), clearance);
+    }
+  };
+
+  // Spacing 0.1: no two sites within 0.05; the centre, the largest, first.
+  const std::vector<SurfacePoint> four = add_sites_at_deviations(square, sites, deviation, {}, 0.1, 4);
+  ASSERT_EQ(four.size(), sites.size() + 4);
+  EXPECT_EQ(four[sites.size()].element, kCentre);
+  check(four, 0.05);
+  // Past the room the positive deviation leaves, fewer are added.
+  const std::vector<SurfacePoint> all = add_sites_at_deviations(square, sites, deviation, {}, 0.1, 1000);
+  EXPECT_LT(all.size(), sites.size() + 1000);
+  EXPECT_GT(all.size(), sites.size() + 20);  // a disk of radius 0.3 holds far more than 20 sites 0.05 apart
+  check(all, 0.05);
+  // A density of 16 halves the clearance: more fit, some closer than 0.05.
+  const std::vector<double> dense(deviation.size(), 16.0);
+  const std::vector<SurfacePoint> denser = add_sites_at_deviations(square, sites, deviation, dense, 0.1, 1000);
+  EXPECT_GT(denser.size(), all.size() + all.size() / 2);
+  check(denser, 0.025);
+  // A site already at the centre keeps it from being added again.
+  std::vector<SurfacePoint> with_centre = sites;
+  with_centre.push_back(SurfacePoint::at_vertex(kCentre));
+  const std::vector<SurfacePoint> around = add_sites_at_deviations(square, with_centre, deviation, {}, 0.1, 3);
+  ASSERT_EQ(around.size(), with_centre.size() + 3);
+  for (std::size_t i = with_centre.size(); i < around.size(); ++i) {
+    EXPECT_GT(distance_to_centre(square, around[i].element), 0.05);
+  }
+  EXPECT_EQ(add_sites_at_deviations(square, sites, deviation, {}, 0.1, 0).size(), sites.size());
+
+  EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, {}, 0.0, 1), UsageError);
+  EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, {}, 0.1, -1), UsageError);
+  EXPECT_THROW(add_sites_at_deviations(square, sites, std::vector<double>(3, 1.0), {}, 0.1, 1), UsageError);
 }
 
 TEST(ErrorDensity, OptionsOutOfRangeAreUsageErrors) {

@@ -74,10 +74,11 @@ struct RemeshPipelineOptions {
   /// An error bound (0: none): the two-sided Hausdorff distance between the
   /// remesh and the input, in % of the input's bounding-box diagonal (the
   /// statistics' hausdorff_pct). Where a remesh strays farther, the next is
-  /// made with more sites there (remesh::refine_density), until the bound
-  /// holds, after at most max_error_rounds remeshes, or once one had
-  /// max_sites sites (0: 8 times the first's). Needs statistics; not with
-  /// given_sites.
+  /// made with more sites there (remesh::refine_density; without features
+  /// it starts from the last one's sites, remesh::add_sites_at_deviations),
+  /// until the bound holds, after at most max_error_rounds remeshes, or once
+  /// one had max_sites sites (0: 8 times the first's). Needs statistics; not
+  /// with given_sites.
   double max_error_pct = 0;
   std::int64_t max_sites = 0;
   int max_error_rounds = 8;
