@@ -22,6 +22,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
+#include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
 #include "geodual/pipeline/version.hpp"
@@ -209,10 +210,11 @@ class RemeshCommand final : public Command {
                        "quality and distance figures");
     command
         .add_option("--color", color_,
-                    "Colour the output and the preview: none (the input's colours, if any) or quality (mean Q per "
-                    "vertex, instead of the input's colours)")
+                    "Colour the output and the preview: none (the input's colours, if any), quality (mean Q per "
+                    "vertex, instead of the input's colours) or features (red at the vertices on the sharp features "
+                    "kept, grey elsewhere; the preview draws the chains)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"none", "quality"}));
+        ->check(CLI::IsMember({"none", "quality", "features"}));
     command
         .add_option("--attributes", attributes_,
                     "The input's vertex attributes (colours, normals, other scalars), interpolated at the remesh's "
@@ -573,12 +575,17 @@ class RemeshCommand final : public Command {
     json["dual_s"] = result.dual_seconds;
     const auto write_start = std::chrono::steady_clock::now();
     VertexAttributes attributes = run.attributes;
+    std::vector<std::vector<Eigen::Vector3d>> lines;
     if (color_ == "quality") {
       attributes.colors = quality_colors(result.mesh);
       attributes.color_type = ValueType::uint8;
+    } else if (color_ == "features") {
+      attributes.colors = pipeline::feature_colors(run);
+      attributes.color_type = ValueType::uint8;
+      lines = pipeline::feature_polylines(run);
     }
     // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
-    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, attributes.colors, still_wanted);
+    if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, attributes.colors, still_wanted, lines);
     write_remesh(output_path, result.mesh, attributes, figures.dump());
     const double write_seconds = seconds_since(write_start);
     bar.finish();

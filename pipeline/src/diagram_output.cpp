@@ -129,10 +129,13 @@ ColorMatrix quality_colors(const TriangleMesh& mesh) {
 }
 
 void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors,
-                        const std::function<bool(double)>& progress) {
+                        const std::function<bool(double)>& progress,
+                        std::span<const std::vector<Eigen::Vector3d>> lines) {
   io::PreviewScene scene;
   scene.mesh = &mesh;
   scene.wireframe = true;
+  scene.polylines.assign(lines.begin(), lines.end());
+  scene.polyline_color = Eigen::Vector3f(0.55f, 0.0f, 0.0f);
   if (colors.rows() == mesh.vertices.rows() && colors.cols() >= 3) {
     // The preview shades in linear light.
     for (Index v = 0; v < colors.rows(); ++v) {

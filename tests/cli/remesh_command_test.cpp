@@ -490,6 +490,23 @@ TEST(RemeshCommand, ReportAndQualityColours) {
   EXPECT_EQ(slurp(picture).substr(1, 3), "PNG");
 }
 
+TEST(RemeshCommand, FeatureColoursPaintTheCreasesKept) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "features.glb", picture = folder.path() / "features.png";
+  const CliRun run = run_cli({"remesh", "tests/data/fandisk.ply", "--sites", "800", "--sharp-angle", "60", "--samples",
+                              "-1", "--color", "features", "--preview", picture.string(), "-o", out.string()});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const io::LoadedMesh written = io::read_mesh(out);
+  const ColorMatrix& colors = written.attributes.colors;
+  ASSERT_EQ(colors.rows(), written.mesh.num_vertices());
+  Index red = 0;
+  for (Index v = 0; v < colors.rows(); ++v) red += colors(v, 0) > 0.8f && colors(v, 1) < 0.2f;
+  // fandisk's creases carry a good share of the vertices, but not most.
+  EXPECT_GT(red, written.mesh.num_vertices() / 20);
+  EXPECT_LT(red, written.mesh.num_vertices() / 2);
+  EXPECT_EQ(slurp(picture).substr(1, 3), "PNG");
+}
+
 }  // namespace
 }  // namespace geodual::cli_test
 

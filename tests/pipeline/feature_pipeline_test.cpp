@@ -7,6 +7,7 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <set>
 
@@ -79,6 +81,55 @@ TEST(FeaturePipeline, BoxKeepsEveryCreaseAndCorner) {
   EXPECT_NEAR(static_cast<double>(remesh.num_vertices()), 400.0 + static_cast<double>(result.remesh.sites_added), 4.0);
   // Sites added anywhere, the weld's twins included, come with a reason.
   EXPECT_TRUE(result.remesh.sites_added == 0 || !result.remesh.repair_problems.empty());
+}
+
+TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {
+  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 17);
+  const TriangleMesh box =
+      bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+  const pipeline::RemeshPipelineResult result = remesh_with_features(box, 300);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  const TriangleMesh& remesh = result.remesh.mesh;
+  const ColorMatrix colors = pipeline::feature_colors(result);
+  ASSERT_EQ(colors.rows(), remesh.num_vertices());
+  // On a crease of the unit box two coordinates are 0 or 1: exactly those
+  // vertices are red, the rest grey.
+  int red = 0;
+  for (Index v = 0; v < remesh.num_vertices(); ++v) {
+    int on_faces = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double x = remesh.vertices(v, axis);
+      on_faces += std::abs(x) < 1e-12 || std::abs(x - 1) < 1e-12;
+    }
+    const bool is_red = colors(v, 0) > 0.8f && colors(v, 1) < 0.2f;
+    EXPECT_EQ(is_red, on_faces >= 2) << remesh.vertices.row(v);
+    if (!is_red) {
+      EXPECT_FLOAT_EQ(colors(v, 1), 0.8f);
+    }
+    red += is_red;
+  }
+  EXPECT_GE(red, 8 + 12 * 3);  // the corners and points along every crease
+  // The lines are the 12 creases, 12 long in all, each along an axis.
+  const std::vector<std::vector<Eigen::Vector3d>> lines = pipeline::feature_polylines(result);
+  EXPECT_EQ(lines.size(), 12u);
+  double length = 0;
+  for (const auto& line : lines) {
+    for (std::size_t k = 1; k < line.size(); ++k) length += (line[k] - line[k - 1]).norm();
+  }
+  EXPECT_NEAR(length, 12.0, 1e-12);
+
+  // Without features: all grey, no lines.
+  pipeline::RemeshPipelineOptions plain;
+  plain.sites = 100;
+  plain.remesh.lloyd.iterations = 1;
+  plain.statistics = false;
+  io::LoadedMesh loaded;
+  loaded.mesh = box;
+  const pipeline::RemeshPipelineResult without = pipeline::run_remesh_pipeline(std::move(loaded), plain);
+  const ColorMatrix grey = pipeline::feature_colors(without);
+  ASSERT_EQ(grey.rows(), without.remesh.mesh.num_vertices());
+  EXPECT_TRUE((grey.array() == 0.8f).all());
+  EXPECT_TRUE(pipeline::feature_polylines(without).empty());
 }
 
 TEST(FeaturePipeline, GivenFeatureEdgesAreKeptWithoutAnAngle) {

@@ -9,7 +9,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace geodual {
 
@@ -38,9 +40,11 @@ void write_voronoi_preview(const std::filesystem::path& path, const TriangleMesh
 
 /// A PNG picture of a mesh, shaded with its wireframe (coloured per vertex
 /// when `colors`, sRGB-encoded as VertexAttributes::colors, has a row per
-/// vertex; alpha is ignored); `progress` as above.
+/// vertex; alpha is ignored) and `lines` (polylines, such as feature chains)
+/// in dark red over it; `progress` as above.
 void write_mesh_preview(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors = {},
-                        const std::function<bool(double)>& progress = {});
+                        const std::function<bool(double)>& progress = {},
+                        std::span<const std::vector<Eigen::Vector3d>> lines = {});
 
 /// The process's peak resident memory in bytes (0 where unknown).
 std::int64_t peak_memory_bytes();
