@@ -135,8 +135,6 @@ std::vector<std::array<Index, 2>> edges_on_cut(const remesh::ManifoldCut& cut, I
   return on_cut;
 }
 
-/// The stages after `load` on result.input, filling in `result`; Lloyd's
-/// density is multiplied by `input_density` (per input vertex; empty: 1).
 /// A remesh that starts from the sites of the last (on the same cut surface),
 /// with `added` more where the last strayed furthest from the input
 /// (remesh_within_error).
@@ -146,6 +144,9 @@ struct SiteRefinement {
   std::int64_t added = 0;
 };
 
+/// The stages after `load` on result.input, filling in `result`; Lloyd's
+/// density is multiplied by `input_density` (per input vertex; empty: 1).
+/// With `refinement` the sites are its, not sampled.
 void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                 std::span<const double> input_density, const SiteRefinement* refinement) {
   report(options.progress, Stage::sample, 0.0);
