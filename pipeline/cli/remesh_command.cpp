@@ -436,8 +436,13 @@ class RemeshCommand final : public Command {
     options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
     options.max_error_pct = max_error_pct_;
     options.max_sites = max_sites_;
+    std::string round_label;  // with --max-error: which remesh the bar shows
+    options.on_error_round = [&](int round, std::int64_t sites) {
+      round_label =
+          "remesh " + std::to_string(round) + (sites > 0 ? " (" + with_thousands(sites) + " sites)" : "") + ": ";
+    };
     options.progress = [&](pipeline::Stage stage, double fraction) {
-      return bar.update(pipeline::stage_name(stage), fraction);
+      return bar.update(round_label + std::string(pipeline::stage_name(stage)), fraction);
     };
     io::LoadedMesh loaded = io::read_mesh(mesh_path);
     require_computable_range(loaded.mesh, mesh_path);

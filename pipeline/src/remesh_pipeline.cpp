@@ -389,6 +389,7 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
   const bool reuse_sites = options.remesh.sharp_angle == 0 && options.remesh.feature_edges.empty();
   std::optional<SiteRefinement> refinement;
   for (;;) {
+    if (options.on_error_round) options.on_error_round(static_cast<int>(rounds.size()) + 1, round.sites);
     remesh_once(result, round, density, refinement ? &*refinement : nullptr);
     const std::int64_t sites = result.sites_for_sizing > 0 ? result.sites_for_sizing : round.sites;
     if (max_sites == 0) max_sites = 8 * sites;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace geodual {
@@ -76,10 +77,18 @@ TEST(ErrorBound, RefinesWhereTheRemeshStraysUntilTheBoundHolds) {
 TEST(ErrorBound, TheSiteLimitStopsItWithTheClosestRemesh) {
   pipeline::RemeshPipelineOptions options = bounded(0.5);
   options.max_sites = 150;
+  std::vector<std::pair<int, std::int64_t>> announced;  // on_error_round's calls
+  options.on_error_round = [&](int round, std::int64_t sites) { announced.emplace_back(round, sites); };
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(sphere_with_bump(), options);
   const std::vector<pipeline::ErrorRound>& rounds = result.error_rounds;
   ASSERT_EQ(rounds.size(), 2u);
   EXPECT_EQ(rounds.back().sites, 150);
+  // Each remesh announced before it was made, numbered from 1, with its sites.
+  ASSERT_EQ(announced.size(), rounds.size());
+  for (std::size_t k = 0; k < rounds.size(); ++k) {
+    EXPECT_EQ(announced[k].first, static_cast<int>(k) + 1);
+    EXPECT_EQ(announced[k].second, rounds[k].sites);
+  }
   EXPECT_FALSE(result.error_bound_met);
   double closest = rounds.front().hausdorff_pct;
   for (const pipeline::ErrorRound& round : rounds) closest = std::min(closest, round.hausdorff_pct);

@@ -82,6 +82,10 @@ struct RemeshPipelineOptions {
   double max_error_pct = 0;
   std::int64_t max_sites = 0;
   int max_error_rounds = 8;
+  /// With max_error_pct: called before each remesh with its number (from 1)
+  /// and the sites it asks for (0 where the first is sized by edge length or
+  /// faces), so that a progress display can say which remesh it shows.
+  std::function<void(int round, std::int64_t sites)> on_error_round;
   ProgressCallback progress;
 };
 
