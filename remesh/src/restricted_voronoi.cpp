@@ -1,5 +1,6 @@
 #include "restricted_voronoi.hpp"
 
+#include "geodual/mesh/face_area.hpp"
 #include "sampling_grid.hpp"
 #include "surface_walk.hpp"
 
@@ -114,11 +115,7 @@ RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const vor
                                              std::span<const double> density) {
   RestrictedSurface surface{mesh, topology, density, 0.0, vertex_fans(mesh, topology)};
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (topology.face_edges[f][0] < 0) continue;
-    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)).transpose();
-    const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1)).transpose();
-    const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2)).transpose();
-    surface.area += (b - a).cross(c - a).norm() / 2;
+    if (topology.face_edges[f][0] >= 0) surface.area += face_area(mesh, f);
   }
   return surface;
 }
