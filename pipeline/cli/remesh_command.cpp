@@ -73,22 +73,6 @@ std::string seconds_column(double seconds) {
   return text.str();
 }
 
-/// Each stage's seconds summed over the remeshes made (--max-error makes
-/// several), in the order the stages first ran.
-std::vector<std::pair<pipeline::Stage, double>> seconds_per_stage(const std::vector<pipeline::StageTiming>& timings) {
-  std::vector<std::pair<pipeline::Stage, double>> sums;
-  for (const pipeline::StageTiming& timing : timings) {
-    const auto found =
-        std::find_if(sums.begin(), sums.end(), [&](const auto& sum) { return sum.first == timing.stage; });
-    if (found == sums.end()) {
-      sums.emplace_back(timing.stage, timing.seconds);
-    } else {
-      found->second += timing.seconds;
-    }
-  }
-  return sums;
-}
-
 /// "3 remeshes (4,000, 4,620 and 5,310 sites)".
 std::string error_rounds_line(const std::vector<pipeline::ErrorRound>& rounds) {
   std::string sites;
@@ -570,7 +554,7 @@ class RemeshCommand final : public Command {
     json["output"] = output_path;
     json["attributes"] = pipeline::attribute_list(run.attributes);
     json.update(figures);
-    for (const auto& [stage, seconds] : seconds_per_stage(run.timings)) {
+    for (const auto& [stage, seconds] : pipeline::seconds_per_stage(run.timings)) {
       json[std::string(pipeline::stage_name(stage)) + "_s"] = seconds;
     }
     json["geodesic_s"] = relaxation.geodesic_seconds + result.geodesic_seconds;
@@ -667,7 +651,7 @@ class RemeshCommand final : public Command {
                                    " % after " + error_rounds_line(run.error_rounds));
     }
     std::string stages;
-    for (const auto& [stage, seconds] : seconds_per_stage(run.timings)) {
+    for (const auto& [stage, seconds] : pipeline::seconds_per_stage(run.timings)) {
       stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(stage)) + " " + duration(seconds);
     }
     table.add("time", duration(seconds_since(start)) + " (" + stages + ", write " + duration(write_seconds) + ")");

@@ -86,6 +86,20 @@ std::string_view stage_name(Stage stage) {
   return "?";
 }
 
+std::vector<std::pair<Stage, double>> seconds_per_stage(const std::vector<StageTiming>& timings) {
+  std::vector<std::pair<Stage, double>> sums;
+  for (const StageTiming& timing : timings) {
+    const auto found =
+        std::find_if(sums.begin(), sums.end(), [&](const auto& sum) { return sum.first == timing.stage; });
+    if (found == sums.end()) {
+      sums.emplace_back(timing.stage, timing.seconds);
+    } else {
+      found->second += timing.seconds;
+    }
+  }
+  return sums;
+}
+
 DroppedSurface dropped_surface(const TriangleMesh& input, const remesh::ManifoldCut& cut) {
   DroppedSurface dropped;
   double total = 0;

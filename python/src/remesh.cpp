@@ -148,9 +148,8 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
     result.error_rounds = std::move(rounds);
   }
   py::dict timings;
-  for (const pipeline::StageTiming& timing : run.timings) {
-    const py::str stage(std::string(pipeline::stage_name(timing.stage)));
-    timings[stage] = (timings.contains(stage) ? timings[stage].cast<double>() : 0.0) + timing.seconds;
+  for (const auto& [stage, seconds] : pipeline::seconds_per_stage(run.timings)) {
+    timings[py::str(std::string(pipeline::stage_name(stage)))] = seconds;
   }
   result.timings = std::move(timings);
   return result;

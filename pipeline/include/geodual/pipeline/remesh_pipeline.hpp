@@ -33,6 +33,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace geodual::pipeline {
@@ -100,6 +101,10 @@ struct StageTiming {
   double seconds = 0;
   std::int64_t peak_memory_bytes = 0;  ///< the process's peak resident memory at the stage's end
 };
+
+/// Each stage's seconds summed over `timings` (a run with max_error_pct
+/// makes several remeshes), in the order the stages first ran.
+std::vector<std::pair<Stage, double>> seconds_per_stage(const std::vector<StageTiming>& timings);
 
 /// The input's faces the remesh leaves out: scraps and flaps the cut to a
 /// manifold disabled (manifold_cut.hpp), duplicate faces (counted in `faces`,
