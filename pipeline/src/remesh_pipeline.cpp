@@ -413,7 +413,8 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
     const bool met = error_pct <= options.max_error_pct;
     const bool last = met || static_cast<int>(rounds.size()) == options.max_error_rounds || sites >= max_sites;
     std::vector<double> deviation = std::move(result.statistics->deviation_at_vertices);
-    std::vector<SurfacePoint> last_sites = result.remesh.sites;
+    std::vector<SurfacePoint> last_sites;
+    if (reuse_sites) last_sites = result.remesh.sites;
     // The next round fills in a fresh result, which takes the input over.
     RemeshPipelineResult next;
     next.input = std::move(result.input);
