@@ -86,6 +86,9 @@ std::vector<SurfacePoint> add_sites_at_deviations(const TriangleMesh& mesh, std:
                                                   double spacing, std::int64_t count) {
   require_per_vertex(mesh, deviation, "deviation", false);
   require_per_vertex(mesh, density, "density", true);
+  if (!std::all_of(density.begin(), density.end(), [](double rho) { return rho > 0 && std::isfinite(rho); })) {
+    throw UsageError("error density: the density must be finite and > 0 at every vertex");
+  }
   if (!(spacing > 0 && std::isfinite(spacing))) {
     throw UsageError("error density: spacing must be a finite number > 0, got " + std::to_string(spacing));
   }

@@ -130,6 +130,8 @@ TEST(ErrorDensity, SitesAreAddedAtTheLargestDeviationsHalfASpacingApart) {
   EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, {}, 0.0, 1), UsageError);
   EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, {}, 0.1, -1), UsageError);
   EXPECT_THROW(add_sites_at_deviations(square, sites, std::vector<double>(3, 1.0), {}, 0.1, 1), UsageError);
+  EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, std::vector<double>(deviation.size(), 0.0), 0.1, 1),
+               UsageError);
 }
 
 TEST(ErrorDensity, OptionsOutOfRangeAreUsageErrors) {

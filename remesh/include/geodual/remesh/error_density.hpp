@@ -58,7 +58,8 @@ std::int64_t sites_for_density(const TriangleMesh& mesh, std::int64_t sites, std
 /// (rho from `density`, empty: 1), from every other site: the start of the
 /// next remesh of an error bound, which keeps the last one's sites where
 /// they were. Fewer are added where fewer vertices are that far.
-/// \throw UsageError for sizes that do not match the mesh, spacing <= 0 or count < 0.
+/// \throw UsageError for sizes that do not match the mesh, a density not > 0,
+/// spacing <= 0 or count < 0.
 std::vector<SurfacePoint> add_sites_at_deviations(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                                   std::span<const double> deviation, std::span<const double> density,
                                                   double spacing, std::int64_t count);
