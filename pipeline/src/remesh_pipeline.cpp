@@ -219,12 +219,12 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
         // Chords within 0.05 % of the diagonal (the statistics' feature recall
-        // tolerance is 0.1 %), but no closer than half the spacing: sites
+        // tolerance is 0.1 %), but no closer than 3/4 of the spacing: sites
         // denser along a chain than around it make slivers against it.
         feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut,
                                               {.spacing = spacing,
                                                .max_chord_error = 5e-4 * result.input_report.bbox_diagonal,
-                                               .min_spacing = 0.5 * spacing});
+                                               .min_spacing = 0.75 * spacing});
         result.feature_sites = feature_sites->points;
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }

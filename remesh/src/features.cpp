@@ -60,20 +60,20 @@ double turn_degrees(const TriangleMesh& mesh, Index a, Index v, Index b) {
 }
 
 /// Sharp edges that stay sharp at `scale` (FeatureOptions::scale): the faces
-/// within that distance of each one's midpoint, on each side, reached across
-/// edges with two faces that are not sharp, must not join up, and their
-/// area-weighted normals must turn by at least `angle` degrees.
+/// with a corner within that distance of the edge, on each side, reached
+/// across edges with two faces that are not sharp, must not join up, and their
+/// area-weighted normals must turn by at least `angle` degrees. The faces
+/// round both ends are always within reach, so that where the input's edges
+/// are longer than the scale, the faces round a lone noisy edge still join.
 std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& topology,
                                   const std::vector<Index>& sharp, double angle, double scale) {
   const Index num_faces = mesh.num_faces();
   std::vector<std::uint8_t> is_sharp(static_cast<std::size_t>(topology.num_edges()), 0);
   for (const Index e : sharp) is_sharp[e] = 1;
-  std::vector<Eigen::Vector3d> centroid(static_cast<std::size_t>(num_faces)),
-      normal(static_cast<std::size_t>(num_faces));
+  std::vector<Eigen::Vector3d> normal(static_cast<std::size_t>(num_faces));
   for (Index f = 0; f < num_faces; ++f) {
     const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
                           c = mesh.vertices.row(mesh.faces(f, 2));
-    centroid[f] = (a + b + c) / 3;
     normal[f] = (b - a).cross(c - a);  // twice the area times the unit normal
   }
   constexpr std::size_t kMaxFaces = 1 << 14;  // per side: beyond this, the region is judged as reached so far
@@ -84,9 +84,17 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
   for (std::size_t i = 0; i < sharp.size(); ++i) {
     const Index e = sharp[i];
     const auto faces = topology.edge_faces(e);
-    const Eigen::Vector3d middle =
-        0.5 *
-        (mesh.vertices.row(topology.edge_vertices[e][0]) + mesh.vertices.row(topology.edge_vertices[e][1])).transpose();
+    const Eigen::Vector3d start = mesh.vertices.row(topology.edge_vertices[e][0]);
+    const Eigen::Vector3d along = Eigen::Vector3d(mesh.vertices.row(topology.edge_vertices[e][1])) - start;
+    const auto within_scale = [&](Index f) {  // a corner of f within `scale` of the edge
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d x = mesh.vertices.row(mesh.faces(f, k));
+        const double t =
+            along.squaredNorm() > 0 ? std::clamp((x - start).dot(along) / along.squaredNorm(), 0.0, 1.0) : 0.0;
+        if ((start + t * along - x).squaredNorm() <= scale * scale) return true;
+      }
+      return false;
+    };
     // Region growing from each side; stamp 2 i + side marks the faces reached.
     Eigen::Vector3d mean[2];
     bool joined = false;
@@ -101,7 +109,7 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
         for (const Index edge : topology.face_edges[f]) {
           if (is_sharp[edge] || topology.edge_faces(edge).size() != 2) continue;
           for (const Index g : topology.edge_faces(edge)) {
-            if (seen[g] == stamp || (centroid[g] - middle).norm() > scale) continue;
+            if (seen[g] == stamp || !within_scale(g)) continue;
             if (side == 1 && seen[g] == stamp - 1) joined = true;  // side 0 reached it: one region
             seen[g] = stamp;
             queue.push_back(g);
@@ -224,6 +232,7 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
   return {.sharp_angle = sharp_angle,
           .scale = 0.5 * spacing,
           .min_chain_length = min_length * spacing,
+          .min_dangling_chain_length = 2 * spacing,
           .min_region_width = 0.25 * spacing};
 }
 
@@ -272,7 +281,10 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
       const FeatureChain& chain = chains.chains[c];
       const bool lone =
           chain.vertices.size() == 2 && lone_end(chain.vertices.front()) && lone_end(chain.vertices.back());
-      if (chain.length >= options.min_chain_length && !lone) continue;
+      const bool dangling = lone_end(chain.vertices.front()) || lone_end(chain.vertices.back());
+      const double min_length =
+          dangling ? std::max(options.min_chain_length, options.min_dangling_chain_length) : options.min_chain_length;
+      if (chain.length >= min_length && !lone) continue;
       for (const Index e : chains.chain_edges[c]) {
         if (given[sharp[e]] && !lone) continue;
         drop[e] = 1;

@@ -98,6 +98,61 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   EXPECT_DOUBLE_EQ(remesh_options.min_region_width, 0.5 * remesh_options.scale);
 }
 
+/// A flat grid [0, 8] x [0, 4], cells of 1, with a ridge along y = 2: the
+/// vertices at x = 2 ... 6 raised to z = 1, so that its edges turn by 90
+/// degrees and the crease fades out at both ends.
+TriangleMesh ridge() {
+  TriangleMesh mesh;
+  mesh.vertices.resize(9 * 5, 3);
+  for (int y = 0; y <= 4; ++y) {
+    for (int x = 0; x <= 8; ++x) mesh.vertices.row(9 * y + x) << x, y, (y == 2 && x >= 2 && x <= 6) ? 1.0 : 0.0;
+  }
+  mesh.faces.resize(2 * 8 * 4, 3);
+  Index f = 0;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      const Index v = 9 * y + x;
+      mesh.faces.row(f++) << v, v + 1, v + 10;
+      mesh.faces.row(f++) << v, v + 10, v + 9;
+    }
+  }
+  return mesh;
+}
+
+TEST(Features, ACreaseIsJudgedWithTheFacesRoundItsEndsEvenWhereItsEdgesOutreachTheScale) {
+  const TriangleMesh mesh = ridge();
+  const remesh::FeatureSet edge_only = remesh::detect_features(mesh, {.min_chain_length = 0.5});
+  // Every ridge edge is sharp on its own, the two where it rises included.
+  ASSERT_FALSE(edge_only.empty());
+  EXPECT_GT(edge_only.sharp_length, 4.0 + 1.0);
+  // At a scale of a tenth of an edge, the faces round each end of the
+  // crease, which go round its free ends, join: those edges are not a crease
+  // at any scale; the four between the raised vertices stay.
+  const remesh::FeatureSet at_scale = remesh::detect_features(mesh, {.scale = 0.1, .min_chain_length = 0.5});
+  EXPECT_EQ(at_scale.sharp_chains, 1);
+  EXPECT_NEAR(at_scale.sharp_length, 4.0, 1e-12);
+  for (const auto& [a, b] : at_scale.sharp_edges) {
+    EXPECT_EQ(mesh.vertices(a, 2), 1.0);
+    EXPECT_EQ(mesh.vertices(b, 2), 1.0);
+  }
+}
+
+TEST(Features, ACreaseWithAFreeEndMustBeTheDanglingLengthLong) {
+  // The ridge's crease, 4 long, ends in the open at both ends.
+  const remesh::FeatureOptions options{.scale = 0.1, .min_chain_length = 0.5};
+  remesh::FeatureOptions dangling = options;
+  dangling.min_dangling_chain_length = 3.9;
+  EXPECT_NEAR(remesh::detect_features(ridge(), dangling).sharp_length, 4.0, 1e-12);
+  dangling.min_dangling_chain_length = 4.1;
+  EXPECT_TRUE(remesh::detect_features(ridge(), dangling).empty());
+  // The box's creases, 1 long, all end at corners where three meet: none dangles.
+  EXPECT_EQ(remesh::detect_features(cube(4), {.min_chain_length = 0.5, .min_dangling_chain_length = 5}).sharp_chains,
+            12);
+  // The remesh's detection asks for two spacings.
+  const remesh::FeatureOptions remesh_options = remesh::remesh_feature_options(cube(4), 100, 60, 0.5);
+  EXPECT_DOUBLE_EQ(remesh_options.min_dangling_chain_length, 4 * remesh_options.scale);
+}
+
 /// The vertex of `mesh` at p (exactly), or -1.
 Index vertex_at(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
   for (Index v = 0; v < mesh.num_vertices(); ++v) {

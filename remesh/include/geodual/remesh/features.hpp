@@ -32,6 +32,10 @@ struct FeatureOptions {
   /// join into a longer one): scan noise and details below the remesh's
   /// resolution.
   double min_chain_length = 0;
+  /// A chain with a free end (on no other sharp edge, off the boundary)
+  /// shorter than this is dropped too: a crease that fades out within a
+  /// couple of spacings holds too few sites to be kept as one.
+  double min_dangling_chain_length = 0;
   /// The chains round a region narrower than this are dropped too: the
   /// region's width is twice its area over its border's length (the width of
   /// a strip, the radius of a disc), its faces joined across edges that are
@@ -72,8 +76,8 @@ struct FeatureSet {
 
 /// The options the remesh pipeline detects features with for `sites` sites
 /// on `surface`: sharpness judged at half the remesh's spacing, chains at
-/// least min_length spacings long, regions between them at least a quarter
-/// spacing wide.
+/// least min_length spacings long (two, where one end is free), regions
+/// between them at least a quarter spacing wide.
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
                                       double min_length);
 
