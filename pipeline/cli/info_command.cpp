@@ -41,7 +41,8 @@ class InfoCommand final : public Command {
     command
         .add_option("--sharp-angle", sharp_angle_,
                     "Report the sharp features a remesh with --sharp-angle would keep: creases where the normals "
-                    "turn by at least this many degrees (0: none, the remesh's default)")
+                    "turn by at least this many degrees (0: none, the default here, since the cut and the detection "
+                    "take several times the analysis; the remesh's default is 60)")
         ->capture_default_str()
         ->check(number_between(0, 180));
     command.add_option("--sites", sites_, "The remesh's site count, whose spacing sets the features' scale")

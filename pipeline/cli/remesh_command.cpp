@@ -151,7 +151,8 @@ class RemeshCommand final : public Command {
     command
         .add_option("--sharp-angle", options_.sharp_angle,
                     "Keep creases where the normals turn by at least this many degrees (in chains at least half a "
-                    "remesh spacing long) as chains of edges, corners included (0: none; ignored with --site-file)")
+                    "remesh spacing long, two where they fade out) as chains of edges, corners included (0: none; "
+                    "ignored with --site-file)")
         ->capture_default_str()
         ->check(number_between(0, 180));
     command.add_option("--feature-file", feature_file_,

@@ -189,7 +189,7 @@ void add_remesh(py::module_& module) {
 
   module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
              py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
-             py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = 0.0,
+             py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
              py::arg("feature_edges") = py::none(), py::arg("progress") = py::none(), py::arg("statistics") = true,
              py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
@@ -215,7 +215,7 @@ options and seed give the same result.
 colors: None or the input's per-vertex colours (n x 3 / n x 4, floats in
 [0, 1] or uint8), interpolated to the remesh's vertices (result.colors).
 sharp_angle: keep sharp creases where the normals turn by at least this many
-degrees (0: none).
+degrees (0: none; 60 by default).
 feature_edges: None or a k x 2 integer array of vertex pairs, edges of F kept
 as features too whatever their angle (sharp_angle 0: only these); a pair that
 is no edge of F raises geodual.UsageError.

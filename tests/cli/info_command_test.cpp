@@ -94,7 +94,7 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
   EXPECT_EQ(nlohmann::json::parse(run.out)["feature_chains"], 0);
   run = run_cli({"info", path.string(), "--sharp-angle", "60"});
   EXPECT_NE(run.out.find("12 chains, 8 corners"), std::string::npos) << run.out;
-  run = run_cli({"info", path.string()});  // off by default, as in the remesh
+  run = run_cli({"info", path.string()});  // off by default: it takes several times the analysis
   EXPECT_EQ(run.out.find("sharp features"), std::string::npos) << run.out;
   EXPECT_EQ(run_cli({"info", path.string(), "--sharp-angle", "nan"}).exit_status, 2);
 }

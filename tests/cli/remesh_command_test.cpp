@@ -507,6 +507,28 @@ TEST(RemeshCommand, FeatureColoursPaintTheCreasesKept) {
   EXPECT_EQ(slurp(picture).substr(1, 3), "PNG");
 }
 
+TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "fandisk.glb";
+  const auto remesh = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"remesh",    "tests/data/fandisk.ply", "--sites", "1500", "--json", "-o",
+                                     out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun run = run_cli(args);
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    return nlohmann::json::parse(run.out);
+  };
+  const nlohmann::json by_default = remesh({});
+  EXPECT_EQ(by_default["sharp_angle_deg"].get<double>(), 60.0);
+  EXPECT_GE(by_default["feature_chains"].get<double>(), 30);  // fandisk has 35 chains
+  EXPECT_TRUE(by_default["features_dropped_reason"].is_null());
+  EXPECT_GT(by_default["feature_recall_pct"].get<double>(), 95.0);
+  // Off, the creases come out as sawtooth chamfers.
+  const nlohmann::json off = remesh({"--sharp-angle", "0"});
+  EXPECT_EQ(off["feature_chains"].get<double>(), 0);
+  EXPECT_LT(off["feature_recall_pct"].get<double>(), 50.0);
+}
+
 }  // namespace
 }  // namespace geodual::cli_test
 

@@ -122,6 +122,7 @@ TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceT
   pipeline::RemeshPipelineOptions plain;
   plain.sites = 100;
   plain.remesh.lloyd.iterations = 1;
+  plain.remesh.sharp_angle = 0;
   plain.statistics = false;
   io::LoadedMesh loaded;
   loaded.mesh = box;

@@ -80,9 +80,8 @@ struct RemeshOptions {
   /// pipeline when it samples the sites: creases where the normals turn by at
   /// least this many degrees at half the remesh's spacing, in chains at least
   /// min_feature_length spacings long, are cut open, lined with sites and
-  /// welded in the dual. 0: none (the default until it keeps the organic
-  /// scans' quality: see docs/algorithms.md#sharp-features).
-  double sharp_angle = 0;
+  /// welded in the dual. 0: none. See docs/algorithms.md#sharp-features.
+  double sharp_angle = 60;
   double min_feature_length = 0.5;
   /// Edges of the input (vertex index pairs) kept as features too, whatever
   /// their angle (a feature file's), sharp_angle 0 included.
