@@ -189,9 +189,10 @@ void add_remesh(py::module_& module) {
 
   module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
              py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
-             py::arg("seed") = 1, py::arg("colors") = py::none(), py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
-             py::arg("feature_edges") = py::none(), py::arg("progress") = py::none(), py::arg("statistics") = true,
-             py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
+             py::arg("seed") = 1, py::arg("colors") = py::none(),
+             py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle, py::arg("feature_edges") = py::none(),
+             py::arg("progress") = py::none(), py::arg("statistics") = true, py::arg("max_error") = py::none(),
+             py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
