@@ -468,17 +468,16 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     return edge != surface_topology.edge_vertices.end() && *edge == std::array<Index, 2>{key.lo, key.hi} &&
            surface_topology.is_boundary_edge(static_cast<Index>(edge - surface_topology.edge_vertices.begin()));
   };
-  // Surface vertices the cut split (on a chain).
-  std::vector<std::uint8_t> vertex_split(static_cast<std::size_t>(surface.vertices.rows()), 0);
-  for (std::size_t w = static_cast<std::size_t>(surface.vertices.rows()); w < cut.original_vertex.size(); ++w) {
-    vertex_split[static_cast<std::size_t>(cut.original_vertex[w])] = 1;
-  }
+  // Surface vertices on a chain: the cut split them, or a chain ends there
+  // in the open (the tip of a slit, one copy).
+  std::vector<std::uint8_t> on_chain(static_cast<std::size_t>(surface.vertices.rows()), 0);
+  for (const auto& [a, b] : features.sharp_edges) on_chain[a] = on_chain[b] = 1;
   const MeshTopology topology = build_mesh_topology(welded.mesh);
   // Twins that made a triangle or an edge in two pieces: not a remesh.
   for (Index e = 0; e < topology.num_edges(); ++e) welded.nonmanifold_edges += topology.is_manifold_edge(e) ? 0 : 1;
   const auto on_cut_boundary = [&](std::size_t s) {
     const SiteKey& key = keys[s];
-    return key.lo >= 0 && (key.lo == key.hi ? vertex_split[key.lo] || on_surface_boundary(s)
+    return key.lo >= 0 && (key.lo == key.hi ? on_chain[key.lo] || on_surface_boundary(s)
                                             : is_sharp(features, key.lo, key.hi) || on_surface_boundary(s));
   };
   // The ends of cracked edges inside a piece of the cut surface (not on any
@@ -517,7 +516,9 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     // the crack: where they are on the boundary, it moves halfway between
     // them (to its nearest point there, it could land next to one of them).
     const bool between = last - first == 2 && on_cut_boundary(first->second) && on_cut_boundary((first + 1)->second);
-    const Index piece = cut_topology.face_component[static_cast<std::size_t>(sites[s].element)];
+    const Index piece = sites[s].kind == SurfacePoint::Kind::vertex
+                            ? cut_topology.vertex_component[static_cast<std::size_t>(sites[s].element)]
+                            : cut_topology.face_component[static_cast<std::size_t>(sites[s].element)];
     const Eigen::Vector3d x = between ? Eigen::Vector3d(0.5 * (sites[first->second].position(cut.mesh) +
                                                                sites[(first + 1)->second].position(cut.mesh)))
                                       : sites[s].position(cut.mesh);

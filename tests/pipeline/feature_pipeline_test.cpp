@@ -5,6 +5,7 @@
 
 #include "hard_cases.hpp"
 
+#include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/feature_output.hpp"
@@ -81,6 +82,29 @@ TEST(FeaturePipeline, BoxKeepsEveryCreaseAndCorner) {
   EXPECT_NEAR(static_cast<double>(remesh.num_vertices()), 400.0 + static_cast<double>(result.remesh.sites_added), 4.0);
   // Sites added anywhere, the weld's twins included, come with a reason.
   EXPECT_TRUE(result.remesh.sites_added == 0 || !result.remesh.repair_problems.empty());
+}
+
+TEST(FeaturePipeline, EveryCornerOfAScanThatKeepsItsCreasesIsAVertexOfTheRemesh) {
+  // cheburashka's creases at 2,000 sites: seven chains, three of them open,
+  // ending in the open (the tips of slits in the cut surface, where the weld's
+  // repair once took a corner's site for one inside a piece and moved it a
+  // third of the diagonal away).
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 2000;
+  options.statistics = false;
+  const pipeline::RemeshPipelineResult result =
+      pipeline::run_remesh_pipeline(io::read_mesh("tests/data/cheburashka.ply"), options);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  ASSERT_GE(result.features.corners.size(), 6u);
+  const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
+  const TriangleMesh& remesh = result.remesh.mesh;
+  for (const Index corner : result.features.corners) {
+    const Eigen::Vector3d x = surface.vertices.row(corner);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Index v = 0; v < remesh.num_vertices(); ++v)
+      nearest = std::min(nearest, (remesh.vertices.row(v).transpose() - x).norm());
+    EXPECT_LT(nearest, 1e-12) << x.transpose();
+  }
 }
 
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {
