@@ -233,7 +233,7 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
           .scale = 0.5 * spacing,
           .min_chain_length = min_length * spacing,
           .min_dangling_chain_length = 2 * spacing,
-          .min_region_width = 0.25 * spacing};
+          .min_region_width = 0.5 * spacing};
 }
 
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {

@@ -93,9 +93,9 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   // A box's sides are 1 wide (a square's width: twice 1 over 4): kept at a width under a half.
   EXPECT_EQ(remesh::detect_features(cube(4), {.min_region_width = 0.49}).sharp_chains, 12);
   EXPECT_TRUE(remesh::detect_features(cube(4), {.min_region_width = 0.51}).empty());
-  // The remesh's detection asks for a quarter of the spacing.
+  // The remesh's detection asks for half the spacing.
   const remesh::FeatureOptions remesh_options = remesh::remesh_feature_options(slab, 100, 60, 0.5);
-  EXPECT_DOUBLE_EQ(remesh_options.min_region_width, 0.5 * remesh_options.scale);
+  EXPECT_DOUBLE_EQ(remesh_options.min_region_width, remesh_options.scale);
 }
 
 /// A flat grid [0, 8] x [0, 4], cells of 1, with a ridge along y = 2: the

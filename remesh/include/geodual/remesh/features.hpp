@@ -77,7 +77,7 @@ struct FeatureSet {
 /// The options the remesh pipeline detects features with for `sites` sites
 /// on `surface`: sharpness judged at half the remesh's spacing, chains at
 /// least min_length spacings long (two, where one end is free), regions
-/// between them at least a quarter spacing wide.
+/// between them at least half a spacing wide.
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
                                       double min_length);
 
