@@ -199,6 +199,11 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   };
   constexpr double infinity = std::numeric_limits<double>::infinity();
   auto distance_at = [&](Index point) { return voronoi::query(field, input, diagram.point_locations[point]).distance; };
+  // Points this close are one point here (the engine rejects two sites at one point).
+  const double diagonal = input.vertices.rows() > 0
+                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
+                              : 0.0;
+  const double same_point = std::max(1e-9 * diagonal, 1e-300);
 
   // Between cells. Two cells meeting along several arcs wrap a tube or a
   // spire thinner than the spacing: a site halfway along each arc. A closed
@@ -206,7 +211,10 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   // only stack another band of cells there, so three go round it, a third
   // of its length apart, and cells meet at Voronoi vertices across it. There
   // the new sites must come closer than the spacing: they keep apart by half
-  // their distance to the sites (a sixth of the loop).
+  // their distance to the sites (a sixth of the loop). A loop too short for
+  // three distinct points is a cell of no size at a point (a corner's site on
+  // a piece that only touches it there), which a site beside it would only
+  // make a sliver with: none.
   std::vector<std::uint8_t> repaired_between(static_cast<std::size_t>(num_sites), 0);
   for (const Index p : faults.split_pairs) {
     const voronoi::CellAdjacency& pair = diagram.adjacency[p];
@@ -226,6 +234,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
     const auto line = diagram.polyline(arc);
     double length = 0;
     for (std::size_t i = 0; i < line.size(); ++i) length += (line[(i + 1) % line.size()] - line[i]).norm();
+    if (length <= 3 * same_point) continue;
     double walked = 0;
     int placed = 0;
     for (std::size_t i = 0; i < line.size() && placed < 3; ++i) {
@@ -398,15 +407,11 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   for (const double area : diagram.cell_area) cells_area += area;
   const double apart =
       0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
-  const double diagonal = input.vertices.rows() > 0
-                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
-                              : 0.0;
-  const double spacing = std::max(1e-9 * diagonal, 1e-300);
   std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
   auto cell_of = [&](const Eigen::Vector3d& x) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / spacing)),
-                                       static_cast<std::int64_t>(std::floor(x.y() / spacing)),
-                                       static_cast<std::int64_t>(std::floor(x.z() / spacing))};
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / same_point)),
+                                       static_cast<std::int64_t>(std::floor(x.y() / same_point)),
+                                       static_cast<std::int64_t>(std::floor(x.z() / same_point))};
   };
   auto taken = [&](const Eigen::Vector3d& x) {
     const auto cell = cell_of(x);
@@ -416,7 +421,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
           const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
           if (it == grid.end()) continue;
           for (const Eigen::Vector3d& y : it->second) {
-            if ((x - y).norm() <= spacing) return true;
+            if ((x - y).norm() <= same_point) return true;
           }
         }
       }
@@ -464,7 +469,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
       p = SurfacePoint::at_vertex(input.faces(p.element, corner));
     }
     Eigen::Vector3d x = p.position(input);
-    if (taken(x) && voronoi::query(field, input, p).distance > spacing) {
+    if (taken(x) && voronoi::query(field, input, p).distance > same_point) {
       p = into_face(p);
       x = p.position(input);
     }

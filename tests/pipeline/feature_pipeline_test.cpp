@@ -10,6 +10,7 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
+#include "geodual/quality/quality_stats.hpp"
 
 #include <gtest/gtest.h>
 
@@ -105,6 +106,22 @@ TEST(FeaturePipeline, EveryCornerOfAScanThatKeepsItsCreasesIsAVertexOfTheRemesh)
       nearest = std::min(nearest, (remesh.vertices.row(v).transpose() - x).norm());
     EXPECT_LT(nearest, 1e-12) << x.transpose();
   }
+}
+
+TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
+  // assembly_47 at 500 sites: its boxes' sides are two triangles each, and a
+  // corner's site on a side that only touches it there had a cell of no size,
+  // a closed boundary 1e-9 long; the repair's three sites round it fell on one
+  // point, two of them made one a step apart (Qmin 0.03).
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 500;
+  options.statistics = false;
+  io::LoadedMesh loaded;
+  loaded.mesh = bench::assembly_47();
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), options);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  EXPECT_GT(result.features.sharp_chains, 40);
+  EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.3);
 }
 
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {
