@@ -295,6 +295,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 
   // Dual with repair; each repair round's diagram reports its progress.
   remesh::RepairOptions repair{.max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi};
+  if (features) repair.max_rounds = std::min(repair.max_rounds, options.remesh.max_feature_repair_rounds);
   if (options.progress) {
     repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
   }

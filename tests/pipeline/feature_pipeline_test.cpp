@@ -124,6 +124,27 @@ TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
   EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.3);
 }
 
+TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
+  // cheburashka at 500 sites: its seven creases are finer than the spacing,
+  // and the dual of the cut surface needs more than 4 rounds of repair.
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 500;
+  options.statistics = false;
+  const pipeline::RemeshPipelineResult dropped =
+      pipeline::run_remesh_pipeline(io::read_mesh("tests/data/cheburashka.ply"), options);
+  EXPECT_NE(dropped.features_dropped_reason.find("repair rounds"), std::string::npos)
+      << dropped.features_dropped_reason;
+  EXPECT_TRUE(dropped.features.empty());
+  EXPECT_EQ(dropped.remesh.mesh.num_vertices(), 500 + dropped.remesh.sites_added - dropped.remesh.sites_left_out);
+  // Given as many rounds as the remesh without them, they are kept.
+  options.remesh.max_feature_repair_rounds = options.remesh.max_repair_rounds;
+  const pipeline::RemeshPipelineResult kept =
+      pipeline::run_remesh_pipeline(io::read_mesh("tests/data/cheburashka.ply"), options);
+  EXPECT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
+  EXPECT_EQ(kept.features.sharp_chains, 7);
+  EXPECT_GT(kept.remesh.repair_rounds, 4);
+}
+
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {
   const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 17);
   const TriangleMesh box =

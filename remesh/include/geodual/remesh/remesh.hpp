@@ -76,6 +76,10 @@ struct RemeshOptions {
   double curvature_max_ratio = CurvatureDensityOptions{}.max_ratio;
   /// Rounds of "add sites where the dual fails, recompute" (RepairOptions::max_rounds).
   int max_repair_rounds = 10;
+  /// The same for the remesh that keeps the sharp features, at most: where
+  /// its dual needs more, the creases are finer than the spacing, and the
+  /// remesh pipeline remeshes without them.
+  int max_feature_repair_rounds = 4;
   /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
   /// pipeline when it samples the sites: creases where the normals turn by at
   /// least this many degrees at half the remesh's spacing, in chains at least
