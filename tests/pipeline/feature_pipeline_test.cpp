@@ -46,6 +46,15 @@ pipeline::RemeshPipelineResult remesh_with_features(TriangleMesh mesh, std::int6
   return pipeline::run_remesh_pipeline(std::move(loaded), options);
 }
 
+/// The remesh pipeline's at `sites` sites, with `options` (the defaults
+/// unless given), without statistics.
+pipeline::RemeshPipelineResult remesh_without_statistics(io::LoadedMesh loaded, std::int64_t sites,
+                                                         pipeline::RemeshPipelineOptions options = {}) {
+  options.sites = sites;
+  options.statistics = false;
+  return pipeline::run_remesh_pipeline(std::move(loaded), options);
+}
+
 TEST(FeaturePipeline, BoxKeepsEveryCreaseAndCorner) {
   const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 17);
   const TriangleMesh box =
@@ -90,11 +99,8 @@ TEST(FeaturePipeline, EveryCornerOfAScanThatKeepsItsCreasesIsAVertexOfTheRemesh)
   // ending in the open (the tips of slits in the cut surface, where the weld's
   // repair once took a corner's site for one inside a piece and moved it a
   // third of the diagonal away).
-  pipeline::RemeshPipelineOptions options;
-  options.sites = 2000;
-  options.statistics = false;
   const pipeline::RemeshPipelineResult result =
-      pipeline::run_remesh_pipeline(io::read_mesh("tests/data/cheburashka.ply"), options);
+      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 2000);
   ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   ASSERT_GE(result.features.corners.size(), 6u);
   const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
@@ -113,12 +119,9 @@ TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
   // corner's site on a side that only touches it there had a cell of no size,
   // a closed boundary 1e-9 long; the repair's three sites round it fell on one
   // point, two of them made one a step apart (Qmin 0.03).
-  pipeline::RemeshPipelineOptions options;
-  options.sites = 500;
-  options.statistics = false;
   io::LoadedMesh loaded;
   loaded.mesh = bench::assembly_47();
-  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), options);
+  const pipeline::RemeshPipelineResult result = remesh_without_statistics(std::move(loaded), 500);
   ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   EXPECT_GT(result.features.sharp_chains, 40);
   EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.3);
@@ -127,19 +130,17 @@ TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
 TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
   // cheburashka at 500 sites: its seven creases are finer than the spacing,
   // and the dual of the cut surface needs more than 4 rounds of repair.
-  pipeline::RemeshPipelineOptions options;
-  options.sites = 500;
-  options.statistics = false;
   const pipeline::RemeshPipelineResult dropped =
-      pipeline::run_remesh_pipeline(io::read_mesh("tests/data/cheburashka.ply"), options);
+      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 500);
   EXPECT_NE(dropped.features_dropped_reason.find("repair rounds"), std::string::npos)
       << dropped.features_dropped_reason;
   EXPECT_TRUE(dropped.features.empty());
   EXPECT_EQ(dropped.remesh.mesh.num_vertices(), 500 + dropped.remesh.sites_added - dropped.remesh.sites_left_out);
   // Given as many rounds as the remesh without them, they are kept.
+  pipeline::RemeshPipelineOptions options;
   options.remesh.max_feature_repair_rounds = options.remesh.max_repair_rounds;
   const pipeline::RemeshPipelineResult kept =
-      pipeline::run_remesh_pipeline(io::read_mesh("tests/data/cheburashka.ply"), options);
+      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 500, options);
   EXPECT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
   EXPECT_EQ(kept.features.sharp_chains, 7);
   EXPECT_GT(kept.remesh.repair_rounds, 4);
