@@ -35,17 +35,6 @@ double distance_to_edges(const TriangleMesh& mesh, const MeshTopology& topology,
   return best;
 }
 
-pipeline::RemeshPipelineResult remesh_with_features(TriangleMesh mesh, std::int64_t sites) {
-  pipeline::RemeshPipelineOptions options;
-  options.sites = sites;
-  options.remesh.sharp_angle = 60;
-  options.remesh.lloyd.iterations = 3;
-  options.statistics = false;
-  io::LoadedMesh loaded;
-  loaded.mesh = std::move(mesh);
-  return pipeline::run_remesh_pipeline(std::move(loaded), options);
-}
-
 /// The remesh pipeline's at `sites` sites, with `options` (the defaults
 /// unless given), without statistics.
 pipeline::RemeshPipelineResult remesh_without_statistics(io::LoadedMesh loaded, std::int64_t sites,
@@ -55,10 +44,23 @@ pipeline::RemeshPipelineResult remesh_without_statistics(io::LoadedMesh loaded, 
   return pipeline::run_remesh_pipeline(std::move(loaded), options);
 }
 
+pipeline::RemeshPipelineResult remesh_with_features(TriangleMesh mesh, std::int64_t sites) {
+  pipeline::RemeshPipelineOptions options;
+  options.remesh.sharp_angle = 60;
+  options.remesh.lloyd.iterations = 3;
+  io::LoadedMesh loaded;
+  loaded.mesh = std::move(mesh);
+  return remesh_without_statistics(std::move(loaded), sites, options);
+}
+
+/// The unit cube, n x n cells per side, two triangles per cell.
+TriangleMesh unit_box(int n) {
+  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, n + 1);
+  return bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+}
+
 TEST(FeaturePipeline, BoxKeepsEveryCreaseAndCorner) {
-  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 17);
-  const TriangleMesh box =
-      bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+  const TriangleMesh box = unit_box(16);
   const pipeline::RemeshPipelineResult result = remesh_with_features(box, 400);
   ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   EXPECT_EQ(result.features.sharp_chains, 12);
@@ -147,9 +149,7 @@ TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
 }
 
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {
-  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 17);
-  const TriangleMesh box =
-      bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+  const TriangleMesh box = unit_box(16);
   const pipeline::RemeshPipelineResult result = remesh_with_features(box, 300);
   ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   const TriangleMesh& remesh = result.remesh.mesh;
@@ -198,9 +198,7 @@ TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceT
 
 TEST(FeaturePipeline, GivenFeatureEdgesAreKeptWithoutAnAngle) {
   // The box's crease edges given as the input's vertex pairs, with no sharp angle.
-  const std::vector<double> steps = bench::hard_case_detail::even_steps(0.0, 1.0, 9);
-  const TriangleMesh box =
-      bench::hard_case_detail::voxel_surface({steps, steps, steps}, [](int, int, int) { return true; });
+  const TriangleMesh box = unit_box(8);
   const MeshTopology input = build_mesh_topology(box);
   const auto on_faces = [&](Index v) {
     int mask = 0;  // bit d set where coordinate d is 0 or 1
