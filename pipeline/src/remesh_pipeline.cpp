@@ -7,6 +7,7 @@
 #include "geodual/mesh/vertex_copies.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
+#include "geodual/remesh/chain_slider.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/error_density.hpp"
 #include "geodual/remesh/sizing.hpp"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -287,6 +289,12 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   }
   report(options.progress, Stage::relax, 0.0);
   StageClock relax_clock(result.timings, Stage::relax);
+  // The sites on chains slide along them; corners stay.
+  std::optional<remesh::ChainSlider> slide_along_chains;
+  if (features) {
+    slide_along_chains.emplace(manifold_surface, result.features, result.feature_cut);
+    lloyd.slide_boundary_sites = std::cref(*slide_along_chains);
+  }
   // Prepared once for every diagram of the relax and dual stages; gone before the statistics.
   std::optional<voronoi::GeodesicSurface> geodesic_surface(std::in_place, surface);
   result.relaxation = remesh::lloyd_relax(*geodesic_surface, result.initial_sites, lloyd);

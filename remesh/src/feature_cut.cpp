@@ -1,5 +1,7 @@
 #include "geodual/remesh/feature_cut.hpp"
 
+#include "chain_points.hpp"
+
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
@@ -20,58 +22,14 @@
 namespace geodual::remesh {
 namespace {
 
-/// Site barycentrics along an edge are multiples of 2^-32 (as sample_sites
-/// makes them), kept 2^-20 off the edge's ends, so that a twin's
-/// coordinates, 1 - t on the other face, are exact.
-constexpr double kLattice = 0x1p32;
-constexpr double kMargin = 0x1p-20;
-double lattice_parameter(double t) { return std::round(std::clamp(t, kMargin, 1 - kMargin) * kLattice) / kLattice; }
+using detail::ChainWalk;
+using detail::point_on_edge;
+using detail::site_key;
+using detail::SiteKey;
 
 bool is_sharp(const FeatureSet& features, Index a, Index b) {
   const std::array<Index, 2> key = {std::min(a, b), std::max(a, b)};
   return std::binary_search(features.sharp_edges.begin(), features.sharp_edges.end(), key);
-}
-
-/// The point at t from a to b (t at b) on face f of the surface, whose
-/// corners include a and b.
-SurfacePoint point_on_edge(const TriangleMesh& surface, Index f, Index a, Index b, double t) {
-  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) {
-    if (surface.faces(f, k) == a) barycentric[k] = 1 - t;
-    if (surface.faces(f, k) == b) barycentric[k] = t;
-  }
-  return SurfacePoint::in_face(f, barycentric[0], barycentric[1], barycentric[2]);
-}
-
-/// Where a site lies on the surface, in terms the twins share: a vertex
-/// (lo == hi), a point of edge (lo, hi) at t towards hi, or inside a face
-/// (lo == -1).
-struct SiteKey {
-  Index lo = -1, hi = -1;
-  double t = 0;
-  auto tie() const { return std::tie(lo, hi, t); }
-  bool operator<(const SiteKey& other) const { return tie() < other.tie(); }
-  bool operator==(const SiteKey& other) const { return tie() == other.tie(); }
-};
-
-SiteKey site_key(const TriangleMesh& surface, const FeatureCut& cut, const SurfacePoint& site) {
-  if (site.kind == SurfacePoint::Kind::vertex) {
-    const Index v = cut.original_vertex[static_cast<std::size_t>(site.element)];
-    return {v, v, 0};
-  }
-  int zeros = 0, zero = -1, one = -1;
-  for (int k = 0; k < 3; ++k) {
-    if (site.barycentric[k] == 0) zeros++, zero = k;
-    if (site.barycentric[k] == 1) one = k;
-  }
-  if (one >= 0) {
-    const Index v = surface.faces(site.element, one);
-    return {v, v, 0};
-  }
-  if (zeros != 1) return {};
-  int i = (zero + 1) % 3, j = (zero + 2) % 3;
-  if (surface.faces(site.element, i) > surface.faces(site.element, j)) std::swap(i, j);
-  return {surface.faces(site.element, i), surface.faces(site.element, j), site.barycentric[j]};
 }
 
 /// Appends to `out` the point `key` on each face of its edge (at each copy
@@ -102,50 +60,6 @@ VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
   }
   return group_vertex_copies(cut.original_vertex, num_vertices, used);
 }
-
-/// A chain's points by arc length.
-struct ChainWalk {
-  const TriangleMesh& surface;
-  const FeatureChain& chain;
-  std::vector<double> at;  // arc length at each vertex
-
-  ChainWalk(const TriangleMesh& mesh, const FeatureChain& c) : surface(mesh), chain(c), at(c.vertices.size(), 0.0) {
-    for (std::size_t i = 1; i < at.size(); ++i) {
-      at[i] = at[i - 1] + (mesh.vertices.row(c.vertices[i]) - mesh.vertices.row(c.vertices[i - 1])).norm();
-    }
-  }
-  double length() const { return at.back(); }
-  /// The edge (index i: vertices i, i + 1) at arc length s, and t along it.
-  std::size_t locate(double s, double& t) const {
-    const auto upper = std::upper_bound(at.begin(), at.end(), s);
-    std::size_t i = upper == at.begin() ? 0 : static_cast<std::size_t>(upper - at.begin()) - 1;
-    i = std::min(i, at.size() - 2);
-    const double edge = at[i + 1] - at[i];
-    t = edge > 0 ? std::clamp((s - at[i]) / edge, 0.0, 1.0) : 0.0;
-    return i;
-  }
-  Eigen::Vector3d point(double s) const {
-    double t = 0;
-    const std::size_t i = locate(s, t);
-    return (1 - t) * surface.vertices.row(chain.vertices[i]).transpose() +
-           t * surface.vertices.row(chain.vertices[i + 1]).transpose();
-  }
-  /// Whether every vertex of the chain strictly between arc lengths from and
-  /// to lies within `error` of the chord between the chain's points there.
-  bool within(double from, double to, double error) const {
-    const Eigen::Vector3d p = point(from), q = point(to);
-    const Eigen::Vector3d d = q - p;
-    const double dd = d.squaredNorm();
-    const auto first = std::upper_bound(at.begin(), at.end(), from), last = std::lower_bound(first, at.end(), to);
-    for (auto it = first; it != last; ++it) {
-      const std::size_t i = static_cast<std::size_t>(it - at.begin());
-      const Eigen::Vector3d x = surface.vertices.row(chain.vertices[i]).transpose() - p;
-      const double s = dd > 0 ? std::clamp(x.dot(d) / dd, 0.0, 1.0) : 0.0;
-      if ((x - s * d).norm() > error) return false;
-    }
-    return true;
-  }
-};
 
 }  // namespace
 
@@ -235,16 +149,6 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
       if (!inserted) it->second = std::min(it->second, own);
     }
   }
-  const auto add_at = [&](const ChainWalk& walk, double at) {
-    double t = 0;
-    const std::size_t i = walk.locate(at, t);
-    Index a = walk.chain.vertices[i], b = walk.chain.vertices[i + 1];
-    if (a > b) {
-      std::swap(a, b);
-      t = 1 - t;
-    }
-    add({a, b, lattice_parameter(t)});
-  };
   // A stretch whose chord leaves the chain by more than the chord error is
   // split evenly into the fewest parts that keep to it (at most 16): the
   // chain gets denser where it bends, there only.
@@ -294,7 +198,7 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
       refine(walks[c], ends[k], ends[k + 1]);
     }
     if (chain.closed) at.push_back(0);  // the closing end is a site too (the open ends are corners)
-    for (const double s : at) add_at(walks[c], s);
+    for (const double s : at) add(walks[c].key_at(s));
   }
   return result;
 }
@@ -541,10 +445,10 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
         Index lo = cut.original_vertex[p], hi = cut.original_vertex[q];
         double along = t;
         if (lo > hi) std::swap(lo, hi), along = 1 - t;
-        if (t < kMargin || t > 1 - kMargin) {
-          nearest = SurfacePoint::at_vertex(t < kMargin ? p : q);
+        if (t < detail::kLatticeMargin || t > 1 - detail::kLatticeMargin) {
+          nearest = SurfacePoint::at_vertex(t < detail::kLatticeMargin ? p : q);
         } else {
-          nearest = point_on_edge(surface, f, lo, hi, lattice_parameter(along));
+          nearest = point_on_edge(surface, f, lo, hi, detail::lattice_parameter(along));
         }
       }
     }

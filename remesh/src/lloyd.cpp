@@ -70,6 +70,19 @@ void release_field(voronoi::GeodesicField& field) {
 
 bool field_released(const voronoi::GeodesicField& field) { return field.window_begin.empty(); }
 
+/// `moved` with the sites that stay (not `moving`) slid by
+/// options.slide_boundary_sites from where they are in `sites`, whose cells
+/// have the given mass and moment.
+void slide_staying_sites(const LloydOptions& options, std::span<const SurfacePoint> sites, std::span<const double> mass,
+                         std::span<const Eigen::Vector3d> moment, const std::vector<bool>& moving,
+                         std::vector<SurfacePoint>& moved) {
+  if (!options.slide_boundary_sites) return;
+  const std::vector<SurfacePoint> slid = options.slide_boundary_sites(sites, mass, moment);
+  for (std::size_t i = 0; i < moved.size() && i < slid.size(); ++i) {
+    if (!moving[i]) moved[i] = slid[i];
+  }
+}
+
 /// Lloyd's steps, `factor` times each cell's (density-weighted) mean log map.
 std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, const std::vector<bool>& movable,
                                          double factor) {
@@ -303,6 +316,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       const auto start = std::chrono::steady_clock::now();
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, result.sites, steps);
+      slide_staying_sites(options, result.sites, cells.mass, cells.moment, movable, moved);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       release_field(result.diagram.field);
       voronoi::VoronoiDiagram next = diagram_of(moved);

@@ -96,6 +96,37 @@ TEST(FeaturePipeline, BoxKeepsEveryCreaseAndCorner) {
   EXPECT_TRUE(result.remesh.sites_added == 0 || !result.remesh.repair_problems.empty());
 }
 
+TEST(FeaturePipeline, TheRelaxationSlidesChainSitesAlongTheirCreasesAndCornersStay) {
+  const pipeline::RemeshPipelineResult result = remesh_with_features(unit_box(16), 400);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  ASSERT_GT(result.relaxation.iterations, 0);
+  const TriangleMesh& cut = result.feature_cut.mesh;
+  ASSERT_EQ(result.relaxation.sites.size(), result.initial_sites.size());
+  // A point of a crease has two coordinates exactly 0 or 1 (three: a corner).
+  const auto on_box_edges = [](const Eigen::Vector3d& p) {
+    std::array<int, 3> at{};
+    for (int d = 0; d < 3; ++d) at[d] = p[d] == 0.0 ? 0 : p[d] == 1.0 ? 1 : -1;
+    return at;
+  };
+  int chain_sites = 0, slid = 0;
+  for (std::size_t i = 0; i < result.initial_sites.size(); ++i) {
+    const Eigen::Vector3d before = result.initial_sites[i].position(cut),
+                          after = result.relaxation.sites[i].position(cut);
+    const std::array<int, 3> crease = on_box_edges(before);
+    const int fixed = static_cast<int>(std::count_if(crease.begin(), crease.end(), [](int c) { return c >= 0; }));
+    if (fixed < 2) continue;
+    ++chain_sites;
+    if (fixed == 3) {
+      EXPECT_EQ(after, before) << "corner " << i;
+    } else {
+      EXPECT_EQ(on_box_edges(after), crease) << "site " << i << " left its crease";
+      slid += (after - before).norm() > 1e-6;
+    }
+  }
+  EXPECT_GE(chain_sites, 8 + 12 * 3);
+  EXPECT_GT(slid, 0);
+}
+
 TEST(FeaturePipeline, EveryCornerOfAScanThatKeepsItsCreasesIsAVertexOfTheRemesh) {
   // cheburashka's creases at 2,000 sites: seven chains, three of them open,
   // ending in the open (the tips of slits in the cut surface, where the weld's

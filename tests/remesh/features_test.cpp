@@ -6,6 +6,7 @@
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/remesh/chain_slider.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
@@ -406,6 +407,67 @@ TEST(FeatureCut, ASiteThatCracksTheWeldBetweenTwoChainSitesMovesHalfwayBetweenTh
   const Eigen::Vector3d middle =
       (dual.vertices.row(va) + dual.vertices.row(at(next, b) ? next : after)).transpose() / 2;
   EXPECT_LT((welded.site_moves[0].second.position(cut.mesh) - middle).norm(), 1e-6);
+}
+
+TEST(ChainSlider, APointAndItsTwinSlideTogetherAlongTheirChainByTheCellsPullAlongIt) {
+  const TriangleMesh box = cube(6);
+  const remesh::FeatureSet features = remesh::detect_features(box);
+  const remesh::FeatureCut cut = remesh::cut_along_features(box, features);
+  // Per crease: the corners at 0 and 1, points at 0.25, 0.5 and 0.75 (twins).
+  const std::vector<SurfacePoint> sites = remesh::feature_sites(box, features, cut, {.spacing = 0.26}).sites;
+  const remesh::ChainSlider slide(box, features, cut);
+  const auto position = [&](const SurfacePoint& site) { return Eigen::Vector3d(site.position(cut.mesh)); };
+  const auto same = [](const SurfacePoint& a, const SurfacePoint& b) {
+    return a.kind == b.kind && a.element == b.element && a.barycentric == b.barycentric;
+  };
+  const auto normal = [&](Index f) {
+    const Eigen::Vector3d a = cut.mesh.vertices.row(cut.mesh.faces(f, 0)),
+                          b = cut.mesh.vertices.row(cut.mesh.faces(f, 1)),
+                          c = cut.mesh.vertices.row(cut.mesh.faces(f, 2));
+    return Eigen::Vector3d((b - a).cross(c - a).normalized());
+  };
+  // The twins of one crease's middle point, and the crease's direction.
+  std::vector<std::size_t> twins;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const Eigen::Vector3d p = position(sites[i]);
+    if (std::abs(p.x() - 0.5) < 1e-6 && p.y() == 0 && p.z() == 0) twins.push_back(i);
+  }
+  ASSERT_EQ(twins.size(), 2u);
+  const double x0 = position(sites[twins[0]]).x();  // 0.5, on the lattice of edge parameters
+  const std::vector<double> mass(sites.size(), 1.0);
+  const auto pulled = [&](const Eigen::Vector3d& pull) {
+    std::vector<Eigen::Vector3d> moment(sites.size(), Eigen::Vector3d::Zero());
+    for (const std::size_t i : twins) moment[i] = pull;  // mass 1 each: Lloyd's step is the pull
+    return slide(sites, mass, moment);
+  };
+  const auto expect_only_twins_at = [&](const std::vector<SurfacePoint>& moved, double x) {
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      if (std::find(twins.begin(), twins.end(), i) == twins.end()) {
+        EXPECT_TRUE(same(moved[i], sites[i])) << i;
+        continue;
+      }
+      EXPECT_NEAR(position(moved[i]).x(), x, 1e-9);
+      EXPECT_EQ(position(moved[i]).y(), 0.0);
+      EXPECT_EQ(position(moved[i]).z(), 0.0);
+      EXPECT_EQ(position(moved[i]), position(moved[twins[0]]));  // exactly one point still
+      // On its own side: a face with the normal of the one it left.
+      EXPECT_GT(normal(sites[i].element).dot(normal(moved[i].element)), 1 - 1e-12);
+    }
+  };
+  // The twins' pulls along the crease (0.05 each, mass 1 each) move the point by 0.05.
+  expect_only_twins_at(pulled({0.05, 0.02, 0.02}), x0 + 0.05);
+  // Across it, they move nothing.
+  expect_only_twins_at(pulled({0, 0.3, -0.1}), x0);
+  // A pull past a neighbour goes a third of the way to it (at 0.25).
+  expect_only_twins_at(pulled({-1, 0, 0}), x0 - (x0 - 0.25) / 3);
+  // Corners (vertex sites) stay, whatever their pull.
+  std::vector<Eigen::Vector3d> moment(sites.size(), Eigen::Vector3d(0.1, 0.1, 0.1));
+  const std::vector<SurfacePoint> moved = slide(sites, mass, moment);
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    if (sites[i].kind == SurfacePoint::Kind::vertex) {
+      EXPECT_TRUE(same(moved[i], sites[i]));
+    }
+  }
 }
 
 }  // namespace

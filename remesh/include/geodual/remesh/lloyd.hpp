@@ -11,7 +11,10 @@
 #include "geodual/voronoi/geodesic_surface.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include <Eigen/Core>
+
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace geodual::remesh {
@@ -60,6 +63,17 @@ struct LloydOptions {
   /// Sites on the mesh boundary stay where they are (they carry the
   /// boundary loops into the remesh); true moves them like the others.
   bool move_boundary_sites = false;
+  /// Where set, moves the sites that stay otherwise (on the boundary) along
+  /// it, as a feature chain's sites slide along their chain (chain_slider.hpp):
+  /// told the sites and, per site, its cell's mass and first moment, it
+  /// returns the sites, moved. Each iteration's step takes its moves of the
+  /// sites that stay, and is kept only if the energy falls, as any other.
+  /// Not in the warm start: the restricted diagram's cells reach across a
+  /// crease (its distances are straight lines in space), which slides chain
+  /// sites where the geodesic diagram would not.
+  std::function<std::vector<SurfacePoint>(std::span<const SurfacePoint> sites, std::span<const double> mass,
+                                          std::span<const Eigen::Vector3d> moment)>
+      slide_boundary_sites;
   voronoi::VoronoiOptions voronoi;
   /// For progress reports: told the iterations accepted so far once the
   /// first diagram is done and after each accepted iteration (a rejected
