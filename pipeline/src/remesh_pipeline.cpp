@@ -69,6 +69,25 @@ void require_error_bound_options(const RemeshPipelineOptions& options) {
   if (!options.statistics) throw UsageError("an error bound is checked by the statistics: they cannot be off");
 }
 
+/// \throw UsageError for a feature or repair option out of range.
+void require_feature_and_repair_options(const remesh::RemeshOptions& options) {
+  if (!std::isfinite(options.sharp_angle) || options.sharp_angle < 0 || options.sharp_angle > 180) {
+    throw UsageError("sharp angle " + std::to_string(options.sharp_angle) +
+                     ": must be in [0, 180] degrees (0: no features)");
+  }
+  if (!std::isfinite(options.min_feature_length) || options.min_feature_length < 0) {
+    throw UsageError("min feature length " + std::to_string(options.min_feature_length) +
+                     ": must be a finite number >= 0 (in spacings)");
+  }
+  if (options.max_repair_rounds < 0) {
+    throw UsageError("max repair rounds " + std::to_string(options.max_repair_rounds) + ": must be >= 0");
+  }
+  if (options.max_feature_repair_rounds < 0) {
+    throw UsageError("max feature repair rounds " + std::to_string(options.max_feature_repair_rounds) +
+                     ": must be >= 0");
+  }
+}
+
 void report(const ProgressCallback& progress, Stage stage, double fraction) {
   if (progress && !progress(stage, fraction)) {
     throw Cancelled(std::string(stage_name(stage)) + " cancelled");
@@ -453,6 +472,7 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
   require_one_site_source(options);
   require_error_bound_options(options);
+  require_feature_and_repair_options(options.remesh);
   require_edges_of(input.mesh, options.remesh.feature_edges, "feature edge");
   RemeshPipelineResult result;
   result.input = std::move(input);

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,30 @@ TEST(RemeshPipeline, MoreThanOneSiteSourceIsAUsageError) {
   options.faces = 0;
   options.edge_length = -1;
   EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+}
+
+TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) {
+  const io::LoadedMesh loaded = io::read_mesh(genus_four);
+  const auto message = [&](auto change) {
+    pipeline::RemeshPipelineOptions options = small_options();
+    change(options.remesh);
+    try {
+      pipeline::run_remesh_pipeline(loaded, options);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = -1; }).find("sharp angle"), std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = 200; }).find("sharp angle"), std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = std::nan(""); }).find("sharp angle"),
+            std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.min_feature_length = -0.5; }).find("min feature length"),
+            std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_repair_rounds = -1; }).find("max repair rounds"),
+            std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_feature_repair_rounds = -2; }).find("max feature repair"),
+            std::string::npos);
 }
 
 // A colour field linear in space is linear on every face, so the remesh's

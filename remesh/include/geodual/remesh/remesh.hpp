@@ -85,6 +85,8 @@ struct RemeshOptions {
   /// least this many degrees at half the remesh's spacing, in chains at least
   /// min_feature_length spacings long, are cut open, lined with sites and
   /// welded in the dual. 0: none. See docs/algorithms.md#sharp-features.
+  /// (The pipeline rejects a sharp angle outside [0, 180], a negative length
+  /// or round count with geodual::UsageError.)
   double sharp_angle = 60;
   double min_feature_length = 0.5;
   /// Edges of the input (vertex index pairs) kept as features too, whatever
