@@ -82,6 +82,10 @@ void require_feature_and_repair_options(const remesh::RemeshOptions& options) {
   if (options.max_repair_rounds < 0) {
     throw UsageError("max repair rounds " + std::to_string(options.max_repair_rounds) + ": must be >= 0");
   }
+  if (!std::isfinite(options.max_feature_sites_added) || options.max_feature_sites_added < 0) {
+    throw UsageError("max feature sites added " + std::to_string(options.max_feature_sites_added) +
+                     ": must be a finite fraction >= 0 of the sites");
+  }
   if (options.max_feature_repair_rounds < 0) {
     throw UsageError("max feature repair rounds " + std::to_string(options.max_feature_repair_rounds) +
                      ": must be >= 0");
@@ -322,7 +326,13 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 
   // Dual with repair; each repair round's diagram reports its progress.
   remesh::RepairOptions repair{.max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi};
-  if (features) repair.max_rounds = std::min(repair.max_rounds, options.remesh.max_feature_repair_rounds);
+  if (features) {
+    repair.max_rounds = std::min(repair.max_rounds, options.remesh.max_feature_repair_rounds);
+    if (options.remesh.max_feature_sites_added > 0) {
+      repair.max_sites_added = std::max<std::int64_t>(
+          1, std::llround(options.remesh.max_feature_sites_added * static_cast<double>(result.initial_sites.size())));
+    }
+  }
   if (options.progress) {
     repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
   }

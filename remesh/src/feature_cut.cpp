@@ -461,6 +461,72 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
   return welded;
 }
 
+namespace {
+
+/// Chain points closer than this many spacings are one point (doubled_chain_points).
+constexpr double kDoubledPoint = 0.05;
+
+/// Per site, whether it doubles a point on a chain: it lies on a sharp edge
+/// or a vertex of one, within `tolerance` of a corner or of a site there with
+/// another key and a lower index (a twin shares its key and is no double).
+/// The dual's repair keeps its points apart only on one piece, and the two
+/// sheets of a cut are two: each may get a point a hair from the other's, or
+/// from a chain site, which welded makes a triangle with a side of almost
+/// nothing. Corners are never doubles.
+std::vector<std::uint8_t> doubled_chain_points(const TriangleMesh& surface, const FeatureSet& features,
+                                               const FeatureCut& cut, std::span<const SurfacePoint> sites,
+                                               double tolerance) {
+  std::vector<std::uint8_t> on_chain(static_cast<std::size_t>(surface.vertices.rows()), 0);
+  for (const auto& [a, b] : features.sharp_edges) on_chain[a] = on_chain[b] = 1;
+  std::vector<std::uint8_t> doubled(sites.size(), 0);
+  struct Held {
+    SiteKey key;
+    Eigen::Vector3d position;
+  };
+  std::map<std::array<std::int64_t, 3>, std::vector<Held>> grid;
+  const auto cell_of = [&](const Eigen::Vector3d& x) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / tolerance)),
+                                       static_cast<std::int64_t>(std::floor(x.y() / tolerance)),
+                                       static_cast<std::int64_t>(std::floor(x.z() / tolerance))};
+  };
+  const auto doubles = [&](const SiteKey& key, const Eigen::Vector3d& x) {
+    const auto cell = cell_of(x);
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (it == grid.end()) continue;
+          for (const Held& other : it->second) {
+            if (!(other.key == key) && (other.position - x).norm() <= tolerance) return true;
+          }
+        }
+      }
+    }
+    return false;
+  };
+  std::vector<SiteKey> keys(sites.size());
+  for (std::size_t i = 0; i < sites.size(); ++i) keys[i] = site_key(surface, cut, sites[i]);
+  for (const bool corners : {true, false}) {
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      const SiteKey& key = keys[i];
+      if (key.lo < 0) continue;
+      const bool corner =
+          key.lo == key.hi && std::binary_search(features.corners.begin(), features.corners.end(), key.lo);
+      const bool chain_point = key.lo == key.hi ? on_chain[key.lo] != 0 : is_sharp(features, key.lo, key.hi);
+      if (corner != corners || !chain_point) continue;
+      const Eigen::Vector3d x = sites[i].position(cut.mesh);
+      if (!corner && doubles(key, x)) {
+        doubled[i] = 1;
+        continue;
+      }
+      grid[cell_of(x)].push_back({key, x});
+    }
+  }
+  return doubled;
+}
+
+}  // namespace
+
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
                                      const FeatureSet& features, const FeatureCut& cut, std::vector<SurfacePoint> sites,
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
@@ -470,14 +536,54 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
   int leave_out_rounds = 0;
   std::vector<std::string> repair_problems;
   double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
+  const auto require_within_budget = [&](std::int64_t added, int rounds) {
+    if (options.max_sites_added > 0 && added > options.max_sites_added) {
+      throw Error("the remesh welded along the sharp features would add " + std::to_string(added) + " sites in " +
+                  std::to_string(rounds) + " rounds, more than the " + std::to_string(options.max_sites_added) +
+                  " allowed: its creases are finer than the spacing; try more sites, or a larger sharp angle");
+    }
+  };
   for (int round = 0;; ++round) {
-    result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), options);
+    RepairOptions within = options;  // with the sites still allowed
+    if (options.max_sites_added > 0) {
+      within.max_sites_added = std::max<std::int64_t>(1, options.max_sites_added - sites_added);
+    }
+    result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), within);
     sites_added += result.sites_added;
     sites_left_out += result.sites_left_out;
     repair_problems.insert(repair_problems.end(), result.repair_problems.begin(), result.repair_problems.end());
     geodesic_seconds += result.geodesic_seconds;
     diagram_seconds += result.diagram_seconds;
     dual_seconds += result.dual_seconds;
+    // Points the repair doubled on a chain go, the points they doubled get
+    // their twins, and the diagram is computed again.
+    double area = 0;
+    for (const double a : result.diagram.cell_area) area += a;
+    const double spacing = std::sqrt(area / static_cast<double>(std::max<std::size_t>(result.sites.size(), 1)));
+    const std::vector<std::uint8_t> doubled =
+        doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
+    if (const auto count = std::count(doubled.begin(), doubled.end(), 1); count > 0) {
+      if (round >= options.max_rounds) {
+        throw Error("the remesh welded along the sharp features doubles " + std::to_string(count) +
+                    " points on its creases after " + std::to_string(round) + " rounds");
+      }
+      sites.clear();
+      for (std::size_t i = 0; i < result.sites.size(); ++i) {
+        if (!doubled[i]) sites.push_back(result.sites[i]);
+      }
+      // The points they doubled serve both sheets: their twins come now.
+      const std::vector<SurfacePoint> twins = missing_twins(surface, features, cut, sites);
+      sites.insert(sites.end(), twins.begin(), twins.end());
+      sites_added += static_cast<std::int64_t>(twins.size());
+      sites_left_out += count;
+      repair_rounds += result.repair_rounds + 1;
+      repair_problems.push_back(std::to_string(count) +
+                                " repair sites doubling points on the sharp features (left out)");
+      diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
+      geodesic_seconds += diagram.stats.geodesic_seconds;
+      diagram_seconds += diagram.stats.extraction_seconds;
+      continue;
+    }
     const auto start = std::chrono::steady_clock::now();
     WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
     if (welded.nonmanifold_edges > 0) {
@@ -533,6 +639,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     sites = std::move(result.sites);
     sites_added += static_cast<std::int64_t>(more.size());
     repair_rounds += result.repair_rounds + 1;
+    require_within_budget(sites_added, round + 1);
     if (!more.empty()) {
       repair_problems.push_back(std::to_string(more.size()) + " points of the sharp features without their twin sites");
     }

@@ -53,6 +53,11 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     }
     result.sites_left_out += static_cast<std::int64_t>(dual.check.redundant_sites.size());
     result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
+    if (options.max_sites_added > 0 && result.sites_added > options.max_sites_added) {
+      throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round + 1) +
+                  " repair rounds: they would add " + std::to_string(result.sites_added) + " sites, more than the " +
+                  std::to_string(options.max_sites_added) + " allowed (" + problems + "); try more sites");
+    }
     result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());
   }
 }

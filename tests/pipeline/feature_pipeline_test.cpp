@@ -160,6 +160,20 @@ TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
   EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.3);
 }
 
+TEST(FeaturePipeline, RepairPointsThatDoubleAPointOnACreaseGiveWayToItsTwins) {
+  // assembly_47 at 2,000 sites: the dual's repair puts points on both sheets
+  // of a cut crease a hair from each other, or from a chain site, which
+  // welded made triangles with a side of almost nothing (Qmin 0.001).
+  io::LoadedMesh loaded;
+  loaded.mesh = bench::assembly_47();
+  const pipeline::RemeshPipelineResult result = remesh_without_statistics(std::move(loaded), 2000);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  const std::vector<std::string>& problems = result.remesh.repair_problems;
+  EXPECT_TRUE(std::any_of(problems.begin(), problems.end(),
+                          [](const std::string& p) { return p.find("doubling points") != std::string::npos; }));
+  EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.3);
+}
+
 TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
   // cheburashka at 500 sites: its seven creases are finer than the spacing,
   // and the dual of the cut surface needs more than 4 rounds of repair.
@@ -169,14 +183,34 @@ TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
       << dropped.features_dropped_reason;
   EXPECT_TRUE(dropped.features.empty());
   EXPECT_EQ(dropped.remesh.mesh.num_vertices(), 500 + dropped.remesh.sites_added - dropped.remesh.sites_left_out);
-  // Given as many rounds as the remesh without them, they are kept.
+  // Given as many rounds as the remesh without them, and sites without bound, they are kept.
   pipeline::RemeshPipelineOptions options;
   options.remesh.max_feature_repair_rounds = options.remesh.max_repair_rounds;
+  options.remesh.max_feature_sites_added = 0;
   const pipeline::RemeshPipelineResult kept =
       remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 500, options);
   EXPECT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
   EXPECT_EQ(kept.features.sharp_chains, 7);
   EXPECT_GT(kept.remesh.repair_rounds, 4);
+}
+
+TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreDropped) {
+  // The plate 2 % thick with five holes at 2,000 sites: the creases round
+  // its holes and rims are finer than the spacing, and the repair of the cut
+  // surface's dual would add more than a tenth of the sites.
+  io::LoadedMesh plate;
+  plate.mesh = bench::thick_plate_with_holes();
+  const pipeline::RemeshPipelineResult dropped = remesh_without_statistics(plate, 2000);
+  EXPECT_NE(dropped.features_dropped_reason.find("allowed"), std::string::npos) << dropped.features_dropped_reason;
+  EXPECT_TRUE(dropped.features.empty());
+  EXPECT_LE(dropped.remesh.mesh.num_vertices(), 2000 + dropped.remesh.sites_added);
+  // Without the bound, they are kept at the cost of those sites.
+  pipeline::RemeshPipelineOptions options;
+  options.remesh.max_feature_sites_added = 0;
+  options.remesh.max_feature_repair_rounds = options.remesh.max_repair_rounds;
+  const pipeline::RemeshPipelineResult kept = remesh_without_statistics(plate, 2000, options);
+  ASSERT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
+  EXPECT_GT(static_cast<double>(kept.remesh.sites_added), 0.1 * static_cast<double>(kept.initial_sites.size()));
 }
 
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {

@@ -195,6 +195,20 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
   EXPECT_GT(repaired.dual.sites_added, 0);
   EXPECT_EQ(analyze_mesh(repaired.dual.mesh).euler_characteristic, 0);
   EXPECT_EQ(analyze_mesh(repaired.dual.mesh).nonmanifold_edges, 0);
+  // With fewer sites allowed than the repair adds: a clear error instead.
+  remesh::RepairOptions budget;
+  budget.max_sites_added = 1000;
+  const remesh::RepairedDual enough =
+      remesh::dual_with_repair(torus, sites, voronoi::compute_voronoi(torus, sites), budget);
+  EXPECT_EQ(enough.sites_added, repaired.dual.sites_added);
+  ASSERT_GT(enough.sites_added, 1);
+  budget.max_sites_added = enough.sites_added - 1;
+  try {
+    (void)remesh::dual_with_repair(torus, sites, voronoi::compute_voronoi(torus, sites), budget);
+    ADD_FAILURE() << "the repair added more sites than allowed";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find(" allowed"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

@@ -27,6 +27,9 @@ struct RepairOptions {
   /// Rounds of "add sites where the dual fails, recompute" before giving up
   /// with a geodual::Error.
   int max_rounds = 10;
+  /// Gives up the same way once the rounds have added more than this many
+  /// sites (0: no bound).
+  std::int64_t max_sites_added = 0;
   voronoi::VoronoiOptions voronoi;  ///< for the repair rounds' diagrams
 };
 
@@ -80,6 +83,10 @@ struct RemeshOptions {
   /// its dual needs more, the creases are finer than the spacing, and the
   /// remesh pipeline remeshes without them.
   int max_feature_repair_rounds = 4;
+  /// ... and where its repair would add more than this fraction of the
+  /// sites (twins included), as creases finer than the spacing make it, it
+  /// gives up too (0: no bound).
+  double max_feature_sites_added = 0.1;
   /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
   /// pipeline when it samples the sites: creases where the normals turn by at
   /// least this many degrees at half the remesh's spacing, in chains at least
