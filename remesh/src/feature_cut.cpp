@@ -464,7 +464,7 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
 namespace {
 
 /// Chain points closer than this many spacings are one point (doubled_chain_points).
-constexpr double kDoubledPoint = 0.05;
+constexpr double kDoubledPoint = 0.2;
 
 /// Per site, whether it doubles a point on a chain: it lies on a sharp edge
 /// or a vertex of one, within `tolerance` of a corner or of a site there with
