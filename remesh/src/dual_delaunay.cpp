@@ -1,6 +1,7 @@
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 
+#include "geodual/mesh/detail/point_grid.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/union_find.hpp"
@@ -407,31 +408,9 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   for (const double area : diagram.cell_area) cells_area += area;
   const double apart =
       0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
-  std::map<std::array<std::int64_t, 3>, std::vector<Eigen::Vector3d>> grid;
-  auto cell_of = [&](const Eigen::Vector3d& x) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / same_point)),
-                                       static_cast<std::int64_t>(std::floor(x.y() / same_point)),
-                                       static_cast<std::int64_t>(std::floor(x.z() / same_point))};
-  };
-  auto taken = [&](const Eigen::Vector3d& x) {
-    const auto cell = cell_of(x);
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (it == grid.end()) continue;
-          for (const Eigen::Vector3d& y : it->second) {
-            if ((x - y).norm() <= same_point) return true;
-          }
-        }
-      }
-    }
-    return false;
-  };
-  for (const SurfacePoint& site : field.sites) {
-    const Eigen::Vector3d x = site.position(input);
-    grid[cell_of(x)].push_back(x);
-  }
+  PointGrid<char> grid(same_point);  // the sites and the points kept
+  auto taken = [&](const Eigen::Vector3d& x) { return grid.any_within(x, same_point, [](char) { return true; }); };
+  for (const SurfacePoint& site : field.sites) grid.insert(site.position(input), 0);
   std::vector<Index> face_at_vertex;  // a face with area at each vertex, found when first needed
   auto into_face = [&](const SurfacePoint& p) {
     Index face = p.element;
@@ -479,7 +458,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
       return y.component == component && (x - y.position).norm() <= std::min(own, y.apart);
     };
     if (taken(x) || std::any_of(kept.begin(), kept.end(), near)) continue;
-    grid[cell_of(x)].push_back(x);
+    grid.insert(x, 0);
     kept.push_back({x, own, component});
     result.push_back(p);
   }

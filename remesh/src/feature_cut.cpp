@@ -2,6 +2,7 @@
 
 #include "chain_points.hpp"
 
+#include "geodual/mesh/detail/point_grid.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
@@ -479,31 +480,7 @@ std::vector<std::uint8_t> doubled_chain_points(const TriangleMesh& surface, cons
   std::vector<std::uint8_t> on_chain(static_cast<std::size_t>(surface.vertices.rows()), 0);
   for (const auto& [a, b] : features.sharp_edges) on_chain[a] = on_chain[b] = 1;
   std::vector<std::uint8_t> doubled(sites.size(), 0);
-  struct Held {
-    SiteKey key;
-    Eigen::Vector3d position;
-  };
-  std::map<std::array<std::int64_t, 3>, std::vector<Held>> grid;
-  const auto cell_of = [&](const Eigen::Vector3d& x) {
-    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(x.x() / tolerance)),
-                                       static_cast<std::int64_t>(std::floor(x.y() / tolerance)),
-                                       static_cast<std::int64_t>(std::floor(x.z() / tolerance))};
-  };
-  const auto doubles = [&](const SiteKey& key, const Eigen::Vector3d& x) {
-    const auto cell = cell_of(x);
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (it == grid.end()) continue;
-          for (const Held& other : it->second) {
-            if (!(other.key == key) && (other.position - x).norm() <= tolerance) return true;
-          }
-        }
-      }
-    }
-    return false;
-  };
+  PointGrid<SiteKey> grid(tolerance);  // the chain points held, by key
   std::vector<SiteKey> keys(sites.size());
   for (std::size_t i = 0; i < sites.size(); ++i) keys[i] = site_key(surface, cut, sites[i]);
   for (const bool corners : {true, false}) {
@@ -515,11 +492,11 @@ std::vector<std::uint8_t> doubled_chain_points(const TriangleMesh& surface, cons
       const bool chain_point = key.lo == key.hi ? on_chain[key.lo] != 0 : is_sharp(features, key.lo, key.hi);
       if (corner != corners || !chain_point) continue;
       const Eigen::Vector3d x = sites[i].position(cut.mesh);
-      if (!corner && doubles(key, x)) {
+      if (!corner && grid.any_within(x, tolerance, [&](const SiteKey& other) { return !(other == key); })) {
         doubled[i] = 1;
         continue;
       }
-      grid[cell_of(x)].push_back({key, x});
+      grid.insert(x, key);
     }
   }
   return doubled;
