@@ -298,8 +298,9 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     }
     lloyd.density = std::move(density);
   }
-  // From the warm start the iterations mostly stop after one or two (LloydOptions::geodesic_tolerance).
-  const int diagrams = std::min(lloyd.iterations, 2) + 1;
+  // From the warm start the iterations mostly stop after one or two
+  // (LloydOptions::geodesic_tolerance); without that stop, all of them run.
+  const int diagrams = (lloyd.geodesic_tolerance > 0 ? std::min(lloyd.iterations, 2) : lloyd.iterations) + 1;
   int diagrams_done = 0;  // the first diagram, then one per accepted iteration
   double relaxed = 0;     // the fraction reported last
   if (options.progress) {

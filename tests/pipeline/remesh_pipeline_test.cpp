@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -81,6 +82,28 @@ TEST(RemeshPipeline, RelaxProgressRisesAndEndsWithTheRelaxationEvenWhenStepsAreR
                                                  pipeline::Stage::dual, pipeline::Stage::statistics};
   EXPECT_EQ(seen, expected);
   EXPECT_LE(relax_fraction, 1.0);
+}
+
+TEST(RemeshPipeline, RelaxProgressCountsEveryIterationWhenTheGeodesicToleranceIsOff) {
+  // Without the geodesic tolerance's stop every iteration runs: the relax
+  // stage must not report itself done after the first two diagrams.
+  pipeline::RemeshPipelineOptions options = small_options();
+  options.statistics = false;
+  options.remesh.lloyd.iterations = 6;
+  options.remesh.lloyd.tolerance = 0;
+  options.remesh.lloyd.geodesic_tolerance = 0;
+  std::vector<double> relax;
+  options.progress = [&](pipeline::Stage stage, double fraction) {
+    if (stage == pipeline::Stage::relax) relax.push_back(fraction);
+    return true;
+  };
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(genus_four, options);
+  ASSERT_GE(result.relaxation.iterations, 4);
+  ASSERT_FALSE(relax.empty());
+  const auto first_done =
+      std::find_if(relax.begin(), relax.end(), [](double fraction) { return fraction >= 0.99; }) - relax.begin();
+  EXPECT_GT(static_cast<double>(first_done), 0.6 * static_cast<double>(relax.size()))
+      << first_done << " of " << relax.size() << " reports";
 }
 
 TEST(RemeshPipeline, TheProgressCallbackCancels) {
