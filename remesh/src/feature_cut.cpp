@@ -502,6 +502,17 @@ std::vector<std::uint8_t> doubled_chain_points(const TriangleMesh& surface, cons
   return doubled;
 }
 
+/// `sites` less those `marked`.
+std::vector<SurfacePoint> sites_not_marked(std::span<const SurfacePoint> sites,
+                                           const std::vector<std::uint8_t>& marked) {
+  std::vector<SurfacePoint> kept;
+  kept.reserve(sites.size());
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    if (!marked[i]) kept.push_back(sites[i]);
+  }
+  return kept;
+}
+
 }  // namespace
 
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
@@ -519,6 +530,12 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                   std::to_string(rounds) + " rounds, more than the " + std::to_string(options.max_sites_added) +
                   " allowed: its creases are finer than the spacing; try more sites, or a larger sharp angle");
     }
+  };
+  // The next round's diagram, of `sites`.
+  const auto recompute = [&] {
+    diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
+    geodesic_seconds += diagram.stats.geodesic_seconds;
+    diagram_seconds += diagram.stats.extraction_seconds;
   };
   for (int round = 0;; ++round) {
     RepairOptions within = options;  // with the sites still allowed
@@ -544,10 +561,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
         throw Error("the remesh welded along the sharp features doubles " + std::to_string(count) +
                     " points on its creases after " + std::to_string(round) + " rounds");
       }
-      sites.clear();
-      for (std::size_t i = 0; i < result.sites.size(); ++i) {
-        if (!doubled[i]) sites.push_back(result.sites[i]);
-      }
+      sites = sites_not_marked(result.sites, doubled);
       // The points they doubled serve both sheets: their twins come now.
       const std::vector<SurfacePoint> twins = missing_twins(surface, features, cut, sites);
       sites.insert(sites.end(), twins.begin(), twins.end());
@@ -556,9 +570,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       repair_rounds += result.repair_rounds + 1;
       repair_problems.push_back(std::to_string(count) +
                                 " repair sites doubling points on the sharp features (left out)");
-      diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
-      geodesic_seconds += diagram.stats.geodesic_seconds;
-      diagram_seconds += diagram.stats.extraction_seconds;
+      recompute();
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -576,18 +588,13 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       }
       std::vector<std::uint8_t> unused(result.sites.size(), 0);
       for (const std::size_t site : welded.unused_sites) unused[site] = 1;
-      sites.clear();
-      for (std::size_t i = 0; i < result.sites.size(); ++i) {
-        if (!unused[i]) sites.push_back(result.sites[i]);
-      }
+      sites = sites_not_marked(result.sites, unused);
       sites_left_out += static_cast<std::int64_t>(welded.unused_sites.size());
       repair_rounds += result.repair_rounds + 1;
       repair_problems.push_back(std::to_string(welded.unused_sites.size()) +
                                 " sites in no triangle once welded (left out)");
       dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
-      geodesic_seconds += diagram.stats.geodesic_seconds;
-      diagram_seconds += diagram.stats.extraction_seconds;
+      recompute();
       continue;
     }
     for (const auto& [site, point] : welded.site_moves) result.sites[site] = point;
@@ -625,9 +632,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                                 " edges of the welded remesh leaving the sharp features");
     }
     sites.insert(sites.end(), more.begin(), more.end());
-    diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
-    geodesic_seconds += diagram.stats.geodesic_seconds;
-    diagram_seconds += diagram.stats.extraction_seconds;
+    recompute();
   }
   result.sites_added = sites_added;
   result.sites_left_out = sites_left_out;

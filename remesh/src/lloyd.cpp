@@ -70,14 +70,10 @@ void release_field(voronoi::GeodesicField& field) {
 
 bool field_released(const voronoi::GeodesicField& field) { return field.window_begin.empty(); }
 
-/// `moved` with the sites that stay (not `moving`) slid by
-/// options.slide_boundary_sites from where they are in `sites`, whose cells
-/// have the given mass and moment.
-void slide_staying_sites(const LloydOptions& options, std::span<const SurfacePoint> sites, std::span<const double> mass,
-                         std::span<const Eigen::Vector3d> moment, const std::vector<bool>& moving,
-                         std::vector<SurfacePoint>& moved) {
-  if (!options.slide_boundary_sites) return;
-  const std::vector<SurfacePoint> slid = options.slide_boundary_sites(sites, mass, moment);
+/// `moved` with the sites that stay (not `moving`) where `slid` has them
+/// (options.slide_boundary_sites' result; empty: none slide).
+void take_slid_sites(std::span<const SurfacePoint> slid, const std::vector<bool>& moving,
+                     std::vector<SurfacePoint>& moved) {
   for (std::size_t i = 0; i < moved.size() && i < slid.size(); ++i) {
     if (!moving[i]) moved[i] = slid[i];
   }
@@ -313,10 +309,14 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     // Judged again each iteration: a walk may have ended on the boundary.
     std::vector<bool> movable = movable_sites(mesh, result.sites, topology, options);
     for (std::size_t i = 0; i < movable.size(); ++i) movable[i] = movable[i] && result.diagram.cell_area[i] > 0;
+    // The slide of the sites that stay, the same for every step tried this iteration.
+    const std::vector<SurfacePoint> slid = options.slide_boundary_sites
+                                               ? options.slide_boundary_sites(result.sites, cells.mass, cells.moment)
+                                               : std::vector<SurfacePoint>{};
     auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
       const auto start = std::chrono::steady_clock::now();
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, result.sites, steps);
-      slide_staying_sites(options, result.sites, cells.mass, cells.moment, movable, moved);
+      take_slid_sites(slid, movable, moved);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       release_field(result.diagram.field);
       voronoi::VoronoiDiagram next = diagram_of(moved);
