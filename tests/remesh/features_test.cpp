@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -270,6 +271,103 @@ TEST(FeatureCut, ChordRefinementOfACurvedChainKeepsTheMinimumSpacing) {
   const double floored = smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2});
   EXPECT_GT(floored, 0.2 * (1 - 1e-3));
   EXPECT_LT(floored, 0.3);
+}
+
+// A prism 1 high over the square [-1, 1]^2 whose corner at (1, 1) is
+// rounded to a quarter circle of radius 1/2 (`arc` segments): the rim round
+// each cap is a chain of straight stretches and the arc (its side walls turn
+// by 90 / arc degrees), between the square's other corners.
+TriangleMesh prism_with_a_rounded_corner(int arc) {
+  std::vector<Eigen::Vector2d> outline = {{-1, -1}, {1, -1}};
+  for (int k = 0; k <= arc; ++k) {
+    const double a = 0.5 * std::numbers::pi * k / arc;
+    outline.emplace_back(0.5 + 0.5 * std::cos(a), 0.5 + 0.5 * std::sin(a));
+  }
+  outline.emplace_back(-1, 1);
+  const auto n = static_cast<Index>(outline.size());
+  std::vector<Eigen::Vector3d> vertices;
+  for (const double z : {0.0, 1.0}) {
+    for (const Eigen::Vector2d& p : outline) vertices.emplace_back(p.x(), p.y(), z);
+  }
+  vertices.emplace_back(0, 0, 0);  // the caps' fan centres
+  vertices.emplace_back(0, 0, 1);
+  std::vector<std::array<Index, 3>> faces;
+  for (Index i = 0; i < n; ++i) {
+    const Index j = (i + 1) % n;
+    faces.push_back({i, j, n + j});
+    faces.push_back({i, n + j, n + i});
+    faces.push_back({2 * n, j, i});
+    faces.push_back({2 * n + 1, n + i, n + j});
+  }
+  return test::mesh_from_lists(vertices, faces);
+}
+
+TEST(FeatureCut, AnArcOfAChainTooShortToSplitIsSpacedEvenlyCloserWhereItsChordsLeaveIt) {
+  const TriangleMesh prism = prism_with_a_rounded_corner(/*arc=*/16);
+  const remesh::FeatureSet features = remesh::detect_features(prism);
+  ASSERT_EQ(features.corners.size(), 6u);  // the square's three corners, top and bottom
+  const remesh::FeatureCut cut = remesh::cut_along_features(prism, features);
+  // The top rim's points in order round it (it is star-shaped about the axis),
+  // and the largest distance of the rim's arc vertices from their polygon.
+  struct Rim {
+    std::vector<Eigen::Vector2d> points;
+    double arc_deviation = 0;
+  };
+  const auto top_rim = [&](const remesh::FeatureSiteOptions& options) {
+    Rim rim;
+    for (const SurfacePoint& site : remesh::feature_sites(prism, features, cut, options).sites) {
+      const Eigen::Vector3d p = site.position(cut.mesh);
+      if (p.z() > 1 - 1e-9) rim.points.push_back(p.head<2>());
+    }
+    const auto angle = [](const Eigen::Vector2d& p) { return std::atan2(p.y(), p.x()); };
+    std::sort(rim.points.begin(), rim.points.end(),
+              [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return angle(a) < angle(b); });
+    rim.points.erase(std::unique(rim.points.begin(), rim.points.end()), rim.points.end());  // twins
+    for (Index v = 0; v < prism.vertices.rows(); ++v) {
+      const Eigen::Vector3d x = prism.vertices.row(v);
+      if (x.z() != 1.0 || x.x() < 0.5 || x.y() < 0.5) continue;  // on the arc
+      double nearest = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < rim.points.size(); ++k) {
+        const Eigen::Vector2d a = rim.points[k], d = rim.points[(k + 1) % rim.points.size()] - a;
+        const double t = std::clamp((x.head<2>() - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        nearest = std::min(nearest, (a + t * d - x.head<2>()).norm());
+      }
+      rim.arc_deviation = std::max(rim.arc_deviation, nearest);
+    }
+    return rim;
+  };
+  const auto gaps_near_the_arc = [](const Rim& rim, bool near) {
+    std::vector<double> gaps;
+    for (std::size_t k = 0; k < rim.points.size(); ++k) {
+      const Eigen::Vector2d a = rim.points[k], b = rim.points[(k + 1) % rim.points.size()];
+      const bool close = (a - Eigen::Vector2d(0.5, 0.5)).norm() < 0.6 && (b - Eigen::Vector2d(0.5, 0.5)).norm() < 0.6;
+      if (close == near) gaps.push_back((b - a).norm());
+    }
+    return gaps;
+  };
+  // At spacing 1/2 the arc (0.79 long) lies across two stretches of about
+  // 0.46, each too short to split at a minimum spacing of 0.375: the arc's
+  // chords leave it by about 0.05.
+  const remesh::FeatureSiteOptions floored = {.spacing = 0.5, .max_chord_error = 0.01, .min_spacing = 0.375};
+  const Rim before = top_rim(floored);
+  EXPECT_GT(before.arc_deviation, 0.04);
+  for (const double gap : gaps_near_the_arc(before, true)) EXPECT_GT(gap, 0.375);
+  // Spaced evenly closer down to 0.25, the run of stretches across the arc
+  // takes three parts: the chords come closer, the gaps stay even and at
+  // least the floor, and the straight stretches keep theirs.
+  remesh::FeatureSiteOptions even = floored;
+  even.min_even_spacing = 0.25;
+  const Rim after = top_rim(even);
+  EXPECT_LT(after.arc_deviation, 0.65 * before.arc_deviation);
+  EXPECT_EQ(after.points.size(), before.points.size() + 1);
+  const std::vector<double> arc_gaps = gaps_near_the_arc(after, true);
+  ASSERT_FALSE(arc_gaps.empty());
+  EXPECT_LT(*std::max_element(arc_gaps.begin(), arc_gaps.end()), 0.375);
+  EXPECT_GT(*std::min_element(arc_gaps.begin(), arc_gaps.end()), 0.25 * 0.9);  // chords of arc lengths >= 0.25
+  for (const double gap : gaps_near_the_arc(after, false)) EXPECT_GT(gap, 0.375);
+  // A chain the chord error already holds keeps its spacing.
+  even.max_chord_error = 0.1;
+  EXPECT_EQ(top_rim(even).points, top_rim({.spacing = 0.5, .max_chord_error = 0.1, .min_spacing = 0.375}).points);
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
