@@ -191,6 +191,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
+  report(options.progress, Stage::sample, 0.25);  // each step below takes a while on a large mesh: a chance to cancel
   result.dropped = dropped_surface(result.input.mesh, result.surface);
   if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
     throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
@@ -257,6 +258,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }
     }
+    report(options.progress, Stage::sample, 0.5);
     remesh::SampledSites sampled =
         feature_sites ? remesh::sample_sites_around(result.feature_cut.mesh,
                                                     std::max<std::int64_t>(0, sites - feature_sites->points),
