@@ -69,9 +69,10 @@ class InfoCommand final : public Command {
     remesh::FeatureSet features;
     if (sharp_angle_ > 0 && report.faces > 0) {
       const TriangleMesh surface = remesh::cut_to_manifold(loaded.mesh).mesh;
-      features = remesh::detect_features(
-          surface,
-          remesh::remesh_feature_options(surface, sites_, sharp_angle_, remesh::RemeshOptions{}.min_feature_length));
+      features =
+          remesh::detect_features(surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_,
+                                                                          remesh::RemeshOptions{}.min_feature_length,
+                                                                          remesh::RemeshOptions{}.continuation_angle));
     }
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();

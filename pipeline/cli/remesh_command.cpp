@@ -155,6 +155,13 @@ class RemeshCommand final : public Command {
                     "ignored with --site-file)")
         ->capture_default_str()
         ->check(number_between(0, 180));
+    command
+        .add_option("--continuation-angle", options_.continuation_angle,
+                    "Continue those creases through edges where the normals turn by at least this many degrees "
+                    "and both sides are smooth at the remesh's scale (a machined crease whose angle fades; 0, or "
+                    "not below --sharp-angle: off)")
+        ->capture_default_str()
+        ->check(number_between(0, 180));
     command.add_option("--feature-file", feature_file_,
                        "Also keep these edges as features, whatever their angle: one polyline of the mesh's vertex "
                        "indices per line, 'A B C ...' (0-based; '#' starts a comment line; ignored with --site-file)");
@@ -496,6 +503,7 @@ class RemeshCommand final : public Command {
     figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
     figures["sites_added_for_topology"] = run.sites_added_for_topology;
     figures["sharp_angle_deg"] = options_.sharp_angle;
+    figures["continuation_angle_deg"] = options_.continuation_angle;
     figures["feature_chains"] = run.features.sharp_chains;
     figures["feature_corners"] = run.features.corners.size();
     figures["feature_length"] = run.features.sharp_length;
@@ -687,6 +695,7 @@ class RemeshCommand final : public Command {
         max_error_pct_ > 0 ? nlohmann::ordered_json(max_error_pct_) : nlohmann::ordered_json(nullptr);
     options["max_sites"] = max_sites_ > 0 ? nlohmann::ordered_json(max_sites_) : nlohmann::ordered_json(nullptr);
     options["sharp_angle"] = options_.sharp_angle;
+    options["continuation_angle"] = options_.continuation_angle;
     options["feature_file"] =
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();

@@ -75,6 +75,11 @@ void require_feature_and_repair_options(const remesh::RemeshOptions& options) {
     throw UsageError("sharp angle " + std::to_string(options.sharp_angle) +
                      ": must be in [0, 180] degrees (0: no features)");
   }
+  if (!std::isfinite(options.continuation_angle) || options.continuation_angle < 0 ||
+      options.continuation_angle > 180) {
+    throw UsageError("continuation angle " + std::to_string(options.continuation_angle) +
+                     ": must be in [0, 180] degrees (0: off)");
+  }
   if (!std::isfinite(options.min_feature_length) || options.min_feature_length < 0) {
     throw UsageError("min feature length " + std::to_string(options.min_feature_length) +
                      ": must be a finite number >= 0 (in spacings)");
@@ -237,8 +242,9 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     std::optional<remesh::FeatureSites> feature_sites;
     if ((options.remesh.sharp_angle > 0 || !options.remesh.feature_edges.empty()) && sites >= 4) {
       const double spacing = remesh::uniform_spacing(manifold, sites);
-      remesh::FeatureOptions feature_options = remesh::remesh_feature_options(
-          manifold, sites, options.remesh.sharp_angle, options.remesh.min_feature_length);
+      remesh::FeatureOptions feature_options =
+          remesh::remesh_feature_options(manifold, sites, options.remesh.sharp_angle, options.remesh.min_feature_length,
+                                         options.remesh.continuation_angle);
       feature_options.given_edges =
           edges_on_cut(result.surface, result.input.mesh.num_vertices(), options.remesh.feature_edges);
       result.features = remesh::detect_features(manifold, feature_options);
@@ -248,12 +254,12 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         // recall tolerance (0.1 %). A stretch is split no finer than 3/4 of the
         // spacing (sites much denser along a chain than around it make slivers
         // against it); a run of stretches across an arc is spaced evenly, down
-        // to half of it.
+        // to 0.6 of it.
         feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut,
                                               {.spacing = spacing,
                                                .max_chord_error = 8e-4 * result.input_report.bbox_diagonal,
                                                .min_spacing = 0.75 * spacing,
-                                               .min_even_spacing = 0.5 * spacing});
+                                               .min_even_spacing = 0.6 * spacing});
         result.feature_sites = feature_sites->points;
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }

@@ -66,9 +66,9 @@ std::vector<std::array<Index, 2>> edges_from_object(const py::object& object) {
 
 RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
                     const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
-                    const py::object& colors, double sharp_angle, const py::object& feature_edges,
-                    const py::object& progress, bool statistics, const py::object& max_error,
-                    const py::object& max_sites) {
+                    const py::object& colors, double sharp_angle, double continuation_angle,
+                    const py::object& feature_edges, const py::object& progress, bool statistics,
+                    const py::object& max_error, const py::object& max_sites) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
   if (sizings > 1) {
     throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
@@ -101,9 +101,14 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
     throw py::value_error("sharp_angle must be in [0, 180] degrees (0: no features), got " +
                           std::to_string(sharp_angle));
   }
+  if (!(continuation_angle >= 0 && continuation_angle <= 180)) {
+    throw py::value_error("continuation_angle must be in [0, 180] degrees (0: off), got " +
+                          std::to_string(continuation_angle));
+  }
   options.remesh.lloyd.iterations = lloyd;
   options.sampling.seed = static_cast<std::uint64_t>(seed);
   options.remesh.sharp_angle = sharp_angle;
+  options.remesh.continuation_angle = continuation_angle;
   if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
   if (!max_error.is_none()) {
@@ -190,9 +195,10 @@ void add_remesh(py::module_& module) {
   module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
              py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
              py::arg("seed") = 1, py::arg("colors") = py::none(),
-             py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle, py::arg("feature_edges") = py::none(),
-             py::arg("progress") = py::none(), py::arg("statistics") = true, py::arg("max_error") = py::none(),
-             py::arg("max_sites") = py::none(),
+             py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
+             py::arg("continuation_angle") = remesh::RemeshOptions{}.continuation_angle,
+             py::arg("feature_edges") = py::none(), py::arg("progress") = py::none(), py::arg("statistics") = true,
+             py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
@@ -217,6 +223,10 @@ colors: None or the input's per-vertex colours (n x 3 / n x 4, floats in
 [0, 1] or uint8), interpolated to the remesh's vertices (result.colors).
 sharp_angle: keep sharp creases where the normals turn by at least this many
 degrees (0: none; 60 by default).
+continuation_angle: continue those creases through edges where the normals
+turn by at least this many degrees and both sides are smooth at the remesh's
+scale (a machined crease whose angle fades; 0, or not below sharp_angle: off;
+40 by default).
 feature_edges: None or a k x 2 integer array of vertex pairs, edges of F kept
 as features too whatever their angle (sharp_angle 0: only these); a pair that
 is no edge of F raises geodual.UsageError.

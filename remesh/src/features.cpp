@@ -65,8 +65,10 @@ double turn_degrees(const TriangleMesh& mesh, Index a, Index v, Index b) {
 /// area-weighted normals must turn by at least `angle` degrees. The faces
 /// round both ends are always within reach, so that where the input's edges
 /// are longer than the scale, the faces round a lone noisy edge still join.
+/// With max_spread > 0, every face's normal must also lie within max_spread
+/// degrees of its side's mean: both sides are smooth at that scale.
 std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& topology,
-                                  const std::vector<Index>& sharp, double angle, double scale) {
+                                  const std::vector<Index>& sharp, double angle, double scale, double max_spread = 0) {
   const Index num_faces = mesh.num_faces();
   std::vector<std::uint8_t> is_sharp(static_cast<std::size_t>(topology.num_edges()), 0);
   for (const Index e : sharp) is_sharp[e] = 1;
@@ -81,6 +83,7 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
   std::vector<Index> queue;
   std::vector<Index> kept;
   const double min_cos = std::cos(angle * std::numbers::pi / 180);
+  const double spread_cos = std::cos(max_spread * std::numbers::pi / 180);
   for (std::size_t i = 0; i < sharp.size(); ++i) {
     const Index e = sharp[i];
     const auto faces = topology.edge_faces(e);
@@ -97,8 +100,8 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
     };
     // Region growing from each side; stamp 2 i + side marks the faces reached.
     Eigen::Vector3d mean[2];
-    bool joined = false;
-    for (int side = 0; side < 2 && !joined; ++side) {
+    bool joined = false, smooth = true;
+    for (int side = 0; side < 2 && !joined && smooth; ++side) {
       const std::int64_t stamp = 2 * static_cast<std::int64_t>(i) + side;
       mean[side] = Eigen::Vector3d::Zero();
       queue.assign(1, faces[side]);
@@ -116,8 +119,12 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
           }
         }
       }
+      if (max_spread > 0 && mean[side].norm() > 0) {
+        const Eigen::Vector3d axis = mean[side].normalized();
+        for (const Index f : queue) smooth = smooth && !(normal[f].dot(axis) < spread_cos * normal[f].norm());
+      }
     }
-    if (joined) continue;
+    if (joined || !smooth) continue;
     // Faces that run the edge the same way are misoriented: one side's normals count flipped.
     const auto [a, b] = topology.edge_vertices[e];
     if (face_runs_edge(mesh, faces[0], a, b) == face_runs_edge(mesh, faces[1], a, b)) mean[1] = -mean[1];
@@ -224,12 +231,54 @@ std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, co
   return drop;
 }
 
+/// The edges that continue the creases `sharp` at options.continuation_angle
+/// (FeatureOptions): reached from them along a path of such edges, each
+/// smooth-sided at the scale.
+std::vector<Index> continuations(const TriangleMesh& mesh, const MeshTopology& topology,
+                                 const std::vector<Index>& sharp, const FeatureOptions& options) {
+  std::vector<Index> weaker = sharp_edges(mesh, topology, options.continuation_angle);
+  if (options.scale > 0) {
+    weaker = sharp_at_scale(mesh, topology, weaker, options.continuation_angle, options.scale,
+                            options.continuation_max_spread);
+  }
+  const auto num_vertices = static_cast<std::size_t>(mesh.vertices.rows());
+  std::vector<std::uint8_t> is_weaker(static_cast<std::size_t>(topology.num_edges()), 0);
+  for (const Index e : weaker) is_weaker[e] = 1;
+  for (const Index e : sharp) is_weaker[e] = 0;
+  // Breadth first from the creases' vertices over the weaker edges.
+  std::vector<std::vector<Index>> at(num_vertices);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (!is_weaker[e]) continue;
+    for (const Index v : topology.edge_vertices[e]) at[static_cast<std::size_t>(v)].push_back(e);
+  }
+  std::vector<std::uint8_t> reached(num_vertices, 0);
+  std::vector<Index> queue;
+  for (const Index e : sharp) {
+    for (const Index v : topology.edge_vertices[e]) {
+      if (!reached[v]) reached[v] = 1, queue.push_back(v);
+    }
+  }
+  std::vector<Index> continued;
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    for (const Index e : at[static_cast<std::size_t>(queue[head])]) {
+      if (!is_weaker[e]) continue;
+      is_weaker[e] = 0;
+      continued.push_back(e);
+      for (const Index v : topology.edge_vertices[e]) {
+        if (!reached[v]) reached[v] = 1, queue.push_back(v);
+      }
+    }
+  }
+  return continued;
+}
+
 }  // namespace
 
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
-                                      double min_length) {
+                                      double min_length, double continuation_angle) {
   const double spacing = uniform_spacing(surface, sites);
   return {.sharp_angle = sharp_angle,
+          .continuation_angle = continuation_angle,
           .scale = 0.5 * spacing,
           .min_chain_length = min_length * spacing,
           .min_dangling_chain_length = 2 * spacing,
@@ -244,6 +293,10 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
   if (options.sharp_angle > 0) {
     sharp = sharp_edges(surface, topology, options.sharp_angle);
     if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
+    if (options.continuation_angle > 0 && options.continuation_angle < options.sharp_angle && !sharp.empty()) {
+      const std::vector<Index> continued = continuations(surface, topology, sharp, options);
+      sharp.insert(sharp.end(), continued.begin(), continued.end());
+    }
   }
   // The given edges join them, marked as kept whatever the filters below say.
   std::vector<std::uint8_t> given(static_cast<std::size_t>(topology.num_edges()), 0);

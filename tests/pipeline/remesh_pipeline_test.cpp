@@ -183,6 +183,10 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = 200; }).find("sharp angle"), std::string::npos);
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = std::nan(""); }).find("sharp angle"),
             std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.continuation_angle = -1; }).find("continuation angle"),
+            std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.continuation_angle = std::nan(""); }).find("continuation angle"),
+            std::string::npos);
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.min_feature_length = -0.5; }).find("min feature length"),
             std::string::npos);
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_repair_rounds = -1; }).find("max repair rounds"),

@@ -184,6 +184,8 @@ def test_remesh_argument_errors(woody):
         geodual.remesh(V, F, edge_length=-1.0)
     with pytest.raises(ValueError, match="lloyd must be >= 0"):
         geodual.remesh(V, F, lloyd=-1)
+    with pytest.raises(ValueError, match=r"continuation_angle must be in \[0, 180\]"):
+        geodual.remesh(V, F, continuation_angle=-1.0)
     with pytest.raises(ValueError, match="colors has 3 rows for 694 vertices"):
         geodual.remesh(V, F, colors=np.zeros((3, 3)))
     with pytest.raises(TypeError, match="progress must be a callable"):

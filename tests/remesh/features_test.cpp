@@ -155,6 +155,70 @@ TEST(Features, ACreaseWithAFreeEndMustBeTheDanglingLengthLong) {
   EXPECT_DOUBLE_EQ(remesh_options.min_dangling_chain_length, 4 * remesh_options.scale);
 }
 
+/// A sheet over [-1, 1] x [0, 2] (cells of 0.05) folded along x = 0 by an
+/// angle that fades from 70 degrees at y = 0 to 10 at y = 2: flat for x <= 0,
+/// z = x tan(angle(y)) beyond. From y = noise_from_y on, the folded side's
+/// vertices are moved up and down by up to `noise`.
+TriangleMesh fading_fold(double noise_from_y = 2, double noise = 0.01) {
+  constexpr int columns = 41, rows = 41;
+  std::vector<Eigen::Vector3d> vertices;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      const double x = -1 + 0.05 * i, y = 0.05 * j;
+      const double angle = (70 - 30 * y) * std::numbers::pi / 180;
+      double z = i > 20 ? x * std::tan(angle) : 0.0;
+      if (i > 20 && y >= noise_from_y) z += noise * std::sin(37.0 * i + 11.0 * j);
+      vertices.emplace_back(x, y, z);
+    }
+  }
+  std::vector<std::array<Index, 3>> faces;
+  for (int j = 0; j + 1 < rows; ++j) {
+    for (int i = 0; i + 1 < columns; ++i) {
+      const Index v = j * columns + i;
+      faces.push_back({v, v + 1, v + columns + 1});
+      faces.push_back({v, v + columns + 1, v + columns});
+    }
+  }
+  return test::mesh_from_lists(vertices, faces);
+}
+
+TEST(Features, ACreaseContinuesWhereItsAngleFadesBetweenSmoothSidesOnly) {
+  // The largest y of the fold's edges kept (those at x = 0).
+  const auto reach = [](const TriangleMesh& mesh, const remesh::FeatureOptions& options) {
+    double y = -1;
+    for (const auto& [a, b] : remesh::detect_features(mesh, options).sharp_edges) {
+      if (mesh.vertices(a, 0) == 0 && mesh.vertices(b, 0) == 0) {
+        y = std::max({y, mesh.vertices(a, 1), mesh.vertices(b, 1)});
+      }
+    }
+    return y;
+  };
+  // The fold's line turns by 60 degrees up to y = 1/3 and by 30 up to
+  // y = 4/3; judged at the scale, with the faces round the edges' ends,
+  // somewhat less far.
+  const remesh::FeatureOptions sharp{.sharp_angle = 60, .scale = 0.1};
+  const double sharp_reach = reach(fading_fold(), sharp);
+  EXPECT_GT(sharp_reach, 0.1);
+  EXPECT_LE(sharp_reach, 0.35);
+  remesh::FeatureOptions continued = sharp;
+  continued.continuation_angle = 30;
+  const double continued_reach = reach(fading_fold(), continued);
+  EXPECT_GT(continued_reach, 1.0);
+  EXPECT_LE(continued_reach, 1.35);
+  // Not into a noisy side (its normals spread by more than 10 degrees at the
+  // scale): the continuation stops before the noise starts.
+  const double noisy_reach = reach(fading_fold(0.8), continued);
+  EXPECT_GT(noisy_reach, sharp_reach);
+  EXPECT_LE(noisy_reach, 0.8);
+  // Without that test it runs on into the noise.
+  remesh::FeatureOptions unsmoothed = continued;
+  unsmoothed.continuation_max_spread = 0;
+  EXPECT_GT(reach(fading_fold(0.8), unsmoothed), 0.8);
+  // Nor without a sharp edge to start from.
+  continued.sharp_angle = 75;
+  EXPECT_TRUE(remesh::detect_features(fading_fold(), continued).empty());
+}
+
 /// The vertex of `mesh` at p (exactly), or -1.
 Index vertex_at(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
   for (Index v = 0; v < mesh.num_vertices(); ++v) {

@@ -21,6 +21,14 @@ struct FeatureOptions {
   /// An edge is sharp where its faces' normals turn by at least this many
   /// degrees; 0: no sharp features.
   double sharp_angle = 60;
+  /// A crease continues through edges whose faces turn by at least this many
+  /// degrees (0: off; below sharp_angle), reached from the sharp edges along
+  /// a path of them, where both sides are smooth at the scale: every face
+  /// normal there within continuation_max_spread degrees of its side's mean.
+  /// A machined crease whose angle fades keeps its weaker part; a scan's
+  /// noisy sides keep none.
+  double continuation_angle = 0;
+  double continuation_max_spread = 10;
   /// The radius at which an edge's sharpness is judged (0: its two faces
   /// only). An edge stays sharp when the faces within this distance of its
   /// midpoint on either side, reached without crossing a sharp edge, are two
@@ -77,9 +85,10 @@ struct FeatureSet {
 /// The options the remesh pipeline detects features with for `sites` sites
 /// on `surface`: sharpness judged at half the remesh's spacing, chains at
 /// least min_length spacings long (two, where one end is free), regions
-/// between them at least half a spacing wide.
+/// between them at least half a spacing wide, creases continued at
+/// continuation_angle between smooth sides.
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
-                                      double min_length);
+                                      double min_length, double continuation_angle = 0);
 
 /// The features of `surface`, a 2-manifold (such as cut_to_manifold's
 /// mesh): sharp edges have exactly two faces. Deterministic.

@@ -96,6 +96,11 @@ struct RemeshOptions {
   /// or round count with geodual::UsageError.)
   double sharp_angle = 60;
   double min_feature_length = 0.5;
+  /// A sharp crease continues through edges whose normals turn by at least
+  /// this many degrees, where both sides are smooth at the scale (a machined
+  /// crease whose angle fades; a scan's noisy sides keep none). 0, or not
+  /// below sharp_angle: off.
+  double continuation_angle = 40;
   /// Edges of the input (vertex index pairs) kept as features too, whatever
   /// their angle (a feature file's), sharp_angle 0 included.
   std::vector<std::array<Index, 2>> feature_edges = {};
