@@ -4,13 +4,15 @@
 // a signal is reported, not fatal), and prints one table.
 //
 //   build/bench/remesh_sweep [--sites 500,2000,20000] [--only NAME,...] [--time-limit S]
-//                            [--lloyd K] [--sharp-angle DEG] [--samples N] [--repo DIR] [--list] [MESH...]
+//                            [--lloyd K] [--sharp-angle DEG] [--continuation-angle DEG] [--samples N]
+//                            [--repo DIR] [--list] [MESH...]
 //
 //   --sites A,B,...   site counts (default 500,2000,20000)
 //   --only NAME,...   run only these meshes (names as --list prints them)
 //   --time-limit S    wall-clock limit of one run in seconds (default 600)
 //   --lloyd K         Lloyd iterations (default: the pipeline's)
 //   --sharp-angle DEG the features kept (RemeshOptions::sharp_angle; default: the pipeline's, 0: none)
+//   --continuation-angle DEG  their continuation (RemeshOptions::continuation_angle; default: the pipeline's)
 //   --samples N       statistics samples per side (default 100000)
 //   --repo DIR        repository root holding tests/data and examples/data (default .)
 //   --list            print the mesh names (and the generated ones' faces and topology) and exit
@@ -59,6 +61,7 @@ struct Options {
   unsigned time_limit_seconds = 600;
   std::optional<int> lloyd;
   std::optional<double> sharp_angle;
+  std::optional<double> continuation_angle;
   std::int64_t samples = 100000;
   std::filesystem::path repo = ".";
   bool list = false;
@@ -114,6 +117,10 @@ Options parse_options(int argc, char** argv) {
       options.sharp_angle = parse_number(arg, value());
       if (!(*options.sharp_angle >= 0 && *options.sharp_angle <= 180))
         throw UsageError(arg + " takes 0 to 180 degrees");
+    } else if (arg == "--continuation-angle") {
+      options.continuation_angle = parse_number(arg, value());
+      if (!(*options.continuation_angle >= 0 && *options.continuation_angle <= 180))
+        throw UsageError(arg + " takes 0 to 180 degrees");
     } else if (arg == "--samples") {
       options.samples = parse_integer(arg, value(), 0, quality::max_samples_per_side);
     } else if (arg == "--repo") {
@@ -122,7 +129,7 @@ Options parse_options(int argc, char** argv) {
       options.list = true;
     } else if (arg == "--help" || arg == "-h") {
       std::cout << "usage: remesh_sweep [--sites 500,2000,20000] [--only NAME,...] [--time-limit S] [--lloyd K]"
-                   " [--sharp-angle DEG] [--samples N] [--repo DIR] [--list] [MESH...]\n";
+                   " [--sharp-angle DEG] [--continuation-angle DEG] [--samples N] [--repo DIR] [--list] [MESH...]\n";
       std::exit(0);
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option " + arg);
@@ -277,6 +284,7 @@ RunFigures remesh_once(const SweepMesh& mesh, std::int64_t sites, const Options&
   pipeline_options.quality.samples_per_side = options.samples;
   if (options.lloyd) pipeline_options.remesh.lloyd.iterations = *options.lloyd;
   if (options.sharp_angle) pipeline_options.remesh.sharp_angle = *options.sharp_angle;
+  if (options.continuation_angle) pipeline_options.remesh.continuation_angle = *options.continuation_angle;
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), pipeline_options);
   RunFigures figures = figures_of(result);
   figures.peak_rss = peak_rss_bytes().value_or(0);

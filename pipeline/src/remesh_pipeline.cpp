@@ -250,16 +250,13 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
       result.features = remesh::detect_features(manifold, feature_options);
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
-        // Chords within 0.08 % of the diagonal, inside the statistics' feature
-        // recall tolerance (0.1 %). A stretch is split no finer than 3/4 of the
-        // spacing (sites much denser along a chain than around it make slivers
-        // against it); a run of stretches across an arc is spaced evenly, down
-        // to 0.6 of it.
+        // Chords within 0.05 % of the diagonal (the statistics' feature recall
+        // tolerance is 0.1 %), but no closer than 3/4 of the spacing: sites
+        // denser along a chain than around it make slivers against it.
         feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut,
                                               {.spacing = spacing,
-                                               .max_chord_error = 8e-4 * result.input_report.bbox_diagonal,
-                                               .min_spacing = 0.75 * spacing,
-                                               .min_even_spacing = 0.6 * spacing});
+                                               .max_chord_error = 5e-4 * result.input_report.bbox_diagonal,
+                                               .min_spacing = 0.75 * spacing});
         result.feature_sites = feature_sites->points;
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }

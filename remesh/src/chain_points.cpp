@@ -72,31 +72,18 @@ Eigen::Vector3d ChainWalk::point(double s) const {
          t * surface.vertices.row(chain.vertices[i + 1]).transpose();
 }
 
-double ChainWalk::chord_deviation(double from, double to) const {
+bool ChainWalk::within(double from, double to, double error) const {
   const Eigen::Vector3d p = point(from), q = point(to);
   const Eigen::Vector3d d = q - p;
   const double dd = d.squaredNorm();
-  double deviation = 0;
   const auto first = std::upper_bound(at.begin(), at.end(), from), last = std::lower_bound(first, at.end(), to);
   for (auto it = first; it != last; ++it) {
     const std::size_t i = static_cast<std::size_t>(it - at.begin());
     const Eigen::Vector3d x = surface.vertices.row(chain.vertices[i]).transpose() - p;
     const double s = dd > 0 ? std::clamp(x.dot(d) / dd, 0.0, 1.0) : 0.0;
-    deviation = std::max(deviation, (x - s * d).norm());
+    if ((x - s * d).norm() > error) return false;
   }
-  return deviation;
-}
-
-bool ChainWalk::within(double from, double to, double error) const { return chord_deviation(from, to) <= error; }
-
-double ChainWalk::even_chord_deviation(double from, double to, std::int64_t parts) const {
-  double deviation = 0;
-  const double n = static_cast<double>(parts);
-  for (std::int64_t k = 0; k < parts; ++k) {
-    const double kk = static_cast<double>(k);
-    deviation = std::max(deviation, chord_deviation(from + (to - from) * kk / n, from + (to - from) * (kk + 1) / n));
-  }
-  return deviation;
+  return true;
 }
 
 }  // namespace geodual::remesh::detail

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstdint>
 #include <tuple>
 #include <vector>
 
@@ -56,13 +55,9 @@ struct ChainWalk {
   /// The key of the point at arc length s (on the edge locate gives, at a lattice parameter).
   SiteKey key_at(double s) const;
   Eigen::Vector3d point(double s) const;
-  /// The largest distance of a chain vertex strictly between arc lengths from
-  /// and to from the chord between the chain's points there.
-  double chord_deviation(double from, double to) const;
-  /// Whether that distance is at most `error`.
+  /// Whether every vertex of the chain strictly between arc lengths from and
+  /// to lies within `error` of the chord between the chain's points there.
   bool within(double from, double to, double error) const;
-  /// The largest chord deviation of [from, to] split evenly into `parts`.
-  double even_chord_deviation(double from, double to, std::int64_t parts) const;
 };
 
 }  // namespace geodual::remesh::detail

@@ -127,45 +127,6 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     if (held.size() > before) ++result.points;
   };
   for (const Index v : features.corners) add({v, v, 0});
-  // A run of stretches whose chords leave the chain by more than the chord
-  // error (an arc of a machined part) is spaced evenly closer, down to
-  // min_even_spacing: a chord's deviation from an arc of radius R is L^2 / 8R,
-  // so parts of 3/4 the length nearly halve it, where splitting a stretch
-  // shorter than twice min_spacing is not allowed. The rest of the chain
-  // keeps its spacing. Only where that pays: a stretch that wiggles at the
-  // scale of its edges (a scan's) gains little from closer parts.
-  const double even_floor = options.min_even_spacing > 0 ? options.min_even_spacing : options.min_spacing;
-  const auto even_parts = [&](const ChainWalk& walk, double from, double to, std::int64_t parts) {
-    const double deviation = walk.even_chord_deviation(from, to, parts);
-    const auto most = static_cast<std::int64_t>(std::floor((to - from) / even_floor));
-    std::int64_t best = parts;
-    double least = deviation;
-    for (std::int64_t n = parts + 1; n <= most && least > options.max_chord_error; ++n) {
-      const double d = walk.even_chord_deviation(from, to, n);
-      if (d < least) best = n, least = d;
-    }
-    return least <= 0.75 * deviation ? best : parts;
-  };
-  // ends[lo..hi] are the points of the stretches that may be respaced.
-  const auto respace_bends = [&](const ChainWalk& walk, std::vector<double>& ends, std::size_t lo, std::size_t hi) {
-    if (!(options.max_chord_error > 0) || !(even_floor > 0)) return;
-    std::vector<double> respaced(ends.begin(), ends.begin() + static_cast<std::ptrdiff_t>(lo) + 1);
-    for (std::size_t k = lo; k < hi;) {
-      std::size_t j = k;
-      while (j < hi && !walk.within(ends[j], ends[j + 1], options.max_chord_error)) ++j;
-      if (j == k) {
-        respaced.push_back(ends[++k]);
-        continue;
-      }
-      const std::int64_t parts = even_parts(walk, ends[k], ends[j], static_cast<std::int64_t>(j - k));
-      for (std::int64_t n = 1; n <= parts; ++n) {
-        respaced.push_back(ends[k] + (ends[j] - ends[k]) * static_cast<double>(n) / static_cast<double>(parts));
-      }
-      k = j;
-    }
-    respaced.insert(respaced.end(), ends.begin() + static_cast<std::ptrdiff_t>(hi) + 1, ends.end());
-    ends = std::move(respaced);
-  };
   // Each chain's own spacing: even, about options.spacing.
   std::vector<ChainWalk> walks;
   std::vector<std::int64_t> segments;
@@ -231,12 +192,6 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
         }
       }
       ends.push_back(length);
-    }
-    // Round a corner the first stretch keeps its length (see above).
-    if (chain.closed) {
-      respace_bends(walks[c], ends, 0, ends.size() - 1);
-    } else if (ends.size() > 3) {
-      respace_bends(walks[c], ends, 1, ends.size() - 2);
     }
     at.clear();
     for (std::size_t k = 0; k + 1 < ends.size(); ++k) {

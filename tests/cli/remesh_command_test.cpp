@@ -522,7 +522,7 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   EXPECT_EQ(by_default["sharp_angle_deg"].get<double>(), 60.0);
   EXPECT_GE(by_default["feature_chains"].get<double>(), 30);  // fandisk has 35 chains
   EXPECT_TRUE(by_default["features_dropped_reason"].is_null());
-  EXPECT_GT(by_default["feature_recall_pct"].get<double>(), 99.0);
+  EXPECT_GT(by_default["feature_recall_pct"].get<double>(), 97.0);
   // Its creases that fade below 60 degrees are kept too, between flat sides:
   // without them they are chamfers, where the Hausdorff distance peaks.
   EXPECT_EQ(by_default["continuation_angle_deg"].get<double>(), 40.0);

@@ -40,11 +40,8 @@ struct FeatureSiteOptions {
   /// this distance of the chords between consecutive sites (a stretch split
   /// into 16 parts at most) ...
   double max_chord_error = 0;
-  /// ... but no closer than this along it (0: no bound) ...
+  /// ... but no closer than this along it (0: no bound).
   double min_spacing = 0;
-  /// ... save where the whole chain, spaced evenly closer, keeps to the chord
-  /// error markedly better (an arc, not a scan's wiggle): down to this (0: min_spacing).
-  double min_even_spacing = 0;
 };
 
 struct FeatureSites {
