@@ -241,17 +241,20 @@ std::vector<Index> continuations(const TriangleMesh& mesh, const MeshTopology& t
     weaker = sharp_at_scale(mesh, topology, weaker, options.continuation_angle, options.scale,
                             options.continuation_max_spread);
   }
-  const auto num_vertices = static_cast<std::size_t>(mesh.vertices.rows());
-  std::vector<std::uint8_t> is_weaker(static_cast<std::size_t>(topology.num_edges()), 0);
-  for (const Index e : weaker) is_weaker[e] = 1;
-  for (const Index e : sharp) is_weaker[e] = 0;
-  // Breadth first from the creases' vertices over the weaker edges.
-  std::vector<std::vector<Index>> at(num_vertices);
-  for (Index e = 0; e < topology.num_edges(); ++e) {
-    if (!is_weaker[e]) continue;
-    for (const Index v : topology.edge_vertices[e]) at[static_cast<std::size_t>(v)].push_back(e);
+  std::vector<std::uint8_t> is_sharp(static_cast<std::size_t>(topology.num_edges()), 0);
+  for (const Index e : sharp) is_sharp[e] = 1;
+  std::vector<Index> candidates;
+  std::vector<std::array<Index, 2>> pairs;
+  for (const Index e : weaker) {
+    if (is_sharp[e]) continue;
+    candidates.push_back(e);
+    pairs.push_back(topology.edge_vertices[e]);
   }
-  std::vector<std::uint8_t> reached(num_vertices, 0);
+  const auto num_vertices = static_cast<Index>(mesh.vertices.rows());
+  const FeatureGraph graph =
+      build_graph(num_vertices, std::move(pairs), std::vector<std::uint8_t>(candidates.size(), 0));
+  // Breadth first from the creases' vertices over the candidates.
+  std::vector<std::uint8_t> reached(static_cast<std::size_t>(num_vertices), 0), taken(candidates.size(), 0);
   std::vector<Index> queue;
   for (const Index e : sharp) {
     for (const Index v : topology.edge_vertices[e]) {
@@ -260,13 +263,13 @@ std::vector<Index> continuations(const TriangleMesh& mesh, const MeshTopology& t
   }
   std::vector<Index> continued;
   for (std::size_t head = 0; head < queue.size(); ++head) {
-    for (const Index e : at[static_cast<std::size_t>(queue[head])]) {
-      if (!is_weaker[e]) continue;
-      is_weaker[e] = 0;
-      continued.push_back(e);
-      for (const Index v : topology.edge_vertices[e]) {
-        if (!reached[v]) reached[v] = 1, queue.push_back(v);
-      }
+    const Index v = queue[head];
+    for (const Index i : graph.edges_at(v)) {
+      if (taken[i]) continue;
+      taken[i] = 1;
+      continued.push_back(candidates[i]);
+      const Index w = graph.other_end(i, v);
+      if (!reached[w]) reached[w] = 1, queue.push_back(w);
     }
   }
   return continued;
