@@ -226,7 +226,7 @@ degrees (0: none; 60 by default).
 continuation_angle: continue those creases through edges where the normals
 turn by at least this many degrees and both sides are smooth at the remesh's
 scale (a machined crease whose angle fades; 0, or not below sharp_angle: off;
-40 by default).
+30 by default).
 feature_edges: None or a k x 2 integer array of vertex pairs, edges of F kept
 as features too whatever their angle (sharp_angle 0: only these); a pair that
 is no edge of F raises geodual.UsageError.

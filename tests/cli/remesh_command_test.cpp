@@ -525,7 +525,7 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   EXPECT_GT(by_default["feature_recall_pct"].get<double>(), 97.0);
   // Its creases that fade below 60 degrees are kept too, between flat sides:
   // without them they are chamfers, where the Hausdorff distance peaks.
-  EXPECT_EQ(by_default["continuation_angle_deg"].get<double>(), 40.0);
+  EXPECT_EQ(by_default["continuation_angle_deg"].get<double>(), 30.0);
   const nlohmann::json uncontinued = remesh({"--continuation-angle", "0"});
   EXPECT_LT(by_default["hausdorff_pct"].get<double>(), 0.8 * uncontinued["hausdorff_pct"].get<double>());
   // Off, the creases come out as sawtooth chamfers.

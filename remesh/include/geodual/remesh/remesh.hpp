@@ -100,7 +100,7 @@ struct RemeshOptions {
   /// this many degrees, where both sides are smooth at the scale (a machined
   /// crease whose angle fades; a scan's noisy sides keep none). 0, or not
   /// below sharp_angle: off.
-  double continuation_angle = 40;
+  double continuation_angle = 30;
   /// Edges of the input (vertex index pairs) kept as features too, whatever
   /// their angle (a feature file's), sharp_angle 0 included.
   std::vector<std::array<Index, 2>> feature_edges = {};
