@@ -121,7 +121,8 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
       }
       if (max_spread > 0 && mean[side].norm() > 0) {
         const Eigen::Vector3d axis = mean[side].normalized();
-        for (const Index f : queue) smooth = smooth && !(normal[f].dot(axis) < spread_cos * normal[f].norm());
+        smooth = std::all_of(queue.begin(), queue.end(),
+                             [&](Index f) { return !(normal[f].dot(axis) < spread_cos * normal[f].norm()); });
       }
     }
     if (joined || !smooth) continue;
