@@ -425,6 +425,86 @@ inline TriangleMesh duplicate_soup() {
   return builder.build();
 }
 
+/// A closed solid of revolution about the z axis, `segments` quads round per
+/// side of its profile: the profile's corners (r, z) counter-clockwise with r
+/// across and z up, either a closed polygon with r > 0 throughout (a part
+/// with a hole, genus 1) or a path from a point on the axis (r = 0) to
+/// another (a solid part, whose two axis points are fan apexes). Each corner
+/// of the profile turns into a circular crease of the surface, as on a
+/// turned part.
+inline TriangleMesh revolved_profile(const std::vector<std::array<double, 2>>& profile, int segments) {
+  using namespace hard_case_detail;
+  MeshBuilder builder;
+  std::vector<std::vector<Index>> rings;
+  for (const auto& [r, z] : profile) {
+    std::vector<Index>& ring = rings.emplace_back();
+    if (r == 0) {
+      ring.push_back(builder.add_vertex({0, 0, z}));
+      continue;
+    }
+    for (int k = 0; k < segments; ++k) {
+      const double angle = 2 * std::numbers::pi * k / segments;
+      ring.push_back(builder.add_vertex({r * std::cos(angle), r * std::sin(angle), z}));
+    }
+  }
+  const bool closed = profile.front()[0] > 0;
+  const std::size_t bands = closed ? rings.size() : rings.size() - 1;
+  for (std::size_t i = 0; i < bands; ++i) {
+    const std::vector<Index>& a = rings[i];
+    const std::vector<Index>& b = rings[(i + 1) % rings.size()];
+    for (int k = 0; k < segments; ++k) {
+      const auto at = [&](const std::vector<Index>& ring, int j) {
+        return ring.size() == 1 ? ring[0] : ring[static_cast<std::size_t>(j % segments)];
+      };
+      // Outward normals: the profile's direction crossed into the turning direction.
+      if (b.size() > 1) builder.add_face(at(a, k), at(b, k + 1), at(b, k));
+      if (a.size() > 1) builder.add_face(at(a, k), at(a, k + 1), at(b, k + 1));
+    }
+  }
+  return builder.build();
+}
+
+/// A stepped shaft: three diameters, a chamfered end (six circular creases,
+/// steps a fifth to a third of the largest radius wide), 72 quads round.
+inline TriangleMesh stepped_shaft() {
+  return revolved_profile(
+      {{0, 0}, {1.0, 0}, {1.0, 2.0}, {0.7, 2.0}, {0.7, 3.5}, {0.5, 3.5}, {0.5, 4.8}, {0.4, 5.0}, {0, 5.0}}, 72);
+}
+
+/// A V-belt pulley with a bore (genus 1): its groove and rims give seven
+/// circular creases, five of them sharper than 60 degrees, 120 quads round.
+inline TriangleMesh pulley() {
+  return revolved_profile({{0.3, 0}, {1.2, 0}, {1.2, 0.2}, {1.0, 0.35}, {1.2, 0.5}, {1.2, 0.7}, {0.3, 0.7}}, 120);
+}
+
+/// A spur gear: 24 teeth 0.12 deep on a disc of radius 1, 0.5 thick, in 4
+/// bands; each cap is a fan of needles from its centre, as CAD exports
+/// triangulate them. The teeth are about one remesh spacing wide at 3,000
+/// sites: 192 corners, creases between them one to two spacings long.
+inline TriangleMesh spur_gear() {
+  constexpr int kTeeth = 24, kPerTooth = 8, kBands = 4;
+  constexpr int n = kTeeth * kPerTooth;
+  constexpr double kDepth = 0.12, kHeight = 0.5;
+  using namespace hard_case_detail;
+  MeshBuilder builder;
+  const Index bottom = builder.add_vertex({0, 0, 0}), top = builder.add_vertex({0, 0, kHeight});
+  for (int band = 0; band <= kBands; ++band) {
+    for (int k = 0; k < n; ++k) {
+      const double angle = 2 * std::numbers::pi * k / n;
+      const double radius = 1 + (std::cos(kTeeth * angle) > 0 ? kDepth : 0.0);
+      builder.add_vertex({radius * std::cos(angle), radius * std::sin(angle), kHeight * band / kBands});
+    }
+  }
+  const auto at = [&](int band, int k) { return static_cast<Index>(2 + band * n + k % n); };
+  for (int k = 0; k < n; ++k) {
+    builder.add_face(bottom, at(0, k + 1), at(0, k));
+    builder.add_face(top, at(kBands, k), at(kBands, k + 1));
+    for (int band = 0; band < kBands; ++band)
+      builder.add_quad(at(band, k), at(band, k + 1), at(band + 1, k + 1), at(band + 1, k));
+  }
+  return builder.build();
+}
+
 struct HardCase {
   std::string name;
   std::string description;
@@ -441,6 +521,9 @@ inline std::vector<HardCase> hard_cases() {
       {"pinch_cones", "closed cones sharing apexes: 4 pinches of 2 fans, 1 of 3", pinched_cones},
       {"slits", "flat square with 3 slits (2 boundary loops)", slit_square},
       {"dup_soup", "torus plus every 10th face again, half of them flipped", duplicate_soup},
+      {"shaft", "turned shaft: 3 diameters, a chamfer (6 circular creases)", stepped_shaft},
+      {"pulley", "V-belt pulley with a bore (genus 1, 5 circular creases)", pulley},
+      {"gear", "24-tooth spur gear with fanned caps (192 corners)", spur_gear},
   };
 }
 

@@ -147,6 +147,43 @@ TEST(FeaturePipeline, EveryCornerOfAScanThatKeepsItsCreasesIsAVertexOfTheRemesh)
   }
 }
 
+TEST(FeaturePipeline, TheCircularCreasesOfTurnedPartsAreKeptAtThreeThousandSites) {
+  // Parts nobody tuned for: a shaft (solid, six creases of 60 degrees or
+  // more round it, one where a chamfer meets the end face at 63 degrees) and
+  // a pulley with a bore (genus 1, five such creases, two more of 53
+  // degrees), each crease a polygon of 72 or 120 edges.
+  struct Part {
+    const char* name;
+    TriangleMesh mesh;
+    int creases;
+    int euler_characteristic;
+  };
+  for (const Part& part : {Part{"shaft", bench::stepped_shaft(), 6, 2}, Part{"pulley", bench::pulley(), 5, 0}}) {
+    SCOPED_TRACE(part.name);
+    const MeshTopology input = build_mesh_topology(part.mesh);
+    ASSERT_EQ(input.num_components(), 1);
+    ASSERT_EQ(input.num_boundary_loops, 0);
+    ASSERT_EQ(input.components[0].euler_characteristic(), part.euler_characteristic);
+    io::LoadedMesh loaded;
+    loaded.mesh = part.mesh;
+    const pipeline::RemeshPipelineResult result = remesh_without_statistics(std::move(loaded), 3000);
+    ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+    EXPECT_EQ(result.features.sharp_chains, part.creases);
+    const MeshTopology topology = build_mesh_topology(result.remesh.mesh);
+    ASSERT_EQ(topology.num_components(), 1);
+    EXPECT_EQ(topology.num_boundary_loops, 0);
+    EXPECT_EQ(topology.components[0].euler_characteristic(), part.euler_characteristic);
+    // Every input edge turning by 60 degrees or more lies along remesh edges
+    // (within 0.1 % of the diagonal, the statistics' tolerance).
+    const quality::FeatureRecall recall = quality::feature_recall(part.mesh, result.remesh.mesh);
+    EXPECT_GT(recall.edges, 0);
+    EXPECT_GE(recall.recall_pct, 99.0);
+    const quality::TriangleQuality shape = quality::triangle_quality(result.remesh.mesh);
+    EXPECT_GT(shape.q_min, 0.5);
+    EXPECT_GT(shape.q_avg, 0.92);
+  }
+}
+
 TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
   // assembly_47 at 500 sites: its boxes' sides are two triangles each, and a
   // corner's site on a side that only touches it there had a cell of no size,
