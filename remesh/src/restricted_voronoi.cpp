@@ -113,16 +113,25 @@ double RestrictedCells::total_energy() const { return std::accumulate(energy.beg
 
 RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                              std::span<const double> density) {
-  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_fans(mesh, topology)};
+  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_fans(mesh, topology), {}};
+  surface.across.resize(static_cast<std::size_t>(mesh.num_faces()));
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     if (topology.face_edges[f][0] >= 0) surface.area += face_area(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      const Index edge = topology.face_edges[f][k];
+      if (edge < 0) {
+        surface.across[f][k] = -1;
+        continue;
+      }
+      const auto& faces = topology.edge_faces[edge];
+      surface.across[f][k] = faces[0] == f ? faces[1] : faces[0];
+    }
   }
   return surface;
 }
 
 RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites) {
   const TriangleMesh& mesh = surface.mesh;
-  const voronoi::SurfaceTopology& topology = surface.topology;
   const std::span<const double> density = surface.density;
   const VertexFans& fans = surface.fans;
   const std::size_t site_count = sites.size();
@@ -149,9 +158,11 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
   cells.energy.assign(site_count, 0.0);
   tbb::enumerable_thread_specific<Scratch> scratches;
 
-  // One cell: a flood fill over the faces it reaches from the site, each
-  // face clipped by the bisector planes of the sites near it.
-  auto cell = [&](Index s, Scratch& scratch) {
+  // One cell, of the site in the grid's `slot`: a flood fill over the faces
+  // it reaches from the site, each face clipped by the bisector planes of the
+  // sites near it.
+  auto cell = [&](Index slot, Scratch& scratch) {
+    const Index s = grid.original(slot);
     const Eigen::Vector3d& site = position[s];
     // The sites within `searched` of this one, nearest first, and their
     // bisector planes. A face's polygon within `reach` of the site can only
@@ -161,10 +172,19 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
       // Nearest first, ties by index.
       auto& found = scratch.near;
       found.clear();
-      grid.for_each_within(site, searched, [&](Index slot, double squared_distance) {
-        const Index other = grid.original(slot);
+      auto take = [&](Index other_slot, double squared_distance) {
+        const Index other = grid.original(other_slot);
         if (other != s) found.emplace_back(squared_distance, other);
-      });
+      };
+      if (searched == 2 * spacing) {
+        // The first search, as wide as the grid's radius: the cells around
+        // the site's own, listed in the grid, without looking them up.
+        grid.for_each_around(slot, [&](Index other_slot, double squared_distance) {
+          if (squared_distance <= searched * searched) take(other_slot, squared_distance);
+        });
+      } else {
+        grid.for_each_within(site, searched, take);
+      }
       std::sort(found.begin(), found.end());
       scratch.planes.clear();
       for (const auto& [squared_distance, other] : found) {
@@ -245,6 +265,15 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
     for (std::size_t next = 0; next < queue.size(); ++next) {
       const Index face = queue[next];
+      if (next + 1 < queue.size()) {
+        // Start loading the next face's corners (its row of vertex indices
+        // was prefetched when it was queued, below).
+        for (int c = 0; c < 3; ++c) {
+          const Index v = mesh.faces(queue[next + 1], c);
+          __builtin_prefetch(&mesh.vertices(v, 0));
+          if (!density.empty()) __builtin_prefetch(&density[v]);
+        }
+      }
       while (!clip(face)) {
         searched = 2 * std::sqrt(reach_squared()) * (1 + 1e-9);
         search();
@@ -275,10 +304,14 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
           continue;
         }
         // A side on the face's side -1 - label: the cell goes on across it.
-        const Index edge = topology.face_edges[face][-1 - label];
-        const Index across =
-            topology.edge_faces[edge][0] == face ? topology.edge_faces[edge][1] : topology.edge_faces[edge][0];
-        if (across >= 0 && scratch.reached.insert(across)) queue.push_back(across);
+        const Index across = surface.across[face][-1 - label];
+        if (across >= 0 && scratch.reached.insert(across)) {
+          queue.push_back(across);
+          // Its corners and neighbours are read when its turn comes: start
+          // loading them now (a face's first visit is mostly cache misses).
+          __builtin_prefetch(&mesh.faces(across, 0));
+          __builtin_prefetch(&surface.across[across]);
+        }
       }
     }
     cells.area[s] = area;
@@ -333,7 +366,7 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
                         scratch.segment_ends.clear();
                         for (std::size_t slot = b * kBlock; slot < std::min(site_count, (b + 1) * kBlock); ++slot) {
                           block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
-                          cell(grid.original(static_cast<Index>(slot)), scratch);
+                          cell(static_cast<Index>(slot), scratch);
                         }
                         block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
                         block.boundaries = scratch.boundaries;

@@ -26,6 +26,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -62,6 +63,9 @@ struct RestrictedSurface {
   std::span<const double> density;           ///< one value per mesh vertex, or empty for 1
   double area = 0;                           ///< of the faces the topology keeps
   VertexFans fans;                           ///< where a vertex site's cell starts
+  /// Per face, the face across each side k (corners k and k + 1), -1 where
+  /// none: the topology's two look-ups folded into one.
+  std::vector<std::array<Index, 3>> across;
 };
 
 RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,

@@ -48,6 +48,22 @@ class PointGrid {
     }
   }
 
+  /// Calls visit(other_slot, squared_distance) for every point in the 3 x 3 x
+  /// 3 cells around the point in `slot` (itself included), whatever its
+  /// distance: the cells for_each_within(position(slot), r) looks at for any
+  /// r up to the radius, without their look-up.
+  template <typename Visit>
+  void for_each_around(Index slot, Visit&& visit) const {
+    const Eigen::Vector3d& p = slot_position_[slot];
+    const Index cell = slot_cell_[slot];
+    for (Index i = neighbour_begin_[cell]; i < neighbour_begin_[cell + 1]; ++i) {
+      const Index other_cell = neighbours_[i];
+      for (Index other = cell_begin_[other_cell]; other < cell_begin_[other_cell + 1]; ++other) {
+        visit(other, (slot_position_[other] - p).squaredNorm());
+      }
+    }
+  }
+
   /// Calls visit(slot, squared_distance) for every point within `radius` of
   /// `p` (any radius; the cells it spans are looked up), cell by cell.
   template <typename Visit>
