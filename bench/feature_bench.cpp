@@ -7,6 +7,9 @@
 //                             [--samples S]
 //                             [--time-limit S] MESH...
 //
+// A MESH that names no file but a generated hard case (bench/hard_cases.hpp,
+// such as `gear`; `remesh_sweep --list` names them) is built in memory.
+//
 // For each mesh (read once, by the parent process) and each vertex count n,
 // every run below is a forked child, so its peak RSS is its own (plus the
 // input the parent had already read):
@@ -53,6 +56,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "hard_cases.hpp"
 
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
@@ -207,6 +211,18 @@ void add_failed_row(TextTable& table, const std::string& method, const std::stri
   table.add_row(std::move(cells));
 }
 
+/// The mesh file at `path`, or where no file is there, the generated hard case of that name.
+io::LoadedMesh read_mesh_or_hard_case(const std::filesystem::path& path) {
+  if (std::filesystem::exists(path)) return io::read_mesh(path);
+  for (const HardCase& hard_case : hard_cases()) {
+    if (hard_case.name != path.string()) continue;
+    io::LoadedMesh loaded;
+    loaded.mesh = hard_case.build();
+    return loaded;
+  }
+  throw UsageError("feature_bench: " + path.string() + " is neither a file nor a generated hard case");
+}
+
 int run_benchmark(const Options& options) {
   std::cout << "machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads, load "
             << load_average() << "\n";
@@ -222,7 +238,7 @@ int run_benchmark(const Options& options) {
   limits.time_limit_seconds = options.comparison.time_limit_seconds;
   int failures = 0;
   for (const auto& path : options.meshes) {
-    const io::LoadedMesh input = io::read_mesh(path);
+    const io::LoadedMesh input = read_mesh_or_hard_case(path);
     const std::string name = path.filename().string();
     std::cerr << "feature_bench: " << name << " (" << input.mesh.num_vertices() << " vertices, "
               << input.mesh.num_faces() << " faces)\n";

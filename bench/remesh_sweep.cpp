@@ -27,7 +27,9 @@
 // remeshed (the input cut to a manifold, less its disabled scrap faces) and
 // of the remesh ("a->b" where they differ); topology kept (every piece's χ
 // and loop count equal, the remesh's piece found through its sites); and the
-// area dropped (faces the manifold cut disabled, in % of the input's area).
+// area dropped (faces the manifold cut disabled, in % of the input's area);
+// the sharp chains kept, or "dropped" where the weld along them failed and
+// the remesh is the one without them.
 
 #include "bench_support.hpp"
 #include "hard_cases.hpp"
@@ -94,6 +96,8 @@ struct RunFigures {
   std::int64_t components_differing = 0;  ///< components of the surface whose χ or loops the remesh changed
   std::int64_t dropped_faces = 0;
   double dropped_area_pct = 0;
+  std::int64_t creases = 0;      ///< sharp chains kept in the remesh
+  bool creases_dropped = false;  ///< the weld failed: the remesh without them
 };
 
 Options parse_options(int argc, char** argv) {
@@ -243,6 +247,8 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
     figures.hausdorff_pct = result.statistics->hausdorff_pct;
   }
 
+  figures.creases = result.features_dropped_reason.empty() ? result.features.sharp_chains : 0;
+  figures.creases_dropped = !result.features_dropped_reason.empty();
   figures.dropped_faces = result.dropped.faces;
   figures.dropped_area_pct = result.dropped.area_pct;
 
@@ -271,7 +277,13 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   return figures;
 }
 
-RunFigures remesh_once(const SweepMesh& mesh, std::int64_t sites, const Options& options) {
+/// The run's figures, and why its creases were dropped (empty: they were not).
+struct RunOutcome {
+  RunFigures figures;
+  std::string creases_dropped_reason;
+};
+
+RunOutcome remesh_once(const SweepMesh& mesh, std::int64_t sites, const Options& options) {
   reset_peak_rss();
   io::LoadedMesh loaded;
   if (mesh.generate) {
@@ -288,7 +300,7 @@ RunFigures remesh_once(const SweepMesh& mesh, std::int64_t sites, const Options&
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), pipeline_options);
   RunFigures figures = figures_of(result);
   figures.peak_rss = peak_rss_bytes().value_or(0);
-  return figures;
+  return {figures, result.features_dropped_reason};
 }
 
 std::string first_characters(const std::string& text, std::size_t count) {
@@ -344,8 +356,9 @@ int run_sweep(const Options& options) {
                    {"chi"},
                    {"loops"},
                    {"topology", TextTable::Align::left},
-                   {"dropped %"}});
-  std::vector<std::string> failures;
+                   {"dropped %"},
+                   {"creases"}});
+  std::vector<std::string> failures, creases_dropped;
   std::cout << "machine: " << cpu_model() << ", load " << load_average() << "\n\n";
   for (const SweepMesh& mesh : meshes) {
     for (const std::int64_t sites : options.site_counts) {
@@ -354,20 +367,24 @@ int run_sweep(const Options& options) {
       limits.time_limit_seconds = options.time_limit_seconds;
       const auto start = Clock::now();
       const ChildOutcome outcome = run_in_child(limits, [&] {
-        const RunFigures figures = remesh_once(mesh, sites, options);
+        const RunOutcome run = remesh_once(mesh, sites, options);
         ByteWriter out;
-        out.put(figures);
+        out.put(run.figures);
+        out.put_string(run.creases_dropped_reason);
         return out.bytes();
       });
       const std::string seconds = fixed(seconds_since(start), 1);
       if (outcome.status != ChildOutcome::Status::ok) {
         failures.push_back(mesh.name + " at " + std::to_string(sites) + " sites: " + outcome.message);
         table.add_row({mesh.name, "-", grouped(sites), "-", first_characters(outcome.message, 60), seconds,
-                       mebibytes(outcome.child_max_rss_bytes), "-", "-", "-", "-", "-", "-", "-", "-"});
+                       mebibytes(outcome.child_max_rss_bytes), "-", "-", "-", "-", "-", "-", "-", "-", "-"});
         continue;
       }
       ByteReader in(outcome.payload);
       const auto r = in.get<RunFigures>();
+      if (r.creases_dropped) {
+        creases_dropped.push_back(mesh.name + " at " + std::to_string(sites) + " sites: " + in.get_string());
+      }
       std::string topology = "yes";
       if (r.components_differing > 0) {
         topology =
@@ -379,13 +396,18 @@ int run_sweep(const Options& options) {
            arrow(r.surface.components, r.remesh.components),
            arrow(r.surface.euler_characteristic, r.remesh.euler_characteristic),
            arrow(r.surface.boundary_loops, r.remesh.boundary_loops), topology,
-           fixed(r.dropped_area_pct, 2) + (r.dropped_faces > 0 ? " (" + grouped(r.dropped_faces) + " f)" : "")});
+           fixed(r.dropped_area_pct, 2) + (r.dropped_faces > 0 ? " (" + grouped(r.dropped_faces) + " f)" : ""),
+           r.creases_dropped ? "dropped" : grouped(r.creases)});
     }
   }
   table.print(std::cout);
   if (!failures.empty()) {
     std::cout << "\nfailures:\n";
     for (const std::string& failure : failures) std::cout << "- " << failure << '\n';
+  }
+  if (!creases_dropped.empty()) {
+    std::cout << "\ncreases dropped:\n";
+    for (const std::string& why : creases_dropped) std::cout << "- " << why << '\n';
   }
   return 0;
 }

@@ -190,9 +190,11 @@ struct SiteRefinement {
 
 /// The stages after `load` on result.input, filling in `result`; Lloyd's
 /// density is multiplied by `input_density` (per input vertex; empty: 1).
-/// With `refinement` the sites are its, not sampled.
+/// With `refinement` the sites are its, not sampled; otherwise, with sharp
+/// features, the sites beside the creases are shared as `given_share` says.
 void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
-                std::span<const double> input_density, const SiteRefinement* refinement) {
+                std::span<const double> input_density, const SiteRefinement* refinement,
+                remesh::GivenSiteShare given_share = remesh::GivenSiteShare::half_cell) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -265,7 +267,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     remesh::SampledSites sampled =
         feature_sites ? remesh::sample_sites_around(result.feature_cut.mesh,
                                                     std::max<std::int64_t>(0, sites - feature_sites->points),
-                                                    feature_sites->sites, options.sampling)
+                                                    feature_sites->sites, options.sampling, given_share)
                       : remesh::sample_sites_for_topology(manifold, sites, options.sampling);
     result.initial_sites = std::move(sampled.sites);
     result.sites_added_for_topology = sampled.sites_added_for_topology;
@@ -409,26 +411,45 @@ std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& r
 namespace {
 
 /// One remesh of result.input (run_stages); where the features cannot be
-/// kept, the remesh without them, and why.
+/// kept with sites as dense beside the creases as elsewhere, they are tried
+/// with the denser sites of the components' shares by area
+/// (remesh::GivenSiteShare); where they cannot be kept either, the remesh
+/// without them, and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
+  // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
+  const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
+  std::string reason;
   try {
     run_stages(result, options, input_density, refinement);
+    return;
   } catch (const Cancelled&) {
     throw;
   } catch (const Error& e) {
-    // Only a failure of the remesh that keeps the features (not of the statistics after it) falls back.
-    if (result.features.empty() || result.remesh.mesh.num_faces() > 0) throw;
-    result.features_dropped_reason = e.what();
-    result.features = {};
-    result.feature_cut = {};
-    result.feature_sites = result.site_twins = 0;
-    result.timings.clear();
-    RemeshPipelineOptions without = options;
-    without.remesh.sharp_angle = 0;
-    without.remesh.feature_edges.clear();
-    run_stages(result, without, input_density, nullptr);
+    if (!features_failed()) throw;
+    reason = e.what();
   }
+  if (!refinement) {
+    try {
+      result.timings.clear();
+      run_stages(result, options, input_density, refinement, remesh::GivenSiteShare::none);
+      return;
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      if (!features_failed()) throw;
+      reason = e.what();
+    }
+  }
+  result.features_dropped_reason = reason;
+  result.features = {};
+  result.feature_cut = {};
+  result.feature_sites = result.site_twins = 0;
+  result.timings.clear();
+  RemeshPipelineOptions without = options;
+  without.remesh.sharp_angle = 0;
+  without.remesh.feature_edges.clear();
+  run_stages(result, without, input_density, nullptr);
 }
 
 /// Remeshes until the Hausdorff distance is within options.max_error_pct:

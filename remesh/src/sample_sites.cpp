@@ -64,18 +64,20 @@ TopologyMinimum topology_minimum(const SamplingSurface& surface, const std::vect
 /// Sites per component (0 for components without area).
 std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
                                               const std::vector<std::int64_t>& loops_per_component,
-                                              const std::vector<std::int64_t>& given_per_component,
-                                              std::int64_t count) {
+                                              const std::vector<std::int64_t>& given_per_component, std::int64_t count,
+                                              GivenSiteShare given_share) {
   std::vector<Index> with_area;
   for (Index c = 0; c < surface.num_components; ++c) {
     if (surface.component_area[c] > 0) with_area.push_back(c);
   }
-  std::vector<double> areas;
+  std::vector<double> areas, held;
   std::vector<std::int64_t> minimum, loop_minimum;
   const TopologyMinimum total = topology_minimum(surface, loops_per_component, given_per_component);
   const std::int64_t needed = total.needed, needed_by_loops = total.needed_by_loops, num_loops = total.loops;
   for (const Index c : with_area) {
     areas.push_back(surface.component_area[c]);
+    const double share = given_share == GivenSiteShare::half_cell ? 0.5 : 0.0;
+    held.push_back(share * static_cast<double>(given_per_component[c]));
     loop_minimum.push_back(3 * loops_per_component[c]);
     minimum.push_back(component_minimum(loops_per_component[c], given_per_component[c] > 0));
   }
@@ -88,7 +90,7 @@ std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
   }
   std::vector<std::int64_t> parts;
   if (count >= needed) {
-    parts = proportional_split(areas, minimum, count);
+    parts = proportional_split(areas, minimum, count, held);
   } else {
     // Too few for every component: each loop keeps its 3 sites; the rest
     // tops components up to their minimum, largest area first.
@@ -223,7 +225,8 @@ std::vector<std::uint8_t> loops_holding(const TriangleMesh& mesh, const Sampling
 /// sample_sites, with the count raised to the topology's minimum first when
 /// `raise_for_topology`.
 SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options,
-                    bool raise_for_topology, std::span<const SurfacePoint> given = {}) {
+                    bool raise_for_topology, std::span<const SurfacePoint> given = {},
+                    GivenSiteShare given_share = GivenSiteShare::none) {
   if (count < 4 && given.empty()) {
     throw UsageError("site count " + std::to_string(count) + " is too small: at least 4 sites are needed");
   }
@@ -281,7 +284,8 @@ SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const Sampling
                        std::to_string(std::numeric_limits<Index>::max()) + " sites allowed");
     }
   }
-  const std::vector<std::int64_t> sites = sites_per_component(surface, loops_per_component, given_per_component, count);
+  const std::vector<std::int64_t> sites =
+      sites_per_component(surface, loops_per_component, given_per_component, count, given_share);
 
   // Per component, its given sites first in its boundary sites.
   std::vector<std::vector<SurfacePoint>> given_in(static_cast<std::size_t>(surface.num_components));
@@ -353,8 +357,9 @@ SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t co
 }
 
 SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
-                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options) {
-  return sample(mesh, count, options, true, boundary_sites);
+                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options,
+                                 GivenSiteShare given_share) {
+  return sample(mesh, count, options, true, boundary_sites, given_share);
 }
 
 SamplingStrategy parse_sampling_strategy(std::string_view name) {

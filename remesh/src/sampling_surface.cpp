@@ -273,23 +273,30 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
 /// share falls below their minimum are fixed there and the rest is shared
 /// again; then largest remainders, ties to the lower index.
 std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
-                                             const std::vector<std::int64_t>& minimum, std::int64_t total) {
+                                             const std::vector<std::int64_t>& minimum, std::int64_t total,
+                                             const std::vector<double>& held) {
   const std::size_t n = weights.size();
   std::vector<std::int64_t> part(n, 0);
   std::vector<std::uint8_t> fixed(n, 0);
+  const auto held_by = [&](std::size_t i) { return held.empty() ? 0.0 : held[i]; };
   for (;;) {
     std::int64_t rest = total;
-    double weight = 0;
+    double weight = 0, held_free = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (fixed[i]) {
         rest -= minimum[i];
       } else {
         weight += weights[i];
+        held_free += held_by(i);
       }
     }
+    // Part i's share of what the free parts hold in all, less what it holds.
+    const auto share_of = [&](std::size_t i) {
+      return (static_cast<double>(rest) + held_free) * weights[i] / weight - held_by(i);
+    };
     bool changed = false;
     for (std::size_t i = 0; i < n; ++i) {
-      if (!fixed[i] && static_cast<double>(rest) * weights[i] / weight < static_cast<double>(minimum[i])) {
+      if (!fixed[i] && share_of(i) < static_cast<double>(minimum[i])) {
         fixed[i] = 1;
         changed = true;
       }
@@ -301,7 +308,7 @@ std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
       if (fixed[i]) {
         part[i] = minimum[i];
       } else {
-        const double share = static_cast<double>(rest) * weights[i] / weight;
+        const double share = share_of(i);
         part[i] = std::max(minimum[i], static_cast<std::int64_t>(share));
         remainders.push_back({share - static_cast<double>(part[i]), i});
       }

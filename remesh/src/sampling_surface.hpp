@@ -45,9 +45,13 @@ SurfacePoint point_on_face_edge(Index face, int corner, double t);
 /// Splits `total` into integer parts proportional to `weights` (all > 0),
 /// part i at least minimum[i] (total >= sum of the minimums): parts whose
 /// share falls below their minimum are fixed there and the rest is shared
-/// again; then largest remainders, ties to the lower index.
+/// again; then largest remainders, ties to the lower index. Where part i
+/// already holds held[i] (empty: nothing), the split is of the total with
+/// what the parts hold, each part less what it holds: part i is about
+/// lambda * weights[i] - held[i].
 std::vector<std::int64_t> proportional_split(const std::vector<double>& weights,
-                                             const std::vector<std::int64_t>& minimum, std::int64_t total);
+                                             const std::vector<std::int64_t>& minimum, std::int64_t total,
+                                             const std::vector<double>& held = {});
 
 /// A boundary edge as the face that carries it: from corner `corner` to
 /// corner + 1 of `face`.

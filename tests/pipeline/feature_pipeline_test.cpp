@@ -198,17 +198,18 @@ TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
 }
 
 TEST(FeaturePipeline, RepairPointsThatDoubleAPointOnACreaseGiveWayToItsTwins) {
-  // assembly_47 at 2,000 sites: the dual's repair puts points on both sheets
+  // cheburashka at 2,000 sites: the dual's repair puts points on both sheets
   // of a cut crease a hair from each other, or from a chain site, which
-  // welded made triangles with a side of almost nothing (Qmin 0.001).
-  io::LoadedMesh loaded;
-  loaded.mesh = bench::assembly_47();
-  const pipeline::RemeshPipelineResult result = remesh_without_statistics(std::move(loaded), 2000);
+  // welded made triangles with a side of almost nothing (on assembly_47 at
+  // 2,000 sites, Qmin 0.001, before its sites beside the creases were as
+  // dense as elsewhere).
+  const pipeline::RemeshPipelineResult result =
+      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 2000);
   ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   const std::vector<std::string>& problems = result.remesh.repair_problems;
   EXPECT_TRUE(std::any_of(problems.begin(), problems.end(),
                           [](const std::string& p) { return p.find("doubling points") != std::string::npos; }));
-  EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.3);
+  EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.25);
 }
 
 TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {

@@ -2,6 +2,7 @@
 // every component its minimum (4 sites, 3 per boundary loop), raising the
 // count where it is too small, and says how many it added and why.
 
+#include "analytic_surfaces.hpp"
 #include "hard_cases.hpp"
 
 #include "geodual/mesh/error.hpp"
@@ -18,6 +19,47 @@
 
 namespace geodual::remesh {
 namespace {
+
+TEST(SitesForTopology, SitesGivenOnAPiecesBorderStandForHalfACellOfItsArea) {
+  // Two unit squares; the first has a given site at each of its 40 border
+  // vertices (as a crease's sites are on the cut's border), and 200 more are
+  // placed. Shared by area alone, each square gets 100 of them. With the
+  // given sites standing for half a cell each (20 in all), the squares share
+  // 220 by area, the first less its 20: 90 and 110.
+  const TriangleMesh square = test::unit_square(10);
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<Index, 3>> faces;
+  for (const double shift : {0.0, 3.0}) {
+    const auto offset = static_cast<Index>(vertices.size());
+    for (Index v = 0; v < square.num_vertices(); ++v) {
+      vertices.push_back(square.vertices.row(v).transpose() + Eigen::Vector3d(shift, 0, 0));
+    }
+    for (Index f = 0; f < square.num_faces(); ++f) {
+      faces.push_back({square.faces(f, 0) + offset, square.faces(f, 1) + offset, square.faces(f, 2) + offset});
+    }
+  }
+  const TriangleMesh mesh = test::mesh_from_lists(vertices, faces);
+  std::vector<SurfacePoint> given;
+  for (int j = 0; j <= 10; ++j) {
+    for (int i = 0; i <= 10; ++i) {
+      if (i == 0 || i == 10 || j == 0 || j == 10) given.push_back(SurfacePoint::at_vertex(j * 11 + i));
+    }
+  }
+  ASSERT_EQ(given.size(), 40u);
+  const auto on_first_square = [&](const SampledSites& sampled) {
+    std::int64_t count = 0;
+    for (std::size_t s = given.size(); s < sampled.sites.size(); ++s) {
+      count += sampled.sites[s].position(mesh).x() < 2 ? 1 : 0;
+    }
+    return count;
+  };
+  const SampledSites by_area = sample_sites_around(mesh, 200, given, {}, GivenSiteShare::none);
+  ASSERT_EQ(by_area.sites.size(), 240u);
+  EXPECT_EQ(on_first_square(by_area), 100);
+  const SampledSites half_cells = sample_sites_around(mesh, 200, given);
+  ASSERT_EQ(half_cells.sites.size(), 240u);
+  EXPECT_EQ(on_first_square(half_cells), 90);
+}
 
 TEST(SitesForTopology, EveryPieceOfAnAssemblyGetsItsSitesAndIsRemeshed) {
   // 47 closed pieces: 188 sites at least. With 10, 40 or 100 sites the

@@ -61,13 +61,25 @@ struct SampledSites {
 SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count,
                                        const SamplingOptions& options = {});
 
+/// How sample_sites_around shares its sites among the components that hold given ones.
+enum class GivenSiteShare {
+  /// Each given site stands for half a site of its component's area (a site
+  /// on a crease has half a cell on either side): a component ringed by
+  /// creases gets sites for the rest of its area, as dense as elsewhere.
+  half_cell,
+  /// The given sites stand for no area: the components share the sites by
+  /// area alone, denser where creases ring a small component.
+  none,
+};
+
 /// sample_sites_for_topology around sites the caller placed on boundary
 /// loops (feature_sites: along sharp chains cut open): they come first, as
 /// given (never moved, twins at one position allowed), the loops they lie on
 /// get no other boundary sites, and a component holding one needs no minimum
-/// of its own; `count` (>= 0) more sites are placed.
+/// of its own; `count` (>= 0) more sites are placed, shared as `given_share` says.
 SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
-                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options = {});
+                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options = {},
+                                 GivenSiteShare given_share = GivenSiteShare::half_cell);
 
 /// Checks that every connected piece of `surface` (faces with three distinct
 /// corners, joined through shared vertices) holds one of `sites` at least: a
