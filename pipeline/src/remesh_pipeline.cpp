@@ -433,6 +433,10 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     try {
       result.timings.clear();
       run_stages(result, options, input_density, refinement, remesh::GivenSiteShare::none);
+      result.remesh.repair_problems.insert(result.remesh.repair_problems.begin(),
+                                           "sites beside the creases made denser, as the weld with them as dense as "
+                                           "elsewhere failed: " +
+                                               reason);
       return;
     } catch (const Cancelled&) {
       throw;

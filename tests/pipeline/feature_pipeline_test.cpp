@@ -184,6 +184,25 @@ TEST(FeaturePipeline, TheCircularCreasesOfTurnedPartsAreKeptAtThreeThousandSites
   }
 }
 
+TEST(FeaturePipeline, WhereTheWeldFailsWithSitesAsDenseBesideTheCreasesAsElsewhereDenserOnesKeepThem) {
+  // thick_plate_holes at 20,000 sites: its rims are strips two spacings
+  // wide ringed by creases; with no site inside some of them (their border's
+  // sites hold their area), the dual has triangles of no area. With the
+  // pieces' shares by area alone every one of its 336 creases is kept, and
+  // the report says why the sites are denser there.
+  io::LoadedMesh loaded;
+  loaded.mesh = bench::thick_plate_with_holes();
+  const pipeline::RemeshPipelineResult result = remesh_without_statistics(std::move(loaded), 20000);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  EXPECT_EQ(result.features.sharp_chains, 336);
+  ASSERT_FALSE(result.remesh.repair_problems.empty());
+  EXPECT_NE(result.remesh.repair_problems.front().find("sites beside the creases made denser"), std::string::npos)
+      << result.remesh.repair_problems.front();
+  const MeshTopology topology = build_mesh_topology(result.remesh.mesh);
+  ASSERT_EQ(topology.num_components(), 1);
+  EXPECT_EQ(topology.components[0].euler_characteristic(), -8);
+}
+
 TEST(FeaturePipeline, BoxesOfTwoTrianglesASideKeepTheirCreasesWithoutSlivers) {
   // assembly_47 at 500 sites: its boxes' sides are two triangles each, and a
   // corner's site on a side that only touches it there had a cell of no size,
