@@ -419,24 +419,20 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
   const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
-  std::string reason;
-  try {
-    run_stages(result, options, input_density, refinement);
-    return;
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const Error& e) {
-    if (!features_failed()) throw;
-    reason = e.what();
-  }
-  if (!refinement) {
+  // First with the sites beside the creases as dense as elsewhere, then
+  // (sampled sites only) denser, then without the features.
+  std::string reason;  // why the last try failed
+  const int tries = refinement ? 1 : 2;
+  for (int attempt = 0; attempt < tries; ++attempt) {
     try {
-      result.timings.clear();
-      run_stages(result, options, input_density, refinement, remesh::GivenSiteShare::none);
-      result.remesh.repair_problems.insert(result.remesh.repair_problems.begin(),
-                                           "sites beside the creases made denser, as the weld with them as dense as "
-                                           "elsewhere failed: " +
-                                               reason);
+      if (attempt > 0) result.timings.clear();
+      run_stages(result, options, input_density, refinement,
+                 attempt == 0 ? remesh::GivenSiteShare::half_cell : remesh::GivenSiteShare::none);
+      if (attempt > 0) {
+        result.remesh.repair_problems.insert(
+            result.remesh.repair_problems.begin(),
+            "sites beside the creases made denser, as the weld with them as dense as elsewhere failed: " + reason);
+      }
       return;
     } catch (const Cancelled&) {
       throw;
