@@ -33,6 +33,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -65,9 +66,20 @@ struct CvtBoundary {
 std::vector<Eigen::Matrix<double, 3, 2>> tangent_frames(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                                         const voronoi::SurfaceTopology& topology);
 
+/// The vectors cvt_newton_steps works in (the Hessian, its pattern),
+/// kept from one call to the next: a relaxation's steps have about the same
+/// sizes, and fresh ones each step cost page faults.
+struct CvtNewtonBuffers {
+  CvtNewtonBuffers();
+  ~CvtNewtonBuffers();
+  struct Vectors;
+  std::unique_ptr<Vectors> vectors;
+};
+
 /// Per site, its step as a 3D vector in the site's tangent plane (zero for the
 /// sites not movable), at most max_step * sqrt(cell area) long.
 std::vector<Eigen::Vector3d> cvt_newton_steps(const CvtCells& cells, std::span<const CvtBoundary> boundaries,
-                                              const std::vector<bool>& movable, double damping, double max_step);
+                                              const std::vector<bool>& movable, double damping, double max_step,
+                                              CvtNewtonBuffers& buffers);
 
 }  // namespace geodual::remesh::detail

@@ -9,6 +9,9 @@
 
 #include <Eigen/Geometry>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -93,7 +96,8 @@ std::vector<Eigen::Vector3d> lloyd_steps(const detail::WeightedCells& cells, con
 /// arc's density is the mean of its two sites'.
 std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                           const voronoi::VoronoiDiagram& diagram, const detail::WeightedCells& cells,
-                                          const std::vector<bool>& movable, double damping, double max_step) {
+                                          const std::vector<bool>& movable, double damping, double max_step,
+                                          detail::CvtNewtonBuffers& buffers) {
   const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, *diagram.field.topology);
   std::vector<Eigen::Vector3d> position(sites.size());
   for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
@@ -105,26 +109,33 @@ std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<co
     boundaries.push_back({i, j, (cells.site_density[i] + cells.site_density[j]) / 2, diagram.polyline(arc)});
   }
   return detail::cvt_newton_steps({position, frames, diagram.cell_area, cells.mass, cells.moment}, boundaries, movable,
-                                  damping, max_step);
+                                  damping, max_step, buffers);
 }
 
 /// The Newton step on the restricted Voronoi diagram's cells.
 std::vector<Eigen::Vector3d> newton_steps(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                           const voronoi::SurfaceTopology& topology,
                                           const detail::RestrictedCells& cells, const std::vector<bool>& movable,
-                                          double damping, double max_step) {
+                                          double damping, double max_step, detail::CvtNewtonBuffers& buffers) {
   const std::vector<Eigen::Matrix<double, 3, 2>> frames = detail::tangent_frames(mesh, sites, topology);
+  // Per site and per boundary, each on its own: on all threads.
   std::vector<Eigen::Vector3d> position(sites.size());
-  for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
-  std::vector<detail::CvtBoundary> boundaries;
-  boundaries.reserve(cells.boundaries.size());
-  for (const detail::RestrictedBoundary& boundary : cells.boundaries) {
-    const std::span<const Eigen::Vector3d> ends(cells.segment_ends.data() + boundary.begin,
-                                                static_cast<std::size_t>(boundary.end - boundary.begin));
-    boundaries.push_back({boundary.site, boundary.other, boundary.density, ends, true});
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sites.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t s = range.begin(); s != range.end(); ++s) position[s] = sites[s].position(mesh);
+                    });
+  std::vector<detail::CvtBoundary> boundaries(cells.boundaries.size());
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, boundaries.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t b = range.begin(); b != range.end(); ++b) {
+          const detail::RestrictedBoundary& boundary = cells.boundaries[b];
+          const std::span<const Eigen::Vector3d> ends(cells.segment_ends.data() + boundary.begin,
+                                                      static_cast<std::size_t>(boundary.end - boundary.begin));
+          boundaries[b] = {boundary.site, boundary.other, boundary.density, ends, true};
+        }
+      });
   return detail::cvt_newton_steps({position, frames, cells.area, cells.mass, cells.moment}, boundaries, movable,
-                                  damping, max_step);
+                                  damping, max_step, buffers);
 }
 
 /// Lloyd's steps on the restricted diagram: `factor` times the way to each
@@ -199,6 +210,7 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
                                      const LloydOptions& options, int& steps_taken) {
   const detail::RestrictedSurface surface = detail::prepare_restricted_surface(mesh, topology, options.density);
   detail::RestrictedCells cells = detail::restricted_voronoi(surface, sites);
+  detail::CvtNewtonBuffers buffers;
   StepControl control = initial_control(options);
   for (steps_taken = 0; steps_taken < options.warm_start_iterations;) {
     const double previous = cells.total_energy();
@@ -214,7 +226,7 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
       return true;
     };
     auto newton = [&](double damping) {
-      return newton_steps(mesh, sites, topology, cells, moving, damping, options.newton_max_step);
+      return newton_steps(mesh, sites, topology, cells, moving, damping, options.newton_max_step, buffers);
     };
     auto lloyd = [&](double factor) { return lloyd_steps(mesh, sites, topology, cells, moving, factor); };
     if (!relaxation_step(options, previous, control, newton, lloyd, take)) break;
@@ -299,6 +311,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   tell(false);
 
   StepControl control = initial_control(options);
+  detail::CvtNewtonBuffers buffers;
   const double stop_fraction = std::max(options.tolerance, options.geodesic_tolerance);
   // A trial step's diagram is computed while the current one is held, whose
   // field (windows, distances) goes first (the peak memory is then about one
@@ -332,7 +345,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
     auto newton = [&](double damping) {
       const auto start = std::chrono::steady_clock::now();
       std::vector<Eigen::Vector3d> steps =
-          newton_steps(mesh, result.sites, result.diagram, cells, movable, damping, options.newton_max_step);
+          newton_steps(mesh, result.sites, result.diagram, cells, movable, damping, options.newton_max_step, buffers);
       result.move_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return steps;
     };

@@ -174,16 +174,26 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Su
                         moved[i] = walk_on_surface(mesh, topology, site, step, length);
                       }
                     });
-  std::vector<std::size_t> order(moved.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::vector<Eigen::Vector3d> position(moved.size());
-  for (std::size_t i = 0; i < moved.size(); ++i) position[i] = moved[i].position(mesh);
-  auto key = [&](std::size_t i) { return std::tuple(position[i].x(), position[i].y(), position[i].z()); };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    if (key(order[k]) == key(order[k - 1])) {
-      moved[order[k]] = sites[order[k]];
-      moved[order[k - 1]] = sites[order[k - 1]];
+  // The sites by their places, each place with its site: a site goes back
+  // when its place is another's too, whatever the order among equal places.
+  struct Placed {
+    double x, y, z;
+    std::size_t site;
+    auto key() const { return std::tie(x, y, z); }
+  };
+  std::vector<Placed> placed(moved.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, moved.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const Eigen::Vector3d p = moved[i].position(mesh);
+                        placed[i] = {p.x(), p.y(), p.z(), i};
+                      }
+                    });
+  std::sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) { return a.key() < b.key(); });
+  for (std::size_t k = 1; k < placed.size(); ++k) {
+    if (placed[k].key() == placed[k - 1].key()) {
+      moved[placed[k].site] = sites[placed[k].site];
+      moved[placed[k - 1].site] = sites[placed[k - 1].site];
     }
   }
   return moved;
