@@ -112,8 +112,9 @@ struct Scratch {
 double RestrictedCells::total_energy() const { return std::accumulate(energy.begin(), energy.end(), 0.0); }
 
 RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
-                                             std::span<const double> density) {
-  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_fans(mesh, topology), {}};
+                                             std::span<const double> density, bool vertex_sites) {
+  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_sites ? vertex_fans(mesh, topology) : VertexFans{},
+                            {}};
   surface.across.resize(static_cast<std::size_t>(mesh.num_faces()));
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     if (topology.face_edges[f][0] >= 0) surface.area += face_area(mesh, f);
@@ -203,9 +204,16 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
     queue.clear();
     if (sites[s].kind == SurfacePoint::Kind::face) {
       queue.push_back(sites[s].element);
-    } else {
+    } else if (!fans.begin.empty()) {
       const std::span<const Index> around = fans.around(sites[s].element);
       queue.insert(queue.end(), around.begin(), around.end());
+    } else {
+      // Not prepared for vertex sites: the faces round it as vertex_fans lists them.
+      for (Index f = 0; f < mesh.num_faces(); ++f) {
+        const Index v = sites[s].element;
+        const bool round_v = mesh.faces(f, 0) == v || mesh.faces(f, 1) == v || mesh.faces(f, 2) == v;
+        if (round_v && surface.topology.face_edges[f][0] >= 0) queue.push_back(f);
+      }
     }
     scratch.reached.clear();
     for (const Index f : queue) scratch.reached.insert(f);

@@ -62,14 +62,19 @@ struct RestrictedSurface {
   const voronoi::SurfaceTopology& topology;  ///< how the cells cross edges
   std::span<const double> density;           ///< one value per mesh vertex, or empty for 1
   double area = 0;                           ///< of the faces the topology keeps
-  VertexFans fans;                           ///< where a vertex site's cell starts
+  /// Where a vertex site's cell starts: the faces round each vertex; empty
+  /// when prepared for face sites only (then a vertex site's faces are looked
+  /// up one by one, the same faces in the same order).
+  VertexFans fans;
   /// Per face, the face across each side k (corners k and k + 1), -1 where
   /// none: the topology's two look-ups folded into one.
   std::vector<std::array<Index, 3>> across;
 };
 
+/// `vertex_sites`: whether the diagrams will have sites at vertices (the
+/// fans round every vertex, 4 bytes per face corner, are kept only then).
 RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
-                                             std::span<const double> density);
+                                             std::span<const double> density, bool vertex_sites = true);
 
 /// The cells of `sites` on the surface. A site that shares its position with
 /// another gets an empty cell. Bit-identical for any number of threads.
