@@ -208,9 +208,8 @@ bool relaxation_step(const LloydOptions& options, double energy, StepControl& co
 std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::vector<SurfacePoint> sites, const std::vector<bool>& movable,
                                      const LloydOptions& options, int& steps_taken) {
-  // The fans round the vertices are kept for sites at vertices only (the
-  // walks move sites to face points; restricted_voronoi finds a vertex site's
-  // faces without them too).
+  // The fans round the vertices are kept for sites at vertices only: the
+  // walks move sites to face points, so only those that stay can be there.
   const bool vertex_sites = std::any_of(sites.begin(), sites.end(),
                                         [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
   const detail::RestrictedSurface surface =

@@ -1,5 +1,6 @@
 #include "restricted_voronoi.hpp"
 
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "sampling_grid.hpp"
 #include "surface_walk.hpp"
@@ -136,6 +137,10 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
   const std::span<const double> density = surface.density;
   const VertexFans& fans = surface.fans;
   const std::size_t site_count = sites.size();
+  if (fans.begin.empty() && std::any_of(sites.begin(), sites.end(),
+                                        [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+    throw Error("restricted_voronoi: a site at a vertex, on a surface prepared without vertex sites");
+  }
   std::vector<Eigen::Vector3d> position(site_count);
   for (std::size_t s = 0; s < site_count; ++s) position[s] = sites[s].position(mesh);
   auto corner = [&](Index face, int c) {
@@ -204,16 +209,9 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
     queue.clear();
     if (sites[s].kind == SurfacePoint::Kind::face) {
       queue.push_back(sites[s].element);
-    } else if (!fans.begin.empty()) {
+    } else {
       const std::span<const Index> around = fans.around(sites[s].element);
       queue.insert(queue.end(), around.begin(), around.end());
-    } else {
-      // Not prepared for vertex sites: the faces round it as vertex_fans lists them.
-      for (Index f = 0; f < mesh.num_faces(); ++f) {
-        const Index v = sites[s].element;
-        const bool round_v = mesh.faces(f, 0) == v || mesh.faces(f, 1) == v || mesh.faces(f, 2) == v;
-        if (round_v && surface.topology.face_edges[f][0] >= 0) queue.push_back(f);
-      }
     }
     scratch.reached.clear();
     for (const Index f : queue) scratch.reached.insert(f);

@@ -63,8 +63,7 @@ struct RestrictedSurface {
   std::span<const double> density;           ///< one value per mesh vertex, or empty for 1
   double area = 0;                           ///< of the faces the topology keeps
   /// Where a vertex site's cell starts: the faces round each vertex; empty
-  /// when prepared for face sites only (then a vertex site's faces are looked
-  /// up one by one, the same faces in the same order).
+  /// when prepared for face sites only.
   VertexFans fans;
   /// Per face, the face across each side k (corners k and k + 1), -1 where
   /// none: the topology's two look-ups folded into one.
@@ -78,6 +77,8 @@ RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const vor
 
 /// The cells of `sites` on the surface. A site that shares its position with
 /// another gets an empty cell. Bit-identical for any number of threads.
+/// \throw geodual::Error for a site at a vertex on a surface prepared
+/// without vertex sites.
 RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites);
 
 }  // namespace geodual::remesh::detail

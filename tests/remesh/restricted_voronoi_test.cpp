@@ -9,6 +9,8 @@
 #include "geodual/remesh/sample_sites.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include "geodual/mesh/error.hpp"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -84,6 +86,21 @@ TEST(RestrictedVoronoi, CellsTileAClosedSurface) {
     EXPECT_NEAR(weighted.mass[s], 2 * cells.mass[s], 1e-12 * cells.mass[s]);
     EXPECT_NEAR(weighted.energy[s], 2 * cells.energy[s], 1e-12 * cells.energy[s]);
   }
+}
+
+TEST(RestrictedVoronoi, VertexSitesNeedASurfacePreparedForThem) {
+  // A site at a vertex starts its cell from the faces round it: with them
+  // kept, its cell is as large as its neighbours'; without them, an error.
+  const TriangleMesh sphere = test::icosphere(3);
+  std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 50);
+  sites.push_back(SurfacePoint::at_vertex(0));
+  const voronoi::GeodesicField topology = voronoi::compute_geodesic_field(sphere, sites);
+  const remesh::detail::RestrictedCells cells = remesh::detail::restricted_voronoi(
+      remesh::detail::prepare_restricted_surface(sphere, *topology.topology, {}, true), sites);
+  EXPECT_GT(cells.area.back(), 0.1 * surface_area(sphere) / 51);
+  EXPECT_THROW(remesh::detail::restricted_voronoi(
+                   remesh::detail::prepare_restricted_surface(sphere, *topology.topology, {}, false), sites),
+               Error);
 }
 
 TEST(RestrictedVoronoi, OfTwoSitesAtOnePlaceTheFirstTakesTheCell) {
