@@ -465,10 +465,10 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
   std::vector<StageTiming> timings;
   std::optional<RemeshPipelineResult> best;  // the closest remesh so far (the input stays with `result`)
   std::int64_t max_sites = options.max_sites;
-  // Without features each remesh starts from the last one's sites, so that a
-  // narrow detail one remesh has a site on keeps it; with them (sites on the
-  // features' cut, which the fallback may drop) each samples afresh.
-  const bool reuse_sites = options.remesh.sharp_angle == 0 && options.remesh.feature_edges.empty();
+  // Where a remesh kept no features, the next starts from its sites, so that
+  // a narrow detail it has a site on keeps it; after one that kept them
+  // (sites on the features' cut, which the fallback may drop) the next
+  // samples afresh.
   std::optional<SiteRefinement> refinement;
   for (;;) {
     if (options.on_error_round) options.on_error_round(static_cast<int>(rounds.size()) + 1, round.sites);
@@ -481,6 +481,7 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
     const bool met = error_pct <= options.max_error_pct;
     const bool last = met || static_cast<int>(rounds.size()) == options.max_error_rounds || sites >= max_sites;
     std::vector<double> deviation = std::move(result.statistics->deviation_at_vertices);
+    const bool reuse_sites = result.features.empty();
     std::vector<SurfacePoint> last_sites;
     if (reuse_sites) last_sites = result.remesh.sites;
     // The next round fills in a fresh result, which takes the input over.
@@ -494,6 +495,7 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
     std::vector<double> refined = remesh::refine_density(
         mesh, density, deviation, {.max_error = bound, .spacing = remesh::uniform_spacing(mesh, sites)});
     const std::int64_t next_sites = std::min(max_sites, remesh::sites_for_density(mesh, sites, density, refined));
+    refinement.reset();
     if (reuse_sites) refinement = SiteRefinement{std::move(last_sites), std::move(deviation), next_sites - sites};
     round.sites = next_sites;
     round.edge_length = 0;

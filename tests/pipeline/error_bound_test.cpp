@@ -74,6 +74,32 @@ TEST(ErrorBound, RefinesWhereTheRemeshStraysUntilTheBoundHolds) {
   EXPECT_EQ(result.timings.size(), 4 * rounds.size());
 }
 
+TEST(ErrorBound, WhereARemeshKeptNoFeaturesTheNextStartsFromItsSites) {
+  // Sharp features are on by default; the sphere has none. The rounds after
+  // the first start from the last remesh's sites (relaxed: face points) and
+  // add sites at the input's vertices where it strayed most, rather than
+  // sampling afresh, which would lose the sites the last round put there.
+  const pipeline::RemeshPipelineOptions options = bounded(0.5);
+  ASSERT_GT(options.remesh.sharp_angle, 0);
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(sphere_with_bump(), options);
+  ASSERT_GE(result.error_rounds.size(), 2u);
+  EXPECT_TRUE(result.features.empty());
+  const io::LoadedMesh input = sphere_with_bump();
+  int at_vertices = 0, at_bump = 0;
+  for (const SurfacePoint& site : result.initial_sites) {
+    if (site.kind != SurfacePoint::Kind::vertex) continue;
+    ++at_vertices;
+    at_bump += input.mesh.vertices.row(site.element).normalized().dot(kBump.transpose()) > std::cos(0.3);
+  }
+  // The last round's start: the round before's sites (it needed no repair
+  // on the sphere), and those added at vertices, some of them at the bump.
+  const std::int64_t before = result.error_rounds[result.error_rounds.size() - 2].sites;
+  EXPECT_EQ(static_cast<std::int64_t>(result.initial_sites.size()) - at_vertices, before);
+  EXPECT_GT(at_vertices, 0);
+  EXPECT_LE(at_vertices, result.error_rounds.back().sites - before);
+  EXPECT_GT(at_bump, 0);
+}
+
 TEST(ErrorBound, TheSiteLimitStopsItWithTheClosestRemesh) {
   pipeline::RemeshPipelineOptions options = bounded(0.5);
   options.max_sites = 150;
