@@ -4,7 +4,8 @@
 // results table comes from it.
 //
 //   build/bench/speed_bench [--sites 5000] [--threads 1,2] [--cgal-iterations N] [--tolerance PCT]
-//                           [--max-runs R] [--samples S] [--time-limit S] [--output-dir DIR] [MESH...]
+//                           [--max-runs R] [--samples S] [--time-limit S] [--output-dir DIR]
+//                           [--cgal-kept-heap] [MESH...]
 //
 // Default meshes: examples/data/bunny.ply, tests/data/{armadillo_86k,fertility}.ply
 // (run from the repository root). For each mesh and site count n, every run
@@ -18,7 +19,9 @@
 //            output's extras; write OUT.glb. Once per T of --threads (default
 //            1,2; tbb::global_control max_allowed_parallelism, as --threads
 //            sets it). The outputs of all T must be the same bytes; the
-//            speed-up is the time of the first T over the time of T.
+//            speed-up is the time of the first T over the time of T. Its
+//            malloc keeps freed memory in the heap, as the CLI's does
+//            (keep_freed_memory_in_heap).
 //   CGAL     read MESH; CGAL::Polygon_mesh_processing::isotropic_remeshing
 //            (number_of_iterations N, default 3; CGAL's own border handling)
 //            at a target edge length L; write OUT.glb. L is searched as in
@@ -26,7 +29,8 @@
 //            its own child) until the vertex count is within --tolerance %
 //            (default 3) of geodual's output; the time reported is that of
 //            the one run at the L found, not of the search. CGAL's remeshing
-//            runs on one thread.
+//            runs on one thread, with glibc's malloc as a program that calls
+//            it has it; --cgal-kept-heap tunes it as geodual's.
 //
 // Timing: wall and CPU seconds from the file to the written output, for
 // both. Peak RSS: the child's high-water mark at the end of that, which
@@ -45,6 +49,7 @@
 #include "cgal_remeshing.hpp"
 
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
@@ -81,6 +86,7 @@ struct Options {
   std::vector<std::int64_t> threads = {1, 2};
   ComparisonOptions comparison;      ///< CGAL's remesh and search, the statistics, the time limit
   std::filesystem::path output_dir;  ///< empty: a temporary folder, removed at the end
+  bool cgal_kept_heap = false;       ///< CGAL's runs keep freed memory in the heap too
   std::vector<std::filesystem::path> meshes;
 };
 
@@ -119,6 +125,7 @@ Row new_row(const std::string& input, std::int64_t sites, const std::string& met
 RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std::int64_t threads,
                       const std::filesystem::path& output, bool figures, const Options& options) {
   RemeshRun run;
+  keep_freed_memory_in_heap();  // as the CLI's main does
   reset_peak_rss();
   const double cpu_start = process_cpu_seconds();
   const auto start = Clock::now();
@@ -150,6 +157,7 @@ RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std
 RemeshRun run_cgal(const std::filesystem::path& mesh, double length, std::int64_t target, bool force_figures,
                    const std::filesystem::path& output, const Options& options) {
   RemeshRun run;
+  if (options.cgal_kept_heap) keep_freed_memory_in_heap();
   reset_peak_rss();
   const double cpu_start = process_cpu_seconds();
   const auto start = Clock::now();
@@ -427,11 +435,12 @@ int run_benchmark(const Options& options) {
 
 constexpr const char* usage =
     "usage: speed_bench [--sites 5000] [--threads 1,2] [--cgal-iterations N] [--tolerance PCT] [--max-runs R]\n"
-    "                   [--samples S] [--time-limit S] [--output-dir DIR] [MESH...]\n"
+    "                   [--samples S] [--time-limit S] [--output-dir DIR] [--cgal-kept-heap] [MESH...]\n"
     "geodual's default job (geodual remesh MESH --sites N --no-statistics -o OUT.glb) on each thread count,\n"
     "and CGAL's isotropic_remeshing at the same vertex count within PCT % (default 3): time, CPU time,\n"
     "peak memory and quality. Prints one JSON object per row, then a Markdown table.\n"
     "--output-dir DIR keeps the outputs there (default: a temporary folder, removed).\n"
+    "--cgal-kept-heap: CGAL's runs keep freed memory in the heap, as geodual's (and its CLI's) do.\n"
     "default meshes: examples/data/bunny.ply tests/data/armadillo_86k.ply tests/data/fertility.ply\n";
 
 Options parse_options(int argc, char** argv) {
@@ -443,6 +452,8 @@ Options parse_options(int argc, char** argv) {
       options.threads = parse_integer_list(word, value(), 1, 4096);
     } else if (word == "--output-dir") {
       options.output_dir = value();
+    } else if (word == "--cgal-kept-heap") {
+      options.cgal_kept_heap = true;
     } else {
       return parse_comparison_option(word, value, options.comparison);
     }
