@@ -21,7 +21,7 @@
 //            sets it). The outputs of all T must be the same bytes; the
 //            speed-up is the time of the first T over the time of T. Its
 //            malloc keeps freed memory in the heap, as the CLI's does
-//            (keep_freed_memory_in_heap).
+//            (pipeline::keep_freed_memory_in_heap).
 //   CGAL     read MESH; CGAL::Polygon_mesh_processing::isotropic_remeshing
 //            (number_of_iterations N, default 3; CGAL's own border handling)
 //            at a target edge length L; write OUT.glb. L is searched as in
@@ -49,9 +49,9 @@
 #include "cgal_remeshing.hpp"
 
 #include "geodual/io/read_mesh.hpp"
-#include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
+#include "geodual/pipeline/heap.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
 #include "geodual/quality/quality_stats.hpp"
@@ -125,7 +125,7 @@ Row new_row(const std::string& input, std::int64_t sites, const std::string& met
 RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std::int64_t threads,
                       const std::filesystem::path& output, bool figures, const Options& options) {
   RemeshRun run;
-  keep_freed_memory_in_heap();  // as the CLI's main does
+  pipeline::keep_freed_memory_in_heap();  // as the CLI's main does
   reset_peak_rss();
   const double cpu_start = process_cpu_seconds();
   const auto start = Clock::now();
@@ -157,7 +157,7 @@ RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std
 RemeshRun run_cgal(const std::filesystem::path& mesh, double length, std::int64_t target, bool force_figures,
                    const std::filesystem::path& output, const Options& options) {
   RemeshRun run;
-  if (options.cgal_kept_heap) keep_freed_memory_in_heap();
+  if (options.cgal_kept_heap) pipeline::keep_freed_memory_in_heap();
   reset_peak_rss();
   const double cpu_start = process_cpu_seconds();
   const auto start = Clock::now();

@@ -7,8 +7,8 @@
 #include "command.hpp"
 #include "progress_bar.hpp"
 
-#include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
+#include "geodual/pipeline/heap.hpp"
 #include "geodual/pipeline/version.hpp"
 
 #include <tbb/global_control.h>
@@ -108,7 +108,7 @@ int run(int argc, char** argv) {
 }  // namespace geodual::cli
 
 int main(int argc, char** argv) {
-  geodual::keep_freed_memory_in_heap();
+  geodual::pipeline::keep_freed_memory_in_heap();
   try {
     return geodual::cli::run(argc, argv);
   } catch (const geodual::UsageError& error) {
