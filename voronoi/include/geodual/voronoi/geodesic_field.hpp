@@ -45,9 +45,10 @@ struct GeodesicOptions {
   /// as threads may hold their windows at once.
   std::size_t window_memory_limit_bytes = std::size_t{8} << 30;
   /// Hand freed heap memory back to the system between the computation's
-  /// phases (glibc's malloc_trim, which is process-wide): keeps the peak
-  /// resident memory low on large meshes. false leaves the heap to the
-  /// allocator, for callers that trim on their own schedule.
+  /// phases, where 32 MB or more of the heap are free (glibc's malloc_trim,
+  /// which is process-wide): keeps the peak resident memory low on large
+  /// meshes. false leaves the heap to the allocator, for callers that trim
+  /// on their own schedule.
   bool release_memory_between_phases = true;
   /// The sites propagate in this many groups, each on its own (in parallel,
   /// on the threads of the caller's TBB arena), and the groups' results are
