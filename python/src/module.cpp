@@ -4,6 +4,7 @@
 #include "bindings.hpp"
 #include "errors.hpp"
 
+#include "geodual/pipeline/heap.hpp"
 #include "geodual/pipeline/version.hpp"
 
 #include <string>
@@ -21,7 +22,7 @@ triangles (indices into V).
     geodual.write_mesh("remeshed.ply", result.vertices, result.faces)
     print(result.stats["q_avg"], result.stats["hausdorff_pct"])
 
-Functions: read_mesh, write_mesh, remesh, geodesic, voronoi.
+Functions: read_mesh, write_mesh, remesh, geodesic, voronoi, keep_freed_memory_in_heap.
 Errors: geodual.Error (a RuntimeError) for bad input data or impossible
 requests; geodual.UsageError (also a ValueError) for bad option values;
 geodual.Cancelled when a progress callback returns False; ValueError and
@@ -33,4 +34,9 @@ KeyboardInterrupt, also in the middle of a computation.)";
   geodual::python::add_mesh_io(module);
   geodual::python::add_geodesics(module);
   geodual::python::add_remesh(module);
+  module.def("keep_freed_memory_in_heap", &geodual::pipeline::keep_freed_memory_in_heap,
+             R"(Lets glibc's malloc keep freed blocks of up to 256 MB for reuse (process-wide; a no-op
+elsewhere): each geodesic diagram allocates and frees arrays of tens of MB, whose pages otherwise
+fault in again for the next. Remeshing is then about 15 % faster; results are the same. For a
+process whose work is mostly geodual's, as the geodual command line tool is.)");
 }

@@ -74,6 +74,15 @@ def test_remesh_is_deterministic_and_seeded(woody):
     assert "statistics" not in a.timings
 
 
+def test_keeping_freed_memory_in_the_heap_changes_no_result(woody):
+    V, F = woody
+    before = geodual.remesh(V, F, sites=200, lloyd=3, statistics=False)
+    assert geodual.keep_freed_memory_in_heap() is None
+    after = geodual.remesh(V, F, sites=200, lloyd=3, statistics=False)
+    np.testing.assert_array_equal(before.vertices, after.vertices)
+    np.testing.assert_array_equal(before.faces, after.faces)
+
+
 def test_remesh_sizing_by_edge_length_and_faces(woody):
     V, F = woody
     by_faces = geodual.remesh(V, F, faces=400, lloyd=2, statistics=False)
