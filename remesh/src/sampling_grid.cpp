@@ -2,6 +2,10 @@
 
 #include "geodual/mesh/detail/morton_code.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -67,7 +71,8 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
                                      static_cast<std::uint64_t>(k.cell[2]))
                        : 0;
   }
-  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
+  // A total order (ties by point), so the parallel sort's result is unique.
+  tbb::parallel_sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
     if (a.morton != b.morton) return a.morton < b.morton;
     if (a.cell != b.cell) return a.cell < b.cell;
     return a.point < b.point;
@@ -100,21 +105,36 @@ PointGrid::PointGrid(std::span<const Eigen::Vector3d> points, double radius) {
     while (table_[slot] >= 0) slot = (slot + 1) & mask;
     table_[slot] = c;
   }
-  neighbour_begin_.reserve(cells.size() + 1);
-  neighbour_begin_.push_back(0);
-  for (const CellCoordinates& cell : cells) {
-    const std::size_t first = neighbours_.size();
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const Index c = find_cell({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (c >= 0) neighbours_.push_back(c);
+  // Each cell's occupied neighbours (itself included), sorted: up to 27 per
+  // cell in a scratch row on all threads, then packed.
+  const auto cell_count = static_cast<Index>(cells.size());
+  std::vector<Index> rows(27 * cells.size());
+  neighbour_begin_.assign(cells.size() + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, cell_count, 1024), [&](const tbb::blocked_range<Index>& range) {
+    for (Index c = range.begin(); c != range.end(); ++c) {
+      const CellCoordinates& cell = cells[c];
+      Index* row = rows.data() + 27 * static_cast<std::size_t>(c);
+      Index found = 0;
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+          for (std::int64_t dz = -1; dz <= 1; ++dz) {
+            const Index other = find_cell({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+            if (other >= 0) row[found++] = other;
+          }
         }
       }
+      std::sort(row, row + found);
+      neighbour_begin_[c + 1] = found;
     }
-    std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first), neighbours_.end());
-    neighbour_begin_.push_back(static_cast<Index>(neighbours_.size()));
-  }
+  });
+  for (Index c = 0; c < cell_count; ++c) neighbour_begin_[c + 1] += neighbour_begin_[c];
+  neighbours_.resize(static_cast<std::size_t>(neighbour_begin_[cell_count]));
+  tbb::parallel_for(tbb::blocked_range<Index>(0, cell_count, 1024), [&](const tbb::blocked_range<Index>& range) {
+    for (Index c = range.begin(); c != range.end(); ++c) {
+      std::copy_n(rows.data() + 27 * static_cast<std::size_t>(c), neighbour_begin_[c + 1] - neighbour_begin_[c],
+                  neighbours_.data() + neighbour_begin_[c]);
+    }
+  });
 }
 
 Index PointGrid::find_cell(const CellCoordinates& cell) const {
