@@ -6,6 +6,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -189,7 +190,7 @@ std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::Su
                         placed[i] = {p.x(), p.y(), p.z(), i};
                       }
                     });
-  std::sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) { return a.key() < b.key(); });
+  tbb::parallel_sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) { return a.key() < b.key(); });
   for (std::size_t k = 1; k < placed.size(); ++k) {
     if (placed[k].key() == placed[k - 1].key()) {
       moved[placed[k].site] = sites[placed[k].site];
