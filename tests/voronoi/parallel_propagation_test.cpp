@@ -4,7 +4,6 @@
 // distances and labels as propagating all sites at once. (The CGAL oracle
 // checks grouped fields too: geodesic_oracle_test.cpp.)
 
-#include "../../voronoi/src/site_groups.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 #include "voronoi/test_meshes.hpp"
@@ -68,23 +67,6 @@ std::vector<SurfacePoint> mixed_sites(const TriangleMesh& mesh, int count, std::
   std::vector<SurfacePoint> sites = test::random_vertex_sites(mesh, count / 2, seed);
   for (const SurfacePoint& s : test::random_face_sites(mesh, count - count / 2, seed + 1)) sites.push_back(s);
   return sites;
-}
-
-TEST(ParallelPropagation, TheDefaultGroupCountDependsOnTheSitesAlone) {
-  // One group per 256 sites, 2 to 16, at most one per site; or as asked.
-  EXPECT_EQ(detail::site_group_count(0, 0), 1);
-  EXPECT_EQ(detail::site_group_count(1, 0), 1);
-  EXPECT_EQ(detail::site_group_count(2, 0), 2);
-  EXPECT_EQ(detail::site_group_count(30, 0), 2);
-  EXPECT_EQ(detail::site_group_count(767, 0), 2);
-  EXPECT_EQ(detail::site_group_count(768, 0), 3);
-  EXPECT_EQ(detail::site_group_count(5000, 0), 16);
-  EXPECT_EQ(detail::site_group_count(30, 1), 1);
-  EXPECT_EQ(detail::site_group_count(30, 40), 30);
-  // A few sites on two threads: the default is two groups, not the sequential code.
-  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path("bunny.ply"));
-  const std::vector<SurfacePoint> sites = mixed_sites(mesh, 30, 5);
-  expect_identical(field_on_threads(mesh, sites, 0, 2), field_on_threads(mesh, sites, 2, 1));
 }
 
 TEST(ParallelPropagation, SameBytesOnAnyNumberOfThreads) {

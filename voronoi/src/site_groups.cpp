@@ -22,10 +22,8 @@ int site_group_count(std::size_t num_sites, int requested) {
   constexpr std::size_t kSitesPerGroup = 256;
   constexpr std::size_t kMaxGroups = 16;
   if (num_sites == 0) return 1;
-  // At least two: on two threads two groups take 0.55-0.65 of one's time
-  // from 30 to 500 sites (on one thread 1.2-1.3 times).
   const std::size_t groups = requested > 0 ? static_cast<std::size_t>(requested)
-                                           : std::clamp<std::size_t>(num_sites / kSitesPerGroup, 2, kMaxGroups);
+                                           : std::clamp<std::size_t>(num_sites / kSitesPerGroup, 1, kMaxGroups);
   return static_cast<int>(std::min(groups, num_sites));
 }
 

@@ -52,7 +52,7 @@ struct GeodesicOptions {
   bool release_memory_between_phases = true;
   /// The sites propagate in this many groups, each on its own (in parallel,
   /// on the threads of the caller's TBB arena), and the groups' results are
-  /// merged; 0 (or less) picks one group per 256 sites, 2 to 16. The
+  /// merged; 0 (or less) picks one group per 256 sites, at most 16. The
   /// result depends on this number (never on the thread count) and is exact
   /// for any.
   int site_groups = 0;
