@@ -37,6 +37,6 @@ KeyboardInterrupt, also in the middle of a computation.)";
   module.def("keep_freed_memory_in_heap", &geodual::pipeline::keep_freed_memory_in_heap,
              R"(Lets glibc's malloc keep freed blocks of up to 256 MB for reuse (process-wide; a no-op
 elsewhere): each geodesic diagram allocates and frees arrays of tens of MB, whose pages otherwise
-fault in again for the next. Remeshing is then about 15 % faster; results are the same. For a
-process whose work is mostly geodual's, as the geodual command line tool is.)");
+fault in again for the next. Remeshing is then faster, with the same results. For a process
+whose work is mostly geodual's, as the geodual command line tool is.)");
 }
