@@ -40,9 +40,7 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
   std::vector<bool> movable(sites.size(), true);
   if (options.move_boundary_sites) return movable;
   std::vector<bool> boundary_vertex;
-  const bool vertex_sites = std::any_of(sites.begin(), sites.end(),
-                                        [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
-  if (vertex_sites) {
+  if (detail::any_at_vertex(sites)) {
     boundary_vertex.assign(static_cast<std::size_t>(mesh.vertices.rows()), false);
     for (std::size_t e = 0; e < topology.edge_faces.size(); ++e) {
       if (topology.edge_faces[e][0] >= 0 && topology.edge_faces[e][1] >= 0) continue;
@@ -210,10 +208,8 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
                                      const LloydOptions& options, int& steps_taken) {
   // The fans round the vertices are kept for sites at vertices only: the
   // walks move sites to face points, so only those that stay can be there.
-  const bool vertex_sites = std::any_of(sites.begin(), sites.end(),
-                                        [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
   const detail::RestrictedSurface surface =
-      detail::prepare_restricted_surface(mesh, topology, options.density, vertex_sites);
+      detail::prepare_restricted_surface(mesh, topology, options.density, detail::any_at_vertex(sites));
   detail::RestrictedCells cells = detail::restricted_voronoi(surface, sites);
   detail::CvtNewtonBuffers buffers;
   StepControl control = initial_control(options);

@@ -137,8 +137,7 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
   const std::span<const double> density = surface.density;
   const VertexFans& fans = surface.fans;
   const std::size_t site_count = sites.size();
-  if (fans.begin.empty() && std::any_of(sites.begin(), sites.end(),
-                                        [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
+  if (fans.begin.empty() && any_at_vertex(sites)) {
     throw Error("restricted_voronoi: a site at a vertex, on a surface prepared without vertex sites");
   }
   std::vector<Eigen::Vector3d> position(site_count);

@@ -74,9 +74,9 @@ std::vector<std::int64_t> sites_per_component(const SamplingSurface& surface,
   std::vector<std::int64_t> minimum, loop_minimum;
   const TopologyMinimum total = topology_minimum(surface, loops_per_component, given_per_component);
   const std::int64_t needed = total.needed, needed_by_loops = total.needed_by_loops, num_loops = total.loops;
+  const double share = given_share == GivenSiteShare::half_cell ? 0.5 : 0.0;  // of a cell, per given site
   for (const Index c : with_area) {
     areas.push_back(surface.component_area[c]);
-    const double share = given_share == GivenSiteShare::half_cell ? 0.5 : 0.0;
     held.push_back(share * static_cast<double>(given_per_component[c]));
     loop_minimum.push_back(3 * loops_per_component[c]);
     minimum.push_back(component_minimum(loops_per_component[c], given_per_component[c] > 0));

@@ -133,16 +133,18 @@ VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology&
 
 /// Every site walked along the surface by its step (a tangent vector at the
 /// site); a pair landing on one point keeps its old places.
+bool any_at_vertex(std::span<const SurfacePoint> sites) {
+  return std::any_of(sites.begin(), sites.end(),
+                     [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
+}
+
 std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::span<const SurfacePoint> sites, std::span<const Eigen::Vector3d> steps) {
   std::vector<SurfacePoint> moved(sites.begin(), sites.end());
   // A vertex site steps from the corner of the face around it whose angle
   // holds the step's direction.
   VertexFans fans;
-  if (std::any_of(sites.begin(), sites.end(),
-                  [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; })) {
-    fans = vertex_fans(mesh, topology);
-  }
+  if (any_at_vertex(sites)) fans = vertex_fans(mesh, topology);
   auto as_face_point = [&](const SurfacePoint& site, const Eigen::Vector3d& step) {
     if (site.kind == SurfacePoint::Kind::face || fans.begin.empty()) return site;
     const Index v = site.element;

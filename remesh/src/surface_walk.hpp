@@ -32,6 +32,10 @@ struct VertexFans {
 };
 VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology);
 
+/// Whether any of `sites` is at a vertex (SurfacePoint::Kind::vertex): only
+/// then are the fans round the vertices needed.
+bool any_at_vertex(std::span<const SurfacePoint> sites);
+
 /// Every site walked along the surface by its step (a 3D vector in the
 /// site's tangent plane, as cvt_newton.hpp's frames describe it): a face site
 /// from its face, a vertex site from the face around it whose corner angle
