@@ -1,6 +1,7 @@
 // geodual remesh MESH -o OUT (--sites N | --edge-length L[%] | --faces N | --site-file F) [--sampling S]
 //                     [--seed S] [--plain-lloyd]
 //                     [--curvature-adaptation S] [--lloyd K] [--lloyd-tol T] [--geodesic-tolerance T] [--warm-start K]
+//                     [--warm-start-momentum M]
 //                     [--json]
 //                     [--preview OUT.png]
 //                     [--max-repair-rounds K]
@@ -138,6 +139,12 @@ class RemeshCommand final : public Command {
                     "a cheap start close to a CVT (0: none)")
         ->capture_default_str()
         ->check(integer_between(0, 100000));
+    command
+        .add_option("--warm-start-momentum", options_.lloyd.warm_start_momentum,
+                    "Each warm-start step also goes this fraction of the step before it (heavy-ball momentum: "
+                    "fewer steps to the same quality; 0: none)")
+        ->capture_default_str()
+        ->check(number_between(0, 0.99));
     command.add_flag_callback(
         "--no-newton,--plain-lloyd", [this] { options_.lloyd.newton = false; },
         "Plain (over-relaxed) Lloyd steps instead of the default Newton-accelerated ones");
@@ -688,6 +695,7 @@ class RemeshCommand final : public Command {
     options["lloyd_tolerance"] = options_.lloyd.tolerance;
     options["geodesic_tolerance"] = options_.lloyd.geodesic_tolerance;
     options["warm_start_iterations"] = options_.lloyd.warm_start_iterations;
+    options["warm_start_momentum"] = options_.lloyd.warm_start_momentum;
     options["newton"] = options_.lloyd.newton;
     options["curvature_adaptation"] = options_.curvature_adaptation;
     options["max_repair_rounds"] = options_.max_repair_rounds;

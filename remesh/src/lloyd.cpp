@@ -213,21 +213,33 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
   detail::RestrictedCells cells = detail::restricted_voronoi(surface, sites);
   detail::CvtNewtonBuffers buffers;
   StepControl control = initial_control(options);
+  // The step last taken: the momentum's memory.
+  std::vector<Eigen::Vector3d> taken_step;
   for (steps_taken = 0; steps_taken < options.warm_start_iterations;) {
     const double previous = cells.total_energy();
     // A site whose restricted cell is empty (it shares its place) stays.
     std::vector<bool> moving = movable;
     for (std::size_t i = 0; i < moving.size(); ++i) moving[i] = moving[i] && cells.mass[i] > 0;
-    auto take = [&](const std::vector<Eigen::Vector3d>& steps, double least_decrease) {
+    auto take = [&](std::vector<Eigen::Vector3d> steps, double least_decrease) {
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, sites, steps);
       detail::RestrictedCells next = detail::restricted_voronoi(surface, moved);
       if (!(next.total_energy() < previous - least_decrease)) return false;
       sites = std::move(moved);
       cells = std::move(next);
+      taken_step = std::move(steps);
       return true;
     };
     auto newton = [&](double damping) {
-      return newton_steps(mesh, sites, topology, cells, moving, damping, options.newton_max_step, buffers);
+      std::vector<Eigen::Vector3d> steps =
+          newton_steps(mesh, sites, topology, cells, moving, damping, options.newton_max_step, buffers);
+      // Only on the least damped step: a step retried more damped has
+      // overshot, and goes without the momentum.
+      if (damping == options.newton_damping && !taken_step.empty()) {
+        for (std::size_t i = 0; i < steps.size(); ++i) {
+          if (moving[i]) steps[i] += options.warm_start_momentum * taken_step[i];
+        }
+      }
+      return steps;
     };
     auto lloyd = [&](double factor) { return lloyd_steps(mesh, sites, topology, cells, moving, factor); };
     if (!relaxation_step(options, previous, control, newton, lloyd, take)) break;
@@ -254,6 +266,8 @@ void check_options(const LloydOptions& options) {
           "geodesic_tolerance must be >= 0, got " + std::to_string(options.geodesic_tolerance));
   require(options.over_relaxation > 0 && options.over_relaxation < 2,
           "over_relaxation must be in (0, 2), got " + std::to_string(options.over_relaxation));
+  require(options.warm_start_momentum >= 0 && options.warm_start_momentum < 1,
+          "warm_start_momentum must be in [0, 1), got " + std::to_string(options.warm_start_momentum));
   require(options.newton_damping > 0 && std::isfinite(options.newton_damping),
           "newton_damping must be a finite number > 0, got " + std::to_string(options.newton_damping));
   require(options.newton_max_step > 0 && std::isfinite(options.newton_max_step),

@@ -26,7 +26,11 @@ struct LloydOptions {
   /// warm start, see above; 0: none). Skipped when `iterations` is 0. Between
   /// its steps it asks voronoi.geodesic.progress (with 0), which can cancel it.
   /// It needs no geodesic diagram: the first is that of the sites it reaches.
-  int warm_start_iterations = 50;
+  int warm_start_iterations = 30;
+  /// Heavy-ball momentum of the warm start (Polyak 1964): each least-damped
+  /// Newton step also goes this fraction of the step taken before it, which
+  /// carries the slow slides of whole rows of cells along (0: none; < 1).
+  double warm_start_momentum = 0.6;
   /// Stop once a step (of the warm start or of the iterations) lowers the
   /// energy by less than this fraction of it. A Newton step must lower it by
   /// this much to be taken (one that lowers it by less is retried more
