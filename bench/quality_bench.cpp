@@ -3,7 +3,7 @@
 // shared/DESIGN.md for all of them (issue 5, deliverable 4).
 //
 //   build/bench/quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W]
-//                             [--plain-lloyd] [--adapt S] [--no-cgal]
+//                             [--momentum M] [--plain-lloyd] [--adapt S] [--no-cgal]
 //                             [--cgal-iterations N] [--cgal-border keep|protect]
 //                             [--tolerance PCT] [--max-runs R] [--samples S]
 //                             [--time-limit S] [MESH...]
@@ -20,6 +20,7 @@
 //                  (Newton-accelerated) steps (default 10; fewer when the
 //                  energy stalls below --lloyd-tol), after at most W
 //                  warm-start steps on the restricted Voronoi diagram
+//                  (default: LloydOptions' default; 0: none) with momentum M
 //                  (default: LloydOptions' default; 0: none).
 //   geodual+plain  with --plain-lloyd: the same, plain (over-relaxed) Lloyd
 //                  steps.
@@ -89,6 +90,7 @@ struct Options {
   int lloyd = 10;
   double lloyd_tolerance = remesh::LloydOptions{}.tolerance;
   int warm_start = remesh::LloydOptions{}.warm_start_iterations;
+  double momentum = remesh::LloydOptions{}.warm_start_momentum;
   bool plain_lloyd = false;      ///< also a row with plain Lloyd steps
   double adapt = 0;              ///< > 0: also a row with curvature-adapted sizing of this strength
   bool cgal = true;              ///< the CGAL row
@@ -108,6 +110,7 @@ RemeshRun run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
   pipeline_options.remesh.curvature_adaptation = adapt;
   pipeline_options.remesh.lloyd.tolerance = options.lloyd_tolerance;
   pipeline_options.remesh.lloyd.warm_start_iterations = options.warm_start;
+  pipeline_options.remesh.lloyd.warm_start_momentum = options.momentum;
   pipeline_options.statistics = false;  // measured below, the same way for every row
   RemeshRun run;
   reset_peak_rss();
@@ -212,7 +215,8 @@ int run_benchmark(const Options& options) {
   std::cout << "machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads, load "
             << load_average() << "\n";
   std::cout << "options: Lloyd " << options.lloyd << " iterations (tolerance " << options.lloyd_tolerance
-            << ", warm start " << options.warm_start << " steps), CGAL isotropic_remeshing "
+            << ", warm start " << options.warm_start << " steps, momentum " << options.momentum
+            << "), CGAL isotropic_remeshing "
             << options.comparison.cgal.iterations << " iterations, borders "
             << (options.comparison.cgal.border == CgalBorder::keep ? "kept (CGAL default)"
                                                                    : "protected (split to L, then fixed)")
@@ -294,8 +298,8 @@ int run_benchmark(const Options& options) {
 // Command line
 
 constexpr const char* usage =
-    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--plain-lloyd] [--adapt "
-    "S]\n"
+    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--momentum M] [--plain-lloyd] "
+    "[--adapt S]\n"
     "                     [--no-cgal]\n"
     "                     [--cgal-iterations N]\n"
     "                     [--cgal-border keep|protect] [--tolerance PCT] [--max-runs R] [--samples S]\n"
@@ -311,6 +315,9 @@ Options parse_options(int argc, char** argv) {
       options.lloyd = static_cast<int>(parse_integer(word, value(), 0, 10'000));
     } else if (word == "--warm-start") {
       options.warm_start = static_cast<int>(parse_integer(word, value(), 0, 10'000));
+    } else if (word == "--momentum") {
+      options.momentum = parse_number(word, value());
+      if (!(options.momentum >= 0 && options.momentum < 1)) throw UsageError("--momentum must be in [0, 1)");
     } else if (word == "--plain-lloyd") {
       options.plain_lloyd = true;
     } else if (word == "--adapt") {
