@@ -216,8 +216,7 @@ int run_benchmark(const Options& options) {
             << load_average() << "\n";
   std::cout << "options: Lloyd " << options.lloyd << " iterations (tolerance " << options.lloyd_tolerance
             << ", warm start " << options.warm_start << " steps, momentum " << options.momentum
-            << "), CGAL isotropic_remeshing "
-            << options.comparison.cgal.iterations << " iterations, borders "
+            << "), CGAL isotropic_remeshing " << options.comparison.cgal.iterations << " iterations, borders "
             << (options.comparison.cgal.border == CgalBorder::keep ? "kept (CGAL default)"
                                                                    : "protected (split to L, then fixed)")
             << ", vertex count within " << options.comparison.tolerance_pct << " %, "
@@ -298,7 +297,8 @@ int run_benchmark(const Options& options) {
 // Command line
 
 constexpr const char* usage =
-    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--momentum M] [--plain-lloyd] "
+    "usage: quality_bench [--sites 5000,20000] [--lloyd K] [--lloyd-tol T] [--warm-start W] [--momentum M] "
+    "[--plain-lloyd] "
     "[--adapt S]\n"
     "                     [--no-cgal]\n"
     "                     [--cgal-iterations N]\n"
