@@ -225,6 +225,29 @@ TEST(RemeshCommand, CurvatureAdaptationOnRequest) {
   EXPECT_FALSE(std::filesystem::exists(folder.path() / "bad.ply"));
 }
 
+TEST(RemeshCommand, WarmStartMomentumIsReportedAndBelowOne) {
+  // The report records the momentum the warm start ran with; 1 and above are refused.
+  ScratchFolder folder;
+  auto remesh = [&](const std::string& momentum) {
+    const auto report = folder.path() / "report.json";
+    const CliRun run =
+        run_cli({"remesh", genus_four, "--sites", "300", "--no-statistics", "--warm-start-momentum", momentum, "--json",
+                 "-o", (folder.path() / "out.ply").string(), "--report", report.string()});
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    return std::pair(nlohmann::json::parse(run.out), nlohmann::json::parse(slurp(report)));
+  };
+  const auto [plain, plain_report] = remesh("0");
+  const auto [heavy, heavy_report] = remesh("0.6");
+  EXPECT_EQ(plain_report["options"]["warm_start_momentum"], 0.0);
+  EXPECT_EQ(heavy_report["options"]["warm_start_momentum"], 0.6);
+  EXPECT_NE(plain["energy_history"], heavy["energy_history"]);  // the warm start went elsewhere
+  const CliRun too_much = run_cli({"remesh", genus_four, "--sites", "300", "--warm-start-momentum", "1", "-o",
+                                   (folder.path() / "bad.ply").string()});
+  EXPECT_EQ(too_much.exit_status, 2);
+  EXPECT_NE(too_much.err.find("--warm-start-momentum"), std::string::npos) << too_much.err;
+  EXPECT_FALSE(std::filesystem::exists(folder.path() / "bad.ply"));
+}
+
 TEST(RemeshCommand, FlagsAreNamedAfterTheOptionFieldsAndTheOldNamesStillWork) {
   ScratchFolder folder;
   auto report_of = [&](std::vector<std::string> flags) {
