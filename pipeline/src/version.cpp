@@ -1,6 +1,8 @@
 #include "geodual/pipeline/version.hpp"
 
-// GEODUAL_VERSION and GEODUAL_GIT_DESCRIBE come from pipeline/CMakeLists.txt.
+// GEODUAL_VERSION comes from pipeline/CMakeLists.txt; GEODUAL_GIT_DESCRIBE
+// from the header it generates at every build (cmake/GeodualGitDescribe.cmake).
+#include "geodual_git_describe.hpp"
 
 namespace geodual {
 
