@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -43,6 +44,35 @@ std::string random_bytes(std::size_t count, unsigned seed) {
 std::string file_contents(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+/// `git describe --always --dirty` of the source, "" where it is not a git
+/// checkout or git cannot run.
+std::string describe_source() {
+  if (!std::filesystem::exists(std::filesystem::path(GEODUAL_SOURCE_DIR) / ".git")) return "";
+  const std::string command = "git -C '" GEODUAL_SOURCE_DIR "' describe --always --dirty 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return "";
+  std::string out;
+  char buffer[256];
+  while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
+  pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+TEST(CliUsage, VersionNamesTheCommitOfTheSourceBuilt) {
+  // Read at build time: after a commit, an incremental build names the new
+  // one (it used to keep the commit of the last configure). "-dirty" is left
+  // out on both sides: a file edited since the build is no stale commit.
+  auto without_dirty = [](std::string text) {
+    for (std::size_t at; (at = text.find("-dirty")) != std::string::npos;) text.erase(at, 6);
+    return text;
+  };
+  const std::string describe = without_dirty(describe_source());
+  const std::string expected =
+      "geodual " GEODUAL_PROJECT_VERSION + (describe.empty() ? std::string() : " (" + describe + ")") + "\n";
+  EXPECT_EQ(without_dirty(run_cli({"--version"}).out), expected);
 }
 
 TEST(CliUsage, VersionAndHelpSucceed) {
