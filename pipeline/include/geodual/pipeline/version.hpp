@@ -8,7 +8,8 @@ namespace geodual {
 std::string_view version();
 
 /// The release and, where the build had git, the commit it was built from
-/// (`git describe --always --dirty`), e.g. "0.1.0 (a59dea5-dirty)". Printed by
+/// (`git describe --always --dirty`, read at every build), e.g.
+/// "0.1.0 (a59dea5-dirty)". Printed by
 /// --version and written into glTF asset.generator and the JSON reports.
 std::string_view build_version();
 
