@@ -1,8 +1,10 @@
 #pragma once
 // Runs the built geodual tool (GEODUAL_CLI) as a child process and captures
-// what it printed and how it ended.
+// what it printed and how it ended; and shell commands, for the tests that
+// drive it through other tools.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geodual::cli_test {
@@ -19,5 +21,9 @@ struct CliRun {
 
 /// Runs `GEODUAL_CLI args...` with the test's working directory.
 CliRun run_cli(const std::vector<std::string>& args);
+
+/// Runs a shell command; returns its exit status (-1 if it did not exit) and
+/// what it printed on stdout and stderr together.
+std::pair<int, std::string> shell(const std::string& command);
 
 }  // namespace geodual::cli_test

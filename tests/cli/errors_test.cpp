@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -50,13 +49,8 @@ std::string file_contents(const std::filesystem::path& path) {
 /// checkout or git cannot run.
 std::string describe_source() {
   if (!std::filesystem::exists(std::filesystem::path(GEODUAL_SOURCE_DIR) / ".git")) return "";
-  const std::string command = "git -C '" GEODUAL_SOURCE_DIR "' describe --always --dirty 2>/dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return "";
-  std::string out;
-  char buffer[256];
-  while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-  pclose(pipe);
+  auto [status, out] = shell("git -C '" GEODUAL_SOURCE_DIR "' describe --always --dirty");
+  if (status != 0) return "";
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   return out;
 }
