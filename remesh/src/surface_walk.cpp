@@ -131,13 +131,13 @@ VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology&
   return fans;
 }
 
-/// Every site walked along the surface by its step (a tangent vector at the
-/// site); a pair landing on one point keeps its old places.
 bool any_at_vertex(std::span<const SurfacePoint> sites) {
   return std::any_of(sites.begin(), sites.end(),
                      [](const SurfacePoint& p) { return p.kind == SurfacePoint::Kind::vertex; });
 }
 
+/// Every site walked along the surface by its step (a tangent vector at the
+/// site); a pair landing on one point keeps its old places.
 std::vector<SurfacePoint> move_sites(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::span<const SurfacePoint> sites, std::span<const Eigen::Vector3d> steps) {
   std::vector<SurfacePoint> moved(sites.begin(), sites.end());

@@ -14,7 +14,9 @@
 
 #include <cstddef>
 
-#if defined(__GLIBC__)
+// <malloc.h> first: it defines __GLIBC__ (through <features.h>) whatever was
+// included before this header.
+#if __has_include(<malloc.h>)
 #include <malloc.h>
 #endif
 
