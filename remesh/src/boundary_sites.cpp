@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <tuple>
 #include <utility>
 
@@ -133,6 +134,61 @@ std::vector<double> site_arc_lengths(const LoopWalk& walk, std::int64_t k, const
   return at;
 }
 
+/// Arc lengths of k sites on a loop smaller than the remesh's spacing (a
+/// pinhole, or a loop made of copies of one short edge where a cut opened a
+/// non-manifold edge): spread as far apart in space as the loop allows, by
+/// farthest-point selection among its vertices and edge midpoints, starting
+/// at its ends. Evenly by arc length, two of its sites would meet where the
+/// loop runs back over itself. Empty where there are fewer candidates than k.
+std::vector<double> spread_arc_lengths(const LoopWalk& walk, std::int64_t k, const std::vector<std::size_t>& ends) {
+  std::vector<double> candidates;
+  for (std::size_t i = 0; i < walk.num_edges(); ++i) {
+    const double end = i + 1 < walk.num_edges() ? walk.start(i + 1) : walk.length();
+    candidates.push_back(walk.start(i));
+    candidates.push_back((walk.start(i) + end) / 2);
+  }
+  if (static_cast<std::int64_t>(candidates.size()) < k) return {};
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(candidates.size());
+  for (const double at : candidates) points.push_back(walk.point(at));
+  // Per candidate, its squared distance to the nearest chosen one.
+  std::vector<double> nearest(candidates.size(), std::numeric_limits<double>::infinity());
+  std::vector<double> at;
+  auto choose = [&](std::size_t c) {
+    at.push_back(candidates[c]);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      nearest[i] = std::min(nearest[i], (points[i] - points[c]).squaredNorm());
+    }
+  };
+  for (const std::size_t end : ends) {
+    if (static_cast<std::int64_t>(at.size()) < k) choose(2 * end);
+  }
+  if (at.empty()) choose(0);
+  while (static_cast<std::int64_t>(at.size()) < k) {
+    choose(static_cast<std::size_t>(std::distance(nearest.begin(), std::max_element(nearest.begin(), nearest.end()))));
+  }
+  std::sort(at.begin(), at.end());
+  return at;
+}
+
+/// The smallest distance in space between the walk's points at `at`.
+double closest_pair(const LoopWalk& walk, std::span<const double> at) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    for (std::size_t j = i + 1; j < at.size(); ++j) {
+      closest = std::min(closest, (walk.point(at[i]) - walk.point(at[j])).norm());
+    }
+  }
+  return closest;
+}
+
+/// The extent of the loop: its bounding box's diagonal.
+double loop_extent(const LoopWalk& walk) {
+  Eigen::AlignedBox3d box;
+  for (std::size_t i = 0; i < walk.num_edges(); ++i) box.extend(walk.point(walk.start(i)));
+  return box.isEmpty() ? 0.0 : box.diagonal().norm();
+}
+
 }  // namespace
 
 void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
@@ -142,7 +198,18 @@ void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop
   for (const BoundaryLoop* loop : loops) walks.emplace_back(mesh, *loop);
   const std::vector<std::vector<std::size_t>> ends = slit_ends(walks, spacing, sites);
   for (std::size_t l = 0; l < walks.size(); ++l) {
-    for (const double at : site_arc_lengths(walks[l], sites[l], ends[l])) out.push_back(walks[l].site(at));
+    std::vector<double> at = site_arc_lengths(walks[l], sites[l], ends[l]);
+    // A loop below the spacing whose sites come far closer in space than
+    // along it (it runs back over itself): spread instead, if that is better.
+    const double arc_spacing = walks[l].length() / static_cast<double>(std::max<std::int64_t>(sites[l], 1));
+    if (walks[l].closed() && loop_extent(walks[l]) < spacing) {
+      const double closest = closest_pair(walks[l], at);
+      if (closest < arc_spacing / 4) {
+        std::vector<double> spread = spread_arc_lengths(walks[l], sites[l], ends[l]);
+        if (!spread.empty() && closest_pair(walks[l], spread) > closest) at = std::move(spread);
+      }
+    }
+    for (const double a : at) out.push_back(walks[l].site(a));
   }
 }
 

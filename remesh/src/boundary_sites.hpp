@@ -68,7 +68,11 @@ std::vector<std::vector<std::size_t>> slit_ends(std::span<const LoopWalk> walks,
 /// loop by loop. One at each slit end (slit_ends, just off its vertex), the
 /// others evenly by arc length between consecutive ends, in proportion to
 /// the stretches' lengths; on a loop without slit ends evenly all round, at
-/// (j + 1/2) L / k.
+/// (j + 1/2) L / k. A closed loop smaller than the spacing whose sites would
+/// come closer in space than a quarter of their spacing along it (it runs
+/// back over itself, as copies of one short edge the cut to a manifold
+/// opened) takes them at its vertices and edge midpoints instead, farthest
+/// first, where that keeps its closest two farther apart.
 void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop* const> loops,
                           std::span<const std::int64_t> sites, double spacing, std::vector<SurfacePoint>& out);
 

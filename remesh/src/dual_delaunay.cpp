@@ -403,13 +403,16 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   // sliver) or the smaller of their own separations. Only points on one
   // piece keep apart; a point where a site already is on another sheet
   // (vertices cut apart, the two sides of a cut, pieces that touch) moves a
-  // step into its face instead.
+  // step into its face instead. "Where a site is" reaches 1e-4 of that
+  // quarter spacing: a boundary site sits 2^-20 of its edge off a mesh
+  // vertex, and a point at the vertex would make an edge of that length.
   double cells_area = 0;
   for (const double area : diagram.cell_area) cells_area += area;
   const double apart =
       0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
-  PointGrid<char> grid(same_point);  // the sites and the points kept
-  auto taken = [&](const Eigen::Vector3d& x) { return grid.any_within(x, same_point, [](char) { return true; }); };
+  const double crowded = std::max(same_point, 1e-4 * apart);
+  PointGrid<char> grid(crowded);  // the sites and the points kept
+  auto taken = [&](const Eigen::Vector3d& x) { return grid.any_within(x, crowded, [](char) { return true; }); };
   for (const SurfacePoint& site : field.sites) grid.insert(site.position(input), 0);
   std::vector<Index> face_at_vertex;  // a face with area at each vertex, found when first needed
   auto into_face = [&](const SurfacePoint& p) {
@@ -448,7 +451,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
       p = SurfacePoint::at_vertex(input.faces(p.element, corner));
     }
     Eigen::Vector3d x = p.position(input);
-    if (taken(x) && voronoi::query(field, input, p).distance > same_point) {
+    if (taken(x) && voronoi::query(field, input, p).distance > crowded) {
       p = into_face(p);
       x = p.position(input);
     }

@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -128,6 +130,65 @@ TEST(LoopWalk, FollowsTheEdgesItRunsBackwards) {
     const double middle = (at + next) / 2;
     EXPECT_NEAR((walk.site(middle).position(mesh) - walk.point(middle)).norm(), 0, 1e-9) << "edge " << i;
   }
+}
+
+/// The smallest distance in space between two of `points`.
+double closest_pair(const std::vector<Eigen::Vector3d>& points) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t j = i + 1; j < points.size(); ++j) closest = std::min(closest, (points[i] - points[j]).norm());
+  }
+  return closest;
+}
+
+/// The positions of k sites placed on `loop` of `mesh` at `spacing`.
+std::vector<Eigen::Vector3d> placed_sites(const TriangleMesh& mesh, const BoundaryLoop& loop, std::int64_t k,
+                                          double spacing) {
+  const std::array<const BoundaryLoop*, 1> loops{&loop};
+  const std::array<std::int64_t, 1> sites{k};
+  std::vector<SurfacePoint> out;
+  place_boundary_sites(mesh, loops, sites, spacing, out);
+  std::vector<Eigen::Vector3d> points;
+  for (const SurfacePoint& site : out) points.push_back(site.position(mesh));
+  return points;
+}
+
+TEST(BoundarySites, OnALoopThatRunsBackOverItselfStayApart) {
+  // A loop of four copies of one unit edge, there and back twice (what the
+  // cut to a manifold leaves where sheets meet along a short edge), far
+  // smaller than the spacing: three sites on it, as every loop gets. Evenly
+  // by arc length two of them meet; spread, no two are closer than half the
+  // edge (the most three points on a segment allow).
+  const TriangleMesh mesh = test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
+  BoundaryLoop zigzag;
+  for (int copy = 0; copy < 4; ++copy) zigzag.edges.push_back({0, 0, 1.0, copy % 2 == 1});
+  zigzag.length = 4;
+  const std::vector<Eigen::Vector3d> sites = placed_sites(mesh, zigzag, 3, 10.0);
+  ASSERT_EQ(sites.size(), 3u);
+  EXPECT_GT(closest_pair(sites), 0.5 - 1e-5);
+}
+
+/// Expects the k sites placed on the one loop of `mesh` at `spacing` at arc
+/// lengths (j + 1/2) L / k.
+void expect_even_by_arc_length(const TriangleMesh& mesh, std::int64_t k, double spacing) {
+  const SamplingSurface surface = build_sampling_surface(mesh, true);
+  ASSERT_EQ(surface.boundary_loops.size(), 1u);
+  const BoundaryLoop& loop = surface.boundary_loops.front();
+  const LoopWalk walk(mesh, loop);
+  const std::vector<Eigen::Vector3d> sites = placed_sites(mesh, loop, k, spacing);
+  ASSERT_EQ(sites.size(), static_cast<std::size_t>(k));
+  for (std::size_t j = 0; j < sites.size(); ++j) {
+    const double at = (static_cast<double>(j) + 0.5) * loop.length / static_cast<double>(k);
+    EXPECT_NEAR((sites[j] - walk.point(at)).norm(), 0, 1e-5) << "site " << j;
+  }
+}
+
+TEST(BoundarySites, OnLoopsThatDoNotRunBackOverThemselvesAreEvenByArcLength) {
+  // The rectangle's rim, 24 long, with 12 sites at spacing 2; and a
+  // triangular hole far smaller than the spacing, whose three sites are as
+  // far apart along it as in space.
+  expect_even_by_arc_length(rectangle(8, 4), 12, 2.0);
+  expect_even_by_arc_length(test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {0.5, 0.8, 0}}, {{0, 1, 2}}), 3, 10.0);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -357,6 +358,19 @@ TEST(ManifoldCut, BunnyRes2RemeshesWithTheDefaultRelaxation) {
     const remesh::RemeshResult result = remesh::remesh_from_sites(cut, sites);
     EXPECT_TRUE(result.dual.check.valid);
     expect_oriented_manifold_like(analyze_mesh(result.dual.mesh), surface);
+    // Nor two vertices at one point: a loop the cut made of copies of one
+    // short edge had two of its sites meet, and a repair site came within
+    // 2^-20 of an edge of a site on another sheet (Q 1e-6, 1e-8).
+    const TriangleMesh& remeshed = result.dual.mesh;
+    const double diagonal = (cut.vertices.colwise().maxCoeff() - cut.vertices.colwise().minCoeff()).norm();
+    double closest = std::numeric_limits<double>::infinity();
+    for (Index a = 0; a < remeshed.num_vertices(); ++a) {
+      for (Index b = a + 1; b < remeshed.num_vertices(); ++b) {
+        closest = std::min(closest, (remeshed.vertices.row(a) - remeshed.vertices.row(b)).norm());
+      }
+    }
+    EXPECT_GT(closest, 1e-5 * diagonal);
+    EXPECT_GT(quality::triangle_quality(remeshed).q_min, 1e-3);
   }
 }
 
