@@ -94,6 +94,51 @@ TEST(WindowStore, CompactKeepsEveryEdgesWindows) {
   }
 }
 
+TEST(WindowStore, EdgesWithWindowsAreExactlyThoseHoldingSome) {
+  // The store keeps a list of the edges given blocks, so that walks over the
+  // edges holding windows read no other edge's slot. Scattered edges of a
+  // large mesh are filled, some cleared, some cleared and filled again (more
+  // times than the list's tidying lets it grow unchecked); the list must
+  // name each edge holding windows once, in increasing order, and compact()
+  // and drain() walking it must keep and give every window.
+  constexpr Index kEdges = 1'000'000;
+  WindowStore store(kEdges);
+  std::vector<std::uint32_t> expected(kEdges, 0);
+  auto fill = [&](Index e, std::uint32_t count) {
+    fill_edge(store, e, count);
+    expected[static_cast<std::size_t>(e)] = count;
+  };
+  for (Index e = 7; e < kEdges; e += 997) fill(e, 1 + static_cast<std::uint32_t>(e % 5));
+  for (Index e = 7; e < kEdges; e += 3 * 997) {
+    store.clear_edge(e);
+    expected[static_cast<std::size_t>(e)] = 0;
+  }
+  for (int round = 0; round < 12; ++round) {  // 12 x 1000 refills: past the 4096 the list grows untidied
+    for (Index e = 11 + round; e < kEdges; e += 1000) {
+      store.clear_edge(e);
+      fill(e, 2);
+    }
+  }
+  std::vector<Index> holding;
+  for (Index e = 0; e < kEdges; ++e) {
+    if (expected[static_cast<std::size_t>(e)] > 0) holding.push_back(e);
+  }
+  EXPECT_EQ(store.edges_with_windows(), holding);
+  store.compact();
+  EXPECT_EQ(store.edges_with_windows(), holding);
+  std::size_t taken = 0;
+  store.drain(
+      [&](Index edge, std::span<const Window> windows) {
+        ASSERT_LT(taken, holding.size());
+        ASSERT_EQ(edge, holding[taken]);
+        ASSERT_EQ(windows.size(), expected[static_cast<std::size_t>(edge)]) << "edge " << edge;
+        ++taken;
+      },
+      2);
+  EXPECT_EQ(taken, holding.size());
+  EXPECT_TRUE(store.edges_with_windows().empty());
+}
+
 TEST(WindowStore, EdgeSiteSummarisesTheSitesInsertedSinceCleared) {
   // The slots start as zeroed pages: an edge never touched, and one cleared,
   // must read as holding no site, and the marks must start false.

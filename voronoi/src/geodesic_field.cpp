@@ -411,32 +411,28 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
     result.stats = vtp.stats();
     result.point_sources = vtp.point_sources();
     {
-      // Edge by edge (not WindowStore::drain, which sorts every edge of the
-      // mesh by address: a group holds windows on a few of them), each chunk
-      // sized first.
-      const detail::WindowStore store = vtp.take_windows();
-      const Index num_edges = pm.num_edges();
-      result.chunks.resize(static_cast<std::size_t>((num_edges + kMergeChunk - 1) / kMergeChunk));
-      for (Index c = 0; c < static_cast<Index>(result.chunks.size()); ++c) {
-        const Index first_edge = c * kMergeChunk, end_edge = std::min(num_edges, first_edge + kMergeChunk);
-        std::size_t edges = 0, windows = 0;
-        for (Index e = first_edge; e < end_edge; ++e) {
-          const std::size_t n = store.on_edge(e).size();
-          edges += n > 0 ? 1 : 0;
-          windows += n;
-        }
-        if (edges == 0) continue;
+      // Edge by edge (not WindowStore::drain, which sorts the edges by
+      // address), each chunk sized first; only the edges holding windows are
+      // read (a group holds windows on a few of the mesh's).
+      detail::WindowStore store = vtp.take_windows();
+      const std::vector<Index> holding = store.edges_with_windows();
+      result.chunks.resize(static_cast<std::size_t>((pm.num_edges() + kMergeChunk - 1) / kMergeChunk));
+      for (std::size_t first = 0; first < holding.size();) {
+        const Index c = holding[first] / kMergeChunk;
+        std::size_t end = first, windows = 0;
+        for (; end < holding.size() && holding[end] / kMergeChunk == c; ++end)
+          windows += store.on_edge(holding[end]).size();
         GroupChunk& chunk = result.chunks[static_cast<std::size_t>(c)];
-        chunk.edges.reserve(edges);
-        chunk.edge_end.reserve(edges);
+        chunk.edges.assign(holding.begin() + static_cast<std::ptrdiff_t>(first),
+                           holding.begin() + static_cast<std::ptrdiff_t>(end));
+        chunk.edge_end.reserve(end - first);
         chunk.windows.reserve(windows);
-        for (Index e = first_edge; e < end_edge; ++e) {
+        for (const Index e : chunk.edges) {
           const std::span<const detail::Window> on_edge = store.on_edge(e);
-          if (on_edge.empty()) continue;
           chunk.windows.insert(chunk.windows.end(), on_edge.begin(), on_edge.end());
-          chunk.edges.push_back(e);
           chunk.edge_end.push_back(static_cast<Index>(chunk.windows.size()));
         }
+        first = end;
       }
       result.sources.resize(store.num_sources());
       for (std::size_t i = 0; i < store.num_sources(); ++i) {

@@ -271,21 +271,38 @@ void WindowStore::clear_edge(Index edge) {
   slot.marked = marked ? 1 : 0;
 }
 
-std::vector<Index> WindowStore::edges_by_address(Holding holding) const {
+void WindowStore::tidy_block_edges() {
+  std::sort(block_edges_.begin(), block_edges_.end());
+  block_edges_.erase(std::unique(block_edges_.begin(), block_edges_.end()), block_edges_.end());
+  std::erase_if(block_edges_, [&](Index e) { return capacity(slots_[e]) == 0; });
+  tidy_block_edges_size_ = block_edges_.size();
+}
+
+std::vector<Index> WindowStore::edges_with_windows() {
+  tidy_block_edges();
+  std::vector<Index> edges;
+  for (const Index e : block_edges_) {
+    if (slots_[e].count > 0) edges.push_back(e);
+  }
+  return edges;
+}
+
+std::vector<Index> WindowStore::edges_by_address(Holding holding) {
   auto holds = [&](const Slot& slot) { return holding == Holding::windows ? slot.count > 0 : capacity(slot) > 0; };
+  tidy_block_edges();
   // By page first (a counting sort), then by address within each page: this
   // runs when memory is tightest, so the list is sized once, and sorting
   // small runs of plain keys is several times faster than one sort of all
   // the edges by their slots' addresses.
   std::vector<Index> page_first(page_of_.size() + 1, 0);
-  for (const Slot& slot : slots_) {
-    if (holds(slot)) ++page_first[(slot.begin >> kPageShift) + 1];
+  for (const Index e : block_edges_) {
+    if (holds(slots_[e])) ++page_first[(slots_[e].begin >> kPageShift) + 1];
   }
   std::partial_sum(page_first.begin(), page_first.end(), page_first.begin());
   std::vector<Index> edges(static_cast<std::size_t>(page_first.back()));
   {
     std::vector<Index> fill(page_first.begin(), page_first.end() - 1);
-    for (Index e = 0; e < static_cast<Index>(slots_.size()); ++e) {
+    for (const Index e : block_edges_) {
       if (holds(slots_[e])) edges[fill[slots_[e].begin >> kPageShift]++] = e;
     }
   }
@@ -383,6 +400,7 @@ Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed,
     if (added != removed && tail > 0) std::memmove(w + at + added, w + at + removed, tail * sizeof(Window));
   } else {
     if (count > kMaxCount) throw Error("geodesic propagation needs more than 2^24 windows on one edge");
+    const bool first_block = capacity(slot) == 0;
     const std::uint32_t block_class = class_for(count);
     const std::uint32_t begin = allocate_block(block_class);
     const Window* from = window_at(slot.begin);
@@ -392,6 +410,10 @@ Window* WindowStore::splice(Index edge, std::uint32_t at, std::uint32_t removed,
     free_block(slot.begin, slot.block_class);
     slot.begin = begin;
     slot.block_class = block_class & 0x7f;  // < kClasses
+    if (first_block) {
+      block_edges_.push_back(edge);
+      if (block_edges_.size() > 2 * tidy_block_edges_size_ + 4096) tidy_block_edges();  // edges freed and refilled
+    }
   }
   live_ += static_cast<std::int64_t>(count) - old_count;
   peak_ = std::max(peak_, live_);

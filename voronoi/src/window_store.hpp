@@ -95,6 +95,9 @@ class WindowStore {
   bool marked(Index edge) const { return slots_[edge].marked != 0; }
   void set_marked(Index edge, bool marked) { slots_[edge].marked = marked ? 1 : 0; }
 
+  /// The edges that hold windows, increasing.
+  std::vector<Index> edges_with_windows();
+
   /// Packs the windows together in memory and gives back the pages left
   /// empty: once propagation is over, when the free blocks and unused
   /// capacity would otherwise add half as much again. The store stays
@@ -174,7 +177,9 @@ class WindowStore {
   void repack();
   /// The edges that hold windows, or a block (possibly emptied), by address.
   enum class Holding { windows, a_block };
-  std::vector<Index> edges_by_address(Holding holding) const;
+  std::vector<Index> edges_by_address(Holding holding);
+  /// Sorts block_edges_ by edge, without repeats or edges that hold no block.
+  void tidy_block_edges();
   /// Slides the blocks of `edges` (in memory order; every edge holding
   /// windows) down to the front of the pages, exactly full, and unmaps the
   /// pages left empty.
@@ -214,6 +219,12 @@ class WindowStore {
   /// Zeroed pages: a propagation that reaches part of the mesh (one group
   /// of sites) makes only that part's slots resident.
   ZeroedArray<Slot> slots_;
+  /// Every edge that holds a block (and some that held one since the last
+  /// tidy_block_edges), so that walks over the edges holding windows read
+  /// only their slots: reading the others would make their pages resident
+  /// too (where the kernel gives each page read its own zeroed page).
+  std::vector<Index> block_edges_;
+  std::size_t tidy_block_edges_size_ = 0;  ///< block_edges_.size() after the last tidy
   std::vector<WindowSource> sources_;
   std::array<std::vector<std::uint32_t>, kClasses> free_blocks_;  ///< by class
   std::int64_t live_ = 0;
