@@ -1,6 +1,7 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
 #include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
@@ -366,6 +367,9 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     throw Error(e.what() + note);
   }
   geodesic_surface.reset();
+  // The prepared surface was the largest thing held: handed back before the
+  // copies and outputs that follow, which would otherwise come on top.
+  if (options.remesh.lloyd.voronoi.geodesic.release_memory_between_phases) trim_heap();
   if (options.attributes && !result.input.attributes.empty()) {
     result.attributes =
         interpolate_attributes(result.input.mesh, result.input.attributes, remesh_vertices_on_input(result));
