@@ -165,8 +165,8 @@ detail::WindowStore propagate_at_once(const detail::PropagationMesh& pm, const d
   for (std::size_t f = 0; f < order.old_face.size(); ++f) field.valid_face[order.old_face[f]] = valid[f];
   field.face_point_sources = vtp.point_sources();
   for (FacePointSource& source : field.face_point_sources) source.face = order.old_face[source.face];
-  field.distance = vtp.take_distance();  // still in the propagation's numbering
-  field.nearest_site = vtp.take_label();
+  field.distance = vtp.distances();  // still in the propagation's numbering
+  field.nearest_site = vtp.labels();
   std::stable_sort(field.face_point_sources.begin(), field.face_point_sources.end(),
                    [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   return vtp.take_windows();
@@ -439,15 +439,14 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
         result.sources[i] = store.source(static_cast<std::uint32_t>(i));
       }
     }
-    const std::vector<double>& distance = vtp.distance();
-    const std::vector<Index>& label = vtp.label();
     // Smallest distance, ties to the smaller site: the same in any order.
     const std::lock_guard lock(mutex);
-    for (std::size_t v = 0; v < num_vertices; ++v) {
-      if (label[v] < 0) continue;
-      if (distance[v] < field.distance[v] || (distance[v] == field.distance[v] && label[v] < field.nearest_site[v])) {
-        field.distance[v] = distance[v];
-        field.nearest_site[v] = label[v];
+    for (const Index v : vtp.reached()) {
+      const double distance = vtp.distance(v);
+      const Index label = vtp.label(v);
+      if (distance < field.distance[v] || (distance == field.distance[v] && label < field.nearest_site[v])) {
+        field.distance[v] = distance;
+        field.nearest_site[v] = label;
       }
     }
     for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;

@@ -23,8 +23,8 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
     : pm_(mesh),
       options_(options),
       limits_(limits),
-      distance_(static_cast<std::size_t>(mesh.num_vertices()), kInfinity),
-      label_(static_cast<std::size_t>(mesh.num_vertices()), -1),
+      distance_(static_cast<std::size_t>(mesh.num_vertices())),
+      label_plus_one_(static_cast<std::size_t>(mesh.num_vertices())),
       vertex_flags_(static_cast<std::size_t>(mesh.num_vertices())),
       face_flags_(static_cast<std::size_t>(mesh.num_faces())),
       store_(mesh.num_edges(), options.release_memory_between_phases),
@@ -36,9 +36,21 @@ WindowVtp::WindowVtp(const PropagationMesh& mesh, const GeodesicOptions& options
   std::vector<FaceEvent> face_events;
   if (options.remove_redundant_windows) face_events.reserve(static_cast<std::size_t>(mesh.num_faces()));
   face_events_ = decltype(face_events_)(std::greater<>(), std::move(face_events));
-  // A path longer than the bound is not a shortest path to any site: starting
-  // from it, relax() and Xin & Wang's filter in submit() drop such paths.
-  if (limits_ != nullptr) std::copy(limits_->distance_bound.begin(), limits_->distance_bound.end(), distance_.begin());
+  // With limits, a path longer than the bound is not a shortest path to any
+  // site: starting from it (distance()), relax() and Xin & Wang's filter in
+  // submit() drop such paths.
+}
+
+std::vector<double> WindowVtp::distances() const {
+  std::vector<double> d(static_cast<std::size_t>(pm_.num_vertices()));
+  for (Index v = 0; v < pm_.num_vertices(); ++v) d[static_cast<std::size_t>(v)] = distance(v);
+  return d;
+}
+
+std::vector<Index> WindowVtp::labels() const {
+  std::vector<Index> l(static_cast<std::size_t>(pm_.num_vertices()));
+  for (Index v = 0; v < pm_.num_vertices(); ++v) l[static_cast<std::size_t>(v)] = label(v);
+  return l;
 }
 
 // ---------------------------------------------------------------- seeding --
@@ -174,8 +186,8 @@ void WindowVtp::submit(Index e, double length, Index v0, Index v1, const Window&
   // Xin & Wang's filter: if the path through an end vertex along the edge is
   // no longer at the window's far end, it is no longer anywhere on the window
   // (the difference is monotone along the edge), and neither beyond it.
-  if (distance_[v0] + w.b1 < w.distance_at(w.b1, source.sigma)) return;
-  if (distance_[v1] + (length - w.b0) < w.distance_at(w.b0, source.sigma)) return;
+  if (distance(v0) + w.b1 < w.distance_at(w.b1, source.sigma)) return;
+  if (distance(v1) + (length - w.b0) < w.distance_at(w.b0, source.sigma)) return;
 
   created_.clear();
   store_.insert(e, w, source, length, created_);
@@ -340,10 +352,15 @@ void WindowVtp::expand(Index v) {
 }
 
 void WindowVtp::relax(Index v, double d, Index site) {
-  if (!(d < distance_[v])) return;
-  const bool first_time = distance_[v] == kInfinity;
+  const double current = distance(v);
+  if (!(d < current)) return;
+  const bool first_time = current == kInfinity;
+  if (!(vertex_flags_[v] & kReached)) {
+    vertex_flags_[v] |= kReached;
+    reached_.push_back(v);
+  }
   distance_[v] = d;
-  label_[v] = site;
+  label_plus_one_[v] = site + 1;
   vertex_flags_[v] &= static_cast<std::uint8_t>(~kEmitted);
   if (pm_.is_pseudo_source[v]) events_.push_or_decrease({d, v, EventKind::emit});
   if (first_time && (vertex_flags_[v] & kFaceWaits) && options_.remove_redundant_windows) {
@@ -377,7 +394,7 @@ double WindowVtp::next_event_key() const { return events_.empty() ? kInfinity : 
 void WindowVtp::push_face_key(Index face) {
   if (face_flags_[face] & kKeyPushed) return;
   double d_min = kInfinity;
-  for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
+  for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance(pm_.vertex(face, c)));
   if (d_min == kInfinity) {
     // Pushed when a corner is first reached (relax looks round the corners
     // marked here, and only those).
@@ -397,10 +414,10 @@ void WindowVtp::push_face_key(Index face) {
 // come from one source. Its three vertices must carry that source's label too,
 // so that the face holds no piece of a cell boundary through a vertex.
 bool WindowVtp::face_is_redundant(Index face) const {
-  const Index site = label_[pm_.vertex(face, 0)];
+  const Index site = label(pm_.vertex(face, 0));
   if (site < 0) return false;
   for (int c = 1; c < 3; ++c) {
-    if (label_[pm_.vertex(face, c)] != site) return false;
+    if (label(pm_.vertex(face, c)) != site) return false;
   }
   for (int k = 0; k < 3; ++k) {
     const Index e = pm_.face_edges(face)[k];
@@ -422,7 +439,7 @@ bool WindowVtp::face_is_redundant(Index face) const {
 bool WindowVtp::away_from_other_groups(Index face) const {
   if (limits_ == nullptr || limits_->sites == nullptr) return true;
   double d_min = kInfinity;
-  for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance_[pm_.vertex(face, c)]);
+  for (int c = 0; c < 3; ++c) d_min = std::min(d_min, distance(pm_.vertex(face, c)));
   const std::array<double, 3> lengths = pm_.face_lengths(pm_.face_records[face]);
   const double radius = (d_min + 2 * std::max({lengths[0], lengths[1], lengths[2]})) * (1 + 1e-9);
   const Index corner = limits_->old_vertex[static_cast<std::size_t>(pm_.vertex(face, 0))];
@@ -479,7 +496,7 @@ void WindowVtp::run() {
     if (event.kind == EventKind::emit) {
       vertex_flags_[event.vertex] |= kEmitted;
       ++stats_.pseudo_sources;
-      emit_from_vertex(event.vertex, event.key, label_[event.vertex]);
+      emit_from_vertex(event.vertex, event.key, label(event.vertex));
       drain_fifo();
     } else {
       expand(event.vertex);
@@ -508,7 +525,7 @@ void WindowVtp::run() {
 std::vector<bool> WindowVtp::valid_faces() const {
   std::vector<bool> valid(static_cast<std::size_t>(pm_.num_faces()), false);
   for (Index f = 0; f < pm_.num_faces(); ++f) {
-    if (!pm_.included(f) || label_[pm_.vertex(f, 0)] < 0) continue;
+    if (!pm_.included(f) || label(pm_.vertex(f, 0)) < 0) continue;
     valid[f] = (face_flags_[f] & kInactive) ? !(face_flags_[f] & kRedundant) : !face_is_redundant(f);
   }
   return valid;

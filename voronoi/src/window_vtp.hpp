@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <queue>
 #include <span>
 #include <utility>
@@ -58,11 +59,20 @@ class WindowVtp {
   /// Runs the propagation to the end.
   void run();
 
-  const std::vector<double>& distance() const { return distance_; }
-  const std::vector<Index>& label() const { return label_; }
-  /// Moves the distances and labels out (valid_faces() needs them: call it first).
-  std::vector<double> take_distance() { return std::move(distance_); }
-  std::vector<Index> take_label() { return std::move(label_); }
+  /// A vertex's distance: where not reached, where it started (the group's
+  /// bound with limits, +inf without).
+  double distance(Index v) const {
+    if (vertex_flags_[v] & kReached) return distance_[v];
+    return limits_ != nullptr ? limits_->distance_bound[v] : kUnreached;
+  }
+  /// A vertex's nearest site, -1 where not reached.
+  Index label(Index v) const { return label_plus_one_[v] - 1; }
+  /// The vertices reached, in the order first reached: the others keep
+  /// their start.
+  std::span<const Index> reached() const { return reached_; }
+  /// Every vertex's distance and label, for the caller to keep.
+  std::vector<double> distances() const;
+  std::vector<Index> labels() const;
   const WindowStore& windows() const { return store_; }
   /// Moves the windows out, for the caller to keep when the rest goes.
   WindowStore take_windows() { return std::move(store_); }
@@ -78,7 +88,9 @@ class WindowVtp {
  private:
   /// kFaceWaits: a traversed face at the vertex waits for its key until one
   /// of its corners is reached (see push_face_key).
-  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2, kFaceWaits = 4 };
+  /// kReached: distance_ and label_plus_one_ hold the vertex's own values.
+  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2, kFaceWaits = 4, kReached = 8 };
+  static constexpr double kUnreached = std::numeric_limits<double>::infinity();
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
   /// A face's inactivity key d_min(f) + |e_max(f)| (Proposition 3.1),
   /// rounded up to a float: a key no smaller only makes the face inactive
@@ -132,10 +144,13 @@ class WindowVtp {
   const GroupLimits* limits_ = nullptr;
   GeodesicStats stats_;
 
-  std::vector<double> distance_;
-  std::vector<Index> label_;
-  /// Per vertex: expanded; emitted windows as a pseudo-source (or vertex
-  /// site) at its current distance.
+  /// Per vertex, in zeroed pages (see distance()): a group of sites makes
+  /// only its part of the mesh resident, not the whole of both arrays.
+  ZeroedArray<double> distance_;
+  ZeroedArray<Index> label_plus_one_;
+  std::vector<Index> reached_;
+  /// Per vertex: reached; expanded; emitted windows as a pseudo-source (or
+  /// vertex site) at its current distance.
   ZeroedArray<std::uint8_t> vertex_flags_;
   ZeroedArray<std::uint8_t> face_flags_;
   Index faces_traversed_ = 0;
