@@ -201,8 +201,8 @@ void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop
     std::vector<double> at = site_arc_lengths(walks[l], sites[l], ends[l]);
     // A loop below the spacing whose sites come far closer in space than
     // along it (it runs back over itself): spread instead, if that is better.
-    const double arc_spacing = walks[l].length() / static_cast<double>(std::max<std::int64_t>(sites[l], 1));
     if (walks[l].closed() && loop_extent(walks[l]) < spacing) {
+      const double arc_spacing = walks[l].length() / static_cast<double>(std::max<std::int64_t>(sites[l], 1));
       const double closest = closest_pair(walks[l], at);
       if (closest < arc_spacing / 4) {
         std::vector<double> spread = spread_arc_lengths(walks[l], sites[l], ends[l]);

@@ -355,10 +355,7 @@ void WindowVtp::relax(Index v, double d, Index site) {
   const double current = distance(v);
   if (!(d < current)) return;
   const bool first_time = current == kInfinity;
-  if (!(vertex_flags_[v] & kReached)) {
-    vertex_flags_[v] |= kReached;
-    reached_.push_back(v);
-  }
+  if (limits_ != nullptr && label_plus_one_[v] == 0) reached_.push_back(v);
   distance_[v] = d;
   label_plus_one_[v] = site + 1;
   vertex_flags_[v] &= static_cast<std::uint8_t>(~kEmitted);

@@ -62,13 +62,13 @@ class WindowVtp {
   /// A vertex's distance: where not reached, where it started (the group's
   /// bound with limits, +inf without).
   double distance(Index v) const {
-    if (vertex_flags_[v] & kReached) return distance_[v];
+    if (label_plus_one_[v] != 0) return distance_[v];
     return limits_ != nullptr ? limits_->distance_bound[v] : kUnreached;
   }
   /// A vertex's nearest site, -1 where not reached.
   Index label(Index v) const { return label_plus_one_[v] - 1; }
-  /// The vertices reached, in the order first reached: the others keep
-  /// their start.
+  /// With limits, the vertices reached, in the order first reached: the
+  /// others keep their start. (Empty without.)
   std::span<const Index> reached() const { return reached_; }
   /// Every vertex's distance and label, for the caller to keep.
   std::vector<double> distances() const;
@@ -88,8 +88,7 @@ class WindowVtp {
  private:
   /// kFaceWaits: a traversed face at the vertex waits for its key until one
   /// of its corners is reached (see push_face_key).
-  /// kReached: distance_ and label_plus_one_ hold the vertex's own values.
-  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2, kFaceWaits = 4, kReached = 8 };
+  enum VertexFlags : std::uint8_t { kPopped = 1, kEmitted = 2, kFaceWaits = 4 };
   static constexpr double kUnreached = std::numeric_limits<double>::infinity();
   enum FaceFlags : std::uint8_t { kTraversed = 1, kInactive = 2, kRedundant = 4, kKeyPushed = 8 };
   /// A face's inactivity key d_min(f) + |e_max(f)| (Proposition 3.1),
@@ -144,13 +143,14 @@ class WindowVtp {
   const GroupLimits* limits_ = nullptr;
   GeodesicStats stats_;
 
-  /// Per vertex, in zeroed pages (see distance()): a group of sites makes
-  /// only its part of the mesh resident, not the whole of both arrays.
+  /// Per vertex, in zeroed pages: a group of sites makes only its part of
+  /// the mesh resident, not the whole of both arrays. A vertex is reached
+  /// once it has a label; until then distance_ holds nothing (distance()).
   ZeroedArray<double> distance_;
   ZeroedArray<Index> label_plus_one_;
   std::vector<Index> reached_;
-  /// Per vertex: reached; expanded; emitted windows as a pseudo-source (or
-  /// vertex site) at its current distance.
+  /// Per vertex: expanded; emitted windows as a pseudo-source (or vertex
+  /// site) at its current distance.
   ZeroedArray<std::uint8_t> vertex_flags_;
   ZeroedArray<std::uint8_t> face_flags_;
   Index faces_traversed_ = 0;
