@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -98,42 +99,58 @@ std::map<Index, ComponentCounts> field_topology(const TriangleMesh& mesh, const 
 /// faces joined by an edge use it once each way (a consistent orientation),
 /// taking in each connected piece the orientation most of its faces have.
 /// In a piece that cannot be oriented (a Moebius band) some pairs stay at odds.
+/// Each piece is walked breadth-first, and walked again to flip it where
+/// most of it was reversed: the queue holds only the walk's front, never a
+/// whole piece (a scan's millions of faces).
 std::vector<std::uint8_t> faces_to_reverse(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
+  constexpr std::uint8_t kReverse = 1, kSeen = 2, kFlipped = 4;
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
-  std::vector<std::uint8_t> reverse(static_cast<std::size_t>(num_faces), 0);
-  std::vector<std::uint8_t> seen(static_cast<std::size_t>(num_faces), 0);
+  std::vector<std::uint8_t> state(static_cast<std::size_t>(num_faces), 0);
   auto forward = [&](Index face, int side) {
     return mesh.faces(face, side) == field.edge_vertices[field.face_edges[face][side]][0];
   };
-  std::vector<Index> piece;  // breadth-first: the faces of one piece
-  for (Index start = 0; start < num_faces; ++start) {
-    if (seen[start] || has_repeated_corner(mesh, start)) continue;
-    piece.assign(1, start);
-    seen[start] = 1;
-    std::size_t reversed = 0;
-    for (std::size_t i = 0; i < piece.size(); ++i) {
-      const Index face = piece[i];
+  // Calls visit(face, side, other, other_side) for each neighbour across an
+  // edge that `mark` is not yet set on, setting it.
+  std::deque<Index> front;
+  auto walk = [&](Index start, std::uint8_t mark, auto&& visit) {
+    state[static_cast<std::size_t>(start)] |= mark;
+    front.assign(1, start);
+    while (!front.empty()) {
+      const Index face = front.front();
+      front.pop_front();
       for (int side = 0; side < 3; ++side) {
         const Index edge = field.face_edges[face][side];
         if (edge < 0) continue;
         const auto [f0, f1] = field.edge_faces[edge];
         const Index other = f0 == face ? f1 : f0;
-        if (other < 0 || other == face || seen[other]) continue;
+        if (other < 0 || other == face || (state[static_cast<std::size_t>(other)] & mark) != 0) continue;
         int other_side = 0;
         while (other_side < 2 && field.face_edges[other][other_side] != edge) ++other_side;
-        // Consistent when the two run along the edge in opposite directions.
-        const bool same_direction = (forward(face, side) != (reverse[face] != 0)) == forward(other, other_side);
-        reverse[other] = same_direction ? 1 : 0;
-        reversed += reverse[other];
-        seen[other] = 1;
-        piece.push_back(other);
+        state[static_cast<std::size_t>(other)] |= mark;
+        visit(face, side, other, other_side);
+        front.push_back(other);
       }
     }
-    if (2 * reversed > piece.size()) {
-      for (const Index face : piece) reverse[face] ^= 1;
+  };
+  for (Index start = 0; start < num_faces; ++start) {
+    if ((state[static_cast<std::size_t>(start)] & kSeen) != 0 || has_repeated_corner(mesh, start)) continue;
+    std::size_t faces = 1, reversed = 0;
+    walk(start, kSeen, [&](Index face, int side, Index other, int other_side) {
+      // Consistent when the two run along the edge in opposite directions.
+      const bool reverse_face = (state[static_cast<std::size_t>(face)] & kReverse) != 0;
+      if ((forward(face, side) != reverse_face) == forward(other, other_side)) {
+        state[static_cast<std::size_t>(other)] |= kReverse;
+        ++reversed;
+      }
+      ++faces;
+    });
+    if (2 * reversed > faces) {
+      state[static_cast<std::size_t>(start)] ^= kReverse;
+      walk(start, kFlipped, [&](Index, int, Index other, int) { state[static_cast<std::size_t>(other)] ^= kReverse; });
     }
   }
-  return reverse;
+  for (std::uint8_t& face : state) face &= kReverse;
+  return state;
 }
 
 Index vertex_of(const TriangleMesh& mesh, const SurfacePoint& p) {

@@ -1,5 +1,6 @@
 #include "restricted_voronoi.hpp"
 
+#include "geodual/mesh/detail/index_hash_map.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "sampling_grid.hpp"
@@ -18,49 +19,6 @@
 
 namespace geodual::remesh::detail {
 namespace {
-
-/// The faces a cell has reached: a small open-addressing hash set, emptied
-/// for each cell (a cell reaches tens of faces; a per-face array would be
-/// touched at random across the whole mesh).
-class FaceSet {
- public:
-  /// Empties the set, keeping the size it grew to (cells on one mesh reach
-  /// similar numbers of faces).
-  void clear() {
-    if (slot_.empty()) slot_.resize(64);
-    std::fill(slot_.begin(), slot_.end(), Index{-1});
-    count_ = 0;
-  }
-  /// Adds the face; false if it was there.
-  bool insert(Index face) {
-    if (2 * (count_ + 1) > slot_.size()) grow();
-    return place(face);
-  }
-
- private:
-  bool place(Index face) {
-    const std::size_t mask = slot_.size() - 1;
-    for (std::size_t at = (static_cast<std::size_t>(face) * 0x9E3779B97F4A7C15ull) >> 32 & mask;;
-         at = (at + 1) & mask) {
-      if (slot_[at] == face) return false;
-      if (slot_[at] < 0) {
-        slot_[at] = face;
-        ++count_;
-        return true;
-      }
-    }
-  }
-  void grow() {
-    std::vector<Index> old(slot_.size() * 2, -1);
-    std::swap(old, slot_);
-    count_ = 0;
-    for (const Index face : old) {
-      if (face >= 0) place(face);
-    }
-  }
-  std::vector<Index> slot_;
-  std::size_t count_ = 0;
-};
 
 /// A polygon corner: position and density (both linear along the sides, so
 /// clipping interpolates them together).
@@ -89,7 +47,9 @@ struct ClipPolygon {
 };
 
 struct Scratch {
-  FaceSet reached;
+  /// The faces the cell has reached (tens: a per-face array would be
+  /// touched at random across the whole mesh), emptied for each cell.
+  IndexHashSet reached;
   std::vector<Index> queue;
   std::vector<std::pair<double, Index>> near;  // the sites near the current one (squared distance, site), nearest first
   std::vector<Eigen::Vector4d> planes;         // and their bisectors: normal . (x - site) <= w

@@ -161,6 +161,39 @@ TEST(DualRepair, FacesStoredAgainstTheirNeighboursGiveAnOrientedDual) {
   }
 }
 
+TEST(DualRepair, APieceMostlyStoredReversedGivesADualOrientedLikeMostOfIt) {
+  // Every face reversed but a cap around face 0, where the walk over the
+  // piece starts: the dual takes the orientation of most faces (inward),
+  // not of the first.
+  TriangleMesh sphere = test::icosphere(3);
+  const Eigen::Vector3d first = (sphere.vertices.row(sphere.faces(0, 0)) + sphere.vertices.row(sphere.faces(0, 1)) +
+                                 sphere.vertices.row(sphere.faces(0, 2)))
+                                    .transpose();
+  Index kept = 0;
+  for (Index f = 0; f < sphere.faces.rows(); ++f) {
+    const Eigen::Vector3d centre = (sphere.vertices.row(sphere.faces(f, 0)) + sphere.vertices.row(sphere.faces(f, 1)) +
+                                    sphere.vertices.row(sphere.faces(f, 2)))
+                                       .transpose();
+    if (centre.normalized().dot(first.normalized()) > 0.9) {
+      ++kept;
+    } else {
+      std::swap(sphere.faces(f, 1), sphere.faces(f, 2));
+    }
+  }
+  ASSERT_GT(kept, 1);
+  ASSERT_LT(2 * kept, sphere.faces.rows());
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 300);
+  const remesh::DualMesh dual = remesh::dual_delaunay(sphere, voronoi::compute_voronoi(sphere, sites));
+  EXPECT_TRUE(dual.check.valid) << (dual.check.problems.empty() ? "" : dual.check.problems[0]);
+  EXPECT_TRUE(analyze_mesh(dual.mesh).oriented);
+  for (Index f = 0; f < dual.mesh.faces.rows(); ++f) {
+    const Eigen::Vector3d a = dual.mesh.vertices.row(dual.mesh.faces(f, 0)),
+                          b = dual.mesh.vertices.row(dual.mesh.faces(f, 1)),
+                          c = dual.mesh.vertices.row(dual.mesh.faces(f, 2));
+    ASSERT_LT((b - a).cross(c - a).dot(a + b + c), 0) << "dual triangle " << f << " faces outwards";
+  }
+}
+
 TEST(DualRepair, ACellEnclosedAroundASpireIsRepairedAllRoundIt) {
   // A site at the spire's tip and one halfway down it: the tip's cell is a cap
   // that the other's cell girdles, one closed boundary with no Voronoi vertex.

@@ -12,8 +12,8 @@
 #include "axis_nearest_site.hpp"
 #include "cell_moments.hpp"
 #include "face_distance.hpp"
-#include "zeroed_array.hpp"
 
+#include "geodual/mesh/detail/index_hash_map.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
@@ -79,25 +79,33 @@ BoundaryNode edge_crossing_node(const TriangleMesh& mesh, const GeodesicField& f
                                 const EdgeCrossing& crossing);
 
 /// The crossings of the mesh edges computed so far, each edge's contiguous.
-struct EdgeCrossingStore {
-  /// Per edge: its first crossing plus one, 0 until computed; and how many.
-  /// Zeroed pages: only the edges near cell boundaries, those computed,
-  /// become resident.
-  ZeroedArray<Index> first_plus_one;
-  ZeroedArray<Index> count;
+/// Only the edges with crossings are keyed (by hashing): cell boundaries
+/// cross edges all over the numbering, so per-edge arrays would be resident
+/// whole while holding a few entries per thousand edges.
+class EdgeCrossingStore {
+ public:
   std::vector<EdgeCrossing> crossings;
 
-  explicit EdgeCrossingStore(std::size_t num_edges) : first_plus_one(num_edges), count(num_edges) {}
-  bool computed(Index edge) const { return first_plus_one[edge] != 0; }
-  Index first(Index edge) const { return first_plus_one[edge] - 1; }
+  explicit EdgeCrossingStore(std::size_t num_edges) : computed_(num_edges, false) {}
+  bool computed(Index edge) const { return computed_[static_cast<std::size_t>(edge)]; }
   /// Records that the crossings of `edge` are crossings[first .. first + n).
   void set(Index edge, Index first, Index n) {
-    first_plus_one[edge] = first + 1;
-    count[edge] = n;
+    computed_[static_cast<std::size_t>(edge)] = true;
+    if (n > 0) ranges_.insert(edge, {first, n});
   }
+  /// The edge's crossings; \pre computed(edge).
   std::span<const EdgeCrossing> of(Index edge) const {
-    return {crossings.data() + first(edge), static_cast<std::size_t>(count[edge])};
+    const Range* range = ranges_.find(edge);
+    if (range == nullptr) return {};
+    return {crossings.data() + range->first, static_cast<std::size_t>(range->count)};
   }
+
+ private:
+  struct Range {
+    Index first = 0, count = 0;
+  };
+  std::vector<bool> computed_;
+  IndexHashMap<Range> ranges_;
 };
 
 /// One cell piece's area and integrals, added to its site's sums.

@@ -287,18 +287,22 @@ std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::ve
     store.clear_sources();
   };
 
-  // Pass 1: how many windows each edge keeps, and their sites.
-  std::vector<Index> count(static_cast<std::size_t>(num_edges), 0);
-  std::vector<Index> edge_site(static_cast<std::size_t>(num_edges), kNoSite);  // as WindowStore::edge_site
+  // Pass 1: how many windows each edge keeps (counted in window_begin[e + 1],
+  // summed below), and whether any is of a site other than its end v0's
+  // nearest (a face is redundant only where all its corners have one site:
+  // then v0's of each of its edges).
+  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
+  std::vector<std::uint8_t> foreign_windows(static_cast<std::size_t>(num_edges), 0);
   tbb::parallel_for(Index{0}, num_chunks, [&](Index c) {
     const Index first_edge = c * kChunk, end_edge = std::min(num_edges, first_edge + kChunk);
     GroupCursor cursor(groups, c);
     for (Index e = first_edge; e < end_edge; ++e) {
-      Index& site = edge_site[static_cast<std::size_t>(e)];
+      Index site = kNoSite;
       merge_edge(cursor, e, [&](const detail::Window&, const detail::WindowSource& source) {
-        ++count[static_cast<std::size_t>(e)];
+        ++field.window_begin[static_cast<std::size_t>(e) + 1];
         site = site == kNoSite || site == source.site ? source.site : kMixedSites;
       });
+      if (site != kNoSite) foreign_windows[static_cast<std::size_t>(e)] = site != label[pm.edge_vertices(e)[0]];
     }
   });
 
@@ -310,20 +314,17 @@ std::vector<bool> merge_group_windows(const detail::PropagationMesh& pm, std::ve
     const Index site = label[pm.vertex(f, 0)];
     if (site < 0 || label[pm.vertex(f, 1)] != site || label[pm.vertex(f, 2)] != site) return;
     for (const Index e : pm.face_edges(f)) {
-      const Index summary = edge_site[static_cast<std::size_t>(e)];
-      if (summary != kNoSite && summary != site) return;
+      if (foreign_windows[static_cast<std::size_t>(e)] != 0) return;
     }
     redundant[static_cast<std::size_t>(f)] = 1;
   });
-  field.window_begin.assign(static_cast<std::size_t>(num_edges) + 1, 0);
+  foreign_windows = std::vector<std::uint8_t>();
   for (Index e = 0; e < num_edges; ++e) {
     const std::array<Index, 2> faces = pm.edge_faces[e];
     const bool dropped = remove_redundant_windows && (faces[0] < 0 || redundant[faces[0]] != 0) &&
                          (faces[1] < 0 || redundant[faces[1]] != 0);
-    field.window_begin[e + 1] = field.window_begin[e] + (dropped ? 0 : count[static_cast<std::size_t>(e)]);
+    field.window_begin[e + 1] = field.window_begin[e] + (dropped ? 0 : field.window_begin[e + 1]);
   }
-  count = std::vector<Index>();
-  edge_site = std::vector<Index>();
 
   // Pass 2: the windows, in place, a wave of chunks at a time: each wave's
   // part of the array is touched (made resident) only as the groups' windows
@@ -403,18 +404,35 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
         return options.progress(reported);
       };
     }
-    const detail::GroupLimits limits{bound, &tree, g, &mesh, order.old_vertex};
-    detail::WindowVtp vtp(pm, group_options, &limits);
-    vtp.add_sites(sites, labels);
-    vtp.run();
     GroupResult& result = results[static_cast<std::size_t>(g)];
-    result.stats = vtp.stats();
-    result.point_sources = vtp.point_sources();
+    // The propagation's state goes once its vertex distances are merged, and
+    // the free blocks of its store once the windows are packed together,
+    // before the windows are copied out: the copy is not held beside either.
+    detail::WindowStore store = [&] {
+      const detail::GroupLimits limits{bound, &tree, g, &mesh, order.old_vertex};
+      detail::WindowVtp vtp(pm, group_options, &limits);
+      vtp.add_sites(sites, labels);
+      vtp.run();
+      result.stats = vtp.stats();
+      result.point_sources = vtp.point_sources();
+      // Smallest distance, ties to the smaller site: the same in any order.
+      const std::lock_guard lock(mutex);
+      for (const Index v : vtp.reached()) {
+        const double distance = vtp.distance(v);
+        const Index label = vtp.label(v);
+        if (distance < field.distance[v] || (distance == field.distance[v] && label < field.nearest_site[v])) {
+          field.distance[v] = distance;
+          field.nearest_site[v] = label;
+        }
+      }
+      for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
+      return vtp.take_windows();
+    }();
+    store.compact();
     {
       // Edge by edge (not WindowStore::drain, which sorts the edges by
       // address), each chunk sized first; only the edges holding windows are
       // read (a group holds windows on a few of the mesh's).
-      detail::WindowStore store = vtp.take_windows();
       const std::vector<Index> holding = store.edges_with_windows();
       result.chunks.resize(static_cast<std::size_t>((pm.num_edges() + kMergeChunk - 1) / kMergeChunk));
       for (std::size_t first = 0; first < holding.size();) {
@@ -439,17 +457,6 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
         result.sources[i] = store.source(static_cast<std::uint32_t>(i));
       }
     }
-    // Smallest distance, ties to the smaller site: the same in any order.
-    const std::lock_guard lock(mutex);
-    for (const Index v : vtp.reached()) {
-      const double distance = vtp.distance(v);
-      const Index label = vtp.label(v);
-      if (distance < field.distance[v] || (distance == field.distance[v] && label < field.nearest_site[v])) {
-        field.distance[v] = distance;
-        field.nearest_site[v] = label;
-      }
-    }
-    for (const Index e : vtp.freed_edges()) freed[static_cast<std::size_t>(e)] = 1;
   };
   tbb::parallel_for(0, num_groups, 1, [&](int g) {
     run_group(g);

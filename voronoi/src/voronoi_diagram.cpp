@@ -130,11 +130,12 @@ class GraphMerger {
   }
 
   void give_nodes(Index edge) {
-    const Index first = store_.first(edge), count = store_.count[edge];
-    if (count == 0) return;
+    const std::span<const detail::EdgeCrossing> along = store_.of(edge);
+    if (along.empty()) return;
+    const auto first = static_cast<Index>(along.data() - store_.crossings.data());
     node_of_crossing_.resize(store_.crossings.size(), -1);
     if (node_of_crossing_[first] >= 0) return;
-    for (Index i = first; i < first + count; ++i) {
+    for (Index i = first; i < first + static_cast<Index>(along.size()); ++i) {
       node_of_crossing_[i] = static_cast<Index>(graph_.nodes.size());
       graph_.nodes.push_back(detail::edge_crossing_node(mesh_, field_, edge, store_.crossings[i]));
     }
