@@ -83,8 +83,8 @@ std::map<Index, ComponentCounts> field_topology(const TriangleMesh& mesh, const 
                                                 UnionFind& components) {
   return topology_by_component(mesh, components, [&](auto&& visit) {
     std::vector<std::array<Index, 2>> split;
-    for (std::size_t e = 0; e < field.edge_vertices.size(); ++e) {
-      const auto [u, v] = field.edge_vertices[e];
+    for (std::size_t e = 0; e < field.edge_faces.size(); ++e) {
+      const auto [u, v] = field.edge_vertices(mesh, static_cast<Index>(e));
       if (field.edge_faces[e][1] >= 0) {
         visit(u, v, false);
       } else {
@@ -107,7 +107,7 @@ std::vector<std::uint8_t> faces_to_reverse(const TriangleMesh& mesh, const voron
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   std::vector<std::uint8_t> state(static_cast<std::size_t>(num_faces), 0);
   auto forward = [&](Index face, int side) {
-    return mesh.faces(face, side) == field.edge_vertices[field.face_edges[face][side]][0];
+    return mesh.faces(face, side) == field.edge_vertices(mesh, field.face_edges[face][side])[0];
   };
   // Calls visit(face, side, other, other_side) for each neighbour across an
   // edge that `mark` is not yet set on, setting it.
@@ -162,8 +162,10 @@ Index vertex_of(const TriangleMesh& mesh, const SurfacePoint& p) {
 /// angle.
 std::vector<std::uint8_t> sharp_boundary_corners(const TriangleMesh& mesh, const voronoi::GeodesicField& field) {
   std::vector<std::uint8_t> on_boundary(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (std::size_t e = 0; e < field.edge_vertices.size(); ++e) {
-    if (field.edge_faces[e][1] < 0) on_boundary[field.edge_vertices[e][0]] = on_boundary[field.edge_vertices[e][1]] = 1;
+  for (std::size_t e = 0; e < field.edge_faces.size(); ++e) {
+    if (field.edge_faces[e][1] >= 0) continue;
+    const auto [u, v] = field.edge_vertices(mesh, static_cast<Index>(e));
+    on_boundary[u] = on_boundary[v] = 1;
   }
   std::vector<double> angle(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
@@ -283,10 +285,11 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   UnionFind loops(faults.mismatched.empty() ? 0 : static_cast<std::size_t>(input.num_vertices()));
   std::vector<std::uint8_t> on_boundary(faults.mismatched.empty() ? 0 : static_cast<std::size_t>(input.num_vertices()),
                                         0);
-  for (std::size_t e = 0; e < field.edge_vertices.size() && !faults.mismatched.empty(); ++e) {
+  for (std::size_t e = 0; e < field.edge_faces.size() && !faults.mismatched.empty(); ++e) {
     if (field.edge_faces[e][1] >= 0) continue;
-    loops.unite(field.edge_vertices[e][0], field.edge_vertices[e][1]);
-    on_boundary[field.edge_vertices[e][0]] = on_boundary[field.edge_vertices[e][1]] = 1;
+    const auto [u, v] = field.edge_vertices(input, static_cast<Index>(e));
+    loops.unite(u, v);
+    on_boundary[u] = on_boundary[v] = 1;
   }
   // The boundary loop (its smallest vertex) through a point on the mesh boundary.
   auto loop_of = [&](const SurfacePoint& p) {

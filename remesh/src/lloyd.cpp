@@ -44,7 +44,7 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
     boundary_vertex.assign(static_cast<std::size_t>(mesh.vertices.rows()), false);
     for (std::size_t e = 0; e < topology.edge_faces.size(); ++e) {
       if (topology.edge_faces[e][0] >= 0 && topology.edge_faces[e][1] >= 0) continue;
-      for (const Index v : topology.edge_vertices[e]) boundary_vertex[v] = true;
+      for (const Index v : topology.edge_vertices(mesh, static_cast<Index>(e))) boundary_vertex[v] = true;
     }
   }
   for (std::size_t i = 0; i < sites.size(); ++i) {

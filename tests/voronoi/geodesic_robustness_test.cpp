@@ -124,7 +124,7 @@ FieldSummary check_invariants(const std::string& what, const TriangleMesh& mesh,
 
   // The retained windows: sorted, disjoint, inside their edge, and never
   // promising less than the triangle inequality allows from the edge's ends.
-  const Index ne = static_cast<Index>(field.edge_vertices.size());
+  const Index ne = static_cast<Index>(field.edge_faces.size());
   EXPECT_EQ(field.window_begin.size(), static_cast<std::size_t>(ne) + 1);
   EXPECT_EQ(field.edge_length.size(), static_cast<std::size_t>(ne));
   if (field.window_begin.size() != static_cast<std::size_t>(ne) + 1 ||
@@ -138,7 +138,7 @@ FieldSummary check_invariants(const std::string& what, const TriangleMesh& mesh,
   int window_failures = 0;
   for (Index e = 0; e < ne; ++e) {
     const double length = field.edge_length[e];
-    const Index v0 = field.edge_vertices[e][0], v1 = field.edge_vertices[e][1];
+    const auto [v0, v1] = field.edge_vertices(mesh, e);
     double previous_end = -std::numeric_limits<double>::infinity();
     for (Index i = field.window_begin[e]; i < field.window_begin[e + 1]; ++i) {
       const EdgeWindow& w = field.windows[static_cast<std::size_t>(i)];

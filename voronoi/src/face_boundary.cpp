@@ -96,18 +96,18 @@ double bounding_box_diagonal(const TriangleMesh& mesh) {
 }
 
 /// Where the edge lies in the face's layout: its frame's origin
-/// (edge_vertices[e][0]) and unit direction.
+/// (its end v0, see SurfaceTopology::edge_vertices) and unit direction.
 struct EdgeInFace {
   Eigen::Vector2d origin;
   Eigen::Vector2d direction;
-  bool forward = true;  ///< the face's side k runs from edge_vertices[e][0] to [1]
+  bool forward = true;  ///< the face's side k runs from the edge's v0 to its v1
 };
 
 EdgeInFace edge_in_face(const GeodesicField& field, const TriangleMesh& mesh, const FaceLayout& layout, Index face,
                         int k) {
   const Index e = field.face_edges[face][k];
   EdgeInFace result;
-  result.forward = mesh.faces(face, k) == field.edge_vertices[e][0];
+  result.forward = mesh.faces(face, k) == field.edge_vertices(mesh, e)[0];
   const int origin_corner = result.forward ? k : (k + 1) % 3;
   const int end_corner = result.forward ? (k + 1) % 3 : k;
   result.origin = layout.corner[origin_corner];
@@ -154,7 +154,7 @@ bool FaceBoundaryTracer::may_hold_boundary(Index face) const {
 BoundaryNode edge_crossing_node(const TriangleMesh& mesh, const GeodesicField& field, Index edge,
                                 const EdgeCrossing& crossing) {
   const double length = field.edge_length[edge];
-  const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
+  const auto [v0, v1] = field.edge_vertices(mesh, edge);
   const Index face = field.edge_faces[edge][0] >= 0 ? field.edge_faces[edge][0] : field.edge_faces[edge][1];
   const double t = crossing.x / length;
   Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
@@ -172,7 +172,7 @@ BoundaryNode edge_crossing_node(const TriangleMesh& mesh, const GeodesicField& f
 
 void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossing>& crossings) {
   const double length = field_.edge_length[edge];
-  const Index v0 = field_.edge_vertices[edge][0], v1 = field_.edge_vertices[edge][1];
+  const auto [v0, v1] = field_.edge_vertices(mesh_, edge);
   const Index site0 = field_.nearest_site[v0], site1 = field_.nearest_site[v1];
   build_edge_envelope(field_, mesh_, edge, edge_envelope_, face_scratch_);
 

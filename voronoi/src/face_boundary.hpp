@@ -67,7 +67,7 @@ struct BoundaryGraph {
 };
 
 /// Where the nearest site changes along a mesh edge, in the edge's frame
-/// (x from edge_vertices[e][0]); `from` is the site on the side of smaller x.
+/// (x from its end v0); `from` is the site on the side of smaller x.
 struct EdgeCrossing {
   double x = 0;
   double distance = 0;  ///< to both sites

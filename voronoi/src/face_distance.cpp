@@ -183,10 +183,10 @@ void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
   for (int k = 0; k < 3; ++k) {
     const Index e = field.face_edges[face][k];
     const int side = field.edge_faces[e][0] == face ? 0 : 1;
-    // The edge's frame in the face's plane: origin at edge_vertices[e][0],
+    // The edge's frame in the face's plane: origin at the edge's v0,
     // x along the edge, and the face's side of the edge (y > 0 for side 0,
     // y < 0 for side 1) mapped into the face.
-    const Index v0 = field.edge_vertices[e][0];
+    const Index v0 = field.edge_vertices(mesh, e)[0];
     const int origin_corner = mesh.faces(face, k) == v0 ? k : (k + 1) % 3;
     const int end_corner = origin_corner == k ? (k + 1) % 3 : k;
     const Eigen::Vector2d origin = layout.corner[origin_corner];
@@ -240,7 +240,7 @@ void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
     envelope.add_wedge(Eigen::Vector2d(w.source_x, w.source_y), w.sigma, w.site, Eigen::Vector2d(w.b0, 0),
                        Eigen::Vector2d(w.b1, 0));
   }
-  const Index v0 = field.edge_vertices[edge][0], v1 = field.edge_vertices[edge][1];
+  const auto [v0, v1] = field.edge_vertices(mesh, edge);
   const std::array<Index, 2>& faces = field.edge_faces[edge];
   // Sites (and pseudo-sources seen through zero-area faces) on the edge
   // itself: the barycentric coordinate of the corner opposite it is zero.

@@ -105,7 +105,7 @@ void build_face_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
                          ConeEnvelope& envelope);
 
 /// Builds the envelopes valid on edge `edge`, laid out along the x axis from
-/// edge_vertices[edge][0] at 0 to the other end at edge_length[edge]: the
+/// its end v0 at 0 to v1 at edge_length[edge] (SurfaceTopology::edge_vertices): the
 /// windows on the edge and its end vertices; on a boundary edge, where the
 /// engine keeps only some windows, also its face's envelope. `scratch` is
 /// working space.

@@ -563,7 +563,6 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
     disposable->reset();
   }
   field.topology = std::move(topology);
-  field.edge_vertices = field.topology->edge_vertices;
   field.edge_faces = field.topology->edge_faces;
   field.edge_length = field.topology->edge_length;
   field.face_edges = field.topology->face_edges;
@@ -622,7 +621,7 @@ PointDistance query(const GeodesicField& field, const TriangleMesh& mesh, const 
   for (int k = 0; k < 3; ++k) {
     const Index e = field.face_edges[f][k];
     const int side = field.edge_faces[e][0] == f ? 0 : 1;
-    const Index v0 = field.edge_vertices[e][0], v1 = field.edge_vertices[e][1];
+    const auto [v0, v1] = field.edge_vertices(mesh, e);
     const Eigen::Vector3d a = mesh.vertices.row(v0).transpose(), b = mesh.vertices.row(v1).transpose();
     const double length = field.edge_length[e];
     if (!(length > 0)) continue;

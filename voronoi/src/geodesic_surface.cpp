@@ -23,11 +23,8 @@ PreparedSurface prepare_surface(const TriangleMesh& mesh) {
 SurfaceTopology caller_topology(PropagationMesh& pm, const LocalityOrder& order) {
   SurfaceTopology topology;
   const auto num_edges = static_cast<std::size_t>(pm.num_edges());
-  topology.edge_vertices.resize(num_edges);
   topology.edge_faces.resize(num_edges);
   for (std::size_t e = 0; e < num_edges; ++e) {
-    const std::array<Index, 2> ends = pm.edge_vertices(static_cast<Index>(e));
-    topology.edge_vertices[e] = {order.old_vertex[ends[0]], order.old_vertex[ends[1]]};
     for (int side = 0; side < 2; ++side) {
       const Index f = pm.edge_faces[e][side];
       topology.edge_faces[e][side] = f >= 0 ? order.old_face[f] : -1;
@@ -65,8 +62,8 @@ std::size_t GeodesicSurface::memory_bytes() const {
   const detail::LocalityOrder& order = prepared_->order;
   return bytes_of(pm.face_records) + bytes_of(pm.edge_faces) + bytes_of(pm.edge_length_storage) +
          bytes_of(pm.vertex_face) + bytes_of(pm.fan_offsets) + bytes_of(pm.extra_fans) + bytes_of(pm.is_pseudo_source) +
-         bytes_of(order.old_face) + bytes_of(order.old_vertex) + bytes_of(topology_->edge_vertices) +
-         bytes_of(topology_->edge_faces) + bytes_of(topology_->edge_length) + bytes_of(topology_->face_edges);
+         bytes_of(order.old_face) + bytes_of(order.old_vertex) + bytes_of(topology_->edge_faces) +
+         bytes_of(topology_->edge_length) + bytes_of(topology_->face_edges);
 }
 
 }  // namespace geodual::voronoi

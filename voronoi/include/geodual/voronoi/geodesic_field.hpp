@@ -79,10 +79,9 @@ struct GeodesicStats {
   double total_seconds = 0;
 };
 
-/// One retained window, in the frame of its edge: the edge runs from
-/// `edge_vertices[e][0]` at x = 0 to `edge_vertices[e][1]` at x = length along
-/// the x axis; `edge_faces[e][0]` lies on the side y > 0. The window covers
-/// [b0, b1] and its distance at x is sigma + |(x, 0) - source|.
+/// One retained window, in the frame of its edge: the edge runs from its
+/// end v0 at x = 0 to v1 at x = length along the x axis (edge_vertices); `edge_faces[e][0]` lies on the side y > 0. The
+/// window covers [b0, b1] and its distance at x is sigma + |(x, 0) - source|.
 struct EdgeWindow {
   double b0 = 0, b1 = 0;
   double source_x = 0, source_y = 0;  ///< unfolded (pseudo-)source
@@ -112,13 +111,17 @@ struct GeodesicField {
   std::vector<SurfacePoint> sites;
 
   /// The surface's topology (see SurfaceTopology), shared by every field
-  /// computed on one GeodesicSurface and kept alive by each; the four views
+  /// computed on one GeodesicSurface and kept alive by each; the three views
   /// below are its tables.
   std::shared_ptr<const SurfaceTopology> topology;
-  std::span<const std::array<Index, 2>> edge_vertices;
   std::span<const std::array<Index, 2>> edge_faces;
   std::span<const double> edge_length;
   std::span<const std::array<Index, 3>> face_edges;
+  /// The edge's end vertices (SurfaceTopology::edge_vertices); `mesh` is
+  /// the one the field was computed on.
+  std::array<Index, 2> edge_vertices(const TriangleMesh& mesh, Index edge) const {
+    return topology->edge_vertices(mesh, edge);
+  }
 
   /// Retained windows, grouped by edge and sorted along it: those of edge e are
   /// windows[window_begin[e] .. window_begin[e + 1]).

@@ -27,15 +27,24 @@ struct PreparedSurface;
 /// edge has at most two faces: a boundary edge, or an edge of three or more
 /// faces, is split into one edge per face.
 struct SurfaceTopology {
-  /// Edge e joins two vertices; the edge's frame runs from [0] to [1].
-  std::vector<std::array<Index, 2>> edge_vertices;
-  /// Its faces, [0] on the frame's y > 0 side; -1 where absent (boundary,
-  /// non-manifold, or degenerate neighbour).
+  /// Per edge, its faces: [0], which every edge has, on the y > 0 side of
+  /// the edge's frame (see edge_vertices); [1] on the other, -1 where absent
+  /// (boundary, non-manifold, or degenerate neighbour).
   std::vector<std::array<Index, 2>> edge_faces;
   std::vector<double> edge_length;
   /// Per face, its edges: edge k joins corners k and (k + 1) mod 3; all -1
   /// for faces that take no part (a repeated vertex index).
   std::vector<std::array<Index, 3>> face_edges;
+
+  /// The edge's end vertices, v0 then v1: its frame runs from v0 to v1 as
+  /// its face [0] runs along it (corners k and k + 1 of that face, whose
+  /// edge k it is). Read from `mesh`, the surface's, rather than stored.
+  std::array<Index, 2> edge_vertices(const TriangleMesh& mesh, Index edge) const {
+    const Index face = edge_faces[static_cast<std::size_t>(edge)][0];
+    const std::array<Index, 3>& sides = face_edges[static_cast<std::size_t>(face)];
+    const int k = sides[0] == edge ? 0 : sides[1] == edge ? 1 : 2;
+    return {mesh.faces(face, k), mesh.faces(face, (k + 1) % 3)};
+  }
 };
 
 /// Immutable once built, so fields may be computed on it from several threads
