@@ -124,8 +124,7 @@ std::vector<std::uint8_t> faces_to_reverse(const TriangleMesh& mesh, const voron
         const auto [f0, f1] = field.edge_faces[edge];
         const Index other = f0 == face ? f1 : f0;
         if (other < 0 || other == face || (state[static_cast<std::size_t>(other)] & mark) != 0) continue;
-        int other_side = 0;
-        while (other_side < 2 && field.face_edges[other][other_side] != edge) ++other_side;
+        const int other_side = field.topology->side_of(other, edge);
         state[static_cast<std::size_t>(other)] |= mark;
         visit(face, side, other, other_side);
         front.push_back(other);

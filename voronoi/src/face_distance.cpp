@@ -273,8 +273,7 @@ void build_edge_envelope(const GeodesicField& field, const TriangleMesh& mesh, I
     if (face < 0) continue;
     const FaceLayout layout = FaceLayout::of(field, face);
     build_face_envelope(field, mesh, face, layout, scratch);
-    int k = 0;
-    while (k < 2 && field.face_edges[face][k] != edge) ++k;
+    const int k = field.topology->side_of(face, edge);
     const bool forward = mesh.faces(face, k) == v0;
     const Eigen::Vector2d origin = layout.corner[forward ? k : (k + 1) % 3];
     const Eigen::Vector2d along = layout.corner[forward ? (k + 1) % 3 : k] - origin;

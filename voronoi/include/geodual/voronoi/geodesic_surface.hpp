@@ -41,9 +41,13 @@ struct SurfaceTopology {
   /// edge k it is). Read from `mesh`, the surface's, rather than stored.
   std::array<Index, 2> edge_vertices(const TriangleMesh& mesh, Index edge) const {
     const Index face = edge_faces[static_cast<std::size_t>(edge)][0];
-    const std::array<Index, 3>& sides = face_edges[static_cast<std::size_t>(face)];
-    const int k = sides[0] == edge ? 0 : sides[1] == edge ? 1 : 2;
+    const int k = side_of(face, edge);
     return {mesh.faces(face, k), mesh.faces(face, (k + 1) % 3)};
+  }
+  /// Which edge k (0, 1, 2) of `face` `edge` is; \pre it is one of them.
+  int side_of(Index face, Index edge) const {
+    const std::array<Index, 3>& sides = face_edges[static_cast<std::size_t>(face)];
+    return sides[0] == edge ? 0 : sides[1] == edge ? 1 : 2;
   }
 };
 
