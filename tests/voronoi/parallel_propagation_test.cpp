@@ -112,6 +112,21 @@ TEST(ParallelPropagation, DiagramSameOnAnyNumberOfThreads) {
 // On a plane every geodesic is a straight segment: the distance at a vertex
 // is the Euclidean distance to the nearest site, and so is query() inside a
 // valid face.
+// By default even a few sites propagate in two groups (a second core has
+// work), a single site in one, and larger inputs in one group per 256 sites;
+// the default's result is the same on any number of threads.
+TEST(ParallelPropagation, DefaultGroupsDependOnTheSitesAlone) {
+  const TriangleMesh mesh = test::read_test_ply(test::test_mesh_path("bunny.ply"));
+  const std::vector<SurfacePoint> few = mixed_sites(mesh, 30, 3);
+  const GeodesicField one = field_on_threads(mesh, few, 0, 1);
+  EXPECT_EQ(one.stats.site_groups, 2);
+  const GeodesicField two = field_on_threads(mesh, few, 0, 2);
+  EXPECT_EQ(two.stats.site_groups, 2);
+  expect_identical(one, two);
+  EXPECT_EQ(field_on_threads(mesh, mixed_sites(mesh, 1, 4), 0, 2).stats.site_groups, 1);
+  EXPECT_EQ(field_on_threads(mesh, mixed_sites(mesh, 1000, 5), 0, 2).stats.site_groups, 3);
+}
+
 TEST(ParallelPropagation, ExactOnAPlane) {
   const TriangleMesh mesh = test::flat_square(60, 0.3, 11);
   const std::vector<SurfacePoint> sites = mixed_sites(mesh, 90, 23);

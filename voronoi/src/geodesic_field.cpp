@@ -549,6 +549,7 @@ GeodesicField compute_field(const TriangleMesh& mesh, const detail::PreparedSurf
     propagate_in_groups(mesh, pm, order, local_sites, num_groups, options, field);
   }
   to_caller_numbering(order.old_vertex, field.distance, field.nearest_site);
+  field.stats.site_groups = num_groups;
   field.stats.setup_seconds = setup_seconds;
   const Index num_edges = pm.num_edges();
   if (disposable != nullptr) {

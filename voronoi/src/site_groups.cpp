@@ -20,10 +20,13 @@ namespace geodual::voronoi::detail {
 
 int site_group_count(std::size_t num_sites, int requested) {
   constexpr std::size_t kSitesPerGroup = 256;
+  // Two groups at least, so that a second core has work on small inputs:
+  // splitting costs one group's propagation a band beyond its cells.
+  constexpr std::size_t kMinGroups = 2;
   constexpr std::size_t kMaxGroups = 16;
   if (num_sites == 0) return 1;
   const std::size_t groups = requested > 0 ? static_cast<std::size_t>(requested)
-                                           : std::clamp<std::size_t>(num_sites / kSitesPerGroup, 1, kMaxGroups);
+                                           : std::clamp(num_sites / kSitesPerGroup, kMinGroups, kMaxGroups);
   return static_cast<int>(std::min(groups, num_sites));
 }
 

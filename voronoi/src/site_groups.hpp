@@ -18,7 +18,8 @@
 namespace geodual::voronoi::detail {
 
 /// How many groups `num_sites` sites propagate in: `requested` where > 0
-/// (at most one per site), otherwise one per 256 sites, 1 to 16. A function
+/// (at most one per site), otherwise one per 256 sites, 2 to 16 (1 for a
+/// single site). A function
 /// of the input alone, never of the thread count, so that the result is.
 int site_group_count(std::size_t num_sites, int requested);
 

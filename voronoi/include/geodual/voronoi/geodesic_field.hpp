@@ -52,7 +52,8 @@ struct GeodesicOptions {
   bool release_memory_between_phases = true;
   /// The sites propagate in this many groups, each on its own (in parallel,
   /// on the threads of the caller's TBB arena), and the groups' results are
-  /// merged; 0 (or less) picks one group per 256 sites, at most 16. The
+  /// merged; 0 (or less) picks one group per 256 sites, 2 to 16 (1 for a
+  /// single site). The
   /// result depends on this number (never on the thread count) and is exact
   /// for any.
   int site_groups = 0;
@@ -74,6 +75,7 @@ struct GeodesicStats {
   std::int64_t vertices_popped = 0;  ///< vertices taken from the priority queue to expand
   std::int64_t pseudo_sources = 0;   ///< saddle / boundary vertices that emitted windows
   std::int64_t faces_inactive = 0;   ///< faces that reached the inactive region
+  int site_groups = 1;               ///< groups the sites propagated in (GeodesicOptions::site_groups)
   double setup_seconds = 0;        ///< checking the sites; with a mesh rather than a GeodesicSurface, preparing it too
   double propagation_seconds = 0;  ///< window-VTP including RWR
   double total_seconds = 0;
