@@ -91,6 +91,7 @@ class GeodesicCommand final : public Command {
       json["vertices_popped"] = s.vertices_popped;
       json["pseudo_sources"] = s.pseudo_sources;
       json["faces_inactive"] = s.faces_inactive;
+      json["site_groups"] = s.site_groups;
       json["setup_s"] = s.setup_seconds;
       json["propagation_s"] = s.propagation_seconds;
       json["time_s"] = s.total_seconds;
@@ -112,6 +113,7 @@ class GeodesicCommand final : public Command {
     table.add("vertices popped", with_thousands(s.vertices_popped));
     table.add("pseudo-sources", with_thousands(s.pseudo_sources));
     table.add("faces inactive", with_thousands(s.faces_inactive));
+    table.add("site groups", std::to_string(s.site_groups));
     table.add("time", duration(s.total_seconds) + " (setup " + duration(s.setup_seconds) + ", propagation " +
                           duration(s.propagation_seconds) + ")");
     if (!output_path_.empty()) table.add("output", output_path_);

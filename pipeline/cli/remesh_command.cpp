@@ -708,6 +708,7 @@ class RemeshCommand final : public Command {
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();
     options["window_memory"] = geodesic_.window_memory_mib();
+    options["site_groups"] = geodesic_.site_groups();
     options["statistics"] = samples_ >= 0;
     options["samples_per_side"] = std::max<std::int64_t>(samples_, 0);
     options["strict"] = strict_;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -100,6 +101,43 @@ TEST(GeodesicCommand, SiteFileWithFaceSitesAndGlbOutput) {
   // The glTF reads back as the same mesh.
   const TriangleMesh back = io::read_mesh(out).mesh;
   EXPECT_EQ(back.num_faces(), io::read_mesh(small_mesh).mesh.num_faces());
+}
+
+// --site-groups: by default a few sites propagate in two groups; one group
+// (the leanest) and five give the same distances to rounding and the same
+// nearest sites (but for a tie or two), each on any number of threads.
+TEST(GeodesicCommand, SiteGroupsChangeTheWorkNotTheField) {
+  ScratchFolder folder;
+  std::vector<std::vector<double>> distances;
+  std::vector<std::vector<std::int32_t>> sites;
+  for (const char* groups : {"0", "1", "5"}) {
+    const auto out = folder.path() / (std::string("g") + groups + ".ply");
+    const CliRun run = run_cli({"geodesic", small_mesh, "--sites", "20", "--seed", "3", "--site-groups", groups, "-o",
+                                out.string(), "--json"});
+    ASSERT_EQ(run.exit_status, 0) << run.err;
+    const int expected = std::string(groups) == "0" ? 2 : std::stoi(groups);
+    EXPECT_EQ(nlohmann::json::parse(run.out).at("site_groups").get<int>(), expected) << groups;
+    const auto again = folder.path() / "again.ply";
+    ASSERT_EQ(run_cli({"--threads", "1", "geodesic", small_mesh, "--sites", "20", "--seed", "3", "--site-groups",
+                       groups, "-o", again.string()})
+                  .exit_status,
+              0);
+    EXPECT_EQ(slurp(out), slurp(again)) << "one thread and the default must give the same bytes, groups " << groups;
+    distances.emplace_back();
+    sites.emplace_back();
+    read_field(slurp(out), distances.back(), sites.back());
+  }
+  const double largest = *std::max_element(distances[0].begin(), distances[0].end());
+  for (std::size_t i = 1; i < distances.size(); ++i) {
+    ASSERT_EQ(distances[i].size(), distances[0].size());
+    int differing_sites = 0;
+    for (std::size_t v = 0; v < distances[0].size(); ++v) {
+      ASSERT_NEAR(distances[i][v], distances[0][v], 1e-12 * largest) << "vertex " << v;
+      differing_sites += sites[i][v] != sites[0][v];
+    }
+    EXPECT_LE(differing_sites, 2);
+  }
+  EXPECT_EQ(run_cli({"geodesic", small_mesh, "--sites", "3", "--site-groups", "-1"}).exit_status, 2);
 }
 
 TEST(GeodesicCommand, BadRequestsFailCleanly) {
