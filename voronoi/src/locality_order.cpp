@@ -2,6 +2,9 @@
 
 #include "geodual/mesh/detail/morton_code.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -57,7 +60,7 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
   constexpr double kCells = (1 << 21) - 1;
   const double scale = extent > 0 && std::isfinite(extent) ? kCells / extent : 0.0;
   std::vector<std::uint64_t> code(static_cast<std::size_t>(num_faces));
-  for (Index f = 0; f < num_faces; ++f) {
+  tbb::parallel_for(Index{0}, num_faces, [&](Index f) {
     const Eigen::RowVector3d c = (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
                                   mesh.vertices.row(mesh.faces(f, 2))) /
                                  3.0;
@@ -67,22 +70,24 @@ LocalityOrder locality_order(const TriangleMesh& mesh) {
       cell[axis] = static_cast<std::uint64_t>(q > 0 ? std::min(q, kCells) : 0.0);  // also for NaN
     }
     code[f] = morton_code(cell[0], cell[1], cell[2]);
-  }
+  });
   order.old_face.resize(static_cast<std::size_t>(num_faces));
   std::iota(order.old_face.begin(), order.old_face.end(), Index{0});
-  std::sort(order.old_face.begin(), order.old_face.end(),
-            [&](Index a, Index b) { return code[a] != code[b] ? code[a] < code[b] : a < b; });
+  // A total order (ties by index): the same result on any number of threads.
+  tbb::parallel_sort(order.old_face.begin(), order.old_face.end(),
+                     [&](Index a, Index b) { return code[a] != code[b] ? code[a] < code[b] : a < b; });
   order.new_face.resize(static_cast<std::size_t>(num_faces));
   for (Index f = 0; f < num_faces; ++f) order.new_face[order.old_face[f]] = f;
 
   number_vertices(mesh, order.old_face, order.new_vertex, order.old_vertex);
 
   order.mesh.vertices.resize(num_vertices, 3);
-  for (Index v = 0; v < num_vertices; ++v) order.mesh.vertices.row(v) = mesh.vertices.row(order.old_vertex[v]);
+  tbb::parallel_for(Index{0}, num_vertices,
+                    [&](Index v) { order.mesh.vertices.row(v) = mesh.vertices.row(order.old_vertex[v]); });
   order.mesh.faces.resize(num_faces, 3);
-  for (Index f = 0; f < num_faces; ++f) {
+  tbb::parallel_for(Index{0}, num_faces, [&](Index f) {
     for (int c = 0; c < 3; ++c) order.mesh.faces(f, c) = order.new_vertex[mesh.faces(order.old_face[f], c)];
-  }
+  });
   return order;
 }
 
