@@ -370,7 +370,7 @@ void propagate_in_groups(const TriangleMesh& mesh, const detail::PropagationMesh
   for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = field.sites[i].position(mesh);
   const std::vector<int> group_of = detail::partition_sites(positions, num_groups);
   const detail::SiteTree tree(positions, group_of);
-  const std::vector<double> bound = detail::edge_path_upper_bound(pm, local_sites);
+  const std::vector<double> bound = detail::surface_path_upper_bound(pm, local_sites);
 
   const auto num_vertices = static_cast<std::size_t>(pm.num_vertices());
   field.distance.assign(num_vertices, std::numeric_limits<double>::infinity());

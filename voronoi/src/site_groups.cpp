@@ -94,7 +94,7 @@ std::pair<Index, double> diagonal_across(const PropagationMesh& pm, Index face, 
 
 }  // namespace
 
-std::vector<double> edge_path_upper_bound(const PropagationMesh& pm, std::span<const SurfacePoint> local_sites) {
+std::vector<double> surface_path_upper_bound(const PropagationMesh& pm, std::span<const SurfacePoint> local_sites) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::vector<double> bound(static_cast<std::size_t>(pm.num_vertices()), kInfinity);
   // Label-correcting shortest paths with a bucket queue (Dial's algorithm on

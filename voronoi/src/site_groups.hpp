@@ -29,11 +29,12 @@ int site_group_count(std::size_t num_sites, int requested);
 std::vector<int> partition_sites(std::span<const Eigen::Vector3d> positions, int groups);
 
 /// Per vertex of the propagation mesh, an upper bound of the geodesic distance
-/// to the nearest site: the shortest path along edges (Dijkstra), a face site
-/// reaching its face's corners in straight lines, with a relative margin of
+/// to the nearest site: the shortest path (Dijkstra) along edges and along
+/// straight lines across an edge between the far corners of its two faces,
+/// a face site reaching its face's corners in straight lines, with a relative margin of
 /// 1e-9 (and 1e-12 of the longest edge) for rounding; +inf where no site
 /// reaches. Every path it measures lies on the surface, so it is >= d(v).
-std::vector<double> edge_path_upper_bound(const PropagationMesh& pm, std::span<const SurfacePoint> local_sites);
+std::vector<double> surface_path_upper_bound(const PropagationMesh& pm, std::span<const SurfacePoint> local_sites);
 
 /// A kd-tree over the sites' positions and groups. Answers whether a site of
 /// another group lies within a Euclidean distance of a point; the Euclidean

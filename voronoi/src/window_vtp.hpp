@@ -37,7 +37,7 @@ namespace geodual::voronoi::detail {
 /// can be nearer anywhere on the face.
 struct GroupLimits {
   /// Per vertex: an upper bound of the distance to the nearest site of any
-  /// group (edge_path_upper_bound).
+  /// group (surface_path_upper_bound).
   std::span<const double> distance_bound;
   const SiteTree* sites = nullptr;
   int group = 0;

@@ -53,9 +53,8 @@ struct GeodesicOptions {
   /// The sites propagate in this many groups, each on its own (in parallel,
   /// on the threads of the caller's TBB arena), and the groups' results are
   /// merged; 0 (or less) picks one group per 256 sites, 2 to 16 (1 for a
-  /// single site). The
-  /// result depends on this number (never on the thread count) and is exact
-  /// for any.
+  /// single site). The result depends on this number (never on the thread
+  /// count) and is exact for any; 1 holds the fewest windows.
   int site_groups = 0;
   /// Called now and then with the fraction of faces reached, in [0, 1];
   /// returning false cancels the computation (geodual::Cancelled is thrown).
