@@ -60,13 +60,14 @@ std::vector<int> partition_sites(std::span<const Eigen::Vector3d> positions, int
 
 namespace {
 
-/// The diagonal from corner c of `face` (its edges to the other corners a1
-/// and a2 long) to the far corner w of the face across its opposite edge:
-/// the straight line in the two faces unfolded into one plane, where it
-/// crosses that edge inside. {w, length}, or w = -1 where there is none.
-std::pair<Index, double> diagonal_across(const PropagationMesh& pm, Index face, int c, double a1, double a2) {
+/// The diagonal from corner c of `face` to the far corner w of the face
+/// across its opposite edge: the straight line in the two faces unfolded
+/// into one plane, where it crosses that edge inside. {w, length}, or w = -1
+/// where there is none.
+std::pair<Index, double> diagonal_across(const PropagationMesh& pm, Index face, int c) {
   const FaceRecord& record = pm.face_records[face];
-  const Index edge = record.edge((c + 1) % 3);
+  const int opposite = (c + 1) % 3;  // local edge from corner c + 1 to c + 2
+  const Index edge = record.edge(opposite);
   const std::array<Index, 2> faces = pm.edge_faces[edge];
   const Index other = faces[0] == face ? faces[1] : faces[0];
   if (other < 0 || other == face) return {-1, 0.0};
@@ -74,21 +75,14 @@ std::pair<Index, double> diagonal_across(const PropagationMesh& pm, Index face, 
   const int k = pm.local_edge(across, edge);
   const Index w = across.vertex[(k + 2) % 3];
   if (w == record.vertex[c]) return {-1, 0.0};
-  // The far corner's distances to the edge's ends u1, u2 (corners c + 1 and
-  // c + 2 of `face`): local edge k + 1 joins corners k + 1 and w, k + 2 joins
-  // w and k.
-  const Index u1 = record.vertex[(c + 1) % 3];
-  const double to_k1 = pm.edge_length(across.edge((k + 1) % 3)), to_k = pm.edge_length(across.edge((k + 2) % 3));
-  const double b1 = across.vertex[k] == u1 ? to_k : to_k1, b2 = across.vertex[k] == u1 ? to_k1 : to_k;
-  // The edge from u1 at x = 0 to u2 at x = length; c above it, w below.
-  const double length = pm.edge_length(edge);
-  if (!(length > 0)) return {-1, 0.0};
-  const double xc = (a1 * a1 - a2 * a2 + length * length) / (2 * length);
-  const double xw = (b1 * b1 - b2 * b2 + length * length) / (2 * length);
-  const double yc = std::sqrt(std::max(0.0, a1 * a1 - xc * xc)), yw = std::sqrt(std::max(0.0, b1 * b1 - xw * xw));
-  if (!(yc > 0 && yw > 0)) return {-1, 0.0};
+  // Both apexes in the frame of the edge from corner c + 1 (x = 0): c above
+  // it, w below (its own layout runs the other way where it starts at c + 2).
+  const EdgeLayout near = pm.layout(face, opposite), far = pm.layout(other, k);
+  if (!(near.length > 0 && near.apex.y() > 0 && far.apex.y() > 0)) return {-1, 0.0};
+  const double xc = near.apex.x(), yc = near.apex.y(), yw = far.apex.y();
+  const double xw = across.vertex[k] == record.vertex[opposite] ? far.apex.x() : near.length - far.apex.x();
   const double crossing = xc + (xw - xc) * (yc / (yc + yw));
-  if (!(crossing > 0 && crossing < length)) return {-1, 0.0};
+  if (!(crossing > 0 && crossing < near.length)) return {-1, 0.0};
   return {w, std::hypot(xc - xw, yc + yw)};
 }
 
@@ -177,13 +171,14 @@ std::vector<double> surface_path_upper_bound(const PropagationMesh& pm, std::spa
               pm.faces_around(v, fan);
               for (const Index f : fan) {
                 const FaceRecord& face = pm.face_records[f];
-                const int c = face.vertex[0] == v ? 0 : face.vertex[1] == v ? 1 : 2;
+                const int c = pm.corner_of(f, v);
                 // Local edge c joins corners c and c + 1, local edge c + 2 corners c + 2 and c.
                 const Index u1 = face.vertex[(c + 1) % 3], u2 = face.vertex[(c + 2) % 3];
-                const double a1 = pm.edge_length(face.edge(c)), a2 = pm.edge_length(face.edge((c + 2) % 3));
-                if (lower(u1, d + a1)) out.push_back({bucket_of(d + a1), {d + a1, u1}});
-                if (lower(u2, d + a2)) out.push_back({bucket_of(d + a2), {d + a2, u2}});
-                const auto [w, diagonal] = diagonal_across(pm, f, c, a1, a2);
+                const double d1 = d + pm.edge_length(face.edge(c));
+                const double d2 = d + pm.edge_length(face.edge((c + 2) % 3));
+                if (lower(u1, d1)) out.push_back({bucket_of(d1), {d1, u1}});
+                if (lower(u2, d2)) out.push_back({bucket_of(d2), {d2, u2}});
+                const auto [w, diagonal] = diagonal_across(pm, f, c);
                 if (w >= 0 && lower(w, d + diagonal)) out.push_back({bucket_of(d + diagonal), {d + diagonal, w}});
               }
             }
