@@ -515,6 +515,7 @@ class RemeshCommand final : public Command {
     figures["feature_corners"] = run.features.corners.size();
     figures["feature_length"] = run.features.sharp_length;
     figures["feature_sites"] = run.feature_sites;
+    figures["sites_added_near_features"] = run.sites_added_near_features;
     figures["features_dropped_reason"] = run.features_dropped_reason.empty()
                                              ? nlohmann::ordered_json(nullptr)
                                              : nlohmann::ordered_json(run.features_dropped_reason);
@@ -623,10 +624,14 @@ class RemeshCommand final : public Command {
     if (!run.features.empty()) {
       const std::string angle = options_.sharp_angle > 0 ? significant(options_.sharp_angle, 3) + " deg" : "";
       const std::string file = feature_file_.empty() ? "" : "the feature file's";
-      table.add("features", with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
-                                (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
-                                with_thousands(static_cast<std::int64_t>(run.features.corners.size())) +
-                                " corners, lined with " + with_thousands(run.feature_sites) + " of the sites");
+      table.add("features",
+                with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
+                    (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
+                    with_thousands(static_cast<std::int64_t>(run.features.corners.size())) + " corners, lined with " +
+                    with_thousands(run.feature_sites) + " of the sites" +
+                    (run.sites_added_near_features > 0 ? ", " + with_thousands(run.sites_added_near_features) +
+                                                             " more beside them where they are closer than the spacing"
+                                                       : ""));
     }
     if (!relaxation.energy.empty()) {
       auto count = [](int n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); };

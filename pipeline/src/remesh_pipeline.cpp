@@ -12,6 +12,7 @@
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/error_density.hpp"
 #include "geodual/remesh/sizing.hpp"
+#include "geodual/remesh/spacing_density.hpp"
 
 #include <Eigen/Geometry>
 
@@ -219,6 +220,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   };
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
+  std::vector<double> chain_density;  // per vertex of result.feature_cut.mesh; empty: 1
+  result.sites_added_near_features = 0;
   if (options.edge_length > 0) {
     sites = result.sites_for_sizing = remesh::sites_for_edge_length(result.surface.mesh, options.edge_length);
   } else if (options.faces > 0) {
@@ -255,11 +258,14 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
         // Chords within 0.05 % of the diagonal (the statistics' feature recall
         // tolerance is 0.1 %), but no closer than 3/4 of the spacing: sites
-        // denser along a chain than around it make slivers against it.
+        // denser along a chain than around it make slivers against it. Where
+        // that leaves a chord beyond the recall tolerance, down to 0.4 of the
+        // spacing, with the sites around them as close (below).
         feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut,
                                               {.spacing = spacing,
                                                .max_chord_error = 5e-4 * result.input_report.bbox_diagonal,
-                                               .min_spacing = 0.75 * spacing});
+                                               .min_spacing = 0.75 * spacing,
+                                               .tight_spacing = 0.4 * spacing});
         result.feature_sites = feature_sites->points;
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }
@@ -271,6 +277,24 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
                                                     feature_sites->sites, options.sampling, given_share)
                       : remesh::sample_sites_for_topology(manifold, sites, options.sampling);
     result.initial_sites = std::move(sampled.sites);
+    if (feature_sites && !feature_sites->dense_points.empty()) {
+      // Where a chain's sites are closer than the spacing, the sites around
+      // them are too: a denser relaxation there, and the sites it needs
+      // added where it is densest, off the chains.
+      const TriangleMesh& cut = result.feature_cut.mesh;
+      const double spacing = remesh::uniform_spacing(manifold, sites);
+      chain_density = remesh::spacing_density(cut, feature_sites->dense_points, {.spacing = spacing});
+      const std::int64_t added = remesh::sites_for_density(cut, sites, {}, chain_density) - sites;
+      std::vector<double> excess(chain_density.size());
+      const MeshTopology topology = build_mesh_topology(cut);
+      for (std::size_t v = 0; v < excess.size(); ++v) {
+        excess[v] = topology.vertex_on_boundary[v] != 0 ? 0.0 : chain_density[v] - 1;
+      }
+      const std::size_t before = result.initial_sites.size();
+      result.initial_sites =
+          remesh::add_sites_at_deviations(cut, result.initial_sites, excess, chain_density, spacing, added);
+      result.sites_added_near_features = static_cast<std::int64_t>(result.initial_sites.size() - before);
+    }
     result.sites_added_for_topology = sampled.sites_added_for_topology;
     result.sites_added_reason = sampled.topology_reason;
     if (sampled.sites_added_for_topology > 0) {
@@ -298,6 +322,13 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   const TriangleMesh& surface = features ? result.feature_cut.mesh : manifold_surface;
   remesh::LloydOptions lloyd =
       remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
+  if (!chain_density.empty() && lloyd.iterations > 0) {
+    if (lloyd.density.empty()) {
+      lloyd.density = std::move(chain_density);
+    } else {
+      for (std::size_t v = 0; v < lloyd.density.size(); ++v) lloyd.density[v] *= chain_density[v];
+    }
+  }
   if (!input_density.empty() && lloyd.iterations > 0) {
     // Each vertex of the surface copies one of the input's (through the cuts).
     std::vector<double> density(static_cast<std::size_t>(surface.num_vertices()));
@@ -448,7 +479,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   result.features_dropped_reason = reason;
   result.features = {};
   result.feature_cut = {};
-  result.feature_sites = result.site_twins = 0;
+  result.feature_sites = result.site_twins = result.sites_added_near_features = 0;
   result.timings.clear();
   RemeshPipelineOptions without = options;
   without.remesh.sharp_angle = 0;

@@ -28,6 +28,7 @@ struct RemeshResult {
   py::object stats;
   std::int64_t sites = 0;
   std::int64_t sites_added_for_topology = 0;
+  std::int64_t sites_added_near_features = 0;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
   py::object error_bound_met;
@@ -141,6 +142,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
                                                : pipeline::triangle_quality_json(quality::triangle_quality(mesh)));
   result.sites = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
   result.sites_added_for_topology = run.sites_added_for_topology;
+  result.sites_added_near_features = run.sites_added_near_features;
   result.sites_added = run.remesh.sites_added;
   result.sites_left_out = run.remesh.sites_left_out;
   result.error_bound_met = py::none();
@@ -176,6 +178,9 @@ void add_remesh(py::module_& module) {
       .def_readonly("sites_added_for_topology", &RemeshResult::sites_added_for_topology,
                     "sites sampled beyond the count asked because the surface's pieces and boundary loops need "
                     "them (included in `sites`)")
+      .def_readonly("sites_added_near_features", &RemeshResult::sites_added_near_features,
+                    "sites added beside the stretches of a sharp chain whose sites are closer than the spacing "
+                    "(included in `sites`)")
       .def_readonly("sites_added", &RemeshResult::sites_added,
                     "sites the repair added where the dual was not a valid remesh")
       .def_readonly("sites_left_out", &RemeshResult::sites_left_out,

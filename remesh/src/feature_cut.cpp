@@ -151,24 +151,35 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     }
   }
   // A stretch whose chord leaves the chain by more than the chord error is
-  // split evenly into the fewest parts that keep to it (at most 16): the
-  // chain gets denser where it bends, there only.
+  // split evenly into the fewest parts that keep to it (at most 16, no
+  // shorter than min_spacing): the chain gets denser where it bends, there
+  // only. Where the shortest parts still leave it by more than twice the
+  // error, parts down to tight_spacing keep to twice the error.
   std::vector<double> at;
+  const auto most_parts = [](double length, double spacing) {
+    return spacing > 0 ? static_cast<int>(std::min(16.0, std::floor(length / spacing))) : 16;
+  };
+  const auto fits = [](const ChainWalk& walk, double from, double to, int parts, double error) {
+    for (int k = 0; k < parts; ++k) {
+      if (!walk.within(from + (to - from) * k / parts, from + (to - from) * (k + 1) / parts, error)) return false;
+    }
+    return true;
+  };
   const auto refine = [&](const ChainWalk& walk, double from, double to) {
     if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return;
-    const int most_parts =
-        options.min_spacing > 0 ? static_cast<int>(std::min(16.0, std::floor((to - from) / options.min_spacing))) : 16;
-    if (most_parts < 2) return;
-    int parts = 2;
-    for (; parts < most_parts; ++parts) {
-      bool fits = true;
-      for (int k = 0; k < parts && fits; ++k) {
-        fits =
-            walk.within(from + (to - from) * k / parts, from + (to - from) * (k + 1) / parts, options.max_chord_error);
-      }
-      if (fits) break;
-    }
+    const int most = most_parts(to - from, options.min_spacing);
+    const int most_tight =
+        std::max(most, most_parts(to - from, options.tight_spacing > 0 ? options.tight_spacing : options.min_spacing));
+    int parts = std::min(most, 2);
+    while (parts < most && !fits(walk, from, to, parts, options.max_chord_error)) ++parts;
+    parts = std::max(parts, 1);
+    while (parts < most_tight && !fits(walk, from, to, parts, 2 * options.max_chord_error)) ++parts;
     for (int k = 1; k < parts; ++k) at.push_back(from + (to - from) * k / parts);
+    if (parts > most) {  // closer than min_spacing: the stretch's points, ends included
+      for (int k = 0; k <= parts; ++k) {
+        result.dense_points.push_back({walk.point(from + (to - from) * k / parts), (to - from) / parts});
+      }
+    }
   };
   for (std::size_t c = 0; c < walks.size(); ++c) {
     const FeatureChain& chain = features.chains[c];

@@ -40,6 +40,7 @@ def test_remesh_2000_sites_gives_2000_vertices_and_the_stats(fertility):
     # and on this mesh the repair adds none, so the count is exact.
     assert result.sites == 2000
     assert result.sites_added == 0 and result.sites_left_out == 0 and result.sites_added_for_topology == 0
+    assert result.sites_added_near_features == 0
     assert result.vertices.shape == (2000, 3) and result.vertices.dtype == np.float64
     assert result.faces.dtype == np.int32 and result.faces.shape[1] == 3
     assert result.faces.min() >= 0 and result.faces.max() < 2000

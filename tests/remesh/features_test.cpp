@@ -335,6 +335,23 @@ TEST(FeatureCut, ChordRefinementOfACurvedChainKeepsTheMinimumSpacing) {
   const double floored = smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2});
   EXPECT_GT(floored, 0.2 * (1 - 1e-3));
   EXPECT_LT(floored, 0.3);
+  EXPECT_TRUE(remesh::feature_sites(cone, features, cut, {.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2})
+                  .dense_points.empty());
+  // Where the floor leaves the chords 0.007 off the rim, beyond twice the
+  // error, parts down to the tight spacing keep to twice the error: 4 of
+  // 0.12 a stretch (sagitta 0.0018), and every point of those stretches is
+  // reported with its spacing, for the sites around it.
+  const remesh::FeatureSiteOptions tight{
+      .spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2, .tight_spacing = 0.1};
+  const double tightened = smallest_gap(tight);
+  EXPECT_GT(tightened, 0.1);
+  EXPECT_LT(tightened, 0.13);
+  const remesh::FeatureSites sites = remesh::feature_sites(cone, features, cut, tight);
+  ASSERT_EQ(sites.dense_points.size(), 13u * 5u);  // 13 stretches, their ends and 3 points inside each
+  for (const remesh::SpacedPoint& point : sites.dense_points) {
+    EXPECT_NEAR(point.spacing, 256 * 2 * std::sin(std::numbers::pi / 256) / 13 / 4, 1e-9);  // the rim: a 256-gon
+    EXPECT_NEAR(std::hypot(point.position.x(), point.position.y()), 1.0, 1e-3);
+  }
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {

@@ -131,6 +131,9 @@ struct RemeshPipelineResult {
   remesh::FeatureSet features;
   remesh::FeatureCut feature_cut;
   std::int64_t feature_sites = 0;  ///< distinct points of the remesh placed on the features
+  /// Sites added beside the features where their sites are closer than the
+  /// spacing (FeatureSites::dense_points), so that the triangles there keep their shape.
+  std::int64_t sites_added_near_features = 0;
   /// Of initial_sites, the second (third...) copies of a feature point, one
   /// per further side of its chain: initial_sites.size() - site_twins points.
   std::int64_t site_twins = 0;

@@ -16,6 +16,7 @@
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/remesh.hpp"
+#include "geodual/remesh/spacing_density.hpp"
 
 #include <cstdint>
 #include <span>
@@ -40,8 +41,11 @@ struct FeatureSiteOptions {
   /// this distance of the chords between consecutive sites (a stretch split
   /// into 16 parts at most) ...
   double max_chord_error = 0;
-  /// ... but no closer than this along it (0: no bound).
+  /// ... but no closer than this along it (0: no bound) ...
   double min_spacing = 0;
+  /// ... except where a chord would still leave the chain by more than twice
+  /// max_chord_error: there down to this spacing (0: min_spacing).
+  double tight_spacing = 0;
 };
 
 struct FeatureSites {
@@ -49,6 +53,11 @@ struct FeatureSites {
   /// points along each chain on the faces of each side.
   std::vector<SurfacePoint> sites;
   std::int64_t points = 0;  ///< distinct points: vertices of the welded remesh
+  /// Where the chord error made sites closer than options.min_spacing: each
+  /// such point (stretch ends included) and its distance to its neighbours
+  /// along the chain. The sites around them should be as close
+  /// (chain_density), or the triangles between make slivers.
+  std::vector<SpacedPoint> dense_points;
 };
 
 /// Sites along every chain, evenly by arc length between its corners (a

@@ -1,0 +1,45 @@
+#pragma once
+// A density for the weighted CVT (lloyd.hpp) that asks for closer sites near
+// given points: the spacing s_p at point p, growing by `gradation` per unit
+// of distance from it, up to the spacing elsewhere. A weighted CVT spaces its
+// sites like rho^(-1/4) (curvature_density.hpp), so
+//
+//   sigma(x) = min(spacing, min_p (s_p + gradation |x - p|)),   rho = (spacing / sigma)^4.
+//
+// What the dense stretches of feature_sites need: sites on a chain closer
+// than the sites beside it make slivers against it.
+//
+//   auto rho = spacing_density(cut.mesh, sites.dense_points, {.spacing = h});
+//   auto count = sites_for_density(cut.mesh, n, {}, rho);  // error_density.hpp
+
+#include "geodual/mesh/triangle_mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <vector>
+
+namespace geodual::remesh {
+
+/// A point and the spacing of the sites it should have around it.
+struct SpacedPoint {
+  Eigen::Vector3d position;
+  double spacing = 0;
+};
+
+struct SpacingDensityOptions {
+  double spacing = 0;  ///< the spacing away from the points (> 0)
+  /// How fast the spacing grows away from a point, per unit of distance
+  /// (> 0): 0.3, a cell 30 % wider than its neighbour towards the point (the
+  /// density changes by (1.3)^4 across it, about as fast as the weighted
+  /// Lloyd step, which takes it nearly linear across a cell, follows).
+  double gradation = 0.3;
+};
+
+/// One density per vertex of `mesh` (distances in space, not on the
+/// surface), 1 where no point asks for less than options.spacing.
+/// \throw UsageError for options out of range or a point's spacing not > 0.
+std::vector<double> spacing_density(const TriangleMesh& mesh, std::span<const SpacedPoint> points,
+                                    const SpacingDensityOptions& options);
+
+}  // namespace geodual::remesh

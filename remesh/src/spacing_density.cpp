@@ -1,0 +1,54 @@
+#include "geodual/remesh/spacing_density.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "sampling_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace geodual::remesh {
+
+std::vector<double> spacing_density(const TriangleMesh& mesh, std::span<const SpacedPoint> points,
+                                    const SpacingDensityOptions& options) {
+  const double h = options.spacing;
+  if (!(h > 0 && std::isfinite(h))) {
+    throw UsageError("spacing density: spacing must be a finite number > 0, got " + std::to_string(h));
+  }
+  if (!(options.gradation > 0 && std::isfinite(options.gradation))) {
+    throw UsageError("spacing density: gradation must be a finite number > 0, got " +
+                     std::to_string(options.gradation));
+  }
+  std::vector<Eigen::Vector3d> positions;
+  double smallest = h;
+  for (const SpacedPoint& point : points) {
+    if (!(point.spacing > 0 && std::isfinite(point.spacing))) {
+      throw UsageError("spacing density: a point's spacing must be a finite number > 0, got " +
+                       std::to_string(point.spacing));
+    }
+    if (point.spacing >= h) continue;  // asks for nothing
+    smallest = std::min(smallest, point.spacing);
+    positions.push_back(point.position);
+  }
+  std::vector<double> density(static_cast<std::size_t>(mesh.num_vertices()), 1.0);
+  if (positions.empty()) return density;
+  // Beyond (h - s) / gradation of every point the spacing is h.
+  const double reach = (h - smallest) / options.gradation;
+  const detail::PointGrid grid(positions, reach);
+  std::vector<double> spacing_of(positions.size());
+  for (std::size_t i = 0, k = 0; i < points.size(); ++i) {
+    if (points[i].spacing < h) spacing_of[k++] = points[i].spacing;
+  }
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d x = mesh.vertices.row(v).transpose();
+    double sigma = h;
+    grid.for_each_within(x, reach, [&](Index slot, double d2) {
+      sigma = std::min(sigma,
+                       spacing_of[static_cast<std::size_t>(grid.original(slot))] + options.gradation * std::sqrt(d2));
+    });
+    density[static_cast<std::size_t>(v)] = std::pow(h / sigma, 4);
+  }
+  return density;
+}
+
+}  // namespace geodual::remesh
