@@ -220,7 +220,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   };
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
-  std::vector<double> chain_density;  // per vertex of result.feature_cut.mesh; empty: 1
+  std::vector<double> chain_density;     // per vertex of result.feature_cut.mesh; empty: 1
+  std::int64_t sites_near_features = 0;  // the sites chain_density asks for
   result.sites_added_near_features = 0;
   if (options.edge_length > 0) {
     sites = result.sites_for_sizing = remesh::sites_for_edge_length(result.surface.mesh, options.edge_length);
@@ -260,12 +261,28 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         // tolerance is 0.1 %), but no closer than 3/4 of the spacing: sites
         // denser along a chain than around it make slivers against it. Where
         // that leaves a chord beyond the recall tolerance, down to 0.4 of the
-        // spacing, with the sites around them as close (below).
-        feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut,
-                                              {.spacing = spacing,
-                                               .max_chord_error = 5e-4 * result.input_report.bbox_diagonal,
-                                               .min_spacing = 0.75 * spacing,
-                                               .tight_spacing = 0.4 * spacing});
+        // spacing, with the sites around them as close: a denser relaxation
+        // there, and the sites that density asks for. Unless those are more
+        // than a tenth of the count asked (the creases bend too much for
+        // it), or the surface's faces are too wide to carry the density.
+        remesh::FeatureSiteOptions site_options{.spacing = spacing,
+                                                .max_chord_error = 5e-4 * result.input_report.bbox_diagonal,
+                                                .min_spacing = 0.75 * spacing,
+                                                .tight_spacing = 0.4 * spacing};
+        feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut, site_options);
+        if (!feature_sites->dense_points.empty()) {
+          const TriangleMesh& cut = result.feature_cut.mesh;
+          chain_density = remesh::spacing_density(cut, feature_sites->dense_points, {.spacing = spacing});
+          sites_near_features = remesh::sites_for_density(cut, sites, {}, chain_density) - sites;
+          constexpr double kMaxShareNearFeatures = 0.1;
+          if (static_cast<double>(sites_near_features) > kMaxShareNearFeatures * static_cast<double>(sites) ||
+              !remesh::carries_density(cut, chain_density, spacing)) {
+            chain_density.clear();
+            sites_near_features = 0;
+            site_options.tight_spacing = 0;
+            feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut, site_options);
+          }
+        }
         result.feature_sites = feature_sites->points;
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }
@@ -277,14 +294,10 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
                                                     feature_sites->sites, options.sampling, given_share)
                       : remesh::sample_sites_for_topology(manifold, sites, options.sampling);
     result.initial_sites = std::move(sampled.sites);
-    if (feature_sites && !feature_sites->dense_points.empty()) {
-      // Where a chain's sites are closer than the spacing, the sites around
-      // them are too: a denser relaxation there, and the sites it needs
-      // added where it is densest, off the chains.
+    if (!chain_density.empty()) {
+      // The sites the chains' density asks for, where it is densest, off the
+      // chains, half a local spacing apart.
       const TriangleMesh& cut = result.feature_cut.mesh;
-      const double spacing = remesh::uniform_spacing(manifold, sites);
-      chain_density = remesh::spacing_density(cut, feature_sites->dense_points, {.spacing = spacing});
-      const std::int64_t added = remesh::sites_for_density(cut, sites, {}, chain_density) - sites;
       std::vector<double> excess(chain_density.size());
       const MeshTopology topology = build_mesh_topology(cut);
       for (std::size_t v = 0; v < excess.size(); ++v) {
@@ -292,7 +305,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
       }
       const std::size_t before = result.initial_sites.size();
       result.initial_sites =
-          remesh::add_sites_at_deviations(cut, result.initial_sites, excess, chain_density, spacing, added);
+          remesh::add_sites_at_deviations(cut, result.initial_sites, excess, chain_density,
+                                          remesh::uniform_spacing(manifold, sites), sites_near_features);
       result.sites_added_near_features = static_cast<std::int64_t>(result.initial_sites.size() - before);
     }
     result.sites_added_for_topology = sampled.sites_added_for_topology;

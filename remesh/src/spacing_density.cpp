@@ -51,4 +51,21 @@ std::vector<double> spacing_density(const TriangleMesh& mesh, std::span<const Sp
   return density;
 }
 
+bool carries_density(const TriangleMesh& mesh, std::span<const double> density, double spacing, double max_ratio) {
+  if (density.size() != static_cast<std::size_t>(mesh.num_vertices())) {
+    throw UsageError("carries_density: " + std::to_string(density.size()) + " densities for a mesh of " +
+                     std::to_string(mesh.num_vertices()) + " vertices");
+  }
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    double rho = 1, longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      rho = std::max(rho, density[static_cast<std::size_t>(mesh.faces(f, k))]);
+      longest = std::max(longest,
+                         (mesh.vertices.row(mesh.faces(f, k)) - mesh.vertices.row(mesh.faces(f, (k + 1) % 3))).norm());
+    }
+    if (rho > 1 && longest > max_ratio * spacing * std::pow(rho, -0.25)) return false;
+  }
+  return true;
+}
+
 }  // namespace geodual::remesh

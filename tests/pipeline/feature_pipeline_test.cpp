@@ -195,6 +195,36 @@ TEST(FeaturePipeline, TheCircularCreasesOfTurnedPartsAreKeptAtThreeThousandSites
   }
 }
 
+TEST(FeaturePipeline, ChainSitesCloserThanTheSpacingComeOnlyWhereTheCountAndTheFacesAllowThem) {
+  // fandisk's round creases at 2,000 sites: chords 3/4 of a spacing apart
+  // leave them by more than the recall tolerance, so their sites are closer
+  // and the sites beside them too, a few % more sites in all.
+  const std::int64_t asked = 2000;
+  const pipeline::RemeshPipelineResult fandisk =
+      remesh_without_statistics(io::read_mesh("tests/data/fandisk.ply"), asked);
+  ASSERT_TRUE(fandisk.features_dropped_reason.empty()) << fandisk.features_dropped_reason;
+  EXPECT_GT(fandisk.sites_added_near_features, 0);
+  EXPECT_LE(fandisk.sites_added_near_features, asked / 10);
+  const auto sites = [](const pipeline::RemeshPipelineResult& r) {
+    return static_cast<std::int64_t>(r.initial_sites.size()) - r.site_twins;
+  };
+  EXPECT_EQ(sites(fandisk), asked + fandisk.sites_added_near_features);
+  // At 500 sites they would ask for half as many again: the count asked holds.
+  const pipeline::RemeshPipelineResult coarse = remesh_without_statistics(io::read_mesh("tests/data/fandisk.ply"), 500);
+  ASSERT_TRUE(coarse.features_dropped_reason.empty()) << coarse.features_dropped_reason;
+  EXPECT_EQ(coarse.sites_added_near_features, 0);
+  EXPECT_EQ(sites(coarse), 500);
+  // The pulley's faces beside its creases are up to 18 times as long as the
+  // spacing such sites would ask for: a density they cannot carry (spread
+  // over them, it would also ask for two thirds more sites).
+  io::LoadedMesh pulley;
+  pulley.mesh = bench::pulley();
+  const pipeline::RemeshPipelineResult wide = remesh_without_statistics(std::move(pulley), asked);
+  ASSERT_TRUE(wide.features_dropped_reason.empty()) << wide.features_dropped_reason;
+  EXPECT_EQ(wide.sites_added_near_features, 0);
+  EXPECT_GT(quality::triangle_quality(wide.remesh.mesh).q_min, 0.5);
+}
+
 TEST(FeaturePipeline, WhereTheWeldFailsWithSitesAsDenseBesideTheCreasesAsElsewhereDenserOnesKeepThem) {
   // thick_plate_holes at 20,000 sites: its rims are strips two spacings
   // wide ringed by creases; with no site inside some of them (their border's

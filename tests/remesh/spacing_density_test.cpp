@@ -41,6 +41,21 @@ TEST(SpacingDensity, AsksForThePointsSpacingAtThemAndGradesBackToTheSpacing) {
   EXPECT_LT(sites, 1000 + 200);
 }
 
+TEST(SpacingDensity, IsCarriedOnlyByFacesNarrowEnoughForTheSpacingAsked) {
+  // The same bump of spacing 0.025 at the square's centre, on a 40 x 40 grid
+  // (edges of 0.025, diagonals of 0.035) and on a 4 x 4 one (0.25 and 0.35):
+  // the coarse faces would spread it over a quarter of the square.
+  const std::vector<SpacedPoint> points = {{{0.5, 0.5, 0.0}, 0.025}};
+  const SpacingDensityOptions options{.spacing = 0.1};
+  const TriangleMesh fine = test::unit_square(kGrid), coarse = test::unit_square(4);
+  EXPECT_TRUE(carries_density(fine, spacing_density(fine, points, options), options.spacing));
+  EXPECT_FALSE(carries_density(coarse, spacing_density(coarse, points, options), options.spacing));
+  // Faces where the density is 1 may be as wide as they are.
+  const std::vector<double> uniform(static_cast<std::size_t>(coarse.num_vertices()), 1.0);
+  EXPECT_TRUE(carries_density(coarse, uniform, options.spacing));
+  EXPECT_THROW(carries_density(coarse, std::vector<double>(3, 1.0), options.spacing), UsageError);
+}
+
 TEST(SpacingDensity, WithoutPointsIsUniformAndBadOptionsAreRefused) {
   const TriangleMesh square = test::unit_square(4);
   const std::vector<double> uniform = spacing_density(square, {}, {.spacing = 0.1});

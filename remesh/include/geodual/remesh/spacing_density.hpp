@@ -10,7 +10,7 @@
 // than the sites beside it make slivers against it.
 //
 //   auto rho = spacing_density(cut.mesh, sites.dense_points, {.spacing = h});
-//   auto count = sites_for_density(cut.mesh, n, {}, rho);  // error_density.hpp
+//   if (carries_density(cut.mesh, rho, h)) count = sites_for_density(cut.mesh, n, {}, rho);  // error_density.hpp
 
 #include "geodual/mesh/triangle_mesh.hpp"
 
@@ -41,5 +41,12 @@ struct SpacingDensityOptions {
 /// \throw UsageError for options out of range or a point's spacing not > 0.
 std::vector<double> spacing_density(const TriangleMesh& mesh, std::span<const SpacedPoint> points,
                                     const SpacingDensityOptions& options);
+
+/// Whether `mesh` can carry `density` (linear in each face, as the weighted
+/// relaxation reads it): every face where it is above 1 at a corner is at
+/// most `max_ratio` times as long as the spacing asked there,
+/// spacing * rho^(-1/4) at its densest corner. A face much wider than that
+/// spreads the density far beyond where it was asked for.
+bool carries_density(const TriangleMesh& mesh, std::span<const double> density, double spacing, double max_ratio = 4);
 
 }  // namespace geodual::remesh
