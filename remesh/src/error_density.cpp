@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <string>
 
@@ -94,9 +95,15 @@ std::vector<SurfacePoint> add_sites_at_deviations(const TriangleMesh& mesh, std:
   }
   if (count < 0) throw UsageError("error density: count must be >= 0, got " + std::to_string(count));
   std::vector<SurfacePoint> result(sites.begin(), sites.end());
+  // Only vertices of a face with three distinct corners can hold a site.
+  std::vector<std::uint8_t> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (has_repeated_corner(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(mesh.faces(f, k))] = 1;
+  }
   std::vector<Index> candidates;
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
-    if (deviation[v] > 0) candidates.push_back(v);
+    if (deviation[v] > 0 && used[static_cast<std::size_t>(v)] != 0) candidates.push_back(v);
   }
   std::stable_sort(candidates.begin(), candidates.end(), [&](Index a, Index b) { return deviation[a] > deviation[b]; });
   auto clearance = [&](Index v) { return spacing / 2 / std::pow(value_at(density, v), 0.25); };

@@ -154,7 +154,8 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
   // split evenly into the fewest parts that keep to it (at most 16, no
   // shorter than min_spacing): the chain gets denser where it bends, there
   // only. Where the shortest parts still leave it by more than twice the
-  // error, parts down to tight_spacing keep to twice the error.
+  // error, parts down to tight_spacing, if some number of them keeps to
+  // twice the error.
   std::vector<double> at;
   const auto most_parts = [](double length, double spacing) {
     return spacing > 0 ? static_cast<int>(std::min(16.0, std::floor(length / spacing))) : 16;
@@ -173,7 +174,14 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     int parts = std::min(most, 2);
     while (parts < most && !fits(walk, from, to, parts, options.max_chord_error)) ++parts;
     parts = std::max(parts, 1);
-    while (parts < most_tight && !fits(walk, from, to, parts, 2 * options.max_chord_error)) ++parts;
+    if (!fits(walk, from, to, parts, 2 * options.max_chord_error)) {
+      // Closer parts only where some number of them keeps to twice the error
+      // (a smooth bend): a chain that wiggles at the input's scale (a scan's
+      // noise) would not keep to it at any spacing the tight one allows.
+      int tight = parts + 1;
+      while (tight <= most_tight && !fits(walk, from, to, tight, 2 * options.max_chord_error)) ++tight;
+      if (tight <= most_tight) parts = tight;
+    }
     for (int k = 1; k < parts; ++k) at.push_back(from + (to - from) * k / parts);
     if (parts > most) {  // closer than min_spacing: the stretch's points, ends included
       for (int k = 0; k <= parts; ++k) {

@@ -126,6 +126,16 @@ TEST(ErrorDensity, SitesAreAddedAtTheLargestDeviationsHalfASpacingApart) {
     EXPECT_GT(distance_to_centre(square, around[i].element), 0.05);
   }
   EXPECT_EQ(add_sites_at_deviations(square, sites, deviation, {}, 0.1, 0).size(), sites.size());
+  // A vertex no triangle uses (scans have them) holds no site, however far
+  // it strays.
+  TriangleMesh with_stray = square;
+  with_stray.vertices.conservativeResize(square.num_vertices() + 1, 3);
+  with_stray.vertices.row(square.num_vertices()) << 0.9, 0.9, 0.0;
+  std::vector<double> stray_deviation(deviation);
+  stray_deviation.push_back(1.0);  // the largest
+  const std::vector<SurfacePoint> strayed = add_sites_at_deviations(with_stray, sites, stray_deviation, {}, 0.1, 1);
+  ASSERT_EQ(strayed.size(), sites.size() + 1);
+  EXPECT_EQ(strayed.back().element, kCentre);
 
   EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, {}, 0.0, 1), UsageError);
   EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, {}, 0.1, -1), UsageError);

@@ -52,7 +52,8 @@ std::vector<double> refine_density(const TriangleMesh& mesh, std::span<const dou
 std::int64_t sites_for_density(const TriangleMesh& mesh, std::int64_t sites, std::span<const double> from,
                                std::span<const double> to);
 
-/// `sites` with up to `count` sites added at the vertices of `mesh` where
+/// `sites` with up to `count` sites added at the vertices of `mesh` (of a
+/// face with three distinct corners) where
 /// `deviation` (one per vertex) is largest and above 0, largest first (ties
 /// by index), each farther than half the local spacing, spacing * rho^(-1/4)
 /// (rho from `density`, empty: 1), from every other site: the start of the

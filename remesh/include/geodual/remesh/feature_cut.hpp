@@ -44,7 +44,8 @@ struct FeatureSiteOptions {
   /// ... but no closer than this along it (0: no bound) ...
   double min_spacing = 0;
   /// ... except where a chord would still leave the chain by more than twice
-  /// max_chord_error: there down to this spacing (0: min_spacing).
+  /// max_chord_error: there down to this spacing, if parts that far apart
+  /// or farther keep to twice the error (0: min_spacing).
   double tight_spacing = 0;
 };
 

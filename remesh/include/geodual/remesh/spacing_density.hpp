@@ -30,10 +30,10 @@ struct SpacedPoint {
 struct SpacingDensityOptions {
   double spacing = 0;  ///< the spacing away from the points (> 0)
   /// How fast the spacing grows away from a point, per unit of distance
-  /// (> 0): 0.3, a cell 30 % wider than its neighbour towards the point (the
-  /// density changes by (1.3)^4 across it, about as fast as the weighted
-  /// Lloyd step, which takes it nearly linear across a cell, follows).
-  double gradation = 0.3;
+  /// (> 0): 0.15, a cell 15 % wider than its neighbour towards the point,
+  /// the density changing by 1.15^4 = 1.75 across it: the weighted Lloyd
+  /// step takes it nearly linear across a cell (docs/algorithms.md).
+  double gradation = 0.15;
 };
 
 /// One density per vertex of `mesh` (distances in space, not on the
