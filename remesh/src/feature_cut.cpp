@@ -156,7 +156,11 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
   // only. Where the shortest parts still leave it by more than twice the
   // error, parts down to tight_spacing, if some number of them keeps to
   // twice the error.
-  std::vector<double> at;
+  struct Stretch {
+    double from, to;
+    int parts = 1;
+    bool tight = false;  ///< its parts are shorter than min_spacing
+  };
   const auto most_parts = [](double length, double spacing) {
     return spacing > 0 ? static_cast<int>(std::min(16.0, std::floor(length / spacing))) : 16;
   };
@@ -166,8 +170,9 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     }
     return true;
   };
-  const auto refine = [&](const ChainWalk& walk, double from, double to) {
-    if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return;
+  const auto split = [&](const ChainWalk& walk, double from, double to) {
+    Stretch stretch{from, to};
+    if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return stretch;
     const int most = most_parts(to - from, options.min_spacing);
     const int most_tight =
         std::max(most, most_parts(to - from, options.tight_spacing > 0 ? options.tight_spacing : options.min_spacing));
@@ -182,13 +187,20 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
       while (tight <= most_tight && !fits(walk, from, to, tight, 2 * options.max_chord_error)) ++tight;
       if (tight <= most_tight) parts = tight;
     }
-    for (int k = 1; k < parts; ++k) at.push_back(from + (to - from) * k / parts);
-    if (parts > most) {  // closer than min_spacing: the stretch's points, ends included
-      for (int k = 0; k <= parts; ++k) {
-        result.dense_points.push_back({walk.point(from + (to - from) * k / parts), (to - from) / parts});
-      }
-    }
+    stretch.parts = parts;
+    stretch.tight = parts > most;
+    return stretch;
   };
+  // Chain ends per vertex: a corner where one chain ends alone has no wedge
+  // to keep the first sites' distances equal in.
+  std::map<Index, int> ends_at;
+  for (const FeatureChain& chain : features.chains) {
+    if (chain.closed) continue;
+    ++ends_at[chain.vertices.front()];
+    ++ends_at[chain.vertices.back()];
+  }
+  std::vector<double> at;
+  std::vector<Stretch> stretches;
   for (std::size_t c = 0; c < walks.size(); ++c) {
     const FeatureChain& chain = features.chains[c];
     const double length = walks[c].length(), own = length / static_cast<double>(segments[c]);
@@ -212,10 +224,31 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
       }
       ends.push_back(length);
     }
+    stretches.clear();
+    for (std::size_t k = 0; k + 1 < ends.size(); ++k) stretches.push_back(split(walks[c], ends[k], ends[k + 1]));
+    // At a corner where this chain ends alone, the stretch from it takes the
+    // spacing of a tight stretch after it: the sites round the corner are as
+    // close as the chain's there.
+    if (!chain.closed && stretches.size() >= 2) {
+      for (const bool front : {true, false}) {
+        Stretch& end = front ? stretches.front() : stretches.back();
+        const Stretch& next = front ? stretches[1] : stretches[stretches.size() - 2];
+        if (end.tight || !next.tight || ends_at[front ? chain.vertices.front() : chain.vertices.back()] > 1) continue;
+        const double spacing = (next.to - next.from) / next.parts;
+        const auto parts = static_cast<int>(std::llround((end.to - end.from) / spacing));
+        if (parts > end.parts) end.parts = parts, end.tight = true;
+      }
+    }
     at.clear();
-    for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
-      if (k > 0) at.push_back(ends[k]);
-      refine(walks[c], ends[k], ends[k + 1]);
+    for (std::size_t k = 0; k < stretches.size(); ++k) {
+      const auto [from, to, parts, tight] = stretches[k];
+      if (k > 0) at.push_back(from);
+      for (int j = 1; j < parts; ++j) at.push_back(from + (to - from) * j / parts);
+      if (tight) {  // the stretch's points, ends included
+        for (int j = 0; j <= parts; ++j) {
+          result.dense_points.push_back({walks[c].point(from + (to - from) * j / parts), (to - from) / parts});
+        }
+      }
     }
     if (chain.closed) at.push_back(0);  // the closing end is a site too (the open ends are corners)
     for (const double s : at) add(walks[c].key_at(s));

@@ -5,8 +5,10 @@
 #include "hard_cases.hpp"
 #include "remesh/analytic_surfaces.hpp"
 
+#include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/remesh/chain_slider.hpp"
+#include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
@@ -351,6 +353,40 @@ TEST(FeatureCut, ChordRefinementOfACurvedChainKeepsTheMinimumSpacing) {
   for (const remesh::SpacedPoint& point : sites.dense_points) {
     EXPECT_NEAR(point.spacing, 256 * 2 * std::sin(std::numbers::pi / 256) / 13 / 4, 1e-9);  // the rim: a 256-gon
     EXPECT_NEAR(std::hypot(point.position.x(), point.position.y()), 1.0, 1e-3);
+  }
+}
+
+TEST(FeatureCut, AtACornerWhereOneChainEndsAloneTheFirstStretchTakesTheTightSpacingAfterIt) {
+  // rocker_arm at the scale of 10,000 sites: one chain, a bend whose chords
+  // 3/4 of a spacing apart leave it by more than the recall tolerance, each
+  // end a corner of this chain alone. The stretch from a corner to the first
+  // tight stretch is as tight (its points, the corner's included, are dense
+  // points): the sites round the corner are as close as the chain's there.
+  const TriangleMesh rocker = io::read_mesh("tests/data/rocker_arm.ply").mesh;
+  const remesh::RemeshOptions defaults;
+  const remesh::FeatureSet features = remesh::detect_features(
+      rocker,
+      remesh::remesh_feature_options(rocker, 10000, 60, defaults.min_feature_length, defaults.continuation_angle));
+  ASSERT_EQ(features.sharp_chains, 1);
+  ASSERT_FALSE(features.chains[0].closed);
+  const remesh::FeatureCut cut = remesh::cut_along_features(rocker, features);
+  const double h = remesh::uniform_spacing(rocker, 10000);
+  const double diagonal = (rocker.vertices.colwise().maxCoeff() - rocker.vertices.colwise().minCoeff()).norm();
+  const remesh::FeatureSiteOptions options{
+      .spacing = h, .max_chord_error = 5e-4 * diagonal, .min_spacing = 0.75 * h, .tight_spacing = 0.4 * h};
+  const remesh::FeatureSites sites = remesh::feature_sites(rocker, features, cut, options);
+  ASSERT_FALSE(sites.dense_points.empty());
+  const auto is_dense_point = [&](Index v) {
+    return std::any_of(sites.dense_points.begin(), sites.dense_points.end(), [&](const remesh::SpacedPoint& p) {
+      return (p.position - rocker.vertices.row(v).transpose()).norm() < 1e-12;
+    });
+  };
+  const std::vector<Index>& chain = features.chains[0].vertices;
+  EXPECT_TRUE(is_dense_point(chain.front()));
+  EXPECT_TRUE(is_dense_point(chain.back()));
+  for (const remesh::SpacedPoint& point : sites.dense_points) {
+    EXPECT_LT(point.spacing, 0.75 * h);
+    EXPECT_GE(point.spacing, 0.4 * h * (1 - 1e-9));
   }
 }
 
