@@ -194,6 +194,23 @@ TEST(Threads, OneThreadGivesTheSameBytes) {
   EXPECT_EQ(slurp(a), slurp(b));
 }
 
+TEST(Threads, OneThreadGivesTheSameBytesWithSitesBesideRoundCreases) {
+  // fandisk at 2,000 sites: its round creases get closer sites and sites
+  // beside them (sites_added_near_features), placed and relaxed the same on
+  // any number of threads.
+  ScratchFolder folder;
+  const auto a = folder.path() / "a.ply", b = folder.path() / "b.ply";
+  const CliRun two = run_cli({"--threads", "2", "remesh", "tests/data/fandisk.ply", "--sites", "2000", "--samples",
+                              "-1", "--json", "-o", a.string()});
+  ASSERT_EQ(two.exit_status, 0) << two.err;
+  EXPECT_NE(two.out.find("\"sites_added_near_features\": "), std::string::npos) << two.out;
+  EXPECT_EQ(two.out.find("\"sites_added_near_features\": 0,"), std::string::npos) << two.out;
+  const CliRun one = run_cli(
+      {"--threads", "1", "remesh", "tests/data/fandisk.ply", "--sites", "2000", "--samples", "-1", "-o", b.string()});
+  ASSERT_EQ(one.exit_status, 0) << one.err;
+  EXPECT_EQ(slurp(a), slurp(b));
+}
+
 TEST(Interrupt, CtrlCExitsThreeAndWritesNothing) {
   ScratchFolder folder;
   const auto out = folder.path() / "out.glb";
