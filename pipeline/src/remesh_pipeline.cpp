@@ -221,6 +221,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
   std::vector<double> chain_density;     // per vertex of result.feature_cut.mesh; empty: 1
+  double chain_spacing = 0;              // the spacing chain_density was made for
   std::int64_t sites_near_features = 0;  // the sites chain_density asks for
   result.sites_added_near_features = 0;
   if (options.edge_length > 0) {
@@ -272,6 +273,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut, site_options);
         if (!feature_sites->dense_points.empty()) {
           const TriangleMesh& cut = result.feature_cut.mesh;
+          chain_spacing = spacing;
           chain_density = remesh::spacing_density(cut, feature_sites->dense_points, {.spacing = spacing});
           sites_near_features = remesh::sites_for_density(cut, sites, {}, chain_density) - sites;
           constexpr double kMaxShareNearFeatures = 0.1;
@@ -304,9 +306,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         excess[v] = topology.vertex_on_boundary[v] != 0 ? 0.0 : chain_density[v] - 1;
       }
       const std::size_t before = result.initial_sites.size();
-      result.initial_sites =
-          remesh::add_sites_at_deviations(cut, result.initial_sites, excess, chain_density,
-                                          remesh::uniform_spacing(manifold, sites), sites_near_features);
+      result.initial_sites = remesh::add_sites_at_deviations(cut, result.initial_sites, excess, chain_density,
+                                                             chain_spacing, sites_near_features);
       result.sites_added_near_features = static_cast<std::int64_t>(result.initial_sites.size() - before);
     }
     result.sites_added_for_topology = sampled.sites_added_for_topology;

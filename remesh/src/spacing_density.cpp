@@ -19,7 +19,8 @@ std::vector<double> spacing_density(const TriangleMesh& mesh, std::span<const Sp
     throw UsageError("spacing density: gradation must be a finite number > 0, got " +
                      std::to_string(options.gradation));
   }
-  std::vector<Eigen::Vector3d> positions;
+  std::vector<Eigen::Vector3d> positions;  // of the points that ask for less than h
+  std::vector<double> spacing_of;          // theirs
   double smallest = h;
   for (const SpacedPoint& point : points) {
     if (!(point.spacing > 0 && std::isfinite(point.spacing))) {
@@ -29,16 +30,13 @@ std::vector<double> spacing_density(const TriangleMesh& mesh, std::span<const Sp
     if (point.spacing >= h) continue;  // asks for nothing
     smallest = std::min(smallest, point.spacing);
     positions.push_back(point.position);
+    spacing_of.push_back(point.spacing);
   }
   std::vector<double> density(static_cast<std::size_t>(mesh.num_vertices()), 1.0);
   if (positions.empty()) return density;
   // Beyond (h - s) / gradation of every point the spacing is h.
   const double reach = (h - smallest) / options.gradation;
   const detail::PointGrid grid(positions, reach);
-  std::vector<double> spacing_of(positions.size());
-  for (std::size_t i = 0, k = 0; i < points.size(); ++i) {
-    if (points[i].spacing < h) spacing_of[k++] = points[i].spacing;
-  }
   for (Index v = 0; v < mesh.num_vertices(); ++v) {
     const Eigen::Vector3d x = mesh.vertices.row(v).transpose();
     double sigma = h;
