@@ -169,6 +169,11 @@ class RemeshCommand final : public Command {
                     "not below --sharp-angle: off)")
         ->capture_default_str()
         ->check(number_between(0, 180));
+    command.add_flag("--pin-creases", options_.pin_short_creases,
+                     "Also follow the creases at --sharp-angle too short to cut along (a fillet's coarse edges, a "
+                     "crease that fades within a spacing): sites pinned on their vertices, the sites round them as "
+                     "close (beyond --sites: up to twice as many on parts with many such creases), edges flipped "
+                     "onto them");
     command.add_option("--feature-file", feature_file_,
                        "Also keep these edges as features, whatever their angle: one polyline of the mesh's vertex "
                        "indices per line, 'A B C ...' (0-based; '#' starts a comment line; ignored with --site-file)");
@@ -516,6 +521,8 @@ class RemeshCommand final : public Command {
     figures["feature_length"] = run.features.sharp_length;
     figures["feature_sites"] = run.feature_sites;
     figures["sites_added_near_features"] = run.sites_added_near_features;
+    figures["crease_pins"] = run.crease_pins;
+    figures["crease_segments_followed"] = run.crease_segments.edges;
     figures["features_dropped_reason"] = run.features_dropped_reason.empty()
                                              ? nlohmann::ordered_json(nullptr)
                                              : nlohmann::ordered_json(run.features_dropped_reason);
@@ -633,6 +640,12 @@ class RemeshCommand final : public Command {
                                                              " more beside them where they are closer than the spacing"
                                                        : ""));
     }
+    if (run.crease_pins > 0) {
+      table.add("short creases", with_thousands(run.crease_pins) + " sites pinned on them, " +
+                                     with_thousands(run.crease_segments.edges) +
+                                     " of their segments followed by edges (" +
+                                     with_thousands(run.crease_segments.flipped) + " flipped onto them)");
+    }
     if (!relaxation.energy.empty()) {
       auto count = [](int n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); };
       table.add(
@@ -709,6 +722,7 @@ class RemeshCommand final : public Command {
     options["max_sites"] = max_sites_ > 0 ? nlohmann::ordered_json(max_sites_) : nlohmann::ordered_json(nullptr);
     options["sharp_angle"] = options_.sharp_angle;
     options["continuation_angle"] = options_.continuation_angle;
+    options["pin_creases"] = options_.pin_short_creases;
     options["feature_file"] =
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();

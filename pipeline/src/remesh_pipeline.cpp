@@ -9,8 +9,10 @@
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
 #include "geodual/remesh/chain_slider.hpp"
+#include "geodual/remesh/crease_pins.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/error_density.hpp"
+#include "geodual/remesh/follow_segments.hpp"
 #include "geodual/remesh/sizing.hpp"
 #include "geodual/remesh/spacing_density.hpp"
 
@@ -220,9 +222,11 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   };
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
-  std::vector<double> chain_density;     // per vertex of result.feature_cut.mesh; empty: 1
-  double chain_spacing = 0;              // the spacing chain_density was made for
-  std::int64_t sites_near_features = 0;  // the sites chain_density asks for
+  std::size_t pin_begin = 0, pin_count = 0;              // the sites pinned on short creases
+  std::vector<std::array<std::size_t, 2>> pin_segments;  // pairs of pins (from pin_begin on) a remesh edge should join
+  std::vector<double> chain_density;                     // per vertex of result.feature_cut.mesh; empty: 1
+  double chain_spacing = 0;                              // the spacing chain_density was made for
+  std::int64_t sites_near_features = 0;                  // the sites chain_density asks for
   result.sites_added_near_features = 0;
   if (options.edge_length > 0) {
     sites = result.sites_for_sizing = remesh::sites_for_edge_length(result.surface.mesh, options.edge_length);
@@ -289,17 +293,52 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }
     }
+    // Short creases: sites pinned on them, the sites round each as close as
+    // the nearest other pin.
+    std::vector<SurfacePoint> pins;
+    if (options.remesh.pin_short_creases && !result.features.short_creases.empty()) {
+      const double spacing = remesh::uniform_spacing(manifold, sites);
+      remesh::CreasePins crease_pins = remesh::crease_pins(
+          manifold, result.features, {.spacing = spacing, .max_chord_error = 5e-4 * result.input_report.bbox_diagonal});
+      const TriangleMesh& working = result.features.empty() ? manifold : result.feature_cut.mesh;
+      if (!result.features.empty()) {
+        // Onto the features' cut: its faces are the surface's, its vertices copies.
+        std::vector<Index> copy(static_cast<std::size_t>(manifold.num_vertices()), -1);
+        for (std::size_t c = result.feature_cut.original_vertex.size(); c-- > 0;) {
+          copy[result.feature_cut.original_vertex[c]] = static_cast<Index>(c);
+        }
+        for (SurfacePoint& pin : crease_pins.sites) pin.element = copy[pin.element];
+      }
+      if (!crease_pins.sites.empty()) {
+        std::vector<double> pin_density = remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing});
+        if (chain_density.empty()) {
+          chain_density = std::move(pin_density);
+          chain_spacing = spacing;
+        } else {
+          for (std::size_t v = 0; v < chain_density.size(); ++v) {
+            chain_density[v] = std::max(chain_density[v], pin_density[v]);
+          }
+        }
+        sites_near_features = remesh::sites_for_density(working, sites, {}, chain_density) - sites;
+      }
+      pins = std::move(crease_pins.sites);
+      pin_segments = std::move(crease_pins.segments);
+    }
     report(options.progress, Stage::sample, 0.5);
+    const auto pinned = static_cast<std::int64_t>(pins.size());  // within the count
     remesh::SampledSites sampled =
-        feature_sites ? remesh::sample_sites_around(result.feature_cut.mesh,
-                                                    std::max<std::int64_t>(0, sites - feature_sites->points),
-                                                    feature_sites->sites, options.sampling, given_share)
-                      : remesh::sample_sites_for_topology(manifold, sites, options.sampling);
+        feature_sites
+            ? remesh::sample_sites_around(result.feature_cut.mesh,
+                                          std::max<std::int64_t>(0, sites - feature_sites->points - pinned),
+                                          feature_sites->sites, options.sampling, given_share)
+            : remesh::sample_sites_for_topology(manifold, std::max<std::int64_t>(4, sites - pinned), options.sampling);
     result.initial_sites = std::move(sampled.sites);
+    pin_begin = result.initial_sites.size();
+    result.initial_sites.insert(result.initial_sites.end(), pins.begin(), pins.end());
     if (!chain_density.empty()) {
       // The sites the chains' density asks for, where it is densest, off the
       // chains, half a local spacing apart.
-      const TriangleMesh& cut = result.feature_cut.mesh;
+      const TriangleMesh& cut = result.features.empty() ? manifold : result.feature_cut.mesh;
       std::vector<double> excess(chain_density.size());
       const MeshTopology topology = build_mesh_topology(cut);
       for (std::size_t v = 0; v < excess.size(); ++v) {
@@ -310,6 +349,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
                                                              chain_spacing, sites_near_features);
       result.sites_added_near_features = static_cast<std::int64_t>(result.initial_sites.size() - before);
     }
+    pin_count = pins.size();
+    result.crease_pins = static_cast<std::int64_t>(pin_count);
     result.sites_added_for_topology = sampled.sites_added_for_topology;
     result.sites_added_reason = sampled.topology_reason;
     if (sampled.sites_added_for_topology > 0) {
@@ -337,6 +378,10 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   const TriangleMesh& surface = features ? result.feature_cut.mesh : manifold_surface;
   remesh::LloydOptions lloyd =
       remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
+  if (pin_count > 0) {
+    lloyd.fixed_sites.assign(result.initial_sites.size(), 0);
+    std::fill_n(lloyd.fixed_sites.begin() + static_cast<std::ptrdiff_t>(pin_begin), pin_count, std::uint8_t{1});
+  }
   if (!chain_density.empty() && lloyd.iterations > 0) {
     if (lloyd.density.empty()) {
       lloyd.density = std::move(chain_density);
@@ -413,6 +458,18 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     throw Error(e.what() + note);
   }
   geodesic_surface.reset();
+  if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
+    // Onto the short creases: the pins' vertices joined by edges where one flip does it.
+    std::vector<std::array<Index, 2>> segments;
+    for (const auto& [a, b] : pin_segments) {
+      const auto vertex = [&](std::size_t pin) {
+        const std::size_t site = pin_begin + pin;
+        return result.remesh.vertex_of_site.empty() ? static_cast<Index>(site) : result.remesh.vertex_of_site[site];
+      };
+      segments.push_back({vertex(a), vertex(b)});
+    }
+    result.crease_segments = remesh::follow_segments(result.remesh.mesh, segments);
+  }
   // The prepared surface was the largest thing held: handed back before the
   // copies and outputs that follow, which would otherwise come on top.
   if (options.remesh.lloyd.voronoi.geodesic.release_memory_between_phases) trim_heap();

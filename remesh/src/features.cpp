@@ -368,6 +368,16 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
     }
     sharp = std::move(kept);
   }
+  if (options.sharp_angle > 0) {
+    // What the filters dropped, judged on the two faces alone.
+    std::vector<std::array<Index, 2>> dropped;
+    for (const Index e : sharp_edges(surface, topology, options.sharp_angle)) {
+      if (!is_sharp[e]) dropped.push_back(topology.edge_vertices[e]);
+    }
+    const auto count = dropped.size();
+    const FeatureGraph graph = build_graph(num_vertices, std::move(dropped), std::vector<std::uint8_t>(count, 0));
+    features.short_creases = walk_chains(surface, graph, options.corner_angle).chains;
+  }
   if (sharp.empty()) return features;
   features.sharp_edges = edges;  // in edge order: sorted by vertex pair
   std::vector<std::uint8_t> touched(static_cast<std::size_t>(num_vertices), 0);

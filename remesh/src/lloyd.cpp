@@ -38,6 +38,8 @@ bool on_boundary(const voronoi::SurfaceTopology& topology, const SurfacePoint& p
 std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
                                 const voronoi::SurfaceTopology& topology, const LloydOptions& options) {
   std::vector<bool> movable(sites.size(), true);
+  for (std::size_t i = 0; i < movable.size() && i < options.fixed_sites.size(); ++i)
+    movable[i] = !options.fixed_sites[i];
   if (options.move_boundary_sites) return movable;
   std::vector<bool> boundary_vertex;
   if (detail::any_at_vertex(sites)) {
@@ -49,8 +51,8 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
   }
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const SurfacePoint& site = sites[i];
-    movable[i] =
-        !(site.kind == SurfacePoint::Kind::vertex ? bool(boundary_vertex[site.element]) : on_boundary(topology, site));
+    movable[i] = movable[i] && !(site.kind == SurfacePoint::Kind::vertex ? bool(boundary_vertex[site.element])
+                                                                         : on_boundary(topology, site));
   }
   return movable;
 }

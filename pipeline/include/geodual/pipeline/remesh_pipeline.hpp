@@ -23,6 +23,7 @@
 #include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
+#include "geodual/remesh/follow_segments.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/sample_sites.hpp"
@@ -134,6 +135,10 @@ struct RemeshPipelineResult {
   /// Sites added beside the features where their sites are closer than the
   /// spacing (FeatureSites::dense_points), so that the triangles there keep their shape.
   std::int64_t sites_added_near_features = 0;
+  /// Sites pinned on the short creases (FeatureSet::short_creases), within
+  /// the site count, and the remesh's edges along them (crease_pins.hpp).
+  std::int64_t crease_pins = 0;
+  remesh::FollowedSegments crease_segments;
   /// Of initial_sites, the second (third...) copies of a feature point, one
   /// per further side of its chain: initial_sites.size() - site_twins points.
   std::int64_t site_twins = 0;

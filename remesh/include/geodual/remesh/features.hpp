@@ -79,6 +79,10 @@ struct FeatureSet {
   std::vector<Index> corners;  ///< vertices, increasing
   std::int64_t sharp_chains = 0;
   double sharp_length = 0;  ///< of the sharp chains
+  /// The edges whose own two faces turn by sharp_angle but that no chain
+  /// keeps (too short or too weak at the scale to cut along), as chains of
+  /// their own: where the remesher pins sites instead (crease_pins.hpp).
+  std::vector<FeatureChain> short_creases;
   bool empty() const { return sharp_edges.empty(); }
 };
 

@@ -67,6 +67,9 @@ struct LloydOptions {
   /// Sites on the mesh boundary stay where they are (they carry the
   /// boundary loops into the remesh); true moves them like the others.
   bool move_boundary_sites = false;
+  /// Per site (empty: none; shorter: the rest move), nonzero: the site stays
+  /// where it is, as the pins on short creases do (crease_pins.hpp).
+  std::vector<std::uint8_t> fixed_sites;
   /// Where set, moves the sites that stay otherwise (on the boundary) along
   /// it, as a feature chain's sites slide along their chain (chain_slider.hpp):
   /// told the sites and, per site, its cell's mass and first moment, it

@@ -101,6 +101,12 @@ struct RemeshOptions {
   /// crease whose angle fades; a scan's noisy sides keep none). 0, or not
   /// below sharp_angle: off.
   double continuation_angle = 30;
+  /// Creases at sharp_angle too short or too weak at the remesh's scale to
+  /// cut along (a fillet's coarse edges, a crease that fades within a
+  /// spacing) get sites pinned at their vertices, the sites round them as
+  /// close, and edges flipped onto them (crease_pins.hpp): they add sites
+  /// beyond the count, up to twice as many on parts with many such creases.
+  bool pin_short_creases = false;
   /// Edges of the input (vertex index pairs) kept as features too, whatever
   /// their angle (a feature file's), sharp_angle 0 included.
   std::vector<std::array<Index, 2>> feature_edges = {};

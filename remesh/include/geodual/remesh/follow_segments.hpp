@@ -1,0 +1,35 @@
+#pragma once
+// Edge flips that make a remesh follow given segments (pairs of its vertices,
+// such as the pins on a short crease, crease_pins.hpp): where a segment is
+// the other diagonal of two triangles that share an edge, that edge is
+// flipped onto it, unless the new triangles would fold against the old ones
+// or have a smaller angle than both the old ones and a bound.
+//
+//   auto followed = follow_segments(remesh.mesh, segments);
+
+#include "geodual/mesh/triangle_mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+namespace geodual::remesh {
+
+struct FollowedSegments {
+  std::int64_t edges = 0;    ///< segments that are edges of the mesh afterwards
+  std::int64_t flipped = 0;  ///< of those, made so by a flip
+};
+
+struct FollowSegmentsOptions {
+  /// A flip may make an angle smaller than this (degrees) only where the
+  /// triangles it replaces had one smaller still.
+  double min_angle_degrees = 25;
+};
+
+/// Flips edges of `mesh` (oriented, manifold) onto `segments`; the vertices
+/// and their count stay, the faces keep their count and orientation.
+/// Deterministic: segments are taken in order.
+FollowedSegments follow_segments(TriangleMesh& mesh, std::span<const std::array<Index, 2>> segments,
+                                 const FollowSegmentsOptions& options = {});
+
+}  // namespace geodual::remesh
