@@ -293,8 +293,12 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }
     }
-    // Short creases: sites pinned on them, the sites round each as close as
-    // the nearest other pin.
+    // Short creases: sites pinned on them, the sites round each about as
+    // close as the nearest other pin. The spacing grows twice as fast away
+    // from them as it does from the chains' dense points: the pins are many
+    // (a fillet's coarse edges) and the slower growth would more than double
+    // the count on such parts, for a few degrees of the smallest angle
+    // (docs/benchmarks.md).
     std::vector<SurfacePoint> pins;
     if (options.remesh.pin_short_creases && !result.features.short_creases.empty()) {
       const double spacing = remesh::uniform_spacing(manifold, sites);
@@ -310,7 +314,8 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         for (SurfacePoint& pin : crease_pins.sites) pin.element = copy[pin.element];
       }
       if (!crease_pins.sites.empty()) {
-        std::vector<double> pin_density = remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing});
+        std::vector<double> pin_density =
+            remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing, .gradation = 0.3});
         if (chain_density.empty()) {
           chain_density = std::move(pin_density);
           chain_spacing = spacing;

@@ -29,6 +29,7 @@ struct RemeshResult {
   std::int64_t sites = 0;
   std::int64_t sites_added_for_topology = 0;
   std::int64_t sites_added_near_features = 0;
+  std::int64_t crease_pins = 0;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
   py::object error_bound_met;
@@ -67,7 +68,7 @@ std::vector<std::array<Index, 2>> edges_from_object(const py::object& object) {
 
 RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
                     const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
-                    const py::object& colors, double sharp_angle, double continuation_angle,
+                    const py::object& colors, double sharp_angle, double continuation_angle, bool pin_creases,
                     const py::object& feature_edges, const py::object& progress, bool statistics,
                     const py::object& max_error, const py::object& max_sites) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
@@ -110,6 +111,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   options.sampling.seed = static_cast<std::uint64_t>(seed);
   options.remesh.sharp_angle = sharp_angle;
   options.remesh.continuation_angle = continuation_angle;
+  options.remesh.pin_short_creases = pin_creases;
   if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
   if (!max_error.is_none()) {
@@ -143,6 +145,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.sites = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
   result.sites_added_for_topology = run.sites_added_for_topology;
   result.sites_added_near_features = run.sites_added_near_features;
+  result.crease_pins = run.crease_pins;
   result.sites_added = run.remesh.sites_added;
   result.sites_left_out = run.remesh.sites_left_out;
   result.error_bound_met = py::none();
@@ -181,6 +184,8 @@ void add_remesh(py::module_& module) {
       .def_readonly("sites_added_near_features", &RemeshResult::sites_added_near_features,
                     "sites added beside the stretches of a sharp chain whose sites are closer than the spacing "
                     "(included in `sites`)")
+      .def_readonly("crease_pins", &RemeshResult::crease_pins,
+                    "with pin_creases: the sites pinned on short creases (included in `sites`)")
       .def_readonly("sites_added", &RemeshResult::sites_added,
                     "sites the repair added where the dual was not a valid remesh")
       .def_readonly("sites_left_out", &RemeshResult::sites_left_out,
@@ -202,8 +207,9 @@ void add_remesh(py::module_& module) {
              py::arg("seed") = 1, py::arg("colors") = py::none(),
              py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
              py::arg("continuation_angle") = remesh::RemeshOptions{}.continuation_angle,
-             py::arg("feature_edges") = py::none(), py::arg("progress") = py::none(), py::arg("statistics") = true,
-             py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
+             py::arg("pin_creases") = remesh::RemeshOptions{}.pin_short_creases, py::arg("feature_edges") = py::none(),
+             py::arg("progress") = py::none(), py::arg("statistics") = true, py::arg("max_error") = py::none(),
+             py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
@@ -232,6 +238,10 @@ continuation_angle: continue those creases through edges where the normals
 turn by at least this many degrees and both sides are smooth at the remesh's
 scale (a machined crease whose angle fades; 0, or not below sharp_angle: off;
 30 by default).
+pin_creases: also follow the creases at sharp_angle too short to cut along (a
+fillet's coarse edges, a crease that fades within a spacing): sites pinned on
+their vertices, the sites round them about as close (more sites than asked,
+result.sites_added_near_features), edges flipped onto them (False by default).
 feature_edges: None or a k x 2 integer array of vertex pairs, edges of F kept
 as features too whatever their angle (sharp_angle 0: only these); a pair that
 is no edge of F raises geodual.UsageError.

@@ -67,9 +67,10 @@ std::vector<double> nearest_distances(const std::vector<Eigen::Vector3d>& points
 }  // namespace
 
 CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, const CreasePinOptions& options) {
-  if (!(options.spacing > 0) || !(options.max_chord_error > 0)) {
+  if (!(options.spacing > 0) || !(options.max_chord_error > 0) || !(options.neighbour_spacing >= 1)) {
     throw UsageError("crease pins: spacing " + std::to_string(options.spacing) + " and chord error " +
-                     std::to_string(options.max_chord_error) + " must be > 0");
+                     std::to_string(options.max_chord_error) + " must be > 0, neighbour spacing " +
+                     std::to_string(options.neighbour_spacing) + " >= 1");
   }
   const auto num_vertices = static_cast<std::size_t>(surface.num_vertices());
   // The chains and the boundary hold their vertices already: no pin there.
@@ -109,7 +110,8 @@ CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, 
   }
   const std::vector<double> nearest = nearest_distances(placed, options.spacing);
   for (std::size_t i = 0; i < placed.size(); ++i) {
-    result.spacing.push_back({placed[i], std::max(nearest[i], options.max_chord_error)});
+    result.spacing.push_back({placed[i], std::min(options.spacing, options.neighbour_spacing *
+                                                                       std::max(nearest[i], options.max_chord_error))});
   }
   return result;
 }

@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -193,6 +194,46 @@ TEST(FeaturePipeline, TheCircularCreasesOfTurnedPartsAreKeptAtThreeThousandSites
     EXPECT_GT(shape.q_min, 0.5);
     EXPECT_GT(shape.q_avg, 0.92);
   }
+}
+
+TEST(FeaturePipeline, PinnedShortCreasesAreFollowedByEdgesAndTheirPinsStay) {
+  // rocker_arm's 50 sharp edges are creases of one to nine edges fading into
+  // fillets: at 2,000 sites no chain keeps them, and the remesh cuts across
+  // them unless they are pinned.
+  const io::LoadedMesh loaded = io::read_mesh("tests/data/rocker_arm.ply");
+  pipeline::RemeshPipelineOptions pinned;
+  pinned.remesh.pin_short_creases = true;
+  const pipeline::RemeshPipelineResult without = remesh_without_statistics(loaded, 2000);
+  const pipeline::RemeshPipelineResult with = remesh_without_statistics(loaded, 2000, pinned);
+  EXPECT_EQ(without.crease_pins, 0);
+  ASSERT_GT(with.crease_pins, 20);
+  EXPECT_GE(with.crease_segments.edges, with.crease_pins / 2);
+  const double recall_without = quality::feature_recall(loaded.mesh, without.remesh.mesh).recall_pct;
+  const double recall_with = quality::feature_recall(loaded.mesh, with.remesh.mesh).recall_pct;
+  EXPECT_LT(recall_without, 30.0);
+  EXPECT_GE(recall_with, 95.0);
+  // Every pin is a vertex of the remesh, where it was put.
+  std::set<std::array<double, 3>> vertices;
+  for (Index v = 0; v < with.remesh.mesh.num_vertices(); ++v) {
+    vertices.insert(
+        {with.remesh.mesh.vertices(v, 0), with.remesh.mesh.vertices(v, 1), with.remesh.mesh.vertices(v, 2)});
+  }
+  const TriangleMesh& surface = with.features.empty() ? with.surface.mesh : with.feature_cut.mesh;
+  int found = 0;
+  for (const SurfacePoint& site : with.initial_sites) {
+    if (site.kind != SurfacePoint::Kind::vertex) continue;  // the pins are at vertices, the sampled sites in faces
+    const Eigen::Vector3d x = site.position(surface);
+    found += vertices.count({x.x(), x.y(), x.z()}) > 0;
+  }
+  EXPECT_GE(found, with.crease_pins);
+  // One piece of the input's genus, well shaped, with at most 35 % more vertices.
+  const MeshTopology topology = build_mesh_topology(with.remesh.mesh);
+  ASSERT_EQ(topology.num_components(), 1);
+  EXPECT_EQ(topology.components[0].euler_characteristic(), 0);
+  EXPECT_LE(with.remesh.mesh.num_vertices(), 2700);
+  const quality::TriangleQuality shape = quality::triangle_quality(with.remesh.mesh);
+  EXPECT_GT(shape.q_min, 0.3);
+  EXPECT_GT(shape.q_avg, 0.88);
 }
 
 TEST(FeaturePipeline, ChainSitesCloserThanTheSpacingComeOnlyWhereTheCountAndTheFacesAllowThem) {

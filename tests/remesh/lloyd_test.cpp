@@ -255,6 +255,32 @@ TEST(Lloyd, VertexSitesMoveToo) {
   }
 }
 
+TEST(Lloyd, FixedSitesStayWhereTheyAreAndTheOthersMove) {
+  const TriangleMesh sphere = test::icosphere(4);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 120);
+  for (const int warm_start : {0, 5}) {
+    SCOPED_TRACE(warm_start);
+    remesh::LloydOptions options;
+    options.iterations = 3;
+    options.geodesic_tolerance = 0;
+    options.warm_start_iterations = warm_start;
+    options.fixed_sites.assign(sites.size(), 0);
+    for (std::size_t i = 0; i < sites.size(); i += 7) options.fixed_sites[i] = 1;
+    const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
+    EXPECT_GE(relaxed.iterations + relaxed.warm_start_iterations, 1);
+    int moved = 0;
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      const bool same = relaxed.sites[i].position(sphere) == sites[i].position(sphere);
+      if (options.fixed_sites[i]) {
+        EXPECT_TRUE(same) << "fixed site " << i << " moved";
+      } else {
+        moved += !same;
+      }
+    }
+    EXPECT_GT(moved, static_cast<int>(sites.size()) / 2);
+  }
+}
+
 TEST(Lloyd, TheWarmStartCanBeCancelled) {
   // The progress callback of the geodesics is asked between warm-start
   // steps too (with 0), before any diagram: cancelled there, the warm start
