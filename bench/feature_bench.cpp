@@ -3,7 +3,8 @@
 // feature recall (issue 16).
 //
 //   build/bench/feature_bench [--vertices 3000,10000] [--sharp-angle DEG] [--feature-tolerance PCT]
-//                             [--geodual-sharp-angle DEG] [--cgal-iterations N] [--tolerance PCT] [--max-runs R]
+//                             [--geodual-sharp-angle DEG] [--geodual-pin-creases] [--cgal-iterations N]
+//                             [--tolerance PCT] [--max-runs R]
 //                             [--samples S]
 //                             [--time-limit S] MESH...
 //
@@ -17,7 +18,8 @@
 //   geodual  geodual::pipeline::run_remesh_pipeline with its default options
 //            (what `geodual remesh --sites n` does) at n sites;
 //            --geodual-sharp-angle DEG sets RemeshOptions::sharp_angle (the
-//            remesher's own features) instead of its default.
+//            remesher's own features) instead of its default;
+//            --geodual-pin-creases sets RemeshOptions::pin_short_creases.
 //   CGAL protected
 //            CGAL::Polygon_mesh_processing on a Surface_mesh of the input:
 //            detect_sharp_edges at --sharp-angle (default 60 degrees) into an
@@ -82,6 +84,7 @@ struct Options {
   double sharp_angle_deg = 60.0;
   double feature_tolerance_pct = quality::QualityOptions{}.feature_tolerance_pct;
   std::optional<double> geodual_sharp_angle;  ///< RemeshOptions::sharp_angle; empty: its default
+  bool geodual_pin_creases = false;           ///< RemeshOptions::pin_short_creases
   ComparisonOptions comparison;               ///< CGAL's iterations (3) and search, the statistics, the time limit
   std::vector<std::filesystem::path> meshes;
 };
@@ -121,6 +124,7 @@ RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, const Opt
   pipeline::RemeshPipelineOptions pipeline_options;
   pipeline_options.sites = sites;
   if (options.geodual_sharp_angle) pipeline_options.remesh.sharp_angle = *options.geodual_sharp_angle;
+  pipeline_options.remesh.pin_short_creases = options.geodual_pin_creases;
   pipeline_options.statistics = false;  // measured below, the same way for both rows
   RunResult run;
   reset_peak_rss();
@@ -229,7 +233,8 @@ int run_benchmark(const Options& options) {
   std::cout << "options: geodual remesh defaults"
             << (options.geodual_sharp_angle ? " but sharp_angle " + fixed(*options.geodual_sharp_angle, 1)
                                             : std::string())
-            << "; CGAL detect_sharp_edges " << options.sharp_angle_deg << " deg, split_long_edges, isotropic_remeshing "
+            << (options.geodual_pin_creases ? ", short creases pinned" : "") << "; CGAL detect_sharp_edges "
+            << options.sharp_angle_deg << " deg, split_long_edges, isotropic_remeshing "
             << options.comparison.cgal.iterations
             << " iterations with the sharp edges constrained (protected or collapsible), vertex count within "
             << options.comparison.tolerance_pct << " % of geodual's; recall within " << options.feature_tolerance_pct
@@ -295,7 +300,7 @@ int run_benchmark(const Options& options) {
 
 constexpr const char* usage =
     "usage: feature_bench [--vertices 3000,10000] [--sharp-angle DEG] [--feature-tolerance PCT]\n"
-    "                     [--geodual-sharp-angle DEG]\n"
+    "                     [--geodual-sharp-angle DEG] [--geodual-pin-creases]\n"
     "                     [--cgal-iterations N] [--tolerance PCT] [--max-runs R] [--samples S]\n"
     "                     [--time-limit S] MESH...\n";
 
@@ -317,6 +322,8 @@ Options parse_options(int argc, char** argv) {
       if (!(*options.geodual_sharp_angle >= 0 && *options.geodual_sharp_angle <= 180)) {
         throw UsageError("--geodual-sharp-angle must be in [0, 180]");
       }
+    } else if (word == "--geodual-pin-creases") {
+      options.geodual_pin_creases = true;
     } else {
       return parse_comparison_option(word, value, options.comparison);
     }

@@ -563,6 +563,27 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   EXPECT_LT(off["feature_recall_pct"].get<double>(), 50.0);
 }
 
+TEST(RemeshCommand, PinCreasesFollowsTheCreasesTooShortToCutAlong) {
+  ScratchFolder folder;
+  const auto out = folder.path() / "rocker_arm.obj";
+  const auto remesh = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"remesh",    "tests/data/rocker_arm.ply", "--sites", "1500", "--json", "-o",
+                                     out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun run = run_cli(args);
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    return nlohmann::json::parse(run.out);
+  };
+  const nlohmann::json by_default = remesh({});
+  EXPECT_EQ(by_default["crease_pins"].get<double>(), 0);
+  const nlohmann::json pinned = remesh({"--pin-creases"});
+  EXPECT_GT(pinned["crease_pins"].get<double>(), 20);
+  EXPECT_GT(pinned["crease_segments_followed"].get<double>(), pinned["crease_pins"].get<double>() / 2);
+  EXPECT_GT(pinned["feature_recall_pct"].get<double>(), 90.0);
+  EXPECT_LT(by_default["feature_recall_pct"].get<double>(), 30.0);
+  EXPECT_GT(pinned["q_min"].get<double>(), 0.3);
+}
+
 }  // namespace
 }  // namespace geodual::cli_test
 
