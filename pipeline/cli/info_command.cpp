@@ -95,6 +95,12 @@ class InfoCommand final : public Command {
     if (interrupted()) throw Cancelled("info cancelled");
   }
 
+  static double short_crease_length(const remesh::FeatureSet& features) {
+    double length = 0;
+    for (const remesh::FeatureChain& crease : features.short_creases) length += crease.length;
+    return length;
+  }
+
   void print_json(const io::ReadInfo& info, const std::vector<std::string>& attributes, const MeshReport& report,
                   const remesh::FeatureSet& features, double read_seconds, double analysis_seconds) const {
     nlohmann::ordered_json json;
@@ -108,6 +114,8 @@ class InfoCommand final : public Command {
     json["feature_chains"] = features.sharp_chains;
     json["feature_corners"] = features.corners.size();
     json["feature_length"] = features.sharp_length;
+    json["short_creases"] = features.short_creases.size();
+    json["short_crease_length"] = short_crease_length(features);
     // Paths and notes need not be UTF-8: replace what is not rather than fail.
     std::cout << json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << '\n';
   }
@@ -147,6 +155,10 @@ class InfoCommand final : public Command {
                                       " corners, length " + significant(features.sharp_length) + " (" +
                                       significant(sharp_angle_, 3) + " deg at the scale of " + with_thousands(sites_) +
                                       " sites)");
+      table.add("short creases", with_thousands(static_cast<std::int64_t>(features.short_creases.size())) +
+                                     ", length " + significant(short_crease_length(features)) +
+                                     " (sharp edges too short or weak at that scale to cut along: remesh "
+                                     "--pin-creases follows them)");
     }
     table.add("bounding box", point(report.bbox_min) + " to " + point(report.bbox_max));
     table.add("bbox diagonal", significant(report.bbox_diagonal));

@@ -88,6 +88,7 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
   EXPECT_EQ(json["feature_chains"], 12);
   EXPECT_EQ(json["feature_corners"], 8);
   EXPECT_NEAR(json["feature_length"].get<double>(), 12.0, 1e-12);
+  EXPECT_EQ(json["short_creases"], 0);  // every sharp edge is on a chain
   // Creases turning by 90 degrees are not sharp at 91.
   run = run_cli({"info", path.string(), "--json", "--sharp-angle", "91"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
@@ -97,6 +98,17 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
   run = run_cli({"info", path.string()});  // off by default: it takes several times the analysis
   EXPECT_EQ(run.out.find("sharp features"), std::string::npos) << run.out;
   EXPECT_EQ(run_cli({"info", path.string(), "--sharp-angle", "nan"}).exit_status, 2);
+}
+
+TEST(InfoCommand, ReportsTheShortCreasesThatNoChainKeeps) {
+  // rocker_arm's 50 sharp edges (0.35 long in all) are creases of one to
+  // nine edges fading into fillets: at 3,000 sites none is a chain.
+  const CliRun run = run_cli({"info", "tests/data/rocker_arm.ply", "--json", "--sharp-angle", "60", "--sites", "3000"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["feature_chains"], 0);
+  EXPECT_GE(json["short_creases"].get<int>(), 20);
+  EXPECT_NEAR(json["short_crease_length"].get<double>(), 0.35, 0.02);
 }
 
 TEST(InfoCommand, TableShowsTheFigures) {
