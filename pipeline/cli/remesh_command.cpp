@@ -474,6 +474,9 @@ class RemeshCommand final : public Command {
     if (run.sites_added_for_topology > 0) {
       streams.err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
+    if (!run.crease_pins_reason.empty()) {
+      streams.err << "geodual remesh: note: " << mesh_path << ": " << run.crease_pins_reason << "\n";
+    }
     if (result.sites_added > 0 || result.sites_left_out > 0) {
       const std::string problems = remesh::problems_line(result.repair_problems);
       streams.err << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
@@ -523,6 +526,8 @@ class RemeshCommand final : public Command {
     figures["sites_added_near_features"] = run.sites_added_near_features;
     figures["crease_pins"] = run.crease_pins;
     figures["crease_segments_followed"] = run.crease_segments.edges;
+    figures["crease_pins_reason"] = run.crease_pins_reason.empty() ? nlohmann::ordered_json(nullptr)
+                                                                   : nlohmann::ordered_json(run.crease_pins_reason);
     figures["features_dropped_reason"] = run.features_dropped_reason.empty()
                                              ? nlohmann::ordered_json(nullptr)
                                              : nlohmann::ordered_json(run.features_dropped_reason);

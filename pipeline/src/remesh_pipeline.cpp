@@ -313,18 +313,30 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         }
         for (SurfacePoint& pin : crease_pins.sites) pin.element = copy[pin.element];
       }
+      // The pins and the sites round them at most half the count: where they
+      // would ask for more (a scan's noisy edges), none. Flooring their
+      // spacing to fit made slivers between pins closer than the floor.
+      constexpr double kMaxShareNearPins = 0.5;
+      bool fits = false;
       if (!crease_pins.sites.empty()) {
-        std::vector<double> pin_density =
+        std::vector<double> density =
             remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing, .gradation = 0.3});
-        if (chain_density.empty()) {
-          chain_density = std::move(pin_density);
+        for (std::size_t v = 0; v < chain_density.size(); ++v) density[v] = std::max(density[v], chain_density[v]);
+        const std::int64_t near = remesh::sites_for_density(working, sites, {}, density) - sites;
+        fits = static_cast<double>(near - sites_near_features) + static_cast<double>(crease_pins.sites.size()) <=
+               kMaxShareNearPins * static_cast<double>(sites);
+        if (fits) {
+          chain_density = std::move(density);
           chain_spacing = spacing;
-        } else {
-          for (std::size_t v = 0; v < chain_density.size(); ++v) {
-            chain_density[v] = std::max(chain_density[v], pin_density[v]);
-          }
+          sites_near_features = near;
         }
-        sites_near_features = remesh::sites_for_density(working, sites, {}, chain_density) - sites;
+      }
+      if (!fits && !crease_pins.sites.empty()) {
+        result.crease_pins_reason = "the " + std::to_string(crease_pins.sites.size()) +
+                                    " sites pinned on the short creases and those round them would be more than half "
+                                    "the " +
+                                    std::to_string(sites) + " sites: not pinned";
+        crease_pins = {};
       }
       pins = std::move(crease_pins.sites);
       pin_segments = std::move(crease_pins.segments);

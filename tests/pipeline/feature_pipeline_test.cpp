@@ -206,6 +206,7 @@ TEST(FeaturePipeline, PinnedShortCreasesAreFollowedByEdgesAndTheirPinsStay) {
   const pipeline::RemeshPipelineResult without = remesh_without_statistics(loaded, 2000);
   const pipeline::RemeshPipelineResult with = remesh_without_statistics(loaded, 2000, pinned);
   EXPECT_EQ(without.crease_pins, 0);
+  EXPECT_TRUE(with.crease_pins_reason.empty()) << with.crease_pins_reason;
   ASSERT_GT(with.crease_pins, 20);
   EXPECT_GE(with.crease_segments.edges, with.crease_pins / 2);
   const double recall_without = quality::feature_recall(loaded.mesh, without.remesh.mesh).recall_pct;
@@ -234,6 +235,19 @@ TEST(FeaturePipeline, PinnedShortCreasesAreFollowedByEdgesAndTheirPinsStay) {
   const quality::TriangleQuality shape = quality::triangle_quality(with.remesh.mesh);
   EXPECT_GT(shape.q_min, 0.3);
   EXPECT_GT(shape.q_avg, 0.88);
+}
+
+TEST(FeaturePipeline, ShortCreasesThatWouldAskForMoreThanHalfTheSitesAreNotPinned) {
+  // horse's 60-degree edges are a scan's noise, hundreds of them: pinned,
+  // they and the sites round them would be most of 2,000 sites.
+  pipeline::RemeshPipelineOptions pinned;
+  pinned.remesh.pin_short_creases = true;
+  const pipeline::RemeshPipelineResult result =
+      remesh_without_statistics(io::read_mesh("tests/data/horse.ply"), 2000, pinned);
+  EXPECT_EQ(result.crease_pins, 0);
+  EXPECT_NE(result.crease_pins_reason.find("more than half the 2000 sites"), std::string::npos)
+      << result.crease_pins_reason;
+  EXPECT_EQ(result.remesh.mesh.num_vertices(), 2000);
 }
 
 TEST(FeaturePipeline, ChainSitesCloserThanTheSpacingComeOnlyWhereTheCountAndTheFacesAllowThem) {

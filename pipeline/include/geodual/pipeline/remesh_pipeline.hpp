@@ -139,6 +139,8 @@ struct RemeshPipelineResult {
   /// the site count, and the remesh's edges along them (crease_pins.hpp).
   std::int64_t crease_pins = 0;
   remesh::FollowedSegments crease_segments;
+  /// Why the short creases were not pinned, where they were asked for (empty otherwise).
+  std::string crease_pins_reason;
   /// Of initial_sites, the second (third...) copies of a feature point, one
   /// per further side of its chain: initial_sites.size() - site_twins points.
   std::int64_t site_twins = 0;
