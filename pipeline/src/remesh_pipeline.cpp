@@ -591,8 +591,9 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
   std::int64_t max_sites = options.max_sites;
   // Where a remesh kept no features, the next starts from its sites, so that
   // a narrow detail it has a site on keeps it; after one that kept them
-  // (sites on the features' cut, which the fallback may drop) the next
-  // samples afresh.
+  // (sites on the features' cut, which the fallback may drop) or pinned
+  // short creases (pins that the next count spaces anew) the next samples
+  // afresh.
   std::optional<SiteRefinement> refinement;
   for (;;) {
     if (options.on_error_round) options.on_error_round(static_cast<int>(rounds.size()) + 1, round.sites);
@@ -605,7 +606,7 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
     const bool met = error_pct <= options.max_error_pct;
     const bool last = met || static_cast<int>(rounds.size()) == options.max_error_rounds || sites >= max_sites;
     std::vector<double> deviation = std::move(result.statistics->deviation_at_vertices);
-    const bool reuse_sites = result.features.empty();
+    const bool reuse_sites = result.features.empty() && result.crease_pins == 0;
     std::vector<SurfacePoint> last_sites;
     if (reuse_sites) last_sites = result.remesh.sites;
     // The next round fills in a fresh result, which takes the input over.
