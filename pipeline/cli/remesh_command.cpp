@@ -525,6 +525,7 @@ class RemeshCommand final : public Command {
     figures["feature_sites"] = run.feature_sites;
     figures["sites_added_near_features"] = run.sites_added_near_features;
     figures["crease_pins"] = run.crease_pins;
+    figures["crease_segments"] = run.crease_segments.segments;
     figures["crease_segments_followed"] = run.crease_segments.edges;
     figures["crease_pins_reason"] = run.crease_pins_reason.empty() ? nlohmann::ordered_json(nullptr)
                                                                    : nlohmann::ordered_json(run.crease_pins_reason);
@@ -647,8 +648,8 @@ class RemeshCommand final : public Command {
     }
     if (run.crease_pins > 0) {
       table.add("short creases", with_thousands(run.crease_pins) + " sites pinned on them, " +
-                                     with_thousands(run.crease_segments.edges) +
-                                     " of their segments followed by edges (" +
+                                     with_thousands(run.crease_segments.edges) + " of their " +
+                                     with_thousands(run.crease_segments.segments) + " segments followed by edges (" +
                                      with_thousands(run.crease_segments.flipped) + " flipped onto them)");
     }
     if (!relaxation.energy.empty()) {

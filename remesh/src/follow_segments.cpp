@@ -40,6 +40,7 @@ FollowedSegments follow_segments(TriangleMesh& mesh, std::span<const std::array<
                                  const FollowSegmentsOptions& options) {
   const double min_new_angle = options.min_angle_degrees * std::numbers::pi / 180;
   FollowedSegments result;
+  result.segments = static_cast<std::int64_t>(segments.size());
   std::vector<std::vector<Index>> faces_at(static_cast<std::size_t>(mesh.num_vertices()));
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     for (int k = 0; k < 3; ++k) faces_at[mesh.faces(f, k)].push_back(f);

@@ -33,6 +33,7 @@ TEST(FollowSegments, FlipsTheSharedEdgeOntoTheOtherDiagonal) {
   TriangleMesh mesh = two_triangles({1, 1, 0});
   const std::array<Index, 2> segment{0, 3};
   const remesh::FollowedSegments followed = remesh::follow_segments(mesh, std::span(&segment, 1));
+  EXPECT_EQ(followed.segments, 1);
   EXPECT_EQ(followed.edges, 1);
   EXPECT_EQ(followed.flipped, 1);
   EXPECT_TRUE(has_edge(mesh, 0, 3));

@@ -16,8 +16,9 @@
 namespace geodual::remesh {
 
 struct FollowedSegments {
-  std::int64_t edges = 0;    ///< segments that are edges of the mesh afterwards
-  std::int64_t flipped = 0;  ///< of those, made so by a flip
+  std::int64_t segments = 0;  ///< segments given
+  std::int64_t edges = 0;     ///< of those, edges of the mesh afterwards
+  std::int64_t flipped = 0;   ///< of those, made so by a flip
 };
 
 struct FollowSegmentsOptions {
