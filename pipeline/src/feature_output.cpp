@@ -9,6 +9,13 @@ ColorMatrix feature_colors(const RemeshPipelineResult& result) {
   const TriangleMesh& remeshed = result.remesh.mesh;
   ColorMatrix colors(remeshed.vertices.rows(), 3);
   colors.rowwise() = Eigen::RowVector3f(0.8f, 0.8f, 0.8f);
+  const Eigen::RowVector3f red(0.85f, 0.1f, 0.05f);
+  const auto vertex_of = [&](std::size_t site) {
+    return result.remesh.vertex_of_site.empty() ? static_cast<Index>(site) : result.remesh.vertex_of_site[site];
+  };
+  for (const Index vertex : crease_pin_vertices(result)) {  // on the short creases
+    if (vertex >= 0) colors.row(vertex) = red;
+  }
   if (result.features.empty()) return colors;
   // The chains' vertices and edges, on the surface the features were found on.
   std::vector<char> on_chain(static_cast<std::size_t>(result.surface.mesh.num_vertices()), 0);
@@ -40,8 +47,8 @@ ColorMatrix feature_colors(const RemeshPipelineResult& result) {
                                 std::array<Index, 2>{std::min(a, b), std::max(a, b)});
       }
     }
-    const Index vertex = result.remesh.vertex_of_site.empty() ? static_cast<Index>(s) : result.remesh.vertex_of_site[s];
-    if (on && vertex >= 0) colors.row(vertex) = Eigen::RowVector3f(0.85f, 0.1f, 0.05f);
+    const Index vertex = vertex_of(s);
+    if (on && vertex >= 0) colors.row(vertex) = red;
   }
   return colors;
 }
@@ -51,6 +58,12 @@ std::vector<std::vector<Eigen::Vector3d>> feature_polylines(const RemeshPipeline
   for (const remesh::FeatureChain& chain : result.features.chains) {
     std::vector<Eigen::Vector3d>& line = lines.emplace_back();
     for (const Index v : chain.vertices) line.push_back(result.surface.mesh.vertices.row(v).transpose());
+  }
+  if (result.crease_pins > 0) {
+    for (const remesh::FeatureChain& crease : result.features.short_creases) {
+      std::vector<Eigen::Vector3d>& line = lines.emplace_back();
+      for (const Index v : crease.vertices) line.push_back(result.surface.mesh.vertices.row(v).transpose());
+    }
   }
   return lines;
 }

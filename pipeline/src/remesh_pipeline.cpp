@@ -368,6 +368,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     }
     pin_count = pins.size();
     result.crease_pins = static_cast<std::int64_t>(pin_count);
+    result.first_crease_pin = static_cast<std::int64_t>(pin_begin);
     result.sites_added_for_topology = sampled.sites_added_for_topology;
     result.sites_added_reason = sampled.topology_reason;
     if (sampled.sites_added_for_topology > 0) {
@@ -477,13 +478,10 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   geodesic_surface.reset();
   if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
     // Onto the short creases: the pins' vertices joined by edges where one flip does it.
+    const std::vector<Index> pin_vertex = crease_pin_vertices(result);
     std::vector<std::array<Index, 2>> segments;
     for (const auto& [a, b] : pin_segments) {
-      const auto vertex = [&](std::size_t pin) {
-        const std::size_t site = pin_begin + pin;
-        return result.remesh.vertex_of_site.empty() ? static_cast<Index>(site) : result.remesh.vertex_of_site[site];
-      };
-      segments.push_back({vertex(a), vertex(b)});
+      if (pin_vertex[a] >= 0 && pin_vertex[b] >= 0) segments.push_back({pin_vertex[a], pin_vertex[b]});
     }
     result.crease_segments = remesh::follow_segments(result.remesh.mesh, segments);
   }
@@ -512,6 +510,31 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 }
 
 }  // namespace
+
+std::vector<Index> crease_pin_vertices(const RemeshPipelineResult& result) {
+  // The repair may leave sites out (RepairedDual::sites): the pins, at
+  // vertices, are found by their vertex.
+  std::vector<Index> pin_of_vertex;
+  for (std::int64_t pin = 0; pin < result.crease_pins; ++pin) {
+    const SurfacePoint& site = result.initial_sites[static_cast<std::size_t>(result.first_crease_pin + pin)];
+    if (pin_of_vertex.size() <= static_cast<std::size_t>(site.element)) {
+      pin_of_vertex.resize(static_cast<std::size_t>(site.element) + 1, -1);
+    }
+    pin_of_vertex[static_cast<std::size_t>(site.element)] = static_cast<Index>(pin);
+  }
+  std::vector<Index> vertex(static_cast<std::size_t>(result.crease_pins), -1);
+  for (std::size_t s = 0; s < result.remesh.sites.size(); ++s) {
+    const SurfacePoint& site = result.remesh.sites[s];
+    if (site.kind != SurfacePoint::Kind::vertex || static_cast<std::size_t>(site.element) >= pin_of_vertex.size()) {
+      continue;
+    }
+    const Index pin = pin_of_vertex[static_cast<std::size_t>(site.element)];
+    if (pin < 0) continue;
+    vertex[static_cast<std::size_t>(pin)] =
+        result.remesh.vertex_of_site.empty() ? static_cast<Index>(s) : result.remesh.vertex_of_site[s];
+  }
+  return vertex;
+}
 
 std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& result) {
   const remesh::RepairedDual& remeshed = result.remesh;

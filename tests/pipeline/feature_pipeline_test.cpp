@@ -227,6 +227,15 @@ TEST(FeaturePipeline, PinnedShortCreasesAreFollowedByEdgesAndTheirPinsStay) {
     found += vertices.count({x.x(), x.y(), x.z()}) > 0;
   }
   EXPECT_GE(found, with.crease_pins);
+  // --color features marks them red, one vertex each.
+  const std::vector<Index> pin_vertices = pipeline::crease_pin_vertices(with);
+  ASSERT_EQ(pin_vertices.size(), static_cast<std::size_t>(with.crease_pins));
+  const ColorMatrix colors = pipeline::feature_colors(with);
+  std::set<Index> red;
+  for (Index v = 0; v < colors.rows(); ++v) {
+    if (colors(v, 0) > 0.8f && colors(v, 1) < 0.2f) red.insert(v);
+  }
+  EXPECT_EQ(red, std::set<Index>(pin_vertices.begin(), pin_vertices.end()));
   // One piece of the input's genus, well shaped, with at most 35 % more vertices.
   const MeshTopology topology = build_mesh_topology(with.remesh.mesh);
   ASSERT_EQ(topology.num_components(), 1);

@@ -12,12 +12,13 @@
 namespace geodual::pipeline {
 
 /// Per vertex of result.remesh.mesh: red where it lies on a feature chain
-/// the remesh kept (result.features), light grey elsewhere (everywhere when
-/// none were kept); sRGB-encoded as VertexAttributes::colors.
+/// the remesh kept (result.features) or is a pin on a short crease
+/// (crease_pin_vertices), light grey elsewhere (everywhere when there are
+/// none); sRGB-encoded as VertexAttributes::colors.
 ColorMatrix feature_colors(const RemeshPipelineResult& result);
 
-/// The chains the remesh kept, each a polyline of positions on the input
-/// surface (for a preview's lines).
+/// The chains the remesh kept, then the short creases it pinned, each a
+/// polyline of positions on the input surface (for a preview's lines).
 std::vector<std::vector<Eigen::Vector3d>> feature_polylines(const RemeshPipelineResult& result);
 
 }  // namespace geodual::pipeline

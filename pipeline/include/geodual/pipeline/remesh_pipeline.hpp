@@ -138,6 +138,7 @@ struct RemeshPipelineResult {
   /// Sites pinned on the short creases (FeatureSet::short_creases), within
   /// the site count, and the remesh's edges along them (crease_pins.hpp).
   std::int64_t crease_pins = 0;
+  std::int64_t first_crease_pin = 0;  ///< the pins are initial_sites[first_crease_pin, + crease_pins)
   remesh::FollowedSegments crease_segments;
   /// Why the short creases were not pinned, where they were asked for (empty otherwise).
   std::string crease_pins_reason;
@@ -174,6 +175,10 @@ struct RemeshPipelineResult {
 /// Each vertex of `result.remesh.mesh` as a point of the input mesh (the cuts
 /// keep the input's faces and their corner order, and split vertices into copies).
 std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& result);
+
+/// Per pin on the short creases (RemeshPipelineResult::crease_pins), its
+/// vertex of result.remesh.mesh (-1: the repair left it out).
+std::vector<Index> crease_pin_vertices(const RemeshPipelineResult& result);
 
 /// Runs every stage on a file.
 RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, const RemeshPipelineOptions& options = {});
