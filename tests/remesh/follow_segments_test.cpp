@@ -69,5 +69,27 @@ TEST(FollowSegments, NoFlipThatWouldFoldOrMakeAThinnerTriangle) {
   EXPECT_EQ(remesh::follow_segments(thin, std::span(&segment, 1), {.min_angle_degrees = 0}).flipped, 1);
 }
 
+TEST(FollowSegments, ASegmentThatCrossesSeveralEdgesIsRecoveredByAsManyFlips) {
+  // A hexagon a(0), d1, d2, b(3), c2, c1 fanned so that the segment 0-3
+  // along y = 0 crosses the edges c1-d1, c1-d2 and c2-d2.
+  const std::vector<Eigen::Vector3d> vertices = {{0, 0, 0}, {1, -1, 0}, {2, -1, 0}, {3, 0, 0}, {2, 1, 0}, {1, 1, 0}};
+  const std::vector<std::array<Index, 3>> faces = {{0, 1, 5}, {5, 1, 2}, {5, 2, 4}, {4, 2, 3}};
+  const std::array<Index, 2> segment{0, 3};
+  TriangleMesh bounded = test::mesh_from_lists(vertices, faces);
+  EXPECT_EQ(remesh::follow_segments(bounded, std::span(&segment, 1), {.max_flips = 2}).edges, 0);
+  EXPECT_EQ(bounded.faces, test::mesh_from_lists(vertices, faces).faces);  // undone
+  TriangleMesh mesh = test::mesh_from_lists(vertices, faces);
+  const remesh::FollowedSegments followed =
+      remesh::follow_segments(mesh, std::span(&segment, 1), {.min_angle_degrees = 0});
+  EXPECT_EQ(followed.edges, 1);
+  EXPECT_EQ(followed.flipped, 3);
+  EXPECT_TRUE(has_edge(mesh, 0, 3));
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
+                          c = mesh.vertices.row(mesh.faces(f, 2));
+    EXPECT_GT((b - a).cross(c - a).z(), 0);
+  }
+}
+
 }  // namespace
 }  // namespace geodual

@@ -1,9 +1,9 @@
 #pragma once
 // Edge flips that make a remesh follow given segments (pairs of its vertices,
-// such as the pins on a short crease, crease_pins.hpp): where a segment is
-// the other diagonal of two triangles that share an edge, that edge is
-// flipped onto it, unless the new triangles would fold against the old ones
-// or have a smaller angle than both the old ones and a bound.
+// such as the pins on a short crease, crease_pins.hpp): the edges a segment
+// crosses are flipped one after the other until it is an edge, unless a
+// flip would fold a triangle against the ones it replaces or the new
+// triangles have a smaller angle than both the old ones and a bound.
 //
 //   auto followed = follow_segments(remesh.mesh, segments);
 
@@ -18,13 +18,15 @@ namespace geodual::remesh {
 struct FollowedSegments {
   std::int64_t segments = 0;  ///< segments given
   std::int64_t edges = 0;     ///< of those, edges of the mesh afterwards
-  std::int64_t flipped = 0;   ///< of those, made so by a flip
+  std::int64_t flipped = 0;   ///< edges flipped to make them so
 };
 
 struct FollowSegmentsOptions {
   /// A flip may make an angle smaller than this (degrees) only where the
   /// triangles it replaces had one smaller still.
   double min_angle_degrees = 25;
+  /// At most this many flips per segment.
+  int max_flips = 3;
 };
 
 /// Flips edges of `mesh` (oriented, manifold) onto `segments`; the vertices
