@@ -530,16 +530,21 @@ TEST(RemeshCommand, FeatureColoursPaintTheCreasesKept) {
   EXPECT_EQ(slurp(picture).substr(1, 3), "PNG");
 }
 
+/// `geodual remesh MESH --sites SITES --json -o OUT [extra...]`'s JSON, after checking it succeeded.
+nlohmann::json remesh_json(const std::string& mesh, const std::string& sites, const std::filesystem::path& out,
+                           const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args = {"remesh", mesh, "--sites", sites, "--json", "-o", out.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const CliRun run = run_cli(args);
+  EXPECT_EQ(run.exit_status, 0) << run.err;
+  return nlohmann::json::parse(run.out);
+}
+
 TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   ScratchFolder folder;
   const auto out = folder.path() / "fandisk.glb";
-  const auto remesh = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = {"remesh",    "tests/data/fandisk.ply", "--sites", "2000", "--json", "-o",
-                                     out.string()};
-    args.insert(args.end(), extra.begin(), extra.end());
-    const CliRun run = run_cli(args);
-    EXPECT_EQ(run.exit_status, 0) << run.err;
-    return nlohmann::json::parse(run.out);
+  const auto remesh = [&](const std::vector<std::string>& extra) {
+    return remesh_json("tests/data/fandisk.ply", "2000", out, extra);
   };
   const nlohmann::json by_default = remesh({});
   EXPECT_EQ(by_default["sharp_angle_deg"].get<double>(), 60.0);
@@ -566,13 +571,8 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
 TEST(RemeshCommand, PinCreasesFollowsTheCreasesTooShortToCutAlong) {
   ScratchFolder folder;
   const auto out = folder.path() / "rocker_arm.obj";
-  const auto remesh = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = {"remesh",    "tests/data/rocker_arm.ply", "--sites", "1500", "--json", "-o",
-                                     out.string()};
-    args.insert(args.end(), extra.begin(), extra.end());
-    const CliRun run = run_cli(args);
-    EXPECT_EQ(run.exit_status, 0) << run.err;
-    return nlohmann::json::parse(run.out);
+  const auto remesh = [&](const std::vector<std::string>& extra) {
+    return remesh_json("tests/data/rocker_arm.ply", "1500", out, extra);
   };
   const nlohmann::json by_default = remesh({});
   EXPECT_EQ(by_default["crease_pins"].get<double>(), 0);

@@ -229,6 +229,15 @@ TEST(Lloyd, OneOrTwoThreadsGiveTheSameSites) {
 namespace geodual {
 namespace {
 
+/// Three geodesic iterations, none stopped early, after `warm_start` warm-start steps.
+remesh::LloydOptions three_iterations_after(int warm_start) {
+  remesh::LloydOptions options;
+  options.iterations = 3;
+  options.geodesic_tolerance = 0;
+  options.warm_start_iterations = warm_start;
+  return options;
+}
+
 TEST(Lloyd, VertexSitesMoveToo) {
   const TriangleMesh sphere = test::icosphere(4);
   std::vector<SurfacePoint> sites;
@@ -239,10 +248,7 @@ TEST(Lloyd, VertexSitesMoveToo) {
   // By the geodesic steps, and by the warm start's.
   for (const int warm_start : {0, 5}) {
     SCOPED_TRACE(warm_start);
-    remesh::LloydOptions options;
-    options.iterations = 3;
-    options.geodesic_tolerance = 0;
-    options.warm_start_iterations = warm_start;
+    remesh::LloydOptions options = three_iterations_after(warm_start);
     const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
     EXPECT_EQ(relaxed.iterations, 3);
     EXPECT_EQ(relaxed.warm_start_iterations, warm_start);
@@ -260,10 +266,7 @@ TEST(Lloyd, FixedSitesStayWhereTheyAreAndTheOthersMove) {
   const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 120);
   for (const int warm_start : {0, 5}) {
     SCOPED_TRACE(warm_start);
-    remesh::LloydOptions options;
-    options.iterations = 3;
-    options.geodesic_tolerance = 0;
-    options.warm_start_iterations = warm_start;
+    remesh::LloydOptions options = three_iterations_after(warm_start);
     options.fixed_sites.assign(sites.size(), 0);
     for (std::size_t i = 0; i < sites.size(); i += 7) options.fixed_sites[i] = 1;
     const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
