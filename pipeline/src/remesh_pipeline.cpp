@@ -192,6 +192,58 @@ struct SiteRefinement {
   std::int64_t added = 0;
 };
 
+/// The pins on result.features.short_creases (crease_pins.hpp), on the
+/// surface the relaxation works on, and the density round them folded into
+/// `density` (per vertex of that surface; empty: 1) with the sites it asks
+/// for beyond `sites` in `sites_asked`. The spacing grows away from the pins
+/// twice as fast as from the chains' dense points: the pins are many (a
+/// fillet's coarse edges) and the slower growth would more than double the
+/// count on such parts, for a few degrees of the smallest angle
+/// (docs/algorithms.md#short-creases-pinned). The pins and the sites round
+/// them take at most half of `sites`; where they would take more (a scan's
+/// noisy edges), there are none and `reason` says why. Flooring their spacing
+/// to fit made slivers between pins closer than the floor.
+struct PinnedCreases {
+  std::vector<SurfacePoint> pins;
+  std::vector<std::array<std::size_t, 2>> segments;  ///< pairs of pins a remesh edge should join
+  std::string reason;
+};
+PinnedCreases pin_short_creases(const RemeshPipelineResult& result, std::int64_t sites, std::vector<double>& density,
+                                std::int64_t& sites_asked) {
+  const TriangleMesh& manifold = result.surface.mesh;
+  const double spacing = remesh::uniform_spacing(manifold, sites);
+  remesh::CreasePins crease_pins = remesh::crease_pins(
+      manifold, result.features, {.spacing = spacing, .max_chord_error = 5e-4 * result.input_report.bbox_diagonal});
+  const TriangleMesh& working = result.features.empty() ? manifold : result.feature_cut.mesh;
+  if (!result.features.empty()) {
+    // Onto the features' cut: its faces are the surface's, its vertices copies.
+    std::vector<Index> copy(static_cast<std::size_t>(manifold.num_vertices()), -1);
+    for (std::size_t c = result.feature_cut.original_vertex.size(); c-- > 0;) {
+      copy[result.feature_cut.original_vertex[c]] = static_cast<Index>(c);
+    }
+    for (SurfacePoint& pin : crease_pins.sites) pin.element = copy[pin.element];
+  }
+  PinnedCreases pinned;
+  if (crease_pins.sites.empty()) return pinned;
+  constexpr double kMaxShare = 0.5;
+  std::vector<double> with_pins =
+      remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing, .gradation = 0.3});
+  for (std::size_t v = 0; v < density.size(); ++v) with_pins[v] = std::max(with_pins[v], density[v]);
+  const std::int64_t asked = remesh::sites_for_density(working, sites, {}, with_pins) - sites;
+  if (static_cast<double>(asked - sites_asked) + static_cast<double>(crease_pins.sites.size()) >
+      kMaxShare * static_cast<double>(sites)) {
+    pinned.reason = "the " + std::to_string(crease_pins.sites.size()) +
+                    " sites pinned on the short creases and those round them would be more than half the " +
+                    std::to_string(sites) + " sites asked: not pinned";
+    return pinned;
+  }
+  density = std::move(with_pins);
+  sites_asked = asked;
+  pinned.pins = std::move(crease_pins.sites);
+  pinned.segments = std::move(crease_pins.segments);
+  return pinned;
+}
+
 /// The stages after `load` on result.input, filling in `result`; Lloyd's
 /// density is multiplied by `input_density` (per input vertex; empty: 1).
 /// With `refinement` the sites are its, not sampled; otherwise, with sharp
@@ -293,54 +345,15 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
         result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
       }
     }
-    // Short creases: sites pinned on them, the sites round each about as
-    // close as the nearest other pin. The spacing grows twice as fast away
-    // from them as it does from the chains' dense points: the pins are many
-    // (a fillet's coarse edges) and the slower growth would more than double
-    // the count on such parts, for a few degrees of the smallest angle
-    // (docs/benchmarks.md).
-    std::vector<SurfacePoint> pins;
+    // Short creases: sites pinned on them, the sites round them as close.
+    PinnedCreases pinned_creases;
     if (options.remesh.pin_short_creases && !result.features.short_creases.empty()) {
-      const double spacing = remesh::uniform_spacing(manifold, sites);
-      remesh::CreasePins crease_pins = remesh::crease_pins(
-          manifold, result.features, {.spacing = spacing, .max_chord_error = 5e-4 * result.input_report.bbox_diagonal});
-      const TriangleMesh& working = result.features.empty() ? manifold : result.feature_cut.mesh;
-      if (!result.features.empty()) {
-        // Onto the features' cut: its faces are the surface's, its vertices copies.
-        std::vector<Index> copy(static_cast<std::size_t>(manifold.num_vertices()), -1);
-        for (std::size_t c = result.feature_cut.original_vertex.size(); c-- > 0;) {
-          copy[result.feature_cut.original_vertex[c]] = static_cast<Index>(c);
-        }
-        for (SurfacePoint& pin : crease_pins.sites) pin.element = copy[pin.element];
-      }
-      // The pins and the sites round them at most half the count: where they
-      // would ask for more (a scan's noisy edges), none. Flooring their
-      // spacing to fit made slivers between pins closer than the floor.
-      constexpr double kMaxShareNearPins = 0.5;
-      bool fits = false;
-      if (!crease_pins.sites.empty()) {
-        std::vector<double> density =
-            remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing, .gradation = 0.3});
-        for (std::size_t v = 0; v < chain_density.size(); ++v) density[v] = std::max(density[v], chain_density[v]);
-        const std::int64_t near = remesh::sites_for_density(working, sites, {}, density) - sites;
-        fits = static_cast<double>(near - sites_near_features) + static_cast<double>(crease_pins.sites.size()) <=
-               kMaxShareNearPins * static_cast<double>(sites);
-        if (fits) {
-          chain_density = std::move(density);
-          chain_spacing = spacing;
-          sites_near_features = near;
-        }
-      }
-      if (!fits && !crease_pins.sites.empty()) {
-        result.crease_pins_reason = "the " + std::to_string(crease_pins.sites.size()) +
-                                    " sites pinned on the short creases and those round them would be more than half "
-                                    "the " +
-                                    std::to_string(sites) + " sites: not pinned";
-        crease_pins = {};
-      }
-      pins = std::move(crease_pins.sites);
-      pin_segments = std::move(crease_pins.segments);
+      pinned_creases = pin_short_creases(result, sites, chain_density, sites_near_features);
+      if (!pinned_creases.pins.empty()) chain_spacing = remesh::uniform_spacing(manifold, sites);
+      result.crease_pins_reason = std::move(pinned_creases.reason);
     }
+    std::vector<SurfacePoint>& pins = pinned_creases.pins;
+    pin_segments = std::move(pinned_creases.segments);
     report(options.progress, Stage::sample, 0.5);
     const auto pinned = static_cast<std::int64_t>(pins.size());  // within the count
     remesh::SampledSites sampled =
@@ -477,7 +490,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   }
   geodesic_surface.reset();
   if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
-    // Onto the short creases: the pins' vertices joined by edges where one flip does it.
+    // Onto the short creases: the pins' vertices joined by edges where flips can do it.
     const std::vector<Index> pin_vertex = crease_pin_vertices(result);
     std::vector<std::array<Index, 2>> segments;
     for (const auto& [a, b] : pin_segments) {
