@@ -2,9 +2,11 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/union_find.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <string>
 
@@ -45,23 +47,21 @@ std::vector<std::size_t> pins_along(const TriangleMesh& surface, const FeatureCh
   return pins;
 }
 
-/// Per point, the distance to the nearest other point, at most `cap`: a sweep
-/// along x over the points sorted by it.
-std::vector<double> nearest_distances(const std::vector<Eigen::Vector3d>& points, double cap) {
+/// Calls pair(i, j, distance) for every two of `points` closer than
+/// `radius`: a sweep along x over the points sorted by it. Deterministic.
+template <typename Pair>
+void for_each_pair_within(const std::vector<Eigen::Vector3d>& points, double radius, Pair pair) {
   std::vector<std::size_t> order(points.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
     return points[i].x() < points[j].x() || (points[i].x() == points[j].x() && i < j);
   });
-  std::vector<double> nearest(points.size(), cap);
   for (std::size_t a = 0; a < order.size(); ++a) {
-    for (std::size_t b = a + 1; b < order.size() && points[order[b]].x() - points[order[a]].x() < cap; ++b) {
+    for (std::size_t b = a + 1; b < order.size() && points[order[b]].x() - points[order[a]].x() < radius; ++b) {
       const double d = (points[order[a]] - points[order[b]]).norm();
-      nearest[order[a]] = std::min(nearest[order[a]], d);
-      nearest[order[b]] = std::min(nearest[order[b]], d);
+      if (d < radius) pair(order[a], order[b], d);
     }
   }
-  return nearest;
 }
 
 }  // namespace
@@ -81,9 +81,10 @@ CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, 
   const MeshTopology topology = build_mesh_topology(surface);
   for (std::size_t v = 0; v < num_vertices; ++v) taken[v] |= topology.vertex_on_boundary[v];
 
-  CreasePins result;
-  std::vector<Eigen::Vector3d> placed;
-  std::vector<std::size_t> pin_at(num_vertices, SIZE_MAX);  // per vertex, its pin
+  // One pin per vertex, in the order of first use, and the segments between them.
+  std::vector<Index> pin_vertex;
+  std::vector<std::size_t> pin_at(num_vertices, SIZE_MAX);
+  std::vector<std::array<std::size_t, 2>> segments;
   for (const FeatureChain& crease : features.short_creases) {
     std::size_t previous = SIZE_MAX;
     for (const std::size_t i : pins_along(surface, crease, options.spacing, options.max_chord_error)) {
@@ -92,26 +93,50 @@ CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, 
         previous = SIZE_MAX;
         continue;
       }
-      const Eigen::Vector3d position = surface.vertices.row(v);
-      std::size_t index = pin_at[v];
-      // A pin this close to one placed before is that one (the last few, where creases meet).
-      for (std::size_t j = placed.size(); j-- > 0 && index == SIZE_MAX && placed.size() - j <= 8;) {
-        if ((placed[j] - position).norm() <= options.max_chord_error) index = j;
+      if (pin_at[v] == SIZE_MAX) {
+        pin_at[v] = pin_vertex.size();
+        pin_vertex.push_back(v);
       }
-      if (index == SIZE_MAX) {
-        index = placed.size();
-        result.sites.push_back(SurfacePoint::at_vertex(v));
-        placed.push_back(position);
-      }
-      pin_at[v] = index;
-      if (previous != SIZE_MAX && previous != index) result.segments.push_back({previous, index});
-      previous = index;
+      if (previous != SIZE_MAX && previous != pin_at[v]) segments.push_back({previous, pin_at[v]});
+      previous = pin_at[v];
     }
   }
-  const std::vector<double> nearest = nearest_distances(placed, options.spacing);
-  for (std::size_t i = 0; i < placed.size(); ++i) {
-    result.spacing.push_back({placed[i], std::min(options.spacing, options.neighbour_spacing *
-                                                                       std::max(nearest[i], options.max_chord_error))});
+  // Pins closer than the chord error (copies of a vertex, a scan's duplicate
+  // points) are one, the first of them.
+  std::vector<Eigen::Vector3d> position(pin_vertex.size());
+  for (std::size_t i = 0; i < pin_vertex.size(); ++i) position[i] = surface.vertices.row(pin_vertex[i]);
+  UnionFind same(pin_vertex.size());
+  for_each_pair_within(position, options.max_chord_error, [&](std::size_t i, std::size_t j, double) {
+    same.unite(static_cast<Index>(i), static_cast<Index>(j));
+  });
+  CreasePins result;
+  std::vector<std::size_t> kept(pin_vertex.size());
+  std::vector<Eigen::Vector3d> kept_position;
+  for (std::size_t i = 0; i < pin_vertex.size(); ++i) {
+    const auto root = static_cast<std::size_t>(same.find(static_cast<Index>(i)));
+    if (root == i) {
+      kept[i] = result.sites.size();
+      result.sites.push_back(SurfacePoint::at_vertex(pin_vertex[i]));
+      kept_position.push_back(position[i]);
+    } else {
+      kept[i] = kept[root];
+    }
+  }
+  for (const auto& [a, b] : segments) {
+    const std::size_t i = std::min(kept[a], kept[b]), j = std::max(kept[a], kept[b]);
+    if (i != j) result.segments.push_back({i, j});
+  }
+  std::sort(result.segments.begin(), result.segments.end());
+  result.segments.erase(std::unique(result.segments.begin(), result.segments.end()), result.segments.end());
+  // Each pin's spacing: neighbour_spacing times the distance to the nearest other pin.
+  std::vector<double> nearest(kept_position.size(), options.spacing);
+  for_each_pair_within(kept_position, options.spacing, [&](std::size_t i, std::size_t j, double d) {
+    nearest[i] = std::min(nearest[i], d);
+    nearest[j] = std::min(nearest[j], d);
+  });
+  for (std::size_t i = 0; i < kept_position.size(); ++i) {
+    const double spacing = options.neighbour_spacing * std::max(nearest[i], options.max_chord_error);
+    result.spacing.push_back({kept_position[i], std::min(options.spacing, spacing)});
   }
   return result;
 }

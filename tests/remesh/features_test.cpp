@@ -340,6 +340,36 @@ TEST(CreasePins, ACurvedCreaseGetsPinsCloserWhereItsChordsWouldLeaveIt) {
   }
 }
 
+TEST(CreasePins, PinsAtOnePointAreOne) {
+  // A 4 x 4 grid (vertex 4 j + i at (i, j)) and vertex 16, a copy of vertex
+  // 6's position that no face uses (as a scan's duplicate point): the creases
+  // 5-6 and 16-10 meet there.
+  std::vector<Eigen::Vector3d> vertices;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) vertices.emplace_back(i, j, 0);
+  }
+  vertices.push_back(vertices[6]);
+  std::vector<std::array<Index, 3>> faces;
+  for (Index j = 0; j < 3; ++j) {
+    for (Index i = 0; i < 3; ++i) {
+      const Index a = 4 * j + i;
+      faces.push_back({a, a + 1, a + 5});
+      faces.push_back({a, a + 5, a + 4});
+    }
+  }
+  const TriangleMesh grid = test::mesh_from_lists(vertices, faces);
+  remesh::FeatureSet features;
+  features.short_creases = {{.vertices = {5, 6}, .length = 1}, {.vertices = {16, 10}, .length = std::sqrt(2.0)}};
+  const remesh::CreasePins pins = remesh::crease_pins(grid, features, {.spacing = 2, .max_chord_error = 1e-3});
+  ASSERT_EQ(pins.sites.size(), 3u);
+  EXPECT_EQ(pins.sites[0].element, 5);
+  EXPECT_EQ(pins.sites[1].element, 6);
+  EXPECT_EQ(pins.sites[2].element, 10);
+  EXPECT_EQ(pins.segments, (std::vector<std::array<std::size_t, 2>>{{0, 1}, {1, 2}}));
+  EXPECT_NEAR(pins.spacing[0].spacing, 1.5, 1e-12);  // its nearest pin 1 away
+  EXPECT_NEAR(pins.spacing[2].spacing, 1.5, 1e-12);  // 10 is 1 from 6, 1.41 from 5
+}
+
 TEST(CreasePins, OptionsOutOfRangeAreRefused) {
   const TriangleMesh box = cube(2);
   const remesh::FeatureSet features = remesh::detect_features(box, {.min_chain_length = 1.01});
