@@ -293,9 +293,9 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
   FeatureSet features;
   if (!(options.sharp_angle > 0) && options.given_edges.empty()) return features;
   const MeshTopology topology = build_mesh_topology(surface);
-  std::vector<Index> sharp;
+  std::vector<Index> sharp, sharp_alone;  // the latter judged on their two faces alone
   if (options.sharp_angle > 0) {
-    sharp = sharp_edges(surface, topology, options.sharp_angle);
+    sharp = sharp_alone = sharp_edges(surface, topology, options.sharp_angle);
     if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
     if (options.continuation_angle > 0 && options.continuation_angle < options.sharp_angle && !sharp.empty()) {
       const std::vector<Index> continued = continuations(surface, topology, sharp, options);
@@ -368,10 +368,10 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
     }
     sharp = std::move(kept);
   }
-  if (options.sharp_angle > 0) {
-    // What the filters dropped, judged on the two faces alone.
+  if (!sharp_alone.empty()) {
+    // What the filters dropped.
     std::vector<std::array<Index, 2>> dropped;
-    for (const Index e : sharp_edges(surface, topology, options.sharp_angle)) {
+    for (const Index e : sharp_alone) {
       if (!is_sharp[e]) dropped.push_back(topology.edge_vertices[e]);
     }
     const auto count = dropped.size();
