@@ -58,6 +58,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "geodual/remesh/features.hpp"
 #include "hard_cases.hpp"
 
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
@@ -94,7 +95,10 @@ struct RunResult {
   std::int64_t vertices = 0;  ///< of the output
   double seconds = 0, cpu_seconds = 0;
   std::int64_t peak_rss = 0;
-  std::int64_t sites_added = 0;        ///< geodual: by repair
+  std::int64_t sites_added = 0;  ///< geodual: by repair
+  /// geodual: the narrowest angle between the kept features at a corner
+  /// (remesh::narrowest_corner_angle), which bounds the smallest angle; 360 without corners.
+  double narrowest_corner_deg = 360;
   std::int64_t constrained_edges = 0;  ///< CGAL: sharp edges found (before the split)
   bool has_figures = false;
   double q_min = 0, q_avg = 0, theta_min_deg = 0, hausdorff_pct = 0;
@@ -136,6 +140,7 @@ RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, const Opt
   run.peak_rss = peak_rss_bytes().value_or(0);
   run.vertices = result.remesh.mesh.num_vertices();
   run.sites_added = result.remesh.sites_added;
+  run.narrowest_corner_deg = remesh::narrowest_corner_angle(result.surface.mesh, result.features);
   add_figures(run, input.mesh, result.remesh.mesh, options);
   return run;
 }
@@ -259,7 +264,10 @@ int run_benchmark(const Options& options) {
         target = run.vertices;
         add_run_row(table, "geodual", run,
                     grouped(count) + " sites" +
-                        (run.sites_added > 0 ? ", +" + grouped(run.sites_added) + " repair sites" : std::string()));
+                        (run.sites_added > 0 ? ", +" + grouped(run.sites_added) + " repair sites" : std::string()) +
+                        (run.narrowest_corner_deg < 180 ? ", features meet at " + fixed(run.narrowest_corner_deg, 1) +
+                                                              " deg at the narrowest corner"
+                                                        : std::string()));
       } else {
         add_failed_row(table, "geodual", outcome.message, outcome.child_max_rss_bytes);
         ++failures;

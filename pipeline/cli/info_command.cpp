@@ -67,12 +67,14 @@ class InfoCommand final : public Command {
     stop_if_interrupted();
     // The features on the surface a remesh sees: the input cut to a manifold.
     remesh::FeatureSet features;
+    double narrowest_corner = 360;
     if (sharp_angle_ > 0 && report.faces > 0) {
       const TriangleMesh surface = remesh::cut_to_manifold(loaded.mesh).mesh;
       features =
           remesh::detect_features(surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_,
                                                                           remesh::RemeshOptions{}.min_feature_length,
                                                                           remesh::RemeshOptions{}.continuation_angle));
+      narrowest_corner = remesh::narrowest_corner_angle(surface, features);
     }
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();
@@ -82,9 +84,9 @@ class InfoCommand final : public Command {
 
     const std::vector<std::string> attributes = pipeline::attribute_list(loaded.attributes);
     if (json_) {
-      print_json(loaded.info, attributes, report, features, read_seconds, analysis_seconds);
+      print_json(loaded.info, attributes, report, features, narrowest_corner, read_seconds, analysis_seconds);
     } else {
-      print_table(loaded.info, attributes, report, features, read_seconds, analysis_seconds);
+      print_table(loaded.info, attributes, report, features, narrowest_corner, read_seconds, analysis_seconds);
     }
     return 0;
   }
@@ -102,7 +104,8 @@ class InfoCommand final : public Command {
   }
 
   void print_json(const io::ReadInfo& info, const std::vector<std::string>& attributes, const MeshReport& report,
-                  const remesh::FeatureSet& features, double read_seconds, double analysis_seconds) const {
+                  const remesh::FeatureSet& features, double narrowest_corner, double read_seconds,
+                  double analysis_seconds) const {
     nlohmann::ordered_json json;
     json["file"] = path_;
     json.update(pipeline::read_info_json(info));
@@ -114,6 +117,8 @@ class InfoCommand final : public Command {
     json["feature_chains"] = features.sharp_chains;
     json["feature_corners"] = features.corners.size();
     json["feature_length"] = features.sharp_length;
+    json["feature_narrowest_corner_deg"] =
+        features.corners.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(narrowest_corner);
     json["short_creases"] = features.short_creases.size();
     json["short_crease_length"] = short_crease_length(features);
     // Paths and notes need not be UTF-8: replace what is not rather than fail.
@@ -121,7 +126,8 @@ class InfoCommand final : public Command {
   }
 
   void print_table(const io::ReadInfo& info, const std::vector<std::string>& attributes, const MeshReport& report,
-                   const remesh::FeatureSet& features, double read_seconds, double analysis_seconds) const {
+                   const remesh::FeatureSet& features, double narrowest_corner, double read_seconds,
+                   double analysis_seconds) const {
     KeyValueTable table;
     table.add("file", path_);
     table.add("format",
@@ -155,6 +161,11 @@ class InfoCommand final : public Command {
                                       " corners, length " + significant(features.sharp_length) + " (" +
                                       significant(sharp_angle_, 3) + " deg at the scale of " + with_thousands(sites_) +
                                       " sites)");
+      if (!features.corners.empty()) {
+        table.add("narrowest corner",
+                  significant(narrowest_corner, 3) +
+                      " deg between features (a remesh that keeps them has an angle about this small there)");
+      }
       table.add("short creases", with_thousands(static_cast<std::int64_t>(features.short_creases.size())) +
                                      ", length " + significant(short_crease_length(features)) +
                                      " (sharp edges too short or weak at that scale to cut along: remesh "

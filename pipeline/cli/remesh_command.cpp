@@ -522,6 +522,10 @@ class RemeshCommand final : public Command {
     figures["feature_chains"] = run.features.sharp_chains;
     figures["feature_corners"] = run.features.corners.size();
     figures["feature_length"] = run.features.sharp_length;
+    figures["feature_narrowest_corner_deg"] =
+        run.features.corners.empty()
+            ? nlohmann::ordered_json(nullptr)
+            : nlohmann::ordered_json(remesh::narrowest_corner_angle(run.surface.mesh, run.features));
     figures["feature_sites"] = run.feature_sites;
     figures["sites_added_near_features"] = run.sites_added_near_features;
     figures["crease_pins"] = run.crease_pins;
@@ -637,14 +641,19 @@ class RemeshCommand final : public Command {
     if (!run.features.empty()) {
       const std::string angle = options_.sharp_angle > 0 ? significant(options_.sharp_angle, 3) + " deg" : "";
       const std::string file = feature_file_.empty() ? "" : "the feature file's";
-      table.add("features",
-                with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
-                    (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
-                    with_thousands(static_cast<std::int64_t>(run.features.corners.size())) + " corners, lined with " +
-                    with_thousands(run.feature_sites) + " of the sites" +
-                    (run.sites_added_near_features > 0 ? ", " + with_thousands(run.sites_added_near_features) +
-                                                             " more beside them where they are closer than the spacing"
-                                                       : ""));
+      table.add(
+          "features",
+          with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
+              (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
+              with_thousands(static_cast<std::int64_t>(run.features.corners.size())) + " corners" +
+              (run.features.corners.empty()
+                   ? std::string()
+                   : " (the narrowest " +
+                         significant(remesh::narrowest_corner_angle(run.surface.mesh, run.features), 3) + " deg)") +
+              ", lined with " + with_thousands(run.feature_sites) + " of the sites" +
+              (run.sites_added_near_features > 0 ? ", " + with_thousands(run.sites_added_near_features) +
+                                                       " more beside them where they are closer than the spacing"
+                                                 : ""));
     }
     if (run.crease_pins > 0) {
       table.add("short creases", with_thousands(run.crease_pins) + " sites pinned on them, " +

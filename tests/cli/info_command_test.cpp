@@ -89,12 +89,15 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
   EXPECT_EQ(json["feature_corners"], 8);
   EXPECT_NEAR(json["feature_length"].get<double>(), 12.0, 1e-12);
   EXPECT_EQ(json["short_creases"], 0);  // every sharp edge is on a chain
+  // Three sides of 90 degrees meet at each corner.
+  EXPECT_NEAR(json["feature_narrowest_corner_deg"].get<double>(), 90.0, 1e-9);
   // Creases turning by 90 degrees are not sharp at 91.
   run = run_cli({"info", path.string(), "--json", "--sharp-angle", "91"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["feature_chains"], 0);
   run = run_cli({"info", path.string(), "--sharp-angle", "60"});
   EXPECT_NE(run.out.find("12 chains, 8 corners"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("90 deg between features"), std::string::npos) << run.out;
   run = run_cli({"info", path.string()});  // off by default: it takes several times the analysis
   EXPECT_EQ(run.out.find("sharp features"), std::string::npos) << run.out;
   EXPECT_EQ(run_cli({"info", path.string(), "--sharp-angle", "nan"}).exit_status, 2);

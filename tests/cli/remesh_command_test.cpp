@@ -557,6 +557,8 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   EXPECT_GT(by_default["feature_recall_pct"].get<double>(), 99.0);
   EXPECT_GT(by_default["sites_added_near_features"].get<double>(), 0);
   EXPECT_GT(by_default["q_min"].get<double>(), 0.4);
+  // That corner is reported: the remesh's smallest angle can be no wider.
+  EXPECT_NEAR(by_default["feature_narrowest_corner_deg"].get<double>(), 19.4, 0.05);
   // Its creases that fade below 60 degrees are kept too, between flat sides:
   // without them they are chamfers, where the Hausdorff distance peaks.
   EXPECT_EQ(by_default["continuation_angle_deg"].get<double>(), 30.0);
@@ -565,6 +567,7 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   // Off, the creases come out as sawtooth chamfers.
   const nlohmann::json off = remesh({"--sharp-angle", "0"});
   EXPECT_EQ(off["feature_chains"].get<double>(), 0);
+  EXPECT_TRUE(off["feature_narrowest_corner_deg"].is_null());
   EXPECT_LT(off["feature_recall_pct"].get<double>(), 50.0);
 }
 

@@ -105,6 +105,35 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   EXPECT_DOUBLE_EQ(remesh_options.min_region_width, remesh_options.scale);
 }
 
+TEST(Features, NarrowestCornerAngleIsTheSmallestSectorBetweenFeatures) {
+  // A box's corners: three sectors of 90 degrees each.
+  const TriangleMesh box = cube(3);
+  EXPECT_NEAR(remesh::narrowest_corner_angle(box, remesh::detect_features(box)), 90.0, 1e-9);
+  // No corner, no bound.
+  const TriangleMesh sphere = test::icosphere(2);
+  EXPECT_EQ(remesh::narrowest_corner_angle(sphere, remesh::detect_features(sphere)), 360.0);
+  // A square pyramid, base [-0.5, 0.5]^2, apex 2 above: its lateral faces
+  // meet at the apex at 2 atan(0.5 / slant), slant = sqrt(2^2 + 0.5^2); at a
+  // base corner a lateral face has (180 - that) / 2 and the base 90 (its two
+  // triangles joined across their flat diagonal).
+  TriangleMesh pyramid;
+  pyramid.vertices.resize(5, 3);
+  pyramid.vertices << -0.5, -0.5, 0, 0.5, -0.5, 0, 0.5, 0.5, 0, -0.5, 0.5, 0, 0, 0, 2;
+  pyramid.faces.resize(6, 3);
+  pyramid.faces << 0, 2, 1, 0, 3, 2, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4;
+  const remesh::FeatureSet features = remesh::detect_features(pyramid);
+  ASSERT_EQ(features.corners.size(), 5u);
+  const double apex = 2 * std::atan(0.5 / std::sqrt(4.25)) * 180 / std::numbers::pi;
+  EXPECT_NEAR(remesh::narrowest_corner_angle(pyramid, features), apex, 1e-9);
+  // With the base's rim alone as features (given, no angle), the lateral
+  // faces at a base corner are one sector of 180 degrees less the apex
+  // angle, joined across the lateral edge, and the base's 90 is narrowest.
+  const remesh::FeatureSet rim =
+      remesh::detect_features(pyramid, {.sharp_angle = 0, .given_edges = {{{0, 1}}, {{1, 2}}, {{2, 3}}, {{0, 3}}}});
+  ASSERT_EQ(rim.corners.size(), 4u);
+  EXPECT_NEAR(remesh::narrowest_corner_angle(pyramid, rim), 90.0, 1e-9);
+}
+
 /// A flat grid [0, 8] x [0, 4], cells of 1, with a ridge along y = 2: the
 /// vertices at x = 2 ... 6 raised to z = 1, so that its edges turn by 90
 /// degrees and the crease fades out at both ends.

@@ -98,4 +98,13 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
 /// mesh): sharp edges have exactly two faces. Deterministic.
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options = {});
 
+/// The narrowest angle at a corner of `features` (detected on `surface`)
+/// between two features that meet there: at each corner, the faces round it
+/// fall into sectors bounded by its sharp edges and boundary edges, and a
+/// sector's angle is the sum of its faces' angles at the corner. A remesh
+/// that keeps the features, with a vertex at each corner, has a triangle
+/// angle about this small or smaller there, so it bounds the smallest angle
+/// any such remesh reaches. In degrees; 360 where there is no corner.
+double narrowest_corner_angle(const TriangleMesh& surface, const FeatureSet& features);
+
 }  // namespace geodual::remesh
