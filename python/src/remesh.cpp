@@ -9,6 +9,7 @@
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
+#include "geodual/remesh/features.hpp"
 
 #include <array>
 #include <cmath>
@@ -30,6 +31,7 @@ struct RemeshResult {
   std::int64_t sites_added_for_topology = 0;
   std::int64_t sites_added_near_features = 0;
   std::int64_t crease_pins = 0;
+  py::object narrowest_corner;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
   py::object error_bound_met;
@@ -146,6 +148,10 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.sites_added_for_topology = run.sites_added_for_topology;
   result.sites_added_near_features = run.sites_added_near_features;
   result.crease_pins = run.crease_pins;
+  result.narrowest_corner =
+      run.features.corners.empty()
+          ? py::none()
+          : py::object(py::float_(remesh::narrowest_corner_angle(run.surface.mesh, run.features)));
   result.sites_added = run.remesh.sites_added;
   result.sites_left_out = run.remesh.sites_left_out;
   result.error_bound_met = py::none();
@@ -186,6 +192,9 @@ void add_remesh(py::module_& module) {
                     "(included in `sites`)")
       .def_readonly("crease_pins", &RemeshResult::crease_pins,
                     "with pin_creases: the sites pinned on short creases (included in `sites`)")
+      .def_readonly("narrowest_corner", &RemeshResult::narrowest_corner,
+                    "the narrowest angle in degrees between two kept features at a corner, which bounds the "
+                    "remesh's smallest angle there; None without corners")
       .def_readonly("sites_added", &RemeshResult::sites_added,
                     "sites the repair added where the dual was not a valid remesh")
       .def_readonly("sites_left_out", &RemeshResult::sites_left_out,

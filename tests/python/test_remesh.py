@@ -144,6 +144,14 @@ def test_feature_edges_are_kept_as_edges_of_the_remesh():
         geodual.remesh(V, F, sites=120, feature_edges=[0, 1, 2])
 
 
+def test_narrowest_corner_between_the_kept_creases(data_dir):
+    # fandisk's creases meet at 19.4 degrees at their narrowest corner.
+    V, F = geodual.read_mesh(data_dir / "fandisk.ply")
+    kept = geodual.remesh(V, F, sites=2000, statistics=False)
+    assert kept.narrowest_corner == pytest.approx(19.4, abs=0.05)
+    assert geodual.remesh(V, F, sites=2000, sharp_angle=0, statistics=False).narrowest_corner is None
+
+
 def test_pin_creases_puts_sites_on_the_short_creases_and_keeps_them(data_dir):
     # rocker_arm's creases are too short to cut along at 2,000 sites: without
     # pins no site is on them; with pins the pinned sites are remesh vertices
