@@ -505,6 +505,27 @@ inline TriangleMesh spur_gear() {
   return builder.build();
 }
 
+/// The wall of a letter's hole as CAD text is extruded: a half-ellipse of
+/// semi-axes 0.113 and 0.111 closed by its chord, 60 arc segments, 1 high,
+/// one band of quads (122 faces; open, 2 boundary loops). The chord's panel
+/// is a single quad between two creases: at 6-20 sites its sites can all go
+/// in the weld's repair, and with them the panel (as on the "e" of
+/// OpenFOAM's opencfd_text.stl).
+inline TriangleMesh letter_wall() {
+  constexpr int kArc = 60;
+  using namespace hard_case_detail;
+  MeshBuilder builder;
+  for (const double z : {0.0, 1.0}) {
+    for (int k = 0; k <= kArc; ++k) {
+      const double angle = std::numbers::pi * k / kArc;
+      builder.add_vertex({-0.113 * std::cos(angle), 0.111 * std::sin(angle), z});
+    }
+  }
+  constexpr Index n = kArc + 1;
+  for (Index k = 0; k < n; ++k) builder.add_quad(k, (k + 1) % n, n + (k + 1) % n, n + k);
+  return builder.build();
+}
+
 struct HardCase {
   std::string name;
   std::string description;
@@ -524,6 +545,7 @@ inline std::vector<HardCase> hard_cases() {
       {"shaft", "turned shaft: 3 diameters, a chamfer (6 circular creases)", stepped_shaft},
       {"pulley", "V-belt pulley with a bore (genus 1, 5 circular creases)", pulley},
       {"gear", "24-tooth spur gear with fanned caps (192 corners)", spur_gear},
+      {"letter_wall", "wall of a letter's hole: an arc and its chord, one quad high (2 creases)", letter_wall},
   };
 }
 

@@ -565,6 +565,75 @@ std::vector<SurfacePoint> sites_not_marked(std::span<const SurfacePoint> sites,
   return kept;
 }
 
+/// The first piece of `surface` (a component with area) that the welded
+/// remesh does not keep, described for an error message, or "" when it keeps
+/// them all. A piece is kept when its sites are the vertices of one piece of
+/// the remesh, which holds no other piece's sites and has the same Euler
+/// characteristic and boundary loops. (Each piece of the cut is checked on
+/// its own before the weld, but only those holding sites: a piece of the cut
+/// whose sites were all left out would go missing unseen.)
+std::string first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& cut,
+                                 std::span<const SurfacePoint> sites, const WeldedDual& welded) {
+  const MeshTopology pieces = build_mesh_topology(surface);
+  const MeshTopology remeshed = build_mesh_topology(welded.mesh);
+  std::vector<std::uint8_t> has_area(pieces.components.size(), 0);
+  for (Index f = 0; f < surface.num_faces(); ++f) {
+    const Index piece = pieces.face_component[f];
+    if (piece >= 0 && has_positive_area(surface, f)) has_area[piece] = 1;
+  }
+  // Per piece of the surface, the piece of the remesh its sites are on (-1:
+  // none, -2: several, or a site on none); per piece of the remesh, the
+  // surface's piece whose sites it holds (-2: several).
+  std::vector<Index> remeshed_of(pieces.components.size(), -1);
+  std::vector<Index> surface_of(remeshed.components.size(), -1);
+  std::vector<Index> first_vertex(pieces.components.size(), -1);
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    const SurfacePoint& site = sites[s];
+    const Index piece = site.kind == SurfacePoint::Kind::vertex
+                            ? pieces.vertex_component[cut.original_vertex[static_cast<std::size_t>(site.element)]]
+                            : pieces.face_component[site.element];
+    const Index vertex = welded.vertex_of_site[s];
+    const Index made = vertex >= 0 ? remeshed.vertex_component[vertex] : -1;
+    if (piece < 0) continue;
+    Index& mine = remeshed_of[piece];
+    if (made < 0 || (mine >= 0 && mine != made)) {
+      mine = -2;
+    } else if (mine == -1) {
+      mine = made;
+    }
+    if (made >= 0) surface_of[made] = surface_of[made] == -1 || surface_of[made] == piece ? piece : -2;
+  }
+  for (Index f = 0; f < surface.num_faces(); ++f) {
+    const Index piece = pieces.face_component[f];
+    if (piece >= 0 && first_vertex[piece] < 0) first_vertex[piece] = surface.faces(f, 0);
+  }
+  auto counts = [](const ComponentCounts& c) {
+    return "Euler characteristic " + std::to_string(c.euler_characteristic()) + ", " +
+           std::to_string(c.boundary_loops) + (c.boundary_loops == 1 ? " boundary loop" : " boundary loops");
+  };
+  for (std::size_t piece = 0; piece < pieces.components.size(); ++piece) {
+    if (!has_area[piece]) continue;
+    const ComponentCounts& expected = pieces.components[piece];
+    const Index made = remeshed_of[piece];
+    std::string remesh;
+    if (made == -1) {
+      remesh = "no vertex";
+    } else if (made == -2) {
+      remesh = "its sites on several pieces, or on none";
+    } else if (surface_of[made] != static_cast<Index>(piece)) {
+      remesh = "a piece shared with another";
+    } else if (remeshed.components[made].euler_characteristic() != expected.euler_characteristic() ||
+               remeshed.components[made].boundary_loops != expected.boundary_loops) {
+      remesh = counts(remeshed.components[made]);
+    } else {
+      continue;
+    }
+    return "the piece with input vertex " + std::to_string(first_vertex[piece]) + " (" +
+           std::to_string(expected.faces) + " faces, " + counts(expected) + "; in the remesh: " + remesh + ")";
+  }
+  return "";
+}
+
 }  // namespace
 
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
@@ -660,6 +729,10 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
         throw Error("the remesh welded along the sharp features has a triangle of zero area, at (" +
                     std::to_string(corner.x()) + ", " + std::to_string(corner.y()) + ", " + std::to_string(corner.z()) +
                     ")");
+      }
+      if (const std::string lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.empty()) {
+        throw Error("the remesh welded along the sharp features does not keep " + lost +
+                    "; try more sites, or a larger sharp angle");
       }
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);

@@ -11,6 +11,7 @@
 #include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "geodual/remesh/dual_delaunay.hpp"
 
 #include <gtest/gtest.h>
 
@@ -457,6 +458,28 @@ TEST(FeaturePipeline, GivenFeatureEdgesAreKeptWithoutAnAngle) {
   // A pair of vertices that is no edge of the input is refused before any work.
   options.remesh.feature_edges.push_back({0, static_cast<Index>(box.vertices.rows()) - 1});
   EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+}
+
+TEST(FeaturePipeline, AWeldThatLosesAPieceOfTheCutIsNotTakenForARemesh) {
+  // The wall of a letter's hole at 6-20 sites: the weld's repair leaves out
+  // the sites of the chord's panel, one quad between two creases; each piece
+  // of the cut holding sites had a valid dual, so the remesh came out in two
+  // pieces (Euler characteristic 2 instead of 0) and was taken. Now the weld
+  // is checked against the surface's pieces, and the remesh falls back.
+  io::LoadedMesh loaded;
+  loaded.mesh = bench::letter_wall();
+  int caught = 0;
+  for (const std::int64_t sites : {6, 8, 10, 12, 16, 20}) {
+    const pipeline::RemeshPipelineResult result = remesh_without_statistics(loaded, sites);
+    const std::string reasons =
+        result.features_dropped_reason + " " + remesh::problems_line(result.remesh.repair_problems);
+    caught += reasons.find("does not keep the piece with input vertex") != std::string::npos;
+    const MeshTopology topology = build_mesh_topology(result.remesh.mesh);
+    ASSERT_EQ(topology.num_components(), 1) << sites << " sites: " << reasons;
+    EXPECT_EQ(topology.components[0].euler_characteristic(), 0) << sites << " sites";
+    EXPECT_EQ(topology.num_boundary_loops, 2) << sites << " sites";
+  }
+  EXPECT_GT(caught, 0);
 }
 
 TEST(FeaturePipeline, WhereCreasesCannotBeKeptTheRemeshFallsBackWithoutThemAndSaysWhy) {
