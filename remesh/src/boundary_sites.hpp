@@ -1,15 +1,13 @@
 #pragma once
 // Sites along a surface's boundary loops, for sample_sites: evenly by arc
-// length, except that the end of a slit and a corner of a machined outline
-// get a site of their own.
+// length, except that the end of a slit gets a site of its own.
 //
 // A slit is a stretch where a loop runs out and back along itself, its two
 // sides at the same points (a cut in a scan, two edges of a sheet glued
 // back to back and cut apart). Evenly spaced sites land there in mirrored
 // pairs at one point; the pair next to the slit's end shares a triangle
 // round it, of zero area (ogre at 2000 sites: Q 9e-7). A site at the end
-// keeps the two sides apart there. Evenly spaced sites also cut a corner
-// where straight sides meet: a site there keeps it.
+// keeps the two sides apart there.
 
 #include "sampling_surface.hpp"
 
