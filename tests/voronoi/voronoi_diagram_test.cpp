@@ -183,6 +183,34 @@ TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
   }
 }
 
+TEST(VoronoiDiagram, TwoSitesTiedAtAnEdgeMidpointAreResolved) {
+  // The unit square as two triangles; two sites on its top edge placed
+  // symmetrically about the edge's midpoint, where the bisector crosses the
+  // edge. The face tracer splits sides at their midpoints: a split on the
+  // crossing left the sub-triangles there undecided at every depth, and two
+  // regions were closed approximately, the Voronoi vertex of the two sites
+  // and the one below them lost (OpenFOAM's two-triangle ami.obj at 500
+  // sites: a closed arc, a pair meeting along 3 arcs, no valid dual).
+  TriangleMesh mesh;
+  mesh.vertices.resize(4, 3);
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  mesh.faces.resize(2, 3);
+  mesh.faces << 0, 1, 2, 0, 2, 3;
+  const double a = 0.52380952378734946, b = 0.47619047621265054;
+  const std::vector<SurfacePoint> sites = {
+      SurfacePoint::in_face(1, 0, a, b), SurfacePoint::in_face(1, 0, b, a), SurfacePoint::in_face(1, 0.2, 0.4, 0.4),
+      SurfacePoint::in_face(0, 0.3, 0.3, 0.4), SurfacePoint::in_face(1, 0.6, 0.2, 0.2)};
+  const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
+  expect_consistent(mesh, diagram);
+  std::vector<Eigen::Vector2d> planar;
+  for (const SurfacePoint& s : sites) planar.push_back(s.position(mesh).head<2>());
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
+  }
+  EXPECT_EQ(diagram.vertices.size(), 3u);
+  for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
+}
+
 TEST(VoronoiDiagram, CoCircularSitesMeetAtOnePoint) {
   // Four sites on a circle about the centre of a regular (unjittered) grid,
   // with a bisector along grid lines through mesh vertices.

@@ -14,6 +14,8 @@ constexpr int samples_per_inner_side = 8;
 /// side: ~1e-14 of it): bisection's number of halvings, Brent's tolerance.
 constexpr int bisection_steps = 46;
 constexpr int max_polyline_depth = 12;
+/// A side is not split within this fraction of its length of a crossing.
+constexpr double kSplitClearance = 1e-9;
 /// From this many cones on an edge (about a third as many windows), its
 /// nearest site is asked of an AxisNearestSite rather than of the envelope.
 constexpr std::size_t min_cones_to_index = 96;
@@ -730,14 +732,32 @@ Eigen::Vector2d FaceBoundaryTracer::solve_vertex(std::span<const Index> sites, c
 }
 
 FaceBoundaryTracer::SideUse FaceBoundaryTracer::half_of(const SideUse& use, int which) {
-  // Split the stored side at its midpoint once; both triangles that share it
-  // then see the same halves and the same crossings.
+  // Split the stored side once, at its midpoint; both triangles that share it
+  // then see the same halves and the same crossings. Where a crossing lies at
+  // the midpoint (two sites tie there: sites placed symmetrically about it),
+  // the split moves off it: a corner on the crossing would leave the site of
+  // every sub-triangle there undecided, at any depth of refinement.
   Side& side = sides_[use.side];
   if (side.halves[0] < 0) {
-    const Eigen::Vector2d start = side.start, end = side.end, middle = 0.5 * (start + end);
+    const Eigen::Vector2d start = side.start, end = side.end;
     const Eigen::Vector2d along = end - start;
+    const double squared_length = along.squaredNorm();
+    auto at_crossing = [&](double t) {
+      for (Index i = side.crossing_begin; i < side.crossing_end; ++i) {
+        const double u = (crossings_[i].point - start).dot(along) / squared_length;
+        if (std::abs(u - t) <= kSplitClearance) return true;
+      }
+      return false;
+    };
+    double t = 0.5;
+    for (const double other : {0.5 + 1.0 / 16, 0.5 - 1.0 / 16}) {
+      if (!at_crossing(t)) break;
+      t = other;
+    }
+    const Eigen::Vector2d middle = start + t * along;
+    side.split = middle;
     Index split = side.crossing_begin;
-    while (split < side.crossing_end && (crossings_[split].point - start).dot(along) < 0.5 * along.squaredNorm()) {
+    while (split < side.crossing_end && (crossings_[split].point - start).dot(along) < t * squared_length) {
       ++split;
     }
     const Index middle_site = split > side.crossing_begin ? crossings_[split - 1].to : side.start_site;
@@ -752,6 +772,11 @@ FaceBoundaryTracer::SideUse FaceBoundaryTracer::half_of(const SideUse& use, int 
   // `which` counts from the corner where the use starts.
   if (!use.reversed) return {halves[which], false};
   return {halves[1 - which], true};
+}
+
+Eigen::Vector2d FaceBoundaryTracer::split_point(const SideUse& use) {
+  half_of(use, 0);
+  return sides_[use.side].split;
 }
 
 Index FaceBoundaryTracer::midpoint_site(const SideUse& use) {
@@ -792,8 +817,9 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
 void FaceBoundaryTracer::subdivide(const SubTriangle& triangle, int depth) {
   face_refined_ = true;
   const auto& c = triangle.corner;
-  // Midpoints of sides 0 (c0-c1), 1 (c1-c2) and 2 (c2-c0).
-  const std::array<Eigen::Vector2d, 3> m = {0.5 * (c[0] + c[1]), 0.5 * (c[1] + c[2]), 0.5 * (c[2] + c[0])};
+  // Where sides 0 (c0-c1), 1 (c1-c2) and 2 (c2-c0) are split: their midpoints, unless a crossing lies there.
+  const std::array<Eigen::Vector2d, 3> m = {split_point(triangle.side[0]), split_point(triangle.side[1]),
+                                            split_point(triangle.side[2])};
   std::array<Index, 3> m_site{};
   for (int k = 0; k < 3; ++k) m_site[k] = midpoint_site(triangle.side[k]);
   // The three new sides inside, each shared by the centre triangle and a corner one.

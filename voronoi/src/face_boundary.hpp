@@ -162,6 +162,7 @@ class FaceBoundaryTracer {
     Index start_site = -1, end_site = -1;
     Index crossing_begin = 0, crossing_end = 0;  ///< into crossings_, ordered from start to end
     std::array<Index, 2> halves{-1, -1};
+    Eigen::Vector2d split = Eigen::Vector2d::Zero();  ///< where the halves meet, once split
   };
   struct SideUse {
     Index side = -1;
@@ -187,9 +188,12 @@ class FaceBoundaryTracer {
   void subdivide(const SubTriangle& triangle, int depth);
   void collect_cycle(const SubTriangle& triangle);
   bool holds_island(const SubTriangle& triangle) const;
-  /// The part of a side from its corner `which` (0: start, 1: end as used) to its midpoint.
+  /// The part of a side from its corner `which` (0: start, 1: end as used) to
+  /// its split point (its midpoint, unless a crossing lies there).
   SideUse half_of(const SideUse& use, int which);
   Index midpoint_site(const SideUse& use);
+  /// The point where a side is split into its halves (half_of).
+  Eigen::Vector2d split_point(const SideUse& use);
   Index inner_side(const Eigen::Vector2d& start, const Eigen::Vector2d& end, Index start_site, Index end_site);
   Index add_node(const Eigen::Vector2d& p, BoundaryNode::Kind kind);
   Eigen::Vector3d to_space(const Eigen::Vector2d& p) const;
