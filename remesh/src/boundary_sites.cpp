@@ -105,6 +105,86 @@ std::vector<std::vector<std::size_t>> slit_ends(std::span<const LoopWalk> walks,
 
 namespace {
 
+/// Whether the loop of `walk` runs straight from arc length `at` (the
+/// start of edge i) for `r` in the direction `step` (+1 or -1): the
+/// vertices it passes lie within `tolerance` of the chord.
+bool runs_straight(const LoopWalk& walk, std::size_t i, double r, int step, double tolerance) {
+  const double at = walk.start(i);
+  const Eigen::Vector3d v = walk.point(at), end = walk.point(at + step * r);
+  const Eigen::Vector3d direction = (end - v).normalized();
+  const auto n = static_cast<std::ptrdiff_t>(walk.num_edges());
+  for (std::ptrdiff_t k = 1; k < n; ++k) {
+    // The vertex k edges on, its arc length unwrapped past the loop's start.
+    const std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) + step * k;
+    const double wrap = j >= n ? walk.length() : (j < 0 ? -walk.length() : 0.0);
+    const double there = walk.start(static_cast<std::size_t>((j % n + n) % n)) + wrap;
+    if (step * (there - at) >= r) break;
+    const Eigen::Vector3d offset = walk.point(there) - v;
+    if ((offset - offset.dot(direction) * direction).norm() > tolerance) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::size_t>> loop_corners(std::span<const LoopWalk> walks, double spacing,
+                                                   std::span<const std::int64_t> limits,
+                                                   const std::vector<std::vector<std::size_t>>& taken) {
+  // cos 135 degrees: the chords from v meet at this angle or less.
+  constexpr double kCorner = -0.70710678118654752;
+  struct Candidate {
+    double negative_cosine;  // the sharpest first once sorted
+    std::size_t loop, edge;
+    Eigen::Vector3d point;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<Eigen::Vector3d> held;  // the slit ends
+  for (std::size_t l = 0; l < walks.size(); ++l) {
+    const LoopWalk& walk = walks[l];
+    for (const std::size_t edge : taken[l]) held.push_back(walk.point(walk.start(edge)));
+    if (!walk.closed() || walk.length() < 4 * spacing) continue;
+    const double r = spacing / 2;
+    for (std::size_t i = 0; i < walk.num_edges(); ++i) {
+      const double at = walk.start(i);
+      const Eigen::Vector3d v = walk.point(at), before = walk.point(at - r), after = walk.point(at + r);
+      // As in slit_ends: false for NaN.
+      const double cosine = (before - v).dot(after - v) / ((before - v).norm() * (after - v).norm());
+      if (!(cosine >= kCorner)) continue;
+      if (runs_straight(walk, i, 4 * r, -1, r / 10) && runs_straight(walk, i, 4 * r, 1, r / 10)) {
+        candidates.push_back({-cosine, l, i, v});
+      }
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.negative_cosine, a.loop, a.edge) < std::tie(b.negative_cosine, b.loop, b.edge);
+  });
+  std::vector<std::vector<std::size_t>> corners(walks.size());
+  if (candidates.empty()) return corners;
+  // Taken greedily, as the slit ends: a candidate is kept unless a slit end
+  // or a corner kept before it lies within 2 r (the spacing).
+  std::vector<Eigen::Vector3d> points = held;
+  for (const Candidate& candidate : candidates) points.push_back(candidate.point);
+  const PointGrid grid(points, spacing);
+  std::vector<std::uint8_t> kept(points.size(), 0);
+  std::fill(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(held.size()), 1);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const Candidate& candidate = candidates[c];
+    const auto room = limits[candidate.loop] - static_cast<std::int64_t>(taken[candidate.loop].size());
+    if (static_cast<std::int64_t>(corners[candidate.loop].size()) >= room) continue;
+    bool near = false;
+    grid.for_each_within(candidate.point, spacing, [&](Index slot, double squared_distance) {
+      near = near || (kept[static_cast<std::size_t>(grid.original(slot))] && squared_distance < spacing * spacing);
+    });
+    if (near) continue;
+    kept[held.size() + c] = 1;
+    corners[candidate.loop].push_back(candidate.edge);
+  }
+  for (std::vector<std::size_t>& edges : corners) std::sort(edges.begin(), edges.end());
+  return corners;
+}
+
+namespace {
+
 /// Arc lengths of k sites on the loop of `walk`: one at each of `ends`, the
 /// others evenly between them (see place_boundary_sites).
 std::vector<double> site_arc_lengths(const LoopWalk& walk, std::int64_t k, const std::vector<std::size_t>& ends) {
@@ -196,7 +276,12 @@ void place_boundary_sites(const TriangleMesh& mesh, std::span<const BoundaryLoop
   std::vector<LoopWalk> walks;
   walks.reserve(loops.size());
   for (const BoundaryLoop* loop : loops) walks.emplace_back(mesh, *loop);
-  const std::vector<std::vector<std::size_t>> ends = slit_ends(walks, spacing, sites);
+  std::vector<std::vector<std::size_t>> ends = slit_ends(walks, spacing, sites);
+  const std::vector<std::vector<std::size_t>> corners = loop_corners(walks, spacing, sites, ends);
+  for (std::size_t l = 0; l < walks.size(); ++l) {
+    ends[l].insert(ends[l].end(), corners[l].begin(), corners[l].end());
+    std::sort(ends[l].begin(), ends[l].end());
+  }
   for (std::size_t l = 0; l < walks.size(); ++l) {
     std::vector<double> at = site_arc_lengths(walks[l], sites[l], ends[l]);
     // A loop below the spacing whose sites come far closer in space than

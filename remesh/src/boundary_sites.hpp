@@ -63,11 +63,26 @@ class LoopWalk {
 std::vector<std::vector<std::size_t>> slit_ends(std::span<const LoopWalk> walks, double spacing,
                                                 std::span<const std::int64_t> limits);
 
+/// The corners of boundary loops (one walk each) that get a site of their
+/// own, for a remesh of edge length `spacing`: per loop, the edges the walk
+/// enters at a corner, in walking order, at most limits[l] less the slit ends
+/// `taken` on walks[l]. At the point v where the walk enters an edge, with r
+/// as for slit_ends: v is a corner when the loop runs straight for r on
+/// either side (its vertices within r / 20 of the chord from v) and the two
+/// chords meet at 135 degrees or less, a turn of 45 or more. A machined
+/// part's outline has such corners; a scan's ragged hole, or a loop that
+/// bends smoothly, does not. Only on closed loops of 4 spacings or longer;
+/// taken sharpest first, each at least 2 r in space from every corner and
+/// slit end taken before it.
+std::vector<std::vector<std::size_t>> loop_corners(std::span<const LoopWalk> walks, double spacing,
+                                                   std::span<const std::int64_t> limits,
+                                                   const std::vector<std::vector<std::size_t>>& taken);
+
 /// Sites on the loops of one component: sites[l] of them on loops[l] (at
 /// least 3 each), for a remesh of edge length `spacing`, appended to `out`
-/// loop by loop. One at each slit end (slit_ends, just off its vertex), the
-/// others evenly by arc length between consecutive ends, in proportion to
-/// the stretches' lengths; on a loop without slit ends evenly all round, at
+/// loop by loop. One at each slit end (slit_ends) and corner (loop_corners),
+/// just off its vertex, the others evenly by arc length between consecutive
+/// ones, in proportion to the stretches' lengths; on a loop without any evenly all round, at
 /// (j + 1/2) L / k. A closed loop smaller than the spacing whose sites would
 /// come closer in space than a quarter of their spacing along it (it runs
 /// back over itself, as copies of one short edge the cut to a manifold

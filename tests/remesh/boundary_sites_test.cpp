@@ -1,8 +1,9 @@
 // Boundary sites (remesh/src/boundary_sites.hpp): the walk along a loop and
-// the slit ends that get a site of their own. Oracles: hand-built loops
-// whose slits are known (a square slit to its centre), loops without any
-// (a rectangle, a disk's rim, a Möbius strip's edge), and loops the walk
-// runs partly against their faces' orientation.
+// the slit ends and corners that get a site of their own. Oracles:
+// hand-built loops whose slits and corners are known (a square slit to its
+// centre, a rectangle, polygons), loops without any (a disk's rim, a ragged
+// or rounded outline, a Möbius strip's edge), and loops the walk runs partly
+// against their faces' orientation.
 
 #include "../../remesh/src/boundary_sites.hpp"
 #include "remesh/analytic_surfaces.hpp"
@@ -17,6 +18,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 namespace geodual::remesh::detail {
@@ -184,11 +186,99 @@ void expect_even_by_arc_length(const TriangleMesh& mesh, std::int64_t k, double 
 }
 
 TEST(BoundarySites, OnLoopsThatDoNotRunBackOverThemselvesAreEvenByArcLength) {
-  // The rectangle's rim, 24 long, with 12 sites at spacing 2; and a
-  // triangular hole far smaller than the spacing, whose three sites are as
-  // far apart along it as in space.
-  expect_even_by_arc_length(rectangle(8, 4), 12, 2.0);
+  // The unit disk's rim (64 edges, a corner nowhere), 6.28 long, with 12
+  // sites at spacing 0.5; and a triangular hole far smaller than the
+  // spacing, whose three sites are as far apart along it as in space.
+  expect_even_by_arc_length(test::disk(4, 64), 12, 0.5);
   expect_even_by_arc_length(test::mesh_from_lists({{0, 0, 0}, {1, 0, 0}, {0.5, 0.8, 0}}, {{0, 1, 2}}), 3, 10.0);
+}
+
+/// The closed polygon `outline` (in z = 0, counter-clockwise) as a fan of
+/// triangles from its first point's opposite, the origin: one boundary loop.
+TriangleMesh polygon_fan(const std::vector<Eigen::Vector2d>& outline) {
+  std::vector<Eigen::Vector3d> vertices{Eigen::Vector3d::Zero()};
+  for (const Eigen::Vector2d& p : outline) vertices.emplace_back(p.x(), p.y(), 0);
+  std::vector<std::array<Index, 3>> faces;
+  const auto n = static_cast<Index>(outline.size());
+  for (Index i = 0; i < n; ++i) faces.push_back({0, 1 + i, 1 + (i + 1) % n});
+  return test::mesh_from_lists(vertices, faces);
+}
+
+/// The corners of the one loop of `mesh` at `spacing` (as many sites as it has edges), as points.
+std::vector<Eigen::Vector3d> corner_points(const TriangleMesh& mesh, double spacing) {
+  const SamplingSurface surface = build_sampling_surface(mesh, true);
+  std::vector<LoopWalk> walks;
+  for (const BoundaryLoop& loop : surface.boundary_loops) walks.emplace_back(mesh, loop);
+  const std::vector<std::int64_t> limits(walks.size(), 1000);
+  const std::vector<std::vector<std::size_t>> none(walks.size());
+  const std::vector<std::vector<std::size_t>> corners = loop_corners(walks, spacing, limits, none);
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t l = 0; l < walks.size(); ++l) {
+    for (const std::size_t edge : corners[l]) points.push_back(walks[l].point(walks[l].start(edge)));
+  }
+  std::sort(points.begin(), points.end(),
+            [](const auto& a, const auto& b) { return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z()); });
+  return points;
+}
+
+/// The square [-2, 2]^2's outline, each side in `per_side` edges, the points
+/// between its corners moved `ragged` inwards and outwards in turn.
+std::vector<Eigen::Vector2d> square_outline(int per_side, double ragged) {
+  const std::array<Eigen::Vector2d, 4> corner{Eigen::Vector2d(-2, -2), Eigen::Vector2d(2, -2), Eigen::Vector2d(2, 2),
+                                              Eigen::Vector2d(-2, 2)};
+  std::vector<Eigen::Vector2d> outline;
+  for (int side = 0; side < 4; ++side) {
+    const Eigen::Vector2d& a = corner[static_cast<std::size_t>(side)];
+    const Eigen::Vector2d& b = corner[static_cast<std::size_t>((side + 1) % 4)];
+    const Eigen::Vector2d inward = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
+    for (int k = 0; k < per_side; ++k) {
+      const double offset = k == 0 ? 0.0 : (k % 2 == 0 ? ragged : -ragged);
+      outline.push_back(a + (b - a) * k / per_side + offset * inward);
+    }
+  }
+  return outline;
+}
+
+TEST(BoundarySites, CornersWhereStraightSidesMeetGetSitesOfTheirOwn) {
+  // The rectangle [0, 8] x [0, 4] at spacing 2: its four corners, and its
+  // twelve sites one at each corner and evenly between (2 apart).
+  const std::vector<Eigen::Vector3d> corners = corner_points(rectangle(8, 4), 2.0);
+  const std::vector<Eigen::Vector3d> expected{{0, 0, 0}, {0, 4, 0}, {8, 0, 0}, {8, 4, 0}};
+  ASSERT_EQ(corners.size(), expected.size());
+  for (std::size_t i = 0; i < corners.size(); ++i) EXPECT_NEAR((corners[i] - expected[i]).norm(), 0, 1e-12);
+  const SamplingSurface surface = build_sampling_surface(rectangle(8, 4), true);
+  const std::vector<Eigen::Vector3d> sites = placed_sites(rectangle(8, 4), surface.boundary_loops.front(), 12, 2.0);
+  for (const Eigen::Vector3d& corner : expected) {
+    EXPECT_TRUE(std::any_of(sites.begin(), sites.end(), [&](const auto& s) { return (s - corner).norm() < 1e-5; }));
+  }
+  EXPECT_NEAR(closest_pair(sites), 2.0, 1e-5);
+  // A triangle (corners of 60 degrees and less) and a square of 16 edges a
+  // side at spacing 1 (sides straight for 2 spacings and more: 4 long).
+  EXPECT_EQ(corner_points(polygon_fan({{-3, -2}, {3, -2}, {0, 4}}), 1.0).size(), 3u);
+  EXPECT_EQ(corner_points(polygon_fan(square_outline(16, 0)), 1.0).size(), 4u);
+  // A regular polygon's corners turn by 360 / n degrees: a hexagon's (60)
+  // are corners, a 12-gon's (30, less than 45) not.
+  auto regular = [](int n, double radius) {
+    std::vector<Eigen::Vector2d> outline;
+    for (int k = 0; k < n; ++k) {
+      const double angle = 2 * std::numbers::pi * k / n;
+      outline.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+    }
+    return polygon_fan(outline);
+  };
+  EXPECT_EQ(corner_points(regular(6, 8), 1.0).size(), 6u);
+  EXPECT_TRUE(corner_points(regular(12, 16), 1.0).empty());
+}
+
+TEST(BoundarySites, RaggedRoundOrShortLoopsHaveNoCorners) {
+  // A scan's ragged outline: the square's sides zigzag by 0.1 (a tenth of
+  // the spacing, beyond the spacing / 20 a straight side keeps to).
+  EXPECT_TRUE(corner_points(polygon_fan(square_outline(16, 0.1)), 1.0).empty());
+  // ... while a zigzag within it leaves the square's corners.
+  EXPECT_EQ(corner_points(polygon_fan(square_outline(16, 0.02)), 1.0).size(), 4u);
+  // A disk's rim; a square whose sides (4) are shorter than two spacings.
+  EXPECT_TRUE(corner_points(test::disk(4, 64), 0.1).empty());
+  EXPECT_TRUE(corner_points(polygon_fan(square_outline(16, 0)), 4.0).empty());
 }
 
 }  // namespace

@@ -414,10 +414,12 @@ TEST(SampleSites, AMillionRandomSitesOnAQuarterMillionFaces) {
   EXPECT_LT(seconds, 30.0);  // a few tenths of a second in Release; this only catches a blow-up
 }
 
-TEST(SampleSites, SquareBoundaryGetsEvenlySpacedSites) {
+TEST(SampleSites, SquareBoundaryGetsASiteAtEachCornerAndEvenlySpacedSitesBetween) {
   // The unit square's boundary has length 4; with n sites the loop gets
-  // round(4 / s) of them, s the hexagonal spacing, at arc lengths
-  // (j + 1/2) 4 / k, measured here from the corner (0, 0) counter-clockwise.
+  // round(4 / s) of them, s the hexagonal spacing: one at each of its four
+  // corners (straight sides meeting at 90 degrees) where the sides are two
+  // spacings long or more, and on each side the others evenly between them.
+  // Arc lengths are measured from the corner (0, 0) counter-clockwise.
   const TriangleMesh mesh = square_grid(16, 0.5);
   int num_loops = 0;
   const auto loop_of = boundary_loop_of_edge(mesh, &num_loops);
@@ -448,11 +450,28 @@ TEST(SampleSites, SquareBoundaryGetsEvenlySpacedSites) {
       const auto k = static_cast<std::int64_t>(arc.size());
       const std::int64_t expected = std::clamp<std::int64_t>(std::llround(4 / hexagonal_spacing(1, n)), 3, n - 1);
       EXPECT_EQ(k, expected);
-      std::sort(arc.begin(), arc.end());
-      // Evenly spaced along the loop, with some phase: every gap is 4 / k.
-      for (std::int64_t j = 0; j < k; ++j) {
-        const double gap = j + 1 < k ? arc[j + 1] - arc[j] : arc[0] + 4 - arc[j];
-        EXPECT_NEAR(gap, 4.0 / double(k), 1e-6) << "gap " << j;
+      // At 4 sites the sides (1 long) are shorter than two spacings: no corners.
+      if (n == 4) continue;
+      // A corner's site is just off its vertex (2^-20 of an edge).
+      auto at_corner = [](double a) { return std::abs(a - std::round(a)) < 1e-5; };
+      std::vector<std::vector<double>> side(4);
+      int corners = 0;
+      for (const double a : arc) {
+        const double wrapped = a > 4 - 1e-5 ? a - 4 : a;
+        if (at_corner(wrapped)) {
+          ++corners;
+          continue;
+        }
+        side[static_cast<std::size_t>(std::floor(wrapped))].push_back(wrapped);
+      }
+      EXPECT_EQ(corners, 4);
+      for (int j = 0; j < 4; ++j) {
+        std::vector<double>& on = side[static_cast<std::size_t>(j)];
+        std::sort(on.begin(), on.end());
+        const double gap = 1.0 / static_cast<double>(on.size() + 1);
+        for (std::size_t i = 0; i < on.size(); ++i) {
+          EXPECT_NEAR(on[i], j + gap * static_cast<double>(i + 1), 1e-5) << "side " << j << ", site " << i;
+        }
       }
     }
   }
