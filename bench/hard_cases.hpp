@@ -508,7 +508,7 @@ inline TriangleMesh spur_gear() {
 /// The wall of a letter's hole as CAD text is extruded: a half-ellipse of
 /// semi-axes 0.113 and 0.111 closed by its chord, 60 arc segments, 1 high,
 /// one band of quads (122 faces; open, 2 boundary loops). The chord's panel
-/// is a single quad between two creases: at 6-20 sites its sites can all go
+/// is a single quad between two creases: at 23 sites its sites all go
 /// in the weld's repair, and with them the panel (as on the "e" of
 /// OpenFOAM's opencfd_text.stl).
 inline TriangleMesh letter_wall() {
