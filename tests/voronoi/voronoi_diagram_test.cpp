@@ -191,11 +191,7 @@ TEST(VoronoiDiagram, TwoSitesTiedAtAnEdgeMidpointAreResolved) {
   // regions were closed approximately, the Voronoi vertex of the two sites
   // and the one below them lost (OpenFOAM's two-triangle ami.obj at 500
   // sites: a closed arc, a pair meeting along 3 arcs, no valid dual).
-  TriangleMesh mesh;
-  mesh.vertices.resize(4, 3);
-  mesh.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
-  mesh.faces.resize(2, 3);
-  mesh.faces << 0, 1, 2, 0, 2, 3;
+  const TriangleMesh mesh = test::flat_square(1, 0.0, 1);  // face 1: (0, 0), (1, 1), (0, 1)
   const double a = 0.52380952378734946, b = 0.47619047621265054;
   const std::vector<SurfacePoint> sites = {
       SurfacePoint::in_face(1, 0, a, b), SurfacePoint::in_face(1, 0, b, a), SurfacePoint::in_face(1, 0.2, 0.4, 0.4),
