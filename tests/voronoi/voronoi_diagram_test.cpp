@@ -7,6 +7,8 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
 
+#include "geodual/mesh/random.hpp"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <Eigen/Geometry>
@@ -204,6 +206,31 @@ TEST(VoronoiDiagram, TwoSitesTiedAtAnEdgeMidpointAreResolved) {
     EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
   }
   EXPECT_EQ(diagram.vertices.size(), 3u);
+  for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
+}
+
+TEST(VoronoiDiagram, TwoFacesHoldingHundredsOfSitesMatchTheEuclideanDiagram) {
+  // A coarse input remeshed finely: 300 sites in each of the square's two
+  // triangles. The tracer answers its nearest-site queries in such a face
+  // from a grid of its cones (PlaneNearestSite), looks the sites' cones up
+  // by hash, and splits the face deeper, as its cells are small (to depth
+  // 10 only, cell areas were 1e-8 off); the diagram must still be the
+  // Euclidean one, cell by cell.
+  const TriangleMesh mesh = test::flat_square(1, 0.0, 1);
+  SplitMix64 random(31);
+  std::vector<SurfacePoint> sites;
+  for (int i = 0; i < 600; ++i) {
+    double a = random.uniform(), b = random.uniform();
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    sites.push_back(SurfacePoint::in_face(i % 2, 1 - a - b, a, b));
+  }
+  const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
+  expect_consistent(mesh, diagram);
+  std::vector<Eigen::Vector2d> planar;
+  for (const SurfacePoint& s : sites) planar.push_back(s.position(mesh).head<2>());
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
+  }
   for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
 }
 

@@ -205,14 +205,15 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
     changes_.clear();
     Index previous_site = site0;
     double previous_x = 0;
+    auto nearest_site = [&](const Eigen::Vector2d& at) {
+      return index ? index->nearest_site(at.x()) : edge_envelope_.nearest_site(at);
+    };
     for (std::size_t i = 1; i < samples_.size(); ++i) {
       const double x = samples_[i];
-      const Index site = i + 1 == samples_.size() ? site1
-                         : index                  ? index->nearest_site(x)
-                                                  : edge_envelope_.nearest_site(Eigen::Vector2d(x, 0));
+      const Index site = i + 1 == samples_.size() ? site1 : nearest_site(Eigen::Vector2d(x, 0));
       if (site < 0 || site == previous_site) continue;
-      find_site_changes(edge_envelope_, index, Eigen::Vector2d::Zero(), Eigen::Vector2d(length, 0), previous_x / length,
-                        x / length, previous_site, site);
+      find_site_changes(edge_envelope_, nearest_site, Eigen::Vector2d::Zero(), Eigen::Vector2d(length, 0),
+                        previous_x / length, x / length, previous_site, site);
       previous_site = site;
       previous_x = x;
     }
@@ -253,12 +254,10 @@ void FaceBoundaryTracer::drop_zero_width_stretches() {
   }
 }
 
-void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const AxisNearestSite* on_axis,
+template <class NearestSite>
+void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const NearestSite& nearest_site,
                                            const Eigen::Vector2d& p, const Eigen::Vector2d& q, double t0, double t1,
                                            Index site0, Index site1) {
-  auto nearest_site = [&](const Eigen::Vector2d& at) {
-    return on_axis ? on_axis->nearest_site(at.x()) : envelope.nearest_site(at);
-  };
   // Where the two sites are equally far, found on the difference of their
   // distances, is the change when they are the nearest on either side of it.
   const Eigen::Vector2d a = p + t0 * (q - p), b = p + t1 * (q - p);
@@ -285,8 +284,8 @@ void FaceBoundaryTracer::find_site_changes(const ConeEnvelope& envelope, const A
     } else if (site == site0 || site < 0) {
       lo = mid;
     } else {
-      find_site_changes(envelope, on_axis, p, q, lo, mid, site0, site);
-      find_site_changes(envelope, on_axis, p, q, mid, hi, site, site1);
+      find_site_changes(envelope, nearest_site, p, q, lo, mid, site0, site);
+      find_site_changes(envelope, nearest_site, p, q, mid, hi, site, site1);
       return;
     }
   }
@@ -328,18 +327,28 @@ void FaceBoundaryTracer::trace_face(Index face, TracedChunk& out) {
   out_ = &out;
   graph_ = &out.graph;
   build_face_envelope(field_, mesh_, face, layout_, envelope_);
+  std::size_t cones = 0;
+  for (int slot = 0; slot < envelope_.slot_count(); ++slot) cones += envelope_.cones(slot).size();
+  face_indexed_ = cones >= min_cones_to_index;
+  if (face_indexed_) face_index_.build(envelope_, layout_.corner);
   moments_.set_face(face, layout_);
   face_sites_.clear();
-  face_site_ids_.clear();
   const auto first =
       std::lower_bound(field_.face_point_sources.begin(), field_.face_point_sources.end(), FacePointSource{face},
                        [](const FacePointSource& a, const FacePointSource& b) { return a.face < b.face; });
   for (auto it = first; it != field_.face_point_sources.end() && it->face == face; ++it) {
     if (it->sigma == 0) {  // a site itself, not a pseudo-source seen through a neighbour
-      face_sites_.push_back(layout_.point(it->barycentric));
-      face_site_ids_.push_back(it->site);
+      face_sites_.push_back({layout_.point(it->barycentric), it->site});
     }
   }
+  std::sort(face_sites_.begin(), face_sites_.end(), [](const FaceSite& a, const FaceSite& b) {
+    return a.point.x() < b.point.x() || (a.point.x() == b.point.x() && a.site < b.site);
+  });
+  // Cells much smaller than the face (a coarse input remeshed finely) are
+  // resolved as far below their own size as the option asks below a face's:
+  // a face holding k sites is split log4(k) levels deeper.
+  max_depth_ = options_.max_refinement;
+  for (std::size_t k = face_sites_.size(); k >= 4; k /= 4) ++max_depth_;
 
   sides_.clear();
   crossings_.clear();
@@ -392,14 +401,23 @@ void FaceBoundaryTracer::collect_cycle(const SubTriangle& triangle) {
 }
 
 bool FaceBoundaryTracer::holds_island(const SubTriangle& triangle) const {
-  for (std::size_t i = 0; i < face_sites_.size(); ++i) {
-    const Eigen::Vector2d& p = face_sites_[i];
+  // Only the sites within the triangle's stretch of x (and a few units in
+  // the last place, which the tests below may round across) can lie in it.
+  double x_min = std::min({triangle.corner[0].x(), triangle.corner[1].x(), triangle.corner[2].x()});
+  double x_max = std::max({triangle.corner[0].x(), triangle.corner[1].x(), triangle.corner[2].x()});
+  const double slack = 16 * std::numeric_limits<double>::epsilon() * (std::abs(x_min) + std::abs(x_max));
+  x_min -= slack;
+  x_max += slack;
+  const auto first = std::lower_bound(face_sites_.begin(), face_sites_.end(), x_min,
+                                      [](const FaceSite& a, double x) { return a.point.x() < x; });
+  for (auto it = first; it != face_sites_.end() && it->point.x() <= x_max; ++it) {
+    const Eigen::Vector2d& p = it->point;
     bool inside = true;
     for (int k = 0; k < 3 && inside; ++k) {
       inside = cross(triangle.corner[(k + 1) % 3] - triangle.corner[k], p - triangle.corner[k]) >= 0;
     }
     if (!inside) continue;
-    const Index site = face_site_ids_[i];
+    const Index site = it->site;
     bool seen = triangle.site[0] == site || triangle.site[1] == site || triangle.site[2] == site;
     for (const CycleCrossing& c : cycle_) seen = seen || c.crossing.to == site;
     if (!seen) return true;
@@ -410,7 +428,7 @@ bool FaceBoundaryTracer::holds_island(const SubTriangle& triangle) const {
 void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth) {
   collect_cycle(triangle);
   const std::size_t n = cycle_.size();
-  const bool at_limit = depth >= options_.max_refinement;
+  const bool at_limit = depth >= max_depth_;
   // Consistent: each crossing leaves the site the previous one entered.
   bool consistent = true;
   for (std::size_t i = 0; i < n; ++i) {
@@ -438,7 +456,7 @@ void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth) {
     graph_->pieces.push_back(piece);
   }
   const Eigen::Vector2d centre = (triangle.corner[0] + triangle.corner[1] + triangle.corner[2]) / 3;
-  const Index site = envelope_.nearest_site(centre);
+  const Index site = nearest_in_face(centre);
   const Index owner = site >= 0 ? site : triangle.site[0];
   out_->contributions.push_back(
       {owner, std::max(triangle_area(triangle.corner), 0.0), moments_.polygon(owner, triangle.corner, envelope_)});
@@ -663,7 +681,7 @@ double FaceBoundaryTracer::trace_bisector(const Eigen::Vector2d& p, const Eigen:
   if (!((g_low <= 0) != (g_high <= 0))) return 0;
   const Eigen::Vector2d on_curve =
       low + equal_distance_parameter(envelope_, low, high, left, right, g_low, g_high) * (high - low);
-  if (const Index nearest = envelope_.nearest_site(on_curve); nearest != left && nearest != right) {
+  if (const Index nearest = nearest_in_face(on_curve); nearest != left && nearest != right) {
     trace_valid_ = false;  // a third site's part lies across the way
   }
   if ((on_curve - middle).norm() <= tolerance_) return 0;
@@ -794,13 +812,14 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
   side.end_site = end_site;
   side.crossing_begin = static_cast<Index>(crossings_.size());
   changes_.clear();
+  const auto in_face = [this](const Eigen::Vector2d& at) { return nearest_in_face(at); };
   Index previous_site = start_site;
   double previous_t = 0;
   for (int i = 1; i <= samples_per_inner_side; ++i) {
     const double t = static_cast<double>(i) / samples_per_inner_side;
-    const Index site = i == samples_per_inner_side ? end_site : envelope_.nearest_site(start + t * (end - start));
+    const Index site = i == samples_per_inner_side ? end_site : nearest_in_face(start + t * (end - start));
     if (site < 0 || site == previous_site) continue;
-    find_site_changes(envelope_, nullptr, start, end, previous_t, t, previous_site, site);
+    find_site_changes(envelope_, in_face, start, end, previous_t, t, previous_site, site);
     previous_site = site;
     previous_t = t;
   }

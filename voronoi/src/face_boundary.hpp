@@ -12,6 +12,7 @@
 #include "axis_nearest_site.hpp"
 #include "cell_moments.hpp"
 #include "face_distance.hpp"
+#include "plane_nearest_site.hpp"
 
 #include "geodual/mesh/detail/index_hash_map.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
@@ -199,10 +200,14 @@ class FaceBoundaryTracer {
   Eigen::Vector3d to_space(const Eigen::Vector2d& p) const;
   /// Appends to changes_ every change of nearest site along p + t (q - p)
   /// for t from t0 (where site0 is nearest) to t1 (site1), in order.
-  /// `on_axis`, if given, answers envelope.nearest_site on the x axis, where
-  /// p and q must then lie.
-  void find_site_changes(const ConeEnvelope& envelope, const AxisNearestSite* on_axis, const Eigen::Vector2d& p,
+  /// `nearest_site(x)` answers envelope.nearest_site(x) (from an index).
+  template <class NearestSite>
+  void find_site_changes(const ConeEnvelope& envelope, const NearestSite& nearest_site, const Eigen::Vector2d& p,
                          const Eigen::Vector2d& q, double t0, double t1, Index site0, Index site1);
+  /// envelope_.nearest_site(p), from face_index_ when the face holds many cones.
+  Index nearest_in_face(const Eigen::Vector2d& p) const {
+    return face_indexed_ ? face_index_.nearest_site(p) : envelope_.nearest_site(p);
+  }
   /// Removes from changes_ the pairs A -> B -> A that enclose no length.
   void drop_zero_width_stretches();
   /// The u in [0, 1] where sites `from` and `to` are equally far at
@@ -251,8 +256,13 @@ class FaceBoundaryTracer {
   Index face_ = -1;
   FaceLayout layout_;
   ConeEnvelope envelope_;
-  std::vector<Eigen::Vector2d> face_sites_;  ///< sites in the face
-  std::vector<Index> face_site_ids_;
+  PlaneNearestSite face_index_;  ///< envelope_'s, when it holds many cones
+  bool face_indexed_ = false;
+  struct FaceSite {
+    Eigen::Vector2d point;
+    Index site = -1;
+  };
+  std::vector<FaceSite> face_sites_;  ///< the sites in the face, by x
   std::vector<Side> sides_;
   std::vector<Crossing> crossings_;
   std::vector<CycleCrossing> cycle_;           ///< scratch: the boundary walk of one sub-triangle
@@ -269,6 +279,7 @@ class FaceBoundaryTracer {
   std::vector<VertexTerm> at_x_, trial_;    ///< scratch: solve_vertex's site distances
   std::vector<std::array<Index, 3>> jump_;  ///< scratch: per crossing, the inside path from it
   std::vector<std::uint8_t> visited_;
+  int max_depth_ = 0;  ///< how many times the face's sub-triangles may be split
   bool trace_valid_ = true;
   bool face_refined_ = false;
 };

@@ -81,10 +81,16 @@ bool DistanceCone::sees(const Eigen::Vector2d& p) const {
 
 void ConeEnvelope::clear() {
   for (int slot = 0; slot < slot_count(); ++slot) slot_cones_[slot].clear();
+  if (slot_count() > kScannedSlots) slot_index_.clear();
   slot_site_.clear();
 }
 
 int ConeEnvelope::slot_of(Index site) const {
+  if (site < 0) return -1;
+  if (slot_count() > kScannedSlots) {
+    const int* slot = slot_index_.find(site);
+    return slot ? *slot : -1;
+  }
   for (int slot = 0; slot < slot_count(); ++slot) {
     if (slot_site_[slot] == site) return slot;
   }
@@ -96,6 +102,11 @@ int ConeEnvelope::slot_for(Index site) {
   if (slot >= 0) return slot;
   slot_site_.push_back(site);
   if (slot_cones_.size() < slot_site_.size()) slot_cones_.emplace_back();
+  if (slot_count() == kScannedSlots + 1) {
+    for (int s = 0; s < slot_count(); ++s) slot_index_.insert(slot_site_[s], s);
+  } else if (slot_count() > kScannedSlots + 1) {
+    slot_index_.insert(site, slot_count() - 1);
+  }
   return slot_count() - 1;
 }
 

@@ -11,6 +11,7 @@
 // shortest path to p enters the face through some window's interval, a corner
 // or a site in the face.
 
+#include "geodual/mesh/detail/index_hash_map.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/voronoi/geodesic_field.hpp"
 
@@ -97,6 +98,10 @@ class ConeEnvelope {
   /// empty with their capacity, so rebuilding an envelope does not allocate.
   std::vector<std::vector<DistanceCone>> slot_cones_;
   std::vector<Index> slot_site_;
+  /// Beyond this many slots, a site's slot is looked up in slot_index_
+  /// rather than by a scan (a face holding many sites has hundreds).
+  static constexpr int kScannedSlots = 16;
+  IndexHashMap<int> slot_index_;
 };
 
 /// Builds the envelopes valid inside `face` (laid out as `layout`): its

@@ -36,7 +36,8 @@ struct VoronoiOptions {
   /// How many times a triangle may be split in four to resolve what happens
   /// inside it (several Voronoi vertices, a whole cell inside one triangle).
   /// Structure finer than 2^-max_refinement of the triangle's size is taken as
-  /// one Voronoi vertex of higher degree.
+  /// one Voronoi vertex of higher degree; a triangle holding k sites may be
+  /// split log4(k) times more (its cells are that much smaller).
   int max_refinement = 10;
 };
 

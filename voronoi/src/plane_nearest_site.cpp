@@ -1,0 +1,141 @@
+#include "plane_nearest_site.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace geodual::voronoi::detail {
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+/// Beyond this scale the bounds' arithmetic could overflow: every cone is
+/// evaluated instead.
+constexpr double largest_scale = 0x1p900;
+/// About this many cones per cell, and at most this many cells a side.
+constexpr double cones_per_cell = 2;
+constexpr int most_cells_per_side = 128;
+
+}  // namespace
+
+void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen::Vector2d> region) {
+  entries_.clear();
+  others_.clear();
+  cell_begin_.clear();
+  cell_least_sigma_.clear();
+  columns_ = rows_ = 0;
+  scale_ = 0;
+  std::size_t cones = 0;
+  for (int slot = 0; slot < envelope.slot_count(); ++slot) {
+    for (const DistanceCone& cone : envelope.cones(slot)) {
+      scale_ = std::max(scale_, std::abs(cone.sigma) + std::abs(cone.apex.x()) + std::abs(cone.apex.y()));
+      ++cones;
+    }
+  }
+  // The grid: the region's bounding box and as far again on every side.
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(infinity), high = -low;
+  for (const Eigen::Vector2d& p : region) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const Eigen::Vector2d extent = high - low;
+  const bool bounded = scale_ <= largest_scale && extent.allFinite() && extent.minCoeff() >= 0;  // false for NaN
+  const double width = 3 * extent.x(), height = 3 * extent.y();
+  if (bounded && width > 0 && height > 0) {
+    origin_ = low - extent;
+    const double cells = std::max(1.0, static_cast<double>(cones) / cones_per_cell);
+    cell_size_ = std::sqrt(width * height / cells);
+    cell_size_ = std::max({cell_size_, width / most_cells_per_side, height / most_cells_per_side});
+    columns_ = std::clamp(static_cast<int>(std::ceil(width / cell_size_)), 1, most_cells_per_side);
+    rows_ = std::clamp(static_cast<int>(std::ceil(height / cell_size_)), 1, most_cells_per_side);
+  }
+  // Each cone's cell (-1: off the grid), then the cones sorted by cell.
+  const auto num_cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  cell_begin_.assign(num_cells + 1, 0);
+  cell_least_sigma_.assign(num_cells, infinity);
+  cell_of_.clear();
+  for (int slot = 0; slot < envelope.slot_count(); ++slot) {
+    for (const DistanceCone& cone : envelope.cones(slot)) {
+      Index cell = -1;
+      if (num_cells > 0) {
+        const double i = std::floor((cone.apex.x() - origin_.x()) / cell_size_);
+        const double j = std::floor((cone.apex.y() - origin_.y()) / cell_size_);
+        if (i >= 0 && i < columns_ && j >= 0 && j < rows_) {  // false for NaN
+          cell = static_cast<Index>(j) * columns_ + static_cast<Index>(i);
+          ++cell_begin_[static_cast<std::size_t>(cell) + 1];
+          cell_least_sigma_[static_cast<std::size_t>(cell)] =
+              std::min(cell_least_sigma_[static_cast<std::size_t>(cell)], cone.sigma);
+        } else {
+          others_.push_back({cone, envelope.site(slot)});
+        }
+      } else {
+        others_.push_back({cone, envelope.site(slot)});
+      }
+      cell_of_.push_back(cell);
+    }
+  }
+  for (std::size_t c = 0; c < num_cells; ++c) cell_begin_[c + 1] += cell_begin_[c];
+  entries_.resize(static_cast<std::size_t>(cell_begin_[num_cells]));
+  least_sigma_ = infinity;
+  std::vector<Index> next(cell_begin_.begin(), cell_begin_.end() - (num_cells > 0 ? 1 : 0));
+  std::size_t k = 0;
+  for (int slot = 0; slot < envelope.slot_count(); ++slot) {
+    for (const DistanceCone& cone : envelope.cones(slot)) {
+      const Index cell = cell_of_[k++];
+      if (cell < 0) continue;
+      entries_[static_cast<std::size_t>(next[static_cast<std::size_t>(cell)]++)] = {cone, envelope.site(slot)};
+      least_sigma_ = std::min(least_sigma_, cone.sigma);
+    }
+  }
+}
+
+Index PlaneNearestSite::nearest_site(const Eigen::Vector2d& p) const {
+  // The smallest value, ties to the smaller site, among the cones that see
+  // p: ConeEnvelope::nearest_site's rule, so the order of reading is free.
+  double best = infinity;
+  Index site = -1;
+  auto consider = [&](const Entry& e) {
+    const double d = e.cone.value(p);
+    if ((d < best || (d == best && e.site < site)) && e.cone.sees(p)) best = d, site = e.site;
+  };
+  for (const Entry& e : others_) consider(e);
+  if (entries_.empty()) return site;
+  if (!p.allFinite()) {
+    for (const Entry& e : entries_) consider(e);
+    return site;
+  }
+  // A cone whose computed value is at most `best` has a computed bound below
+  // best + margin: the value, the bound and the cell boundaries are each
+  // within a few units in the last place of scale_ + |p| of their exact figures.
+  const double margin = 32 * std::numeric_limits<double>::epsilon() * (scale_ + std::abs(p.x()) + std::abs(p.y()));
+  // p's cell, or the nearest one when p is off the grid: a cell r rings out
+  // lies at least r - 1 cells from p.
+  const int ci = static_cast<int>(
+      std::clamp(std::floor((p.x() - origin_.x()) / cell_size_), 0.0, static_cast<double>(columns_ - 1)));
+  const int cj =
+      static_cast<int>(std::clamp(std::floor((p.y() - origin_.y()) / cell_size_), 0.0, static_cast<double>(rows_ - 1)));
+  auto read_cell = [&](int i, int j) {
+    const auto cell = static_cast<std::size_t>(j) * static_cast<std::size_t>(columns_) + static_cast<std::size_t>(i);
+    if (cell_begin_[cell] == cell_begin_[cell + 1]) return;
+    const double x0 = origin_.x() + i * cell_size_, y0 = origin_.y() + j * cell_size_;
+    const double dx = std::max({x0 - p.x(), 0.0, p.x() - (x0 + cell_size_)});
+    const double dy = std::max({y0 - p.y(), 0.0, p.y() - (y0 + cell_size_)});
+    if (cell_least_sigma_[cell] + std::sqrt(dx * dx + dy * dy) - margin > best) return;
+    for (Index e = cell_begin_[cell]; e < cell_begin_[cell + 1]; ++e) consider(entries_[static_cast<std::size_t>(e)]);
+  };
+  const int rings = std::max({ci, columns_ - 1 - ci, cj, rows_ - 1 - cj});
+  for (int r = 0; r <= rings; ++r) {
+    if (r > 0 && least_sigma_ + (r - 1) * cell_size_ - margin > best) break;
+    const int i0 = ci - r, i1 = ci + r, j0 = cj - r, j1 = cj + r;
+    for (int i = std::max(i0, 0); i <= std::min(i1, columns_ - 1); ++i) {
+      if (j0 >= 0) read_cell(i, j0);
+      if (r > 0 && j1 < rows_) read_cell(i, j1);
+    }
+    for (int j = std::max(j0 + 1, 0); j <= std::min(j1 - 1, rows_ - 1); ++j) {
+      if (i0 >= 0) read_cell(i0, j);
+      if (r > 0 && i1 < columns_) read_cell(i1, j);
+    }
+  }
+  return site;
+}
+
+}  // namespace geodual::voronoi::detail
