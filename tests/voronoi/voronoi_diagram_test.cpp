@@ -92,6 +92,18 @@ void expect_consistent(const TriangleMesh& mesh, const VoronoiDiagram& diagram) 
   EXPECT_EQ(diagram.stats.unresolved_regions, 0);
 }
 
+/// On a flat convex mesh in the z = 0 plane: the checks of
+/// expect_consistent, and every cell's area that of the Euclidean cell.
+void expect_euclidean_cells(const TriangleMesh& mesh, const std::vector<SurfacePoint>& sites,
+                            const VoronoiDiagram& diagram) {
+  expect_consistent(mesh, diagram);
+  std::vector<Eigen::Vector2d> planar;
+  for (const SurfacePoint& s : sites) planar.push_back(s.position(mesh).head<2>());
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
+  }
+}
+
 TEST(VoronoiDiagram, FlatSquareMatchesTheEuclideanDiagram) {
   const TriangleMesh mesh = test::flat_square(40, 0.3, 21);
   std::vector<SurfacePoint> sites = test::random_face_sites(mesh, 24, 22);
@@ -199,12 +211,7 @@ TEST(VoronoiDiagram, TwoSitesTiedAtAnEdgeMidpointAreResolved) {
       SurfacePoint::in_face(1, 0, a, b), SurfacePoint::in_face(1, 0, b, a), SurfacePoint::in_face(1, 0.2, 0.4, 0.4),
       SurfacePoint::in_face(0, 0.3, 0.3, 0.4), SurfacePoint::in_face(1, 0.6, 0.2, 0.2)};
   const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
-  expect_consistent(mesh, diagram);
-  std::vector<Eigen::Vector2d> planar;
-  for (const SurfacePoint& s : sites) planar.push_back(s.position(mesh).head<2>());
-  for (std::size_t i = 0; i < sites.size(); ++i) {
-    EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
-  }
+  expect_euclidean_cells(mesh, sites, diagram);
   EXPECT_EQ(diagram.vertices.size(), 3u);
   for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
 }
@@ -225,12 +232,7 @@ TEST(VoronoiDiagram, TwoFacesHoldingHundredsOfSitesMatchTheEuclideanDiagram) {
     sites.push_back(SurfacePoint::in_face(i % 2, 1 - a - b, a, b));
   }
   const VoronoiDiagram diagram = voronoi::compute_voronoi(mesh, sites);
-  expect_consistent(mesh, diagram);
-  std::vector<Eigen::Vector2d> planar;
-  for (const SurfacePoint& s : sites) planar.push_back(s.position(mesh).head<2>());
-  for (std::size_t i = 0; i < sites.size(); ++i) {
-    EXPECT_NEAR(diagram.cell_area[i], euclidean_cell_area(planar, i), 1e-9) << "site " << i;
-  }
+  expect_euclidean_cells(mesh, sites, diagram);
   for (const voronoi::CellAdjacency& pair : diagram.adjacency) EXPECT_EQ(pair.arc_count, 1);
 }
 

@@ -122,19 +122,19 @@ void AxisNearestSite::build(const ConeEnvelope& envelope) {
   }
 
   std::sort(points_.begin(), points_.end(),
-            [](const Entry& a, const Entry& b) { return a.cone.apex.x() < b.cone.apex.x(); });
+            [](const SiteCone& a, const SiteCone& b) { return a.cone.apex.x() < b.cone.apex.x(); });
   point_x_.clear();
-  for (const Entry& e : points_) point_x_.push_back(e.cone.apex.x());
+  for (const SiteCone& e : points_) point_x_.push_back(e.cone.apex.x());
   const Index num_points = static_cast<Index>(points_.size());
   keys_.clear();
-  for (const Entry& e : points_) keys_.push_back(e.cone.sigma - e.cone.apex.x());
+  for (const SiteCone& e : points_) keys_.push_back(e.cone.sigma - e.cone.apex.x());
   left_keys_.assign(keys_);
   best_left_upto_.resize(points_.size());
   for (Index i = 0; i < num_points; ++i) {
     best_left_upto_[i] = i > 0 && keys_[best_left_upto_[i - 1]] <= keys_[i] ? best_left_upto_[i - 1] : i;
   }
   keys_.clear();
-  for (const Entry& e : points_) keys_.push_back(e.cone.sigma + e.cone.apex.x());
+  for (const SiteCone& e : points_) keys_.push_back(e.cone.sigma + e.cone.apex.x());
   right_keys_.assign(keys_);
   best_right_from_.resize(points_.size());
   for (Index i = num_points; i-- > 0;) {
@@ -154,20 +154,13 @@ void AxisNearestSite::build(const ConeEnvelope& envelope) {
 }
 
 Index AxisNearestSite::nearest_site(double x) const {
-  const Eigen::Vector2d p(x, 0);
-  // The smallest value, ties to the smaller site, among the cones that see
-  // p: ConeEnvelope::nearest_site's rule, so the order of reading is free.
-  double best = infinity;
-  Index site = -1;
-  auto consider = [&](const Entry& e) {
-    const double d = e.cone.value(p);
-    if ((d < best || (d == best && e.site < site)) && e.cone.sees(p)) best = d, site = e.site;
-  };
-  for (const Entry& e : others_) consider(e);
+  NearestCone nearest{Eigen::Vector2d(x, 0)};
+  auto consider = [&](const SiteCone& c) { nearest.consider(c); };
+  for (const SiteCone& e : others_) consider(e);
   const auto wedge_end =
       static_cast<Index>(std::upper_bound(wedge_lo_.begin(), wedge_lo_.end(), x) - wedge_lo_.begin());
   wedge_minus_hi_.for_each_at_most(0, wedge_end, -x, [&](Index i) { consider(wedges_[i]); });
-  if (points_.empty()) return site;
+  if (points_.empty()) return nearest.site;
 
   // Points [0, split) have apex.x <= x. The smallest bound on each side is
   // a cone that sees p: its value bounds the nearest from above.
@@ -175,14 +168,14 @@ Index AxisNearestSite::nearest_site(double x) const {
   const auto split = static_cast<Index>(std::upper_bound(point_x_.begin(), point_x_.end(), x) - point_x_.begin());
   if (split > 0) consider(points_[best_left_upto_[split - 1]]);
   if (split < num_points) consider(points_[best_right_from_[split]]);
-  // A cone whose computed value is at most `best` has a computed bound below
-  // best + margin: the value, the key and the threshold are each within a
+  // A cone whose computed value is at most the least value so far has a
+  // computed bound below that plus the margin: the value, the key and the threshold are each within a
   // few units in the last place of scale_ + |x| of their exact figures.
   const double margin = 32 * std::numeric_limits<double>::epsilon() * (scale_ + std::abs(x));
-  const double bound = best;
+  const double bound = nearest.value;
   left_keys_.for_each_at_most(0, split, bound - x + margin, [&](Index i) { consider(points_[i]); });
   right_keys_.for_each_at_most(split, num_points, bound + x + margin, [&](Index i) { consider(points_[i]); });
-  return site;
+  return nearest.site;
 }
 
 }  // namespace geodual::voronoi::detail

@@ -69,31 +69,26 @@ class AxisNearestSite {
   Index nearest_site(double x) const;
 
  private:
-  struct Entry {
-    DistanceCone cone;
-    Index site = -1;
-  };
-
   /// Cones that see every point (no wedge), sorted by apex.x, with their
   /// bounds' constant parts: sigma - apex.x left of x, sigma + apex.x right of it.
-  std::vector<Entry> points_;
+  std::vector<SiteCone> points_;
   std::vector<double> point_x_;
   MinTree left_keys_, right_keys_;
   /// Per i: a point of smallest left key among [0, i], of smallest right key among [i, n).
   std::vector<Index> best_left_upto_, best_right_from_;
   /// Opening wedges that see some of the axis, sorted by the start of that
   /// interval; the tree holds minus its end (a wedge holds x when lo <= x and -hi <= -x).
-  std::vector<Entry> wedges_;
+  std::vector<SiteCone> wedges_;
   std::vector<double> wedge_lo_;
   MinTree wedge_minus_hi_;
   /// Everything else (wedges that do not open), and every cone when the
   /// coordinates are too large for the bounds: evaluated at every query.
-  std::vector<Entry> others_;
+  std::vector<SiteCone> others_;
   /// max |sigma| + |apex.x| + |apex.y|: the scale of the rounding margin.
   double scale_ = 0;
   struct Wedge {
     double lo = 0, hi = 0;  ///< the interval of the axis it sees
-    Entry entry;
+    SiteCone entry;
   };
   std::vector<Wedge> wedge_scratch_;
   std::vector<double> keys_;  ///< scratch

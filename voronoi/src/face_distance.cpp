@@ -160,16 +160,11 @@ double ConeEnvelope::distance(int slot, const Eigen::Vector2d& p, Eigen::Vector2
 Index ConeEnvelope::nearest_site(const Eigen::Vector2d& p) const {
   // The smallest value, ties to the smallest site: the same whatever order
   // the cones are read in.
-  double best = infinity;
-  Index site = -1;
+  NearestCone nearest{p};
   for (int slot = 0; slot < slot_count(); ++slot) {
-    const Index s = slot_site_[slot];
-    for (const DistanceCone& cone : slot_cones_[slot]) {
-      const double d = cone.value(p);
-      if ((d < best || (d == best && s < site)) && cone.sees(p)) best = d, site = s;
-    }
+    for (const DistanceCone& cone : slot_cones_[slot]) nearest.consider(cone, slot_site_[slot]);
   }
-  return site;
+  return nearest.site;
 }
 
 double ConeEnvelope::difference(Index site_a, Index site_b, const Eigen::Vector2d& p) const {

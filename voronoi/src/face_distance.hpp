@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -57,6 +58,26 @@ struct DistanceCone {
   /// An opening wedge's two half-planes, for q = p - apex: it sees p where both hold.
   bool after_ray0(const Eigen::Vector2d& q) const { return ray0.x() * q.y() - ray0.y() * q.x() >= 0; }
   bool before_ray1(const Eigen::Vector2d& q) const { return q.x() * ray1.y() - q.y() * ray1.x() >= 0; }
+};
+
+/// A cone with its site, as the nearest-site indexes keep them.
+struct SiteCone {
+  DistanceCone cone;
+  Index site = -1;
+};
+
+/// The nearest site at one point among cones read one by one, by
+/// ConeEnvelope::nearest_site's rule: the smallest value, ties to the
+/// smaller site, among the cones that see the point. The order of reading is free.
+struct NearestCone {
+  Eigen::Vector2d at;
+  double value = std::numeric_limits<double>::infinity();
+  Index site = -1;
+  void consider(const DistanceCone& cone, Index cone_site) {
+    const double d = cone.value(at);
+    if ((d < value || (d == value && cone_site < site)) && cone.sees(at)) value = d, site = cone_site;
+  }
+  void consider(const SiteCone& c) { consider(c.cone, c.site); }
 };
 
 /// The lower envelopes, one per site, of a set of cones in one plane. The

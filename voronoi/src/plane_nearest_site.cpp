@@ -47,6 +47,8 @@ void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen
     cell_size_ = std::max({cell_size_, width / most_cells_per_side, height / most_cells_per_side});
     columns_ = std::clamp(static_cast<int>(std::ceil(width / cell_size_)), 1, most_cells_per_side);
     rows_ = std::clamp(static_cast<int>(std::ceil(height / cell_size_)), 1, most_cells_per_side);
+    // The cells' corners are rounded on that scale too.
+    scale_ = std::max(scale_, std::abs(origin_.x()) + std::abs(origin_.y()) + width + height);
   }
   // Each cone's cell (-1: off the grid), then the cones sorted by cell.
   const auto num_cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
@@ -89,23 +91,17 @@ void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen
 }
 
 Index PlaneNearestSite::nearest_site(const Eigen::Vector2d& p) const {
-  // The smallest value, ties to the smaller site, among the cones that see
-  // p: ConeEnvelope::nearest_site's rule, so the order of reading is free.
-  double best = infinity;
-  Index site = -1;
-  auto consider = [&](const Entry& e) {
-    const double d = e.cone.value(p);
-    if ((d < best || (d == best && e.site < site)) && e.cone.sees(p)) best = d, site = e.site;
-  };
-  for (const Entry& e : others_) consider(e);
-  if (entries_.empty()) return site;
+  NearestCone nearest{p};
+  for (const SiteCone& c : others_) nearest.consider(c);
+  if (entries_.empty()) return nearest.site;
   if (!p.allFinite()) {
-    for (const Entry& e : entries_) consider(e);
-    return site;
+    for (const SiteCone& c : entries_) nearest.consider(c);
+    return nearest.site;
   }
-  // A cone whose computed value is at most `best` has a computed bound below
-  // best + margin: the value, the bound and the cell boundaries are each
-  // within a few units in the last place of scale_ + |p| of their exact figures.
+  // A cone whose computed value is at most the least value found so far has
+  // a computed bound below that plus the margin: the value, the bound and the
+  // cells' corners are each within a few units in the last place of
+  // scale_ + |p| of their exact figures.
   const double margin = 32 * std::numeric_limits<double>::epsilon() * (scale_ + std::abs(p.x()) + std::abs(p.y()));
   // p's cell, or the nearest one when p is off the grid: a cell r rings out
   // lies at least r - 1 cells from p.
@@ -119,12 +115,13 @@ Index PlaneNearestSite::nearest_site(const Eigen::Vector2d& p) const {
     const double x0 = origin_.x() + i * cell_size_, y0 = origin_.y() + j * cell_size_;
     const double dx = std::max({x0 - p.x(), 0.0, p.x() - (x0 + cell_size_)});
     const double dy = std::max({y0 - p.y(), 0.0, p.y() - (y0 + cell_size_)});
-    if (cell_least_sigma_[cell] + std::sqrt(dx * dx + dy * dy) - margin > best) return;
-    for (Index e = cell_begin_[cell]; e < cell_begin_[cell + 1]; ++e) consider(entries_[static_cast<std::size_t>(e)]);
+    if (cell_least_sigma_[cell] + std::sqrt(dx * dx + dy * dy) - margin > nearest.value) return;
+    for (Index e = cell_begin_[cell]; e < cell_begin_[cell + 1]; ++e)
+      nearest.consider(entries_[static_cast<std::size_t>(e)]);
   };
   const int rings = std::max({ci, columns_ - 1 - ci, cj, rows_ - 1 - cj});
   for (int r = 0; r <= rings; ++r) {
-    if (r > 0 && least_sigma_ + (r - 1) * cell_size_ - margin > best) break;
+    if (r > 0 && least_sigma_ + (r - 1) * cell_size_ - margin > nearest.value) break;
     const int i0 = ci - r, i1 = ci + r, j0 = cj - r, j1 = cj + r;
     for (int i = std::max(i0, 0); i <= std::min(i1, columns_ - 1); ++i) {
       if (j0 >= 0) read_cell(i, j0);
@@ -135,7 +132,7 @@ Index PlaneNearestSite::nearest_site(const Eigen::Vector2d& p) const {
       if (r > 0 && i1 < columns_) read_cell(i1, j);
     }
   }
-  return site;
+  return nearest.site;
 }
 
 }  // namespace geodual::voronoi::detail

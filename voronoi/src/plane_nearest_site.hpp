@@ -34,13 +34,8 @@ class PlaneNearestSite {
   Index nearest_site(const Eigen::Vector2d& p) const;
 
  private:
-  struct Entry {
-    DistanceCone cone;
-    Index site = -1;
-  };
-
   /// The grid's cones, cell by cell: cell c's are entries_[cell_begin_[c] .. cell_begin_[c + 1]).
-  std::vector<Entry> entries_;
+  std::vector<SiteCone> entries_;
   std::vector<Index> cell_begin_;
   std::vector<double> cell_least_sigma_;
   double least_sigma_ = 0;  ///< over the grid's cones
@@ -49,7 +44,7 @@ class PlaneNearestSite {
   int columns_ = 0, rows_ = 0;
   /// Cones off the grid, and every cone when the coordinates are too large
   /// for the bounds: evaluated at every query.
-  std::vector<Entry> others_;
+  std::vector<SiteCone> others_;
   /// max |sigma| + |apex.x| + |apex.y|: the scale of the rounding margin.
   double scale_ = 0;
   std::vector<Index> cell_of_;  ///< scratch: per cone, its cell or -1
