@@ -78,7 +78,8 @@ void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen
   for (std::size_t c = 0; c < num_cells; ++c) cell_begin_[c + 1] += cell_begin_[c];
   entries_.resize(static_cast<std::size_t>(cell_begin_[num_cells]));
   least_sigma_ = infinity;
-  std::vector<Index> next(cell_begin_.begin(), cell_begin_.end() - (num_cells > 0 ? 1 : 0));
+  std::vector<Index>& next = fill_;
+  next.assign(cell_begin_.begin(), cell_begin_.end() - (num_cells > 0 ? 1 : 0));
   std::size_t k = 0;
   for (int slot = 0; slot < envelope.slot_count(); ++slot) {
     for (const DistanceCone& cone : envelope.cones(slot)) {

@@ -48,6 +48,7 @@ class PlaneNearestSite {
   /// max |sigma| + |apex.x| + |apex.y|: the scale of the rounding margin.
   double scale_ = 0;
   std::vector<Index> cell_of_;  ///< scratch: per cone, its cell or -1
+  std::vector<Index> fill_;     ///< scratch: per cell, where its next cone goes
 };
 
 }  // namespace geodual::voronoi::detail
