@@ -81,6 +81,10 @@ struct WeldedDual {
   /// both are on the boundary, else nearest the site. Moved there (and given
   /// twins), they close the cracks. The weld is a remesh only when there are none.
   std::vector<std::pair<std::size_t, SurfacePoint>> site_moves;
+  /// Sites inside a piece whose point of the boundary is all but at another
+  /// site (a thousandth of the mean edge): they would make a needle there,
+  /// and that site serves the crack. Left out, like unused_sites.
+  std::vector<std::size_t> doubling_sites;
   std::int64_t cracked_edges = 0;      ///< boundary edges of `mesh` off the surface's boundary
   std::int64_t nonmanifold_edges = 0;  ///< edges of `mesh` with three or more triangles
   /// Pairs of triangles on the same three vertices in opposite orientations
