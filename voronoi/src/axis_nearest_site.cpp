@@ -169,8 +169,9 @@ Index AxisNearestSite::nearest_site(double x) const {
   if (split > 0) consider(points_[best_left_upto_[split - 1]]);
   if (split < num_points) consider(points_[best_right_from_[split]]);
   // A cone whose computed value is at most the least value so far has a
-  // computed bound below that plus the margin: the value, the key and the threshold are each within a
-  // few units in the last place of scale_ + |x| of their exact figures.
+  // computed bound below that plus the margin: the value, the key and the
+  // threshold are each within a few units in the last place of scale_ + |x|
+  // of their exact figures.
   const double margin = 32 * std::numeric_limits<double>::epsilon() * (scale_ + std::abs(x));
   const double bound = nearest.value;
   left_keys_.for_each_at_most(0, split, bound - x + margin, [&](Index i) { consider(points_[i]); });

@@ -182,10 +182,8 @@ void FaceBoundaryTracer::find_edge_crossings(Index edge, std::vector<EdgeCrossin
   // ends of every window (where the envelope's pieces change) and between,
   // and find each change of site by bisection.
   if (edge_envelope_.slot_count() > 1 && site0 >= 0 && site1 >= 0 && length > 0) {
-    std::size_t cones = 0;
-    for (int slot = 0; slot < edge_envelope_.slot_count(); ++slot) cones += edge_envelope_.cones(slot).size();
     const AxisNearestSite* index = nullptr;
-    if (cones >= min_cones_to_index) {
+    if (edge_envelope_.cone_count() >= min_cones_to_index) {
       edge_index_.build(edge_envelope_);
       index = &edge_index_;
     }
@@ -327,9 +325,7 @@ void FaceBoundaryTracer::trace_face(Index face, TracedChunk& out) {
   out_ = &out;
   graph_ = &out.graph;
   build_face_envelope(field_, mesh_, face, layout_, envelope_);
-  std::size_t cones = 0;
-  for (int slot = 0; slot < envelope_.slot_count(); ++slot) cones += envelope_.cones(slot).size();
-  face_indexed_ = cones >= min_cones_to_index;
+  face_indexed_ = envelope_.cone_count() >= min_cones_to_index;
   if (face_indexed_) face_index_.build(envelope_, layout_.corner);
   moments_.set_face(face, layout_);
   face_sites_.clear();
@@ -817,7 +813,7 @@ Index FaceBoundaryTracer::inner_side(const Eigen::Vector2d& start, const Eigen::
   double previous_t = 0;
   for (int i = 1; i <= samples_per_inner_side; ++i) {
     const double t = static_cast<double>(i) / samples_per_inner_side;
-    const Index site = i == samples_per_inner_side ? end_site : nearest_in_face(start + t * (end - start));
+    const Index site = i == samples_per_inner_side ? end_site : in_face(start + t * (end - start));
     if (site < 0 || site == previous_site) continue;
     find_site_changes(envelope_, in_face, start, end, previous_t, t, previous_site, site);
     previous_site = site;

@@ -85,6 +85,12 @@ void ConeEnvelope::clear() {
   slot_site_.clear();
 }
 
+std::size_t ConeEnvelope::cone_count() const {
+  std::size_t cones = 0;
+  for (int slot = 0; slot < slot_count(); ++slot) cones += slot_cones_[slot].size();
+  return cones;
+}
+
 int ConeEnvelope::slot_of(Index site) const {
   if (site < 0) return -1;
   if (slot_count() > kScannedSlots) {

@@ -96,6 +96,8 @@ class ConeEnvelope {
                  const Eigen::Vector2d& y_axis);
 
   int slot_count() const { return static_cast<int>(slot_site_.size()); }
+  /// The cones of all slots.
+  std::size_t cone_count() const;
   Index site(int slot) const { return slot_site_[slot]; }
   /// The slot of a site, or -1 if no cone of it reaches here.
   int slot_of(Index site) const;

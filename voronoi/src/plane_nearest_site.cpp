@@ -20,15 +20,11 @@ constexpr int most_cells_per_side = 128;
 void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen::Vector2d> region) {
   entries_.clear();
   others_.clear();
-  cell_begin_.clear();
-  cell_least_sigma_.clear();
   columns_ = rows_ = 0;
   scale_ = 0;
-  std::size_t cones = 0;
   for (int slot = 0; slot < envelope.slot_count(); ++slot) {
     for (const DistanceCone& cone : envelope.cones(slot)) {
       scale_ = std::max(scale_, std::abs(cone.sigma) + std::abs(cone.apex.x()) + std::abs(cone.apex.y()));
-      ++cones;
     }
   }
   // The grid: the region's bounding box and as far again on every side.
@@ -38,11 +34,10 @@ void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen
     high = high.cwiseMax(p);
   }
   const Eigen::Vector2d extent = high - low;
-  const bool bounded = scale_ <= largest_scale && extent.allFinite() && extent.minCoeff() >= 0;  // false for NaN
   const double width = 3 * extent.x(), height = 3 * extent.y();
-  if (bounded && width > 0 && height > 0) {
+  if (scale_ <= largest_scale && width > 0 && height > 0 && std::isfinite(width * height)) {  // false for NaN
     origin_ = low - extent;
-    const double cells = std::max(1.0, static_cast<double>(cones) / cones_per_cell);
+    const double cells = std::max(1.0, static_cast<double>(envelope.cone_count()) / cones_per_cell);
     cell_size_ = std::sqrt(width * height / cells);
     cell_size_ = std::max({cell_size_, width / most_cells_per_side, height / most_cells_per_side});
     columns_ = std::clamp(static_cast<int>(std::ceil(width / cell_size_)), 1, most_cells_per_side);
@@ -50,45 +45,43 @@ void PlaneNearestSite::build(const ConeEnvelope& envelope, std::span<const Eigen
     // The cells' corners are rounded on that scale too.
     scale_ = std::max(scale_, std::abs(origin_.x()) + std::abs(origin_.y()) + width + height);
   }
-  // Each cone's cell (-1: off the grid), then the cones sorted by cell.
+  // The cones counted per cell, then placed cell by cell; those off the grid
+  // go to others_.
   const auto num_cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
   cell_begin_.assign(num_cells + 1, 0);
   cell_least_sigma_.assign(num_cells, infinity);
-  cell_of_.clear();
+  least_sigma_ = infinity;
   for (int slot = 0; slot < envelope.slot_count(); ++slot) {
     for (const DistanceCone& cone : envelope.cones(slot)) {
-      Index cell = -1;
-      if (num_cells > 0) {
-        const double i = std::floor((cone.apex.x() - origin_.x()) / cell_size_);
-        const double j = std::floor((cone.apex.y() - origin_.y()) / cell_size_);
-        if (i >= 0 && i < columns_ && j >= 0 && j < rows_) {  // false for NaN
-          cell = static_cast<Index>(j) * columns_ + static_cast<Index>(i);
-          ++cell_begin_[static_cast<std::size_t>(cell) + 1];
-          cell_least_sigma_[static_cast<std::size_t>(cell)] =
-              std::min(cell_least_sigma_[static_cast<std::size_t>(cell)], cone.sigma);
-        } else {
-          others_.push_back({cone, envelope.site(slot)});
-        }
-      } else {
+      const Index cell = cell_of(cone.apex);
+      if (cell < 0) {
         others_.push_back({cone, envelope.site(slot)});
+        continue;
       }
-      cell_of_.push_back(cell);
+      ++cell_begin_[static_cast<std::size_t>(cell) + 1];
+      double& least = cell_least_sigma_[static_cast<std::size_t>(cell)];
+      least = std::min(least, cone.sigma);
+      least_sigma_ = std::min(least_sigma_, cone.sigma);
     }
   }
   for (std::size_t c = 0; c < num_cells; ++c) cell_begin_[c + 1] += cell_begin_[c];
   entries_.resize(static_cast<std::size_t>(cell_begin_[num_cells]));
-  least_sigma_ = infinity;
-  std::vector<Index>& next = fill_;
-  next.assign(cell_begin_.begin(), cell_begin_.end() - (num_cells > 0 ? 1 : 0));
-  std::size_t k = 0;
+  fill_.assign(cell_begin_.begin(), cell_begin_.begin() + static_cast<std::ptrdiff_t>(num_cells));
   for (int slot = 0; slot < envelope.slot_count(); ++slot) {
     for (const DistanceCone& cone : envelope.cones(slot)) {
-      const Index cell = cell_of_[k++];
-      if (cell < 0) continue;
-      entries_[static_cast<std::size_t>(next[static_cast<std::size_t>(cell)]++)] = {cone, envelope.site(slot)};
-      least_sigma_ = std::min(least_sigma_, cone.sigma);
+      const Index cell = cell_of(cone.apex);
+      if (cell >= 0)
+        entries_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(cell)]++)] = {cone, envelope.site(slot)};
     }
   }
+}
+
+Index PlaneNearestSite::cell_of(const Eigen::Vector2d& apex) const {
+  if (columns_ == 0) return -1;
+  const double i = std::floor((apex.x() - origin_.x()) / cell_size_);
+  const double j = std::floor((apex.y() - origin_.y()) / cell_size_);
+  if (!(i >= 0 && i < columns_ && j >= 0 && j < rows_)) return -1;  // also for NaN
+  return static_cast<Index>(j) * columns_ + static_cast<Index>(i);
 }
 
 Index PlaneNearestSite::nearest_site(const Eigen::Vector2d& p) const {

@@ -47,8 +47,10 @@ class PlaneNearestSite {
   std::vector<SiteCone> others_;
   /// max |sigma| + |apex.x| + |apex.y|: the scale of the rounding margin.
   double scale_ = 0;
-  std::vector<Index> cell_of_;  ///< scratch: per cone, its cell or -1
-  std::vector<Index> fill_;     ///< scratch: per cell, where its next cone goes
+  std::vector<Index> fill_;  ///< scratch: per cell, where its next cone goes
+
+  /// The cell holding an apex, or -1 off the grid (or with no grid).
+  Index cell_of(const Eigen::Vector2d& apex) const;
 };
 
 }  // namespace geodual::voronoi::detail
