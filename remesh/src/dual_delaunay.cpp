@@ -198,6 +198,7 @@ struct Faults {
   std::vector<Index> split_pairs;              ///< into diagram.adjacency: pairs meeting along several arcs
   std::vector<Index> closed_arcs;              ///< into diagram.arcs
   std::vector<Index> mismatched;               ///< input components (smallest vertex) whose topology differs
+  std::vector<std::uint8_t> left_out;          ///< per site, 1 if dropped (redundant_sites)
   std::vector<Index> component_of_site;        ///< per site, its input component
   std::map<Index, std::vector<Index>> sites_of_component;
 };
@@ -270,7 +271,9 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
     if (sharp[v] && field.nearest_site[v] >= 0) holds_sharp_corner[field.nearest_site[v]] = 1;
   }
-  // Pieces whose topology differs. Local faults explain most. Besides them,
+  // Pieces whose topology differs. Local faults explain most (a faulty
+  // site, cells meeting along several arcs or enclosed, a site left out):
+  // they are repaired where they are. Besides them,
   // an arc from the mesh boundary to the mesh boundary crosses a strip
   // narrower than the spacing (between two holes, a hole and the border,
   // the sides of a slot), which the dual leaves out, merging holes or
@@ -320,8 +323,9 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   std::vector<Index> largest_cells;
   for (std::size_t i = 0; i < faults.mismatched.size(); ++i) {
     const std::vector<Index>& sites = faults.sites_of_component.at(faults.mismatched[i]);
-    if (crossed[i] ||
-        std::any_of(sites.begin(), sites.end(), [&](Index s) { return faults.site[s] != SiteRepair::none; })) {
+    if (crossed[i] || std::any_of(sites.begin(), sites.end(), [&](Index s) {
+          return faults.site[s] != SiteRepair::none || repaired_between[s] || faults.left_out[s];
+        })) {
       continue;
     }
     std::vector<std::pair<double, Index>> by_area;
@@ -718,7 +722,11 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   note(check.topology_mismatches,
        "components whose Euler characteristic or boundary loops differ from the input's" + first_mismatch);
   check.valid = check.problems.empty();
-  for (const Index s : check.redundant_sites) faults.site[s] = SiteRepair::none;
+  faults.left_out.assign(static_cast<std::size_t>(num_sites), 0);
+  for (const Index s : check.redundant_sites) {
+    faults.site[s] = SiteRepair::none;
+    faults.left_out[s] = 1;
+  }
   if (!check.valid) check.repair_sites = repair_sites(input, diagram, faults, input_components);
   return dual;
 }
