@@ -3,6 +3,7 @@
 #include "chain_points.hpp"
 
 #include "geodual/mesh/detail/point_grid.hpp"
+#include "geodual/mesh/detail/point_text.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
@@ -753,9 +754,8 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
         if (has_positive_area(welded.mesh, f)) continue;
         const auto corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
-        throw Error("the remesh welded along the sharp features has a triangle of zero area, at (" +
-                    std::to_string(corner.x()) + ", " + std::to_string(corner.y()) + ", " + std::to_string(corner.z()) +
-                    ")");
+        throw Error("the remesh welded along the sharp features has a triangle of zero area, at " +
+                    point_text(corner.transpose()));
       }
       if (const std::string lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.empty()) {
         throw Error("the remesh welded along the sharp features does not keep " + lost +

@@ -1,5 +1,6 @@
 #include "geodual/remesh/remesh.hpp"
 
+#include "geodual/mesh/detail/point_text.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,6 +17,33 @@
 namespace geodual::remesh {
 
 namespace {
+
+/// Where the repair points of a failed round lie, for the error message
+/// ("; the faults lie near ...", or nothing): the first point of each
+/// cluster (points within a mean spacing of the sites of one already named
+/// join it), at most three named.
+std::string repair_places(const TriangleMesh& mesh, const voronoi::VoronoiDiagram& diagram,
+                          const std::vector<SurfacePoint>& points) {
+  if (points.empty()) return {};
+  double area = 0;
+  for (const double a : diagram.cell_area) area += a;
+  const double spacing = std::sqrt(area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
+  std::vector<Eigen::Vector3d> places;
+  for (const SurfacePoint& point : points) {
+    const Eigen::Vector3d x = point.position(mesh);
+    if (std::none_of(places.begin(), places.end(),
+                     [&](const Eigen::Vector3d& p) { return (p - x).norm() <= spacing; })) {
+      places.push_back(x);
+    }
+  }
+  std::string text =
+      "; the faults lie " +
+      (places.size() == 1 ? std::string("near ") : "at " + std::to_string(places.size()) + " places, near ");
+  for (std::size_t i = 0; i < std::min<std::size_t>(places.size(), 3); ++i) {
+    text += (i > 0 ? ", " : "") + point_text(places[i]);
+  }
+  return text + (places.size() > 3 ? ", ..." : "");
+}
 
 /// dual_with_repair on `mesh`; `surface` is its prepared surface, made on
 /// the first repair round when it is empty.
@@ -45,7 +74,7 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     if (round >= options.max_rounds || (dual.check.repair_sites.empty() && dual.check.redundant_sites.empty())) {
       throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
                   " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +
-                  "; try more sites");
+                  repair_places(mesh, result.diagram, dual.check.repair_sites) + "; try more sites");
     }
     // Sites no added site can help go (indices increasing, so from the back).
     for (auto it = dual.check.redundant_sites.rbegin(); it != dual.check.redundant_sites.rend(); ++it) {

@@ -174,7 +174,8 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
     }
   }
   // Without repair rounds: a clear error, never an invalid mesh. It names
-  // the first piece whose topology the dual misses.
+  // the first piece whose topology the dual misses, and the places of the
+  // faults.
   ASSERT_GT(dual.check.topology_mismatches, 0);
   remesh::RemeshOptions no_repair;
   no_repair.lloyd.iterations = 0;
@@ -188,6 +189,9 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
     EXPECT_NE(message.find(", 4096 faces, 5 sites, Euler characteristic 0, 0 boundary loops; in the remesh: "),
               std::string::npos)
         << message;
+    // and where on it the faults lie.
+    EXPECT_NE(message.find("; the faults lie "), std::string::npos) << message;
+    EXPECT_NE(message.find("near ("), std::string::npos) << message;
   }
   // With them: a torus.
   remesh::RemeshOptions repair;
