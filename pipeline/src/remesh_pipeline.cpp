@@ -248,9 +248,13 @@ PinnedCreases pin_short_creases(const RemeshPipelineResult& result, std::int64_t
 /// density is multiplied by `input_density` (per input vertex; empty: 1).
 /// With `refinement` the sites are its, not sampled; otherwise, with sharp
 /// features, the sites beside the creases are shared as `given_share` says.
-void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+/// Returns false, after the sampling, where the sites sampled are
+/// `tried_sites` (the stages after it are deterministic: they would repeat
+/// the run that started from them).
+bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                 std::span<const double> input_density, const SiteRefinement* refinement,
-                remesh::GivenSiteShare given_share = remesh::GivenSiteShare::half_cell) {
+                remesh::GivenSiteShare given_share = remesh::GivenSiteShare::half_cell,
+                const std::vector<SurfacePoint>* tried_sites = nullptr) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -392,6 +396,12 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   }
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
+  if (tried_sites && std::equal(result.initial_sites.begin(), result.initial_sites.end(), tried_sites->begin(),
+                                tried_sites->end(), [](const SurfacePoint& a, const SurfacePoint& b) {
+                                  return a.kind == b.kind && a.element == b.element && a.barycentric == b.barycentric;
+                                })) {
+    return false;
+  }
 
   // Where the cut changed nothing, its mesh is a copy of the input's: the
   // later stages (the relaxation is the peak of the memory) work on the
@@ -520,6 +530,7 @@ void run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     report(options.progress, Stage::statistics, 1.0);
   }
   if (cut_is_input) result.surface.mesh = result.input.mesh;
+  return true;
 }
 
 }  // namespace
@@ -581,13 +592,19 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
   // First with the sites beside the creases as dense as elsewhere, then
   // (sampled sites only) denser, then without the features.
-  std::string reason;  // why the last try failed
+  std::string reason;                     // why the last try failed
+  std::vector<SurfacePoint> first_sites;  // of the first try, where it failed
   const int tries = refinement ? 1 : 2;
   for (int attempt = 0; attempt < tries; ++attempt) {
     try {
       if (attempt > 0) result.timings.clear();
-      run_stages(result, options, input_density, refinement,
-                 attempt == 0 ? remesh::GivenSiteShare::half_cell : remesh::GivenSiteShare::none);
+      // Where the denser sites come out the same (few sites beside short
+      // creases), the second try would only repeat the first.
+      if (!run_stages(result, options, input_density, refinement,
+                      attempt == 0 ? remesh::GivenSiteShare::half_cell : remesh::GivenSiteShare::none,
+                      attempt > 0 ? &first_sites : nullptr)) {
+        break;
+      }
       if (attempt > 0) {
         result.remesh.repair_problems.insert(
             result.remesh.repair_problems.begin(),
@@ -599,6 +616,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     } catch (const Error& e) {
       if (!features_failed()) throw;
       reason = e.what();
+      if (attempt == 0) first_sites = std::move(result.initial_sites);
     }
   }
   result.features_dropped_reason = reason;

@@ -355,6 +355,27 @@ TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
   EXPECT_NE(still.features_dropped_reason.find("after 10 rounds"), std::string::npos) << still.features_dropped_reason;
 }
 
+TEST(FeaturePipeline, ATryThatWouldRepeatTheFailedOneIsNotRun) {
+  // bunny_res2 at 2,000 sites: its creases do not weld. The second try, with
+  // the sites beside them denser, samples the same sites as the first (few
+  // sites beside short creases), so it would fail the same way: not run. Two
+  // relaxations (with the features, then without), not three.
+  int relaxations = 0;  // reports entering the relax stage
+  pipeline::Stage last = pipeline::Stage::load;
+  pipeline::RemeshPipelineOptions options;
+  options.progress = [&](pipeline::Stage stage, double) {
+    if (stage == pipeline::Stage::relax && last != pipeline::Stage::relax) ++relaxations;
+    last = stage;
+    return true;
+  };
+  const pipeline::RemeshPipelineResult result =
+      remesh_without_statistics(io::read_mesh("tests/data/bunny_res2.ply"), 2000, options);
+  EXPECT_NE(result.features_dropped_reason.find("does not close along the sharp features"), std::string::npos)
+      << result.features_dropped_reason;
+  EXPECT_TRUE(result.features.empty());
+  EXPECT_EQ(relaxations, 2);
+}
+
 TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreDropped) {
   // cheburashka at 2,000 sites: its seven creases are finer than the
   // spacing, and the repair of the cut surface's dual adds 41 sites (2 %);
