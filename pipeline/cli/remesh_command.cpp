@@ -191,7 +191,8 @@ class RemeshCommand final : public Command {
         ->check(integer_between(0, 100'000'000));
     command
         .add_option("--max-repair-rounds", options_.max_repair_rounds,
-                    "Rounds of adding sites where the dual fails before giving up")
+                    "Rounds of adding sites where the dual fails before giving up (up to as many more while each needs "
+                    "fewer sites than the one before)")
         ->capture_default_str()
         ->check(integer_between(0, 1000));
     geodesic_.add_to(command);

@@ -472,6 +472,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   remesh::RepairOptions repair{.max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi};
   if (features) {
     repair.max_rounds = std::min(repair.max_rounds, options.remesh.max_feature_repair_rounds);
+    repair.extend_while_converging = false;
     if (options.remesh.max_feature_sites_added > 0) {
       repair.max_sites_added = std::max<std::int64_t>(
           1, std::llround(options.remesh.max_feature_sites_added * static_cast<double>(result.initial_sites.size())));

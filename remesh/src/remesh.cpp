@@ -53,6 +53,7 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
   RepairedDual result;
   result.sites = std::move(sites);
   result.diagram = std::move(diagram);
+  std::size_t asked_before = 0;  // sites the last round asked to add or leave out
   for (int round = 0;; ++round) {
     if (round > 0) {
       if (!surface) surface.emplace(mesh);
@@ -71,11 +72,15 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     }
     if (result.repair_problems.empty()) result.repair_problems = dual.check.problems;
     const std::string problems = problems_line(dual.check.problems);
-    if (round >= options.max_rounds || (dual.check.repair_sites.empty() && dual.check.redundant_sites.empty())) {
+    const std::size_t asked = dual.check.repair_sites.size() + dual.check.redundant_sites.size();
+    const bool converging =
+        options.extend_while_converging && round > 0 && round < 2 * options.max_rounds && asked < asked_before;
+    if ((round >= options.max_rounds && !converging) || asked == 0) {
       throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
                   " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +
                   repair_places(mesh, result.diagram, dual.check.repair_sites) + "; try more sites");
     }
+    asked_before = asked;
     // Sites no added site can help go (indices increasing, so from the back).
     for (auto it = dual.check.redundant_sites.rbegin(); it != dual.check.redundant_sites.rend(); ++it) {
       result.sites.erase(result.sites.begin() + *it);

@@ -25,8 +25,11 @@ namespace geodual::remesh {
 /// Options of the dual-with-repair stage.
 struct RepairOptions {
   /// Rounds of "add sites where the dual fails, recompute" before giving up
-  /// with a geodual::Error.
+  /// with a geodual::Error ...
   int max_rounds = 10;
+  /// ... unless each round past them asks for fewer sites than the one before
+  /// (the repair converging): then up to as many rounds again.
+  bool extend_while_converging = true;
   /// Gives up the same way once the rounds have added more than this many
   /// sites (0: no bound).
   std::int64_t max_sites_added = 0;
@@ -77,11 +80,12 @@ struct RemeshOptions {
   /// remesh's spacing. 0: the uniform geodesic CVT.
   double curvature_adaptation = 0;
   double curvature_max_ratio = CurvatureDensityOptions{}.max_ratio;
-  /// Rounds of "add sites where the dual fails, recompute" (RepairOptions::max_rounds).
+  /// Rounds of "add sites where the dual fails, recompute" (RepairOptions::max_rounds;
+  /// up to twice as many while the repair converges).
   int max_repair_rounds = 10;
-  /// The same for the remesh that keeps the sharp features, at most: where
-  /// its dual needs more, the creases are finer than the spacing, and the
-  /// remesh pipeline remeshes without them.
+  /// The same for the remesh that keeps the sharp features, at most (never
+  /// extended): where its dual needs more, the creases are finer than the
+  /// spacing, and the remesh pipeline remeshes without them.
   int max_feature_repair_rounds = 4;
   /// ... and where its repair would add more than this fraction of the
   /// sites (twins included), as creases finer than the spacing make it, it
