@@ -396,12 +396,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   }
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
-  if (tried_sites && std::equal(result.initial_sites.begin(), result.initial_sites.end(), tried_sites->begin(),
-                                tried_sites->end(), [](const SurfacePoint& a, const SurfacePoint& b) {
-                                  return a.kind == b.kind && a.element == b.element && a.barycentric == b.barycentric;
-                                })) {
-    return false;
-  }
+  if (tried_sites && result.initial_sites == *tried_sites) return false;
 
   // Where the cut changed nothing, its mesh is a copy of the input's: the
   // later stages (the relaxation is the peak of the memory) work on the

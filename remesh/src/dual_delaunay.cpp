@@ -429,10 +429,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   // step into its face instead. "Where a site is" reaches 1e-4 of that
   // quarter spacing: a boundary site sits 2^-20 of its edge off a mesh
   // vertex, and a point at the vertex would make an edge of that length.
-  double cells_area = 0;
-  for (const double area : diagram.cell_area) cells_area += area;
-  const double apart =
-      0.25 * std::sqrt(cells_area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
+  const double apart = 0.25 * diagram.mean_spacing();
   const double crowded = std::max(same_point, 1e-4 * apart);
   PointGrid<char> grid(crowded);  // the sites and the points kept
   auto taken = [&](const Eigen::Vector3d& x) { return grid.any_within(x, crowded, [](char) { return true; }); };

@@ -691,9 +691,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     dual_seconds += result.dual_seconds;
     // Points the repair doubled on a chain go, the points they doubled get
     // their twins, and the diagram is computed again.
-    double area = 0;
-    for (const double a : result.diagram.cell_area) area += a;
-    const double spacing = std::sqrt(area / static_cast<double>(std::max<std::size_t>(result.sites.size(), 1)));
+    const double spacing = result.diagram.mean_spacing();
     const std::vector<std::uint8_t> doubled =
         doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
     if (const auto count = std::count(doubled.begin(), doubled.end(), 1); count > 0) {

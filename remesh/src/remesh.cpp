@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -25,9 +24,7 @@ namespace {
 std::string repair_places(const TriangleMesh& mesh, const voronoi::VoronoiDiagram& diagram,
                           const std::vector<SurfacePoint>& points) {
   if (points.empty()) return {};
-  double area = 0;
-  for (const double a : diagram.cell_area) area += a;
-  const double spacing = std::sqrt(area / static_cast<double>(std::max<std::size_t>(diagram.cell_area.size(), 1)));
+  const double spacing = diagram.mean_spacing();
   std::vector<Eigen::Vector3d> places;
   for (const SurfacePoint& point : points) {
     const Eigen::Vector3d x = point.position(mesh);

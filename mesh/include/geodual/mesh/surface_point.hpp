@@ -23,6 +23,11 @@ struct SurfacePoint {
     return {Kind::face, face, Eigen::Vector3d(u, v, w)};
   }
 
+  /// The same point given the same way (not: the same position).
+  friend bool operator==(const SurfacePoint& a, const SurfacePoint& b) {
+    return a.kind == b.kind && a.element == b.element && a.barycentric == b.barycentric;
+  }
+
   /// The point's position in space.
   Eigen::Vector3d position(const TriangleMesh& mesh) const {
     if (kind == Kind::vertex) return mesh.vertices.row(element).transpose();

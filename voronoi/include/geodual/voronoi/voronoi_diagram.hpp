@@ -22,6 +22,8 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -116,6 +118,12 @@ struct VoronoiDiagram {
   }
   std::span<const Eigen::Vector3d> polyline(const VoronoiArc& arc) const {
     return {points.data() + arc.point_begin, static_cast<std::size_t>(arc.point_end - arc.point_begin)};
+  }
+  /// The sites' mean spacing: the square root of the mean cell area.
+  double mean_spacing() const {
+    double area = 0;
+    for (const double a : cell_area) area += a;
+    return std::sqrt(area / static_cast<double>(std::max<std::size_t>(cell_area.size(), 1)));
   }
 };
 
