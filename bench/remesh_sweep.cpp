@@ -98,6 +98,8 @@ struct RunFigures {
   double dropped_area_pct = 0;
   std::int64_t creases = 0;      ///< sharp chains kept in the remesh
   bool creases_dropped = false;  ///< the weld failed: the remesh without them
+  /// The weld failed at places: the remesh without the creases near them.
+  std::int64_t creases_dropped_near = 0;
 };
 
 Options parse_options(int argc, char** argv) {
@@ -249,6 +251,7 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
 
   figures.creases = result.features_dropped_reason.empty() ? result.features.sharp_chains : 0;
   figures.creases_dropped = !result.features_dropped_reason.empty();
+  figures.creases_dropped_near = static_cast<std::int64_t>(result.features_dropped_near.size());
   figures.dropped_faces = result.dropped.faces;
   figures.dropped_area_pct = result.dropped.area_pct;
 
@@ -277,7 +280,7 @@ RunFigures figures_of(const pipeline::RemeshPipelineResult& result) {
   return figures;
 }
 
-/// The run's figures, and why its creases were dropped (empty: they were not).
+/// The run's figures, and why its creases were dropped, all or near places (empty: none was).
 struct RunOutcome {
   RunFigures figures;
   std::string creases_dropped_reason;
@@ -300,7 +303,8 @@ RunOutcome remesh_once(const SweepMesh& mesh, std::int64_t sites, const Options&
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), pipeline_options);
   RunFigures figures = figures_of(result);
   figures.peak_rss = peak_rss_bytes().value_or(0);
-  return {figures, result.features_dropped_reason};
+  return {figures, result.features_dropped_reason.empty() ? result.features_partly_dropped_reason
+                                                          : result.features_dropped_reason};
 }
 
 std::string first_characters(const std::string& text, std::size_t count) {
@@ -382,8 +386,12 @@ int run_sweep(const Options& options) {
       }
       ByteReader in(outcome.payload);
       const auto r = in.get<RunFigures>();
-      if (r.creases_dropped) {
-        creases_dropped.push_back(mesh.name + " at " + std::to_string(sites) + " sites: " + in.get_string());
+      if (r.creases_dropped || r.creases_dropped_near > 0) {
+        creases_dropped.push_back(mesh.name + " at " + std::to_string(sites) + " sites" +
+                                  (r.creases_dropped ? ""
+                                                     : ", near " + std::to_string(r.creases_dropped_near) +
+                                                           (r.creases_dropped_near == 1 ? " place" : " places")) +
+                                  ": " + in.get_string());
       }
       std::string topology = "yes";
       if (r.components_differing > 0) {
@@ -397,7 +405,9 @@ int run_sweep(const Options& options) {
            arrow(r.surface.euler_characteristic, r.remesh.euler_characteristic),
            arrow(r.surface.boundary_loops, r.remesh.boundary_loops), topology,
            fixed(r.dropped_area_pct, 2) + (r.dropped_faces > 0 ? " (" + grouped(r.dropped_faces) + " f)" : ""),
-           r.creases_dropped ? "dropped" : grouped(r.creases)});
+           r.creases_dropped            ? "dropped"
+           : r.creases_dropped_near > 0 ? grouped(r.creases) + " (" + grouped(r.creases_dropped_near) + " out)"
+                                        : grouped(r.creases)});
     }
   }
   table.print(std::cout);

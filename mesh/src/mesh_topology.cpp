@@ -162,4 +162,10 @@ MeshTopology build_mesh_topology(const TriangleMesh& mesh) {
   return topology;
 }
 
+Index MeshTopology::find_edge(Index a, Index b) const {
+  const std::array<Index, 2> pair = a < b ? std::array<Index, 2>{a, b} : std::array<Index, 2>{b, a};
+  const auto it = std::lower_bound(edge_vertices.begin(), edge_vertices.end(), pair);
+  return it != edge_vertices.end() && *it == pair ? static_cast<Index>(it - edge_vertices.begin()) : -1;
+}
+
 }  // namespace geodual

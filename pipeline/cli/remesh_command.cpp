@@ -472,6 +472,12 @@ class RemeshCommand final : public Command {
                   << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
                   << "\n";
     }
+    if (!run.features_dropped_near.empty()) {
+      const std::size_t places = run.features_dropped_near.size();
+      streams.err << "geodual remesh: warning: " << mesh_path << ": the sharp features could not all be kept, "
+                  << "remeshed without the creases near the " << places << (places == 1 ? " place" : " places")
+                  << " where the remesh that kept them failed: " << run.features_partly_dropped_reason << "\n";
+    }
     if (run.sites_added_for_topology > 0) {
       streams.err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
@@ -537,6 +543,13 @@ class RemeshCommand final : public Command {
     figures["features_dropped_reason"] = run.features_dropped_reason.empty()
                                              ? nlohmann::ordered_json(nullptr)
                                              : nlohmann::ordered_json(run.features_dropped_reason);
+    figures["features_dropped_near"] = nlohmann::ordered_json::array();
+    for (const Eigen::Vector3d& place : run.features_dropped_near) {
+      figures["features_dropped_near"].push_back({place.x(), place.y(), place.z()});
+    }
+    figures["features_partly_dropped_reason"] = run.features_partly_dropped_reason.empty()
+                                                    ? nlohmann::ordered_json(nullptr)
+                                                    : nlohmann::ordered_json(run.features_partly_dropped_reason);
     figures["lloyd_iterations"] = relaxation.iterations;
     figures["warm_start_iterations"] = relaxation.warm_start_iterations;
     figures["lloyd_diagrams"] = relaxation.diagrams;

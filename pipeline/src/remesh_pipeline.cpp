@@ -250,11 +250,13 @@ PinnedCreases pin_short_creases(const RemeshPipelineResult& result, std::int64_t
 /// features, the sites beside the creases are shared as `given_share` says.
 /// Returns false, after the sampling, where the sites sampled are
 /// `tried_sites` (the stages after it are deterministic: they would repeat
-/// the run that started from them).
+/// the run that started from them). The `excluded_edges` (vertex pairs of
+/// the surface cut to a manifold) are never features.
 bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                 std::span<const double> input_density, const SiteRefinement* refinement,
                 remesh::GivenSiteShare given_share = remesh::GivenSiteShare::half_cell,
-                const std::vector<SurfacePoint>* tried_sites = nullptr) {
+                const std::vector<SurfacePoint>* tried_sites = nullptr,
+                std::span<const std::array<Index, 2>> excluded_edges = {}) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
   result.surface = remesh::cut_to_manifold(result.input.mesh);
@@ -315,6 +317,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
                                          options.remesh.continuation_angle);
       feature_options.given_edges =
           edges_on_cut(result.surface, result.input.mesh.num_vertices(), options.remesh.feature_edges);
+      feature_options.excluded_edges.assign(excluded_edges.begin(), excluded_edges.end());
       result.features = remesh::detect_features(manifold, feature_options);
       if (!result.features.empty()) {
         result.feature_cut = remesh::cut_along_features(manifold, result.features);
@@ -487,12 +490,12 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
                                                         std::move(result.relaxation.diagram), repair);
   } catch (const Cancelled&) {
     throw;
-  } catch (const Error& e) {
+  } catch (const remesh::DualRepairError& e) {
     // The message names the surface's pieces and loops: say where loops the
     // input does not have come from.
     const std::string note = loops_from_cut(build_mesh_topology(manifold_surface).num_boundary_loops);
     if (note.empty()) throw;
-    throw Error(e.what() + note);
+    throw remesh::DualRepairError(e.what() + note, e.places());
   }
   geodesic_surface.reset();
   if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
@@ -577,43 +580,102 @@ std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& r
 
 namespace {
 
+/// The sharp edges of `features` (on `surface`) to leave out where a remesh
+/// that kept them failed at `places`: those with an end within `radius` of
+/// a place, and where a boundary loop is a feature there (a sharp chain runs
+/// into it), those with an end on that loop.
+std::vector<std::array<Index, 2>> sharp_edges_near(const TriangleMesh& surface, const remesh::FeatureSet& features,
+                                                   const std::vector<Eigen::Vector3d>& places, double radius) {
+  const auto close = [&](Index v) {
+    const Eigen::Vector3d x = surface.vertices.row(v);
+    return std::any_of(places.begin(), places.end(),
+                       [&](const Eigen::Vector3d& p) { return (p - x).norm() <= radius; });
+  };
+  const MeshTopology topology = build_mesh_topology(surface);
+  std::vector<Index> loop_of_vertex(static_cast<std::size_t>(surface.num_vertices()), -1);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (const Index loop = topology.edge_boundary_loop[e]; loop >= 0) {
+      for (const Index v : topology.edge_vertices[e]) loop_of_vertex[v] = loop;
+    }
+  }
+  std::vector<std::uint8_t> loop_near(static_cast<std::size_t>(topology.num_boundary_loops), 0);
+  for (const remesh::FeatureChain& chain : features.chains) {
+    if (chain.on_boundary && std::any_of(chain.vertices.begin(), chain.vertices.end(), close)) {
+      loop_near[loop_of_vertex[chain.vertices[1]]] = 1;  // an inner vertex: not a corner on two loops
+    }
+  }
+  const auto on_loop_near = [&](Index v) { return loop_of_vertex[v] >= 0 && loop_near[loop_of_vertex[v]]; };
+  std::vector<std::array<Index, 2>> near;
+  for (const auto& [a, b] : features.sharp_edges) {
+    if (close(a) || close(b) || on_loop_near(a) || on_loop_near(b)) near.push_back({a, b});
+  }
+  return near;
+}
+
 /// One remesh of result.input (run_stages); where the features cannot be
 /// kept with sites as dense beside the creases as elsewhere, they are tried
 /// with the denser sites of the components' shares by area
-/// (remesh::GivenSiteShare); where they cannot be kept either, the remesh
-/// without them, and why.
+/// (remesh::GivenSiteShare); where they cannot be kept either and the
+/// failure lies at places (remesh::DualRepairError), without the creases
+/// there, up to twice; and failing that, the remesh without any, and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
   const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
   // First with the sites beside the creases as dense as elsewhere, then
-  // (sampled sites only) denser, then without the features.
-  std::string reason;                     // why the last try failed
-  std::vector<SurfacePoint> first_sites;  // of the first try, where it failed
+  // (sampled sites only) denser; then without the creases near the places
+  // the last try failed at, then without the features.
+  std::string reason;                          // why the last try failed
+  std::vector<Eigen::Vector3d> places;         // and where
+  std::vector<SurfacePoint> first_sites;       // of the first try, where it failed
+  std::vector<std::array<Index, 2>> excluded;  // the sharp edges left out near those places
+  std::vector<Eigen::Vector3d> dropped_near;   // the places
+  std::string first_reason;                    // why the first try failed
+  constexpr int kMaxCreaseDrops = 2;
+  // Each drop leaves out the creases within this many spacings of a place:
+  // the faults lie within a cell or two of them.
+  constexpr double kDropRadius = 2;
   const int tries = refinement ? 1 : 2;
-  for (int attempt = 0; attempt < tries; ++attempt) {
-    try {
-      if (attempt > 0) result.timings.clear();
-      // Where the denser sites come out the same (few sites beside short
-      // creases), the second try would only repeat the first.
-      if (!run_stages(result, options, input_density, refinement,
-                      attempt == 0 ? remesh::GivenSiteShare::half_cell : remesh::GivenSiteShare::none,
-                      attempt > 0 ? &first_sites : nullptr)) {
-        break;
+  for (int drop = 0; drop <= kMaxCreaseDrops; ++drop) {
+    for (int attempt = 0; attempt < (drop == 0 ? tries : 1); ++attempt) {
+      try {
+        if (attempt > 0 || drop > 0) result.timings.clear();
+        // Where the denser sites come out the same (few sites beside short
+        // creases), the second try would only repeat the first.
+        if (!run_stages(result, options, input_density, refinement,
+                        attempt == 0 ? remesh::GivenSiteShare::half_cell : remesh::GivenSiteShare::none,
+                        attempt > 0 ? &first_sites : nullptr, excluded)) {
+          break;
+        }
+        if (attempt > 0) {
+          result.remesh.repair_problems.insert(
+              result.remesh.repair_problems.begin(),
+              "sites beside the creases made denser, as the weld with them as dense as elsewhere failed: " + reason);
+        }
+        if (drop > 0) {
+          result.features_dropped_near = std::move(dropped_near);
+          result.features_partly_dropped_reason = std::move(first_reason);
+        }
+        return;
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const Error& e) {
+        if (!features_failed()) throw;
+        reason = e.what();
+        const auto* repair = dynamic_cast<const remesh::DualRepairError*>(&e);
+        places = repair ? repair->places() : std::vector<Eigen::Vector3d>{};
+        if (attempt == 0) first_sites = std::move(result.initial_sites);
       }
-      if (attempt > 0) {
-        result.remesh.repair_problems.insert(
-            result.remesh.repair_problems.begin(),
-            "sites beside the creases made denser, as the weld with them as dense as elsewhere failed: " + reason);
-      }
-      return;
-    } catch (const Cancelled&) {
-      throw;
-    } catch (const Error& e) {
-      if (!features_failed()) throw;
-      reason = e.what();
-      if (attempt == 0) first_sites = std::move(result.initial_sites);
     }
+    if (drop == kMaxCreaseDrops || places.empty()) break;
+    // The surface the features are on (its copy is held back during the stages where it is the input).
+    const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
+    const double radius = kDropRadius * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
+    const std::vector<std::array<Index, 2>> near = sharp_edges_near(surface, result.features, places, radius);
+    if (near.empty()) break;
+    excluded.insert(excluded.end(), near.begin(), near.end());
+    dropped_near.insert(dropped_near.end(), places.begin(), places.end());
+    if (first_reason.empty()) first_reason = reason;
   }
   result.features_dropped_reason = reason;
   result.features = {};

@@ -1,6 +1,7 @@
 #include "geodual/remesh/feature_cut.hpp"
 
 #include "chain_points.hpp"
+#include "fault_places.hpp"
 
 #include "geodual/mesh/detail/point_grid.hpp"
 #include "geodual/mesh/detail/point_text.hpp"
@@ -448,6 +449,7 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     const std::size_t sa = site_of_vertex[a], sb = site_of_vertex[b];
     if (on_surface_boundary(sa) && on_surface_boundary(sb)) continue;
     ++welded.cracked_edges;
+    welded.crack_vertices.insert(welded.crack_vertices.end(), {a, b});
     if (!on_cut_boundary(sa)) crack_neighbours.emplace_back(sa, sb);
     if (!on_cut_boundary(sb)) crack_neighbours.emplace_back(sb, sa);
   }
@@ -653,6 +655,25 @@ std::string first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& 
   return "";
 }
 
+/// The positions of `sites` (on `mesh`) whose index is in `which`: for
+/// DualRepairError's places.
+template <typename Indices>
+std::vector<Eigen::Vector3d> positions(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                       const Indices& which) {
+  std::vector<Eigen::Vector3d> points;
+  for (const auto i : which) points.push_back(sites[static_cast<std::size_t>(i)].position(mesh));
+  return points;
+}
+
+/// The weld's failure: `what`, where (fault_places of `points` a `spacing`
+/// apart) and the remedy.
+DualRepairError weld_error(const std::string& what, std::span<const Eigen::Vector3d> points, double spacing,
+                           const std::string& remedy = "") {
+  std::vector<Eigen::Vector3d> places = fault_places(points, spacing);
+  const std::string message = "the remesh " + what + fault_places_text(places) + remedy;
+  return DualRepairError(message, std::move(places));
+}
+
 }  // namespace
 
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
@@ -664,13 +685,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
   int leave_out_rounds = 0;
   std::vector<std::string> repair_problems;
   double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
-  const auto require_within_budget = [&](std::int64_t added, int rounds) {
-    if (options.max_sites_added > 0 && added > options.max_sites_added) {
-      throw Error("the remesh welded along the sharp features would add " + std::to_string(added) + " sites in " +
-                  std::to_string(rounds) + " rounds, more than the " + std::to_string(options.max_sites_added) +
-                  " allowed: its creases are finer than the spacing; try more sites, or a larger sharp angle");
-    }
-  };
+  constexpr const char* kRemedy = "; try more sites, or a larger sharp angle";
   // The next round's diagram, of `sites`.
   const auto recompute = [&] {
     diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
@@ -696,8 +711,13 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
         doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
     if (const auto count = std::count(doubled.begin(), doubled.end(), 1); count > 0) {
       if (round >= options.max_rounds) {
-        throw Error("the remesh welded along the sharp features doubles " + std::to_string(count) +
-                    " points on its creases after " + std::to_string(round) + " rounds");
+        std::vector<std::size_t> doubles;
+        for (std::size_t i = 0; i < doubled.size(); ++i) {
+          if (doubled[i]) doubles.push_back(i);
+        }
+        throw weld_error("welded along the sharp features doubles " + std::to_string(count) +
+                             " points on its creases after " + std::to_string(round) + " rounds",
+                         positions(cut.mesh, result.sites, doubles), spacing);
       }
       sites = sites_not_marked(result.sites, doubled);
       // The points they doubled serve both sheets: their twins come now.
@@ -714,8 +734,14 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     const auto start = std::chrono::steady_clock::now();
     WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
     if (welded.nonmanifold_edges > 0) {
-      throw Error("the remesh welded along the sharp features has " + std::to_string(welded.nonmanifold_edges) +
-                  " edges with three or more triangles");
+      const MeshTopology topology = build_mesh_topology(welded.mesh);
+      std::vector<Eigen::Vector3d> ends;
+      for (Index e = 0; e < topology.num_edges(); ++e) {
+        if (!topology.is_manifold_edge(e)) ends.push_back(welded.mesh.vertices.row(topology.edge_vertices[e][0]));
+      }
+      throw weld_error("welded along the sharp features has " + std::to_string(welded.nonmanifold_edges) +
+                           " edges with three or more triangles",
+                       ends, spacing);
     }
     if (!welded.unused_sites.empty() || !welded.doubling_sites.empty()) {
       // Sites whose triangles all folded away, or that would close a crack
@@ -723,8 +749,12 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       // at most (where folds keep coming, the weld will not close).
       const std::size_t left_out = welded.unused_sites.size() + welded.doubling_sites.size();
       if (round >= options.max_rounds || ++leave_out_rounds > 2) {
-        throw Error("the remesh welded along the sharp features leaves " + std::to_string(left_out) +
-                    " sites in no triangle or on another after " + std::to_string(round) + " rounds");
+        std::vector<Eigen::Vector3d> points = positions(cut.mesh, result.sites, welded.unused_sites);
+        const std::vector<Eigen::Vector3d> doubling = positions(cut.mesh, result.sites, welded.doubling_sites);
+        points.insert(points.end(), doubling.begin(), doubling.end());
+        throw weld_error("welded along the sharp features leaves " + std::to_string(left_out) +
+                             " sites in no triangle or on another after " + std::to_string(round) + " rounds",
+                         points, spacing);
       }
       std::vector<std::uint8_t> unused(result.sites.size(), 0);
       for (const std::size_t site : welded.unused_sites) unused[site] = 1;
@@ -751,13 +781,13 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       // sites on one straight stretch of a chain could still make one flat.
       for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
         if (has_positive_area(welded.mesh, f)) continue;
-        const auto corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
-        throw Error("the remesh welded along the sharp features has a triangle of zero area, at " +
-                    point_text(corner.transpose()));
+        const Eigen::Vector3d corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
+        throw DualRepairError(
+            "the remesh welded along the sharp features has a triangle of zero area, at " + point_text(corner),
+            {corner});
       }
       if (const std::string lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.empty()) {
-        throw Error("the remesh welded along the sharp features does not keep " + lost +
-                    "; try more sites, or a larger sharp angle");
+        throw DualRepairError("the remesh welded along the sharp features does not keep " + lost + kRemedy, {});
       }
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);
@@ -765,15 +795,24 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     }
     dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (round >= options.max_rounds || (more.empty() && welded.site_moves.empty())) {
-      throw Error("the remesh does not close along the sharp features after " + std::to_string(round) +
-                  " rounds: " + std::to_string(welded.cracked_edges) +
-                  " edges of its boundary leave the surface's creases and boundary; try more sites, or a larger "
-                  "sharp angle");
+      std::vector<Eigen::Vector3d> ends;
+      for (const Index v : welded.crack_vertices) ends.push_back(welded.mesh.vertices.row(v));
+      throw weld_error("does not close along the sharp features after " + std::to_string(round) +
+                           " rounds: " + std::to_string(welded.cracked_edges) +
+                           " edges of its boundary leave the surface's creases and boundary",
+                       ends, spacing, kRemedy);
     }
     sites = std::move(result.sites);
     sites_added += static_cast<std::int64_t>(more.size());
     repair_rounds += result.repair_rounds + 1;
-    require_within_budget(sites_added, round + 1);
+    if (options.max_sites_added > 0 && sites_added > options.max_sites_added) {
+      std::vector<Eigen::Vector3d> twins;
+      for (const SurfacePoint& twin : more) twins.push_back(twin.position(cut.mesh));
+      throw weld_error("welded along the sharp features would add " + std::to_string(sites_added) + " sites in " +
+                           std::to_string(round + 1) + " rounds, more than the " +
+                           std::to_string(options.max_sites_added) + " allowed: its creases are finer than the spacing",
+                       twins, spacing, kRemedy);
+    }
     if (!more.empty()) {
       repair_problems.push_back(std::to_string(more.size()) + " points of the sharp features without their twin sites");
     }

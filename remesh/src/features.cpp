@@ -304,18 +304,22 @@ FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& op
   }
   // The given edges join them, marked as kept whatever the filters below say.
   std::vector<std::uint8_t> given(static_cast<std::size_t>(topology.num_edges()), 0);
-  for (std::array<Index, 2> pair : options.given_edges) {
-    if (pair[0] > pair[1]) std::swap(pair[0], pair[1]);
-    const auto it = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(), pair);
-    if (it == topology.edge_vertices.end() || *it != pair) continue;
-    const auto e = static_cast<Index>(it - topology.edge_vertices.begin());
-    if (topology.edge_faces(e).size() == 2) given[e] = 1;
+  for (const auto& [a, b] : options.given_edges) {
+    const Index e = topology.find_edge(a, b);
+    if (e >= 0 && topology.edge_faces(e).size() == 2) given[e] = 1;
   }
   for (Index e = 0; e < topology.num_edges(); ++e) {
     if (given[e]) sharp.push_back(e);
   }
   std::sort(sharp.begin(), sharp.end());
   sharp.erase(std::unique(sharp.begin(), sharp.end()), sharp.end());
+  if (!options.excluded_edges.empty()) {
+    std::vector<std::uint8_t> excluded(static_cast<std::size_t>(topology.num_edges()), 0);
+    for (const auto& [a, b] : options.excluded_edges) {
+      if (const Index e = topology.find_edge(a, b); e >= 0) excluded[e] = 1;
+    }
+    std::erase_if(sharp, [&](Index e) { return excluded[e] != 0; });
+  }
   const Index num_vertices = static_cast<Index>(surface.vertices.rows());
 
   // Chains shorter than min_chain_length go, and then the chains round

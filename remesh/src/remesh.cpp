@@ -1,6 +1,6 @@
 #include "geodual/remesh/remesh.hpp"
 
-#include "geodual/mesh/detail/point_text.hpp"
+#include "fault_places.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
@@ -17,29 +17,13 @@ namespace geodual::remesh {
 
 namespace {
 
-/// Where the repair points of a failed round lie, for the error message
-/// ("; the faults lie near ...", or nothing): the first point of each
-/// cluster (points within a mean spacing of the sites of one already named
-/// join it), at most three named.
-std::string repair_places(const TriangleMesh& mesh, const voronoi::VoronoiDiagram& diagram,
-                          const std::vector<SurfacePoint>& points) {
-  if (points.empty()) return {};
-  const double spacing = diagram.mean_spacing();
-  std::vector<Eigen::Vector3d> places;
-  for (const SurfacePoint& point : points) {
-    const Eigen::Vector3d x = point.position(mesh);
-    if (std::none_of(places.begin(), places.end(),
-                     [&](const Eigen::Vector3d& p) { return (p - x).norm() <= spacing; })) {
-      places.push_back(x);
-    }
-  }
-  std::string text =
-      "; the faults lie " +
-      (places.size() == 1 ? std::string("near ") : "at " + std::to_string(places.size()) + " places, near ");
-  for (std::size_t i = 0; i < std::min<std::size_t>(places.size(), 3); ++i) {
-    text += (i > 0 ? ", " : "") + point_text(places[i]);
-  }
-  return text + (places.size() > 3 ? ", ..." : "");
+/// Where the repair points of a failed round lie (fault_places).
+std::vector<Eigen::Vector3d> repair_places(const TriangleMesh& mesh, const voronoi::VoronoiDiagram& diagram,
+                                           const std::vector<SurfacePoint>& points) {
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(points.size());
+  for (const SurfacePoint& point : points) positions.push_back(point.position(mesh));
+  return fault_places(positions, diagram.mean_spacing());
 }
 
 /// dual_with_repair on `mesh`; `surface` is its prepared surface, made on
@@ -73,9 +57,11 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     const bool converging =
         options.extend_while_converging && round > 0 && round < 2 * options.max_rounds && asked < asked_before;
     if ((round >= options.max_rounds && !converging) || asked == 0) {
-      throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round) +
-                  " repair rounds (" + std::to_string(result.sites_added) + " sites added): " + problems +
-                  repair_places(mesh, result.diagram, dual.check.repair_sites) + "; try more sites");
+      std::vector<Eigen::Vector3d> places = repair_places(mesh, result.diagram, dual.check.repair_sites);
+      const std::string message = "the dual of the Voronoi diagram is not a valid remesh after " +
+                                  std::to_string(round) + " repair rounds (" + std::to_string(result.sites_added) +
+                                  " sites added): " + problems + fault_places_text(places) + "; try more sites";
+      throw DualRepairError(message, std::move(places));
     }
     asked_before = asked;
     // Sites no added site can help go (indices increasing, so from the back).
@@ -85,9 +71,11 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
     result.sites_left_out += static_cast<std::int64_t>(dual.check.redundant_sites.size());
     result.sites_added += static_cast<std::int64_t>(dual.check.repair_sites.size());
     if (options.max_sites_added > 0 && result.sites_added > options.max_sites_added) {
-      throw Error("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round + 1) +
-                  " repair rounds: they would add " + std::to_string(result.sites_added) + " sites, more than the " +
-                  std::to_string(options.max_sites_added) + " allowed (" + problems + "); try more sites");
+      throw DualRepairError("the dual of the Voronoi diagram is not a valid remesh after " + std::to_string(round + 1) +
+                                " repair rounds: they would add " + std::to_string(result.sites_added) +
+                                " sites, more than the " + std::to_string(options.max_sites_added) + " allowed (" +
+                                problems + "); try more sites",
+                            repair_places(mesh, result.diagram, dual.check.repair_sites));
     }
     result.sites.insert(result.sites.end(), dual.check.repair_sites.begin(), dual.check.repair_sites.end());
   }

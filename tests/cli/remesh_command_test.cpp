@@ -530,6 +530,27 @@ TEST(RemeshCommand, FeatureColoursPaintTheCreasesKept) {
   EXPECT_EQ(slurp(picture).substr(1, 3), "PNG");
 }
 
+TEST(RemeshCommand, SaysWhereItLeftCreasesOutAndWhy) {
+  // cheburashka at 500 sites: the remesh that keeps its seven creases fails
+  // at one place; the creases there are left out, the others kept.
+  ScratchFolder folder;
+  const auto out = folder.path() / "cheburashka.glb";
+  const CliRun run = run_cli(
+      {"remesh", "tests/data/cheburashka.ply", "--sites", "500", "--samples", "-1", "--json", "-o", out.string()});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  EXPECT_NE(run.err.find("tests/data/cheburashka.ply: the sharp features could not all be kept, remeshed without the "
+                         "creases near the 1 place where the remesh that kept them failed: "),
+            std::string::npos)
+      << run.err;
+  const nlohmann::json figures = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(figures["features_dropped_reason"].is_null());
+  EXPECT_GT(figures["feature_chains"].get<int>(), 0);
+  ASSERT_EQ(figures["features_dropped_near"].size(), 1u);
+  ASSERT_EQ(figures["features_dropped_near"][0].size(), 3u);
+  EXPECT_NE(figures["features_partly_dropped_reason"].get<std::string>().find("the faults lie near ("),
+            std::string::npos);
+}
+
 /// `geodual remesh MESH --sites SITES --json -o OUT [extra...]`'s JSON, after checking it succeeded.
 nlohmann::json remesh_json(const std::string& mesh, const std::string& sites, const std::filesystem::path& out,
                            const std::vector<std::string>& extra = {}) {
@@ -550,6 +571,8 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   EXPECT_EQ(by_default["sharp_angle_deg"].get<double>(), 60.0);
   EXPECT_GE(by_default["feature_chains"].get<double>(), 30);  // fandisk has 35 chains
   EXPECT_TRUE(by_default["features_dropped_reason"].is_null());
+  EXPECT_TRUE(by_default["features_dropped_near"].empty());
+  EXPECT_TRUE(by_default["features_partly_dropped_reason"].is_null());
   // Its round creases too: where the chords at the spacing would leave them
   // by more than the recall tolerance, the sites on them and beside them are
   // closer, and the triangles keep their shape (fandisk's smallest angle

@@ -59,6 +59,12 @@ TEST(MeshTopology, EdgesAndTheirFaces) {
   EXPECT_EQ(t.num_boundary_loops, 1);
   EXPECT_EQ(t.components[0].euler_characteristic(), 1);
   for (const std::uint8_t on_boundary : t.vertex_on_boundary) EXPECT_TRUE(on_boundary);
+  // Edges by their ends, in either order; -1 for a pair that is no edge.
+  EXPECT_EQ(t.find_edge(2, 0), diagonal);
+  EXPECT_EQ(t.find_edge(0, 2), diagonal);
+  EXPECT_EQ(t.find_edge(3, 2), 4);
+  EXPECT_EQ(t.find_edge(1, 3), -1);
+  EXPECT_EQ(t.find_edge(0, 7), -1);
 }
 
 TEST(MeshTopology, ClosedSurfaceHasNoBoundary) {

@@ -11,7 +11,9 @@
 #include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
+#include "geodual/remesh/features.hpp"
 
 #include <gtest/gtest.h>
 
@@ -335,24 +337,47 @@ TEST(FeaturePipeline, RepairPointsThatDoubleAPointOnACreaseGiveWayToItsTwins) {
   EXPECT_GT(quality::triangle_quality(result.remesh.mesh).q_min, 0.25);
 }
 
-TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreDropped) {
-  // cheburashka at 500 sites: its seven creases are finer than the spacing,
-  // and the dual of the cut surface needs more than the 4 rounds of repair
-  // the remesh that keeps them gets (10 without them).
-  const pipeline::RemeshPipelineResult dropped =
-      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 500);
-  EXPECT_NE(dropped.features_dropped_reason.find("after 4 "), std::string::npos)  // "... repair rounds" or "... rounds"
-      << dropped.features_dropped_reason;
-  EXPECT_TRUE(dropped.features.empty());
-  EXPECT_EQ(dropped.remesh.mesh.num_vertices(), 500 + dropped.remesh.sites_added - dropped.remesh.sites_left_out);
-  // Given as many rounds as the remesh without them, and sites without
-  // bound, they still cannot be kept: the repair keeps doubling points on them.
-  pipeline::RemeshPipelineOptions options;
-  options.remesh.max_feature_repair_rounds = options.remesh.max_repair_rounds;
-  options.remesh.max_feature_sites_added = 0;
-  const pipeline::RemeshPipelineResult still =
-      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 500, options);
-  EXPECT_NE(still.features_dropped_reason.find("after 10 rounds"), std::string::npos) << still.features_dropped_reason;
+TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreLeftOutWhereItFails) {
+  // cheburashka at 500 sites: some of its seven creases are finer than the
+  // spacing, and the dual of the cut surface needs more than the 4 rounds of
+  // repair the remesh that keeps them gets (10 without them). The repair
+  // fails at one place: the creases within two spacings of it are left out,
+  // the others kept.
+  const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
+  const pipeline::RemeshPipelineResult result = remesh_without_statistics(scan, 500);
+  EXPECT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  EXPECT_NE(result.features_partly_dropped_reason.find("after 4 "), std::string::npos)  // "... repair rounds"
+      << result.features_partly_dropped_reason;
+  EXPECT_NE(result.features_partly_dropped_reason.find("the faults lie"), std::string::npos)
+      << result.features_partly_dropped_reason;
+  ASSERT_FALSE(result.features_dropped_near.empty());
+  ASSERT_GT(result.features.sharp_chains, 0);
+  // The creases detected without leaving any out reach near those places;
+  // none kept does.
+  const TriangleMesh& surface = result.surface.mesh;
+  const remesh::FeatureSet all = remesh::detect_features(
+      surface, remesh::remesh_feature_options(surface, 500, 60, 0.5,
+                                              pipeline::RemeshPipelineOptions{}.remesh.continuation_angle));
+  const double radius = 2 * remesh::uniform_spacing(surface, static_cast<std::int64_t>(result.initial_sites.size()));
+  const auto distance_to_places = [&](const std::vector<std::array<Index, 2>>& edges) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& edge : edges) {
+      for (const Index v : edge) {
+        for (const Eigen::Vector3d& place : result.features_dropped_near) {
+          nearest = std::min(nearest, (place - Eigen::Vector3d(surface.vertices.row(v))).norm());
+        }
+      }
+    }
+    return nearest;
+  };
+  EXPECT_LT(distance_to_places(all.sharp_edges), 0.5 * radius);
+  EXPECT_GT(distance_to_places(result.features.sharp_edges), 0.5 * radius);
+  EXPECT_LT(result.features.sharp_edges.size(), all.sharp_edges.size());
+  // The remesh is still whole, with the input's topology.
+  const MeshTopology remeshed = build_mesh_topology(result.remesh.mesh);
+  ASSERT_EQ(remeshed.num_components(), 1);
+  EXPECT_EQ(remeshed.components[0].euler_characteristic(), 2);
+  EXPECT_EQ(remeshed.num_boundary_loops, 0);
 }
 
 TEST(FeaturePipeline, ATryThatWouldRepeatTheFailedOneIsNotRun) {
@@ -376,23 +401,28 @@ TEST(FeaturePipeline, ATryThatWouldRepeatTheFailedOneIsNotRun) {
   EXPECT_EQ(relaxations, 2);
 }
 
-TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreDropped) {
-  // cheburashka at 2,000 sites: its seven creases are finer than the
-  // spacing, and the repair of the cut surface's dual adds 41 sites (2 %);
-  // a bound of 0.5 % drops them.
+TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsThem) {
+  // cheburashka at 2,000 sites: some of its seven creases are finer than
+  // the spacing, and the repair of the cut surface's dual adds 41 sites (2 %);
+  // a bound of 0.5 % leaves out the creases where it would add them.
   const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
-  pipeline::RemeshPipelineOptions bounded;
-  bounded.remesh.max_feature_sites_added = 0.005;
-  const pipeline::RemeshPipelineResult dropped = remesh_without_statistics(scan, 2000, bounded);
-  EXPECT_NE(dropped.features_dropped_reason.find("allowed"), std::string::npos) << dropped.features_dropped_reason;
-  EXPECT_TRUE(dropped.features.empty());
-  // Without the bound, they are kept at the cost of more sites than it allows.
   pipeline::RemeshPipelineOptions options;
   options.remesh.max_feature_sites_added = 0;
   const pipeline::RemeshPipelineResult kept = remesh_without_statistics(scan, 2000, options);
   ASSERT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
+  EXPECT_TRUE(kept.features_dropped_near.empty());
   EXPECT_GT(kept.features.sharp_chains, 0);
   EXPECT_GT(static_cast<double>(kept.remesh.sites_added), 0.005 * static_cast<double>(kept.initial_sites.size()));
+  pipeline::RemeshPipelineOptions bounded;
+  bounded.remesh.max_feature_sites_added = 0.005;
+  const pipeline::RemeshPipelineResult partly = remesh_without_statistics(scan, 2000, bounded);
+  ASSERT_TRUE(partly.features_dropped_reason.empty()) << partly.features_dropped_reason;
+  EXPECT_NE(partly.features_partly_dropped_reason.find("allowed"), std::string::npos)
+      << partly.features_partly_dropped_reason;
+  EXPECT_FALSE(partly.features_dropped_near.empty());
+  EXPECT_GT(partly.features.sharp_chains, 0);
+  EXPECT_LT(partly.features.sharp_edges.size(), kept.features.sharp_edges.size());
+  EXPECT_LE(static_cast<double>(partly.remesh.sites_added), 0.005 * static_cast<double>(partly.initial_sites.size()));
 }
 
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {

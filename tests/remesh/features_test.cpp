@@ -286,6 +286,28 @@ TEST(Features, GivenEdgesAreKeptWhateverTheirAngleOrLength) {
   EXPECT_TRUE(remesh::detect_features(box, {.sharp_angle = 0, .given_edges = {{path[0][0], path[3][1]}}}).empty());
 }
 
+TEST(Features, ExcludedEdgesAreNeverFeatures) {
+  // The box less half of one crease's edges, the half at its corner (0, 0, 0)
+  // along x: that crease ends there in the open, 0.5 long; with a minimum
+  // dangling length of 0.6 it goes too.
+  const TriangleMesh box = cube(4);
+  std::vector<std::array<Index, 2>> half;
+  for (int i = 0; i < 2; ++i) half.push_back({vertex_at(box, {i / 4.0, 0, 0}), vertex_at(box, {(i + 1) / 4.0, 0, 0})});
+  const remesh::FeatureSet less = remesh::detect_features(box, {.excluded_edges = half});
+  EXPECT_EQ(less.sharp_chains, 12);
+  EXPECT_NEAR(less.sharp_length, 11.5, 1e-12);
+  for (const auto& edge : half) {
+    const std::array<Index, 2> sorted = {std::min(edge[0], edge[1]), std::max(edge[0], edge[1])};
+    EXPECT_FALSE(std::binary_search(less.sharp_edges.begin(), less.sharp_edges.end(), sorted));
+  }
+  const remesh::FeatureSet dangling_dropped =
+      remesh::detect_features(box, {.min_dangling_chain_length = 0.6, .excluded_edges = half});
+  EXPECT_EQ(dangling_dropped.sharp_chains, 11);
+  EXPECT_NEAR(dangling_dropped.sharp_length, 11.0, 1e-12);
+  // Given edges are left out too.
+  EXPECT_TRUE(remesh::detect_features(box, {.sharp_angle = 0, .given_edges = half, .excluded_edges = half}).empty());
+}
+
 /// A site at the centre of each side of a cut cube(8) (a face there).
 void add_side_centres(const remesh::FeatureCut& cut, std::vector<SurfacePoint>& sites) {
   const MeshTopology topology = build_mesh_topology(cut.mesh);

@@ -183,9 +183,18 @@ TEST(DualDelaunay, TooFewSitesOnATorusAreDetectedAndRepaired) {
   try {
     (void)remesh::remesh_from_sites(torus, sites, no_repair);
     ADD_FAILURE() << "an invalid dual was accepted";
-  } catch (const Error& error) {
+  } catch (const remesh::DualRepairError& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("the piece with input vertex "), std::string::npos) << message;
+    // The places are on the torus (major radius 1, minor 0.4), one per
+    // repair site at most, a spacing apart.
+    ASSERT_FALSE(error.places().empty());
+    EXPECT_LE(error.places().size(), dual.check.repair_sites.size());
+    for (std::size_t i = 0; i < error.places().size(); ++i) {
+      const Eigen::Vector3d& p = error.places()[i];
+      EXPECT_NEAR(std::hypot(std::hypot(p.x(), p.y()) - 1.0, p.z()), 0.4, 0.01);
+      for (std::size_t j = 0; j < i; ++j) EXPECT_GT((p - error.places()[j]).norm(), 0.5 * spacing);
+    }
     EXPECT_NE(message.find(", 4096 faces, 5 sites, Euler characteristic 0, 0 boundary loops; in the remesh: "),
               std::string::npos)
         << message;

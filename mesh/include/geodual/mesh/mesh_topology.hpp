@@ -66,6 +66,8 @@ struct MeshTopology {
   }
   bool is_boundary_edge(Index edge) const { return edge_face_begin[edge + 1] - edge_face_begin[edge] == 1; }
   bool is_manifold_edge(Index edge) const { return edge_face_begin[edge + 1] - edge_face_begin[edge] <= 2; }
+  /// The edge joining vertices a and b (either order), or -1.
+  Index find_edge(Index a, Index b) const;
 };
 
 /// Linear time and memory. \throw Error if a face refers to a vertex that

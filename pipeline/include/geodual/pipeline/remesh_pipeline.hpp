@@ -148,6 +148,11 @@ struct RemeshPipelineResult {
   /// Why the features were not kept, where the remesh that keeps them
   /// failed and the remesh was made without them (empty otherwise).
   std::string features_dropped_reason;
+  /// Where the remesh that keeps all the features failed at places and was
+  /// made without the creases within two spacings of them: those places,
+  /// and why the first try failed (empty otherwise).
+  std::vector<Eigen::Vector3d> features_dropped_near;
+  std::string features_partly_dropped_reason;
   std::vector<SurfacePoint> initial_sites;
   /// The site count derived from options.edge_length or options.faces, used
   /// instead of options.sites (0 when neither is set).

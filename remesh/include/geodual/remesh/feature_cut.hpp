@@ -86,6 +86,7 @@ struct WeldedDual {
   /// and that site serves the crack. Left out, like unused_sites.
   std::vector<std::size_t> doubling_sites;
   std::int64_t cracked_edges = 0;      ///< boundary edges of `mesh` off the surface's boundary
+  std::vector<Index> crack_vertices;   ///< their ends, vertices of `mesh` (repeated where two meet)
   std::int64_t nonmanifold_edges = 0;  ///< edges of `mesh` with three or more triangles
   /// Pairs of triangles on the same three vertices in opposite orientations
   /// (a flap folded onto itself where cells reach the same sites from both
@@ -107,8 +108,8 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
 /// cracks, the sites inside that reached a boundary move onto it, the twins
 /// of sites on chains are added (repair sites among them) and everything is
 /// recomputed. The result's mesh is the welded remesh
-/// (vertex_of_site filled in). \throw geodual::Error as dual_with_repair, or
-/// when the cracks persist after options.max_rounds.
+/// (vertex_of_site filled in). \throw DualRepairError as dual_with_repair, or
+/// when the cracks persist after options.max_rounds (where the weld fails).
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
                                      const FeatureSet& features, const FeatureCut& cut, std::vector<SurfacePoint> sites,
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options = {});

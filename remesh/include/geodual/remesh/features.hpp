@@ -56,6 +56,9 @@ struct FeatureOptions {
   /// edge whose ends touch no other feature or boundary, which cannot be cut
   /// open, is left out. Pairs that are not edges with two faces are ignored.
   std::vector<std::array<Index, 2>> given_edges = {};
+  /// Edges never kept, given or sharp (vertex pairs of the surface): such as
+  /// those where a remesh that kept them could not be made.
+  std::vector<std::array<Index, 2>> excluded_edges = {};
 };
 
 /// A polyline of mesh vertices between two corners (first and last, the same

@@ -7,6 +7,7 @@
 //   auto result = geodual::remesh::remesh_from_sites(mesh, sites);  // 10 Lloyd iterations first
 //   result.dual.mesh  // one vertex per site, oriented like the input
 
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/remesh/curvature_density.hpp"
@@ -18,6 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geodual::remesh {
@@ -60,10 +62,24 @@ struct RepairedDual {
   double dual_seconds = 0;  ///< building and checking the duals
 };
 
+/// A dual that repair could not make a valid remesh: the geodual::Error of
+/// dual_with_repair and welded_dual_with_repair, with where its faults lie
+/// (points of the surface, a spacing apart; empty where the fault is not at
+/// a place, such as a bound on the sites added).
+class DualRepairError : public Error {
+ public:
+  DualRepairError(const std::string& message, std::vector<Eigen::Vector3d> places)
+      : Error(message), places_(std::move(places)) {}
+  const std::vector<Eigen::Vector3d>& places() const { return places_; }
+
+ private:
+  std::vector<Eigen::Vector3d> places_;
+};
+
 /// The dual of `diagram` (of `sites` on `surface`'s mesh, a 2-manifold such
 /// as cut_to_manifold's mesh); where it fails the checks, sites are added
-/// where it fails and the diagram recomputed on the prepared surface. \throw geodual::Error if it is still
-/// not a valid remesh after options.max_rounds, naming what is wrong.
+/// where it fails and the diagram recomputed on the prepared surface. \throw DualRepairError if it is still
+/// not a valid remesh after options.max_rounds, naming what is wrong and where.
 RepairedDual dual_with_repair(const voronoi::GeodesicSurface& surface, std::vector<SurfacePoint> sites,
                               voronoi::VoronoiDiagram diagram, const RepairOptions& options = {});
 
