@@ -31,6 +31,9 @@ struct RemeshResult {
   std::int64_t sites_added_for_topology = 0;
   std::int64_t sites_added_near_features = 0;
   std::int64_t crease_pins = 0;
+  std::int64_t feature_chains = 0;
+  py::object features_dropped_reason;
+  py::object features_dropped_near;
   py::object narrowest_corner;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
@@ -148,6 +151,10 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.sites_added_for_topology = run.sites_added_for_topology;
   result.sites_added_near_features = run.sites_added_near_features;
   result.crease_pins = run.crease_pins;
+  result.feature_chains = run.features.sharp_chains;
+  result.features_dropped_reason =
+      run.features_dropped_reason.empty() ? py::none() : py::object(py::str(run.features_dropped_reason));
+  result.features_dropped_near = points_to_array(run.features_dropped_near);
   result.narrowest_corner =
       run.features.corners.empty()
           ? py::none()
@@ -192,6 +199,13 @@ void add_remesh(py::module_& module) {
                     "(included in `sites`)")
       .def_readonly("crease_pins", &RemeshResult::crease_pins,
                     "with pin_creases: the sites pinned on short creases (included in `sites`)")
+      .def_readonly("feature_chains", &RemeshResult::feature_chains,
+                    "the sharp chains kept as chains of edges (sharp_angle, feature_edges)")
+      .def_readonly("features_dropped_reason", &RemeshResult::features_dropped_reason,
+                    "why the remesh went without any feature, where the one that kept them failed; else None")
+      .def_readonly("features_dropped_near", &RemeshResult::features_dropped_near,
+                    "float64 k x 3: the places where the remesh that kept all the features failed, near which "
+                    "creases were left out (0 x 3 where none was)")
       .def_readonly("narrowest_corner", &RemeshResult::narrowest_corner,
                     "the narrowest angle in degrees between two kept features at a corner, which bounds the "
                     "remesh's smallest angle there; None without corners")

@@ -152,6 +152,25 @@ def test_narrowest_corner_between_the_kept_creases(data_dir):
     assert geodual.remesh(V, F, sites=2000, sharp_angle=0, statistics=False).narrowest_corner is None
 
 
+def test_says_which_features_were_kept_and_where_creases_were_left_out(data_dir):
+    V, F = geodual.read_mesh(data_dir / "fandisk.ply")
+    kept = geodual.remesh(V, F, sites=2000, statistics=False)
+    assert kept.feature_chains >= 30
+    assert kept.features_dropped_reason is None
+    assert kept.features_dropped_near.shape == (0, 3)
+    # cheburashka at 500 sites: the remesh that keeps its creases fails at
+    # one place; those near it are left out, the others kept.
+    V, F = geodual.read_mesh(data_dir / "cheburashka.ply")
+    partly = geodual.remesh(V, F, sites=500, statistics=False)
+    assert partly.feature_chains > 0
+    assert partly.features_dropped_reason is None
+    assert partly.features_dropped_near.shape == (1, 3)
+    lo, hi = V.min(axis=0), V.max(axis=0)
+    assert np.all(partly.features_dropped_near >= lo) and np.all(partly.features_dropped_near <= hi)
+    none = geodual.remesh(V, F, sites=500, sharp_angle=0, statistics=False)
+    assert none.feature_chains == 0 and none.features_dropped_near.shape == (0, 3)
+
+
 def test_pin_creases_puts_sites_on_the_short_creases_and_keeps_them(data_dir):
     # rocker_arm's creases are too short to cut along at 2,000 sites: without
     # pins no site is on them; with pins the pinned sites are remesh vertices
