@@ -581,6 +581,8 @@ class RemeshCommand final : public Command {
     figures["error_rounds"] = error_rounds;
     if (run.statistics) {
       figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
+      const Eigen::Vector3d& farthest = run.statistics->hausdorff_point;
+      figures["hausdorff_at"] = {farthest.x(), farthest.y(), farthest.z()};
       figures["rms_pct"] = run.statistics->rms_pct;
       figures["area_change_pct"] = run.statistics->area_change_pct;
       // The feature recall (null where the statistics left it out).

@@ -95,6 +95,7 @@ nlohmann::ordered_json quality_report_json(const quality::QualityReport& report,
   const double diagonal = report.reference.bbox_diagonal;
   json["hausdorff_reference_to_candidate_pct"] = 100.0 * report.hausdorff_reference_to_candidate / diagonal;
   json["hausdorff_candidate_to_reference_pct"] = 100.0 * report.hausdorff_candidate_to_reference / diagonal;
+  json["hausdorff_at"] = {report.hausdorff_point.x(), report.hausdorff_point.y(), report.hausdorff_point.z()};
   json["area_change_pct"] = report.area_change_pct;
   json["volume_change_pct"] = optional_json(report.volume_change_pct);
   const std::optional<quality::FeatureRecall>& features = report.features;

@@ -319,6 +319,7 @@ class Surface {
 
 struct OneSided {
   double max_squared = 0.0;
+  Eigen::Vector3d farthest = Eigen::Vector3d::Zero();  ///< the first point measured at max_squared
   double sum_squared = 0.0;
   std::int64_t count = 0;
 };
@@ -349,6 +350,7 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
   const auto blocks = static_cast<std::size_t>((count + block - 1) / block);
   const auto runs = (blocks + blocks_per_run - 1) / blocks_per_run;
   std::vector<double> block_max(blocks, 0.0);
+  std::vector<Point> block_farthest(blocks);
   std::vector<double> block_sum(blocks, 0.0);
   const CGAL::Bbox_3& box = to.bbox();
   const double extent = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
@@ -411,14 +413,16 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
         }
       }
       for (std::int64_t b = first / block; b * block < last; ++b) {
-        double max_squared = 0.0;
+        double max_squared = -1.0;
         double sum_squared = 0.0;
+        Point farthest;
         for (std::int64_t i = b * block; i < std::min((b + 1) * block, last); ++i) {
           const double d2 = squared[static_cast<std::size_t>(i - first)];
-          max_squared = std::max(max_squared, d2);
+          if (d2 > max_squared) max_squared = d2, farthest = points[static_cast<std::size_t>(i - first)];
           sum_squared += d2;
         }
         block_max[static_cast<std::size_t>(b)] = max_squared;
+        block_farthest[static_cast<std::size_t>(b)] = farthest;
         block_sum[static_cast<std::size_t>(b)] = sum_squared;
       }
     }
@@ -427,7 +431,11 @@ OneSided measure(const Surface& from, const Surface& to, std::int64_t samples, s
   OneSided result;
   result.count = count;
   for (std::size_t b = 0; b < blocks; ++b) {
-    result.max_squared = std::max(result.max_squared, block_max[b]);
+    if (b == 0 || block_max[b] > result.max_squared) {
+      result.max_squared = block_max[b];
+      const Point& p = block_farthest[b];
+      result.farthest = {p.x(), p.y(), p.z()};
+    }
     result.sum_squared += block_sum[b];
   }
   return result;
@@ -708,6 +716,9 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
     report.hausdorff_reference_to_candidate = std::sqrt(forward.max_squared);
     report.hausdorff_candidate_to_reference = std::sqrt(backward.max_squared);
     report.hausdorff = std::max(report.hausdorff_reference_to_candidate, report.hausdorff_candidate_to_reference);
+    report.hausdorff_point = report.hausdorff_reference_to_candidate >= report.hausdorff_candidate_to_reference
+                                 ? forward.farthest
+                                 : backward.farthest;
     report.rms =
         std::sqrt((forward.sum_squared + backward.sum_squared) / static_cast<double>(forward.count + backward.count));
     report.reference_samples = forward.count;

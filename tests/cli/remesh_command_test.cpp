@@ -56,11 +56,36 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
     const auto energy = json["energy_history"].get<std::vector<double>>();
     ASSERT_EQ(energy.size(), json["lloyd_iterations"].get<std::size_t>() + 1);
     for (std::size_t i = 1; i < energy.size(); ++i) EXPECT_LE(energy[i], energy[i - 1]);
-    for (const char* key :
-         {"sample_s", "geodesic_s", "diagram_s", "dual_s", "write_s", "time_s", "peak_memory_bytes", "q_min", "q_avg",
-          "lloyd_iterations", "warm_start_iterations", "warm_start_s", "energy_history", "hausdorff_pct", "rms_pct",
-          "relax_s", "statistics_s", "feature_recall_pct", "feature_max_gap_pct"}) {
+    for (const char* key : {"sample_s",
+                            "geodesic_s",
+                            "diagram_s",
+                            "dual_s",
+                            "write_s",
+                            "time_s",
+                            "peak_memory_bytes",
+                            "q_min",
+                            "q_avg",
+                            "lloyd_iterations",
+                            "warm_start_iterations",
+                            "warm_start_s",
+                            "energy_history",
+                            "hausdorff_pct",
+                            "rms_pct",
+                            "relax_s",
+                            "statistics_s",
+                            "feature_recall_pct",
+                            "feature_max_gap_pct",
+                            "hausdorff_at"}) {
       EXPECT_TRUE(json.contains(key)) << key;
+    }
+    // Where the Hausdorff distance is reached: a point of the input or the
+    // remesh, within the input's box grown by that distance.
+    const auto at = json["hausdorff_at"].get<std::vector<double>>();
+    ASSERT_EQ(at.size(), 3u);
+    const double reach = json["hausdorff_pct"].get<double>() / 100 * input.bbox_diagonal;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(at[k], input.bbox_min[k] - reach - 1e-12);
+      EXPECT_LE(at[k], input.bbox_max[k] + reach + 1e-12);
     }
   }
 }

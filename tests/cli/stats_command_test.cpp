@@ -90,6 +90,7 @@ TEST(StatsCommand, JsonHasTheDocumentedKeysAndTheLibrarysFigures) {
                           "rms_pct",
                           "hausdorff_reference_to_candidate_pct",
                           "hausdorff_candidate_to_reference_pct",
+                          "hausdorff_at",
                           "area_change_pct",
                           "volume_change_pct",
                           "sharp_angle_deg",

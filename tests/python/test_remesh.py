@@ -16,7 +16,7 @@ STATS_KEYS = [
     "pct_angles_lt30", "p30", "valence_histogram", "interior_vertices", "pct_valence6",
     "euler_characteristic", "genus", "components", "boundary_loops", "nonmanifold_edges", "bbox_diagonal",
     "area", "volume", "hausdorff", "rms", "hausdorff_pct", "rms_pct", "hausdorff_reference_to_candidate_pct",
-    "hausdorff_candidate_to_reference_pct", "area_change_pct", "volume_change_pct", "sharp_angle_deg",
+    "hausdorff_candidate_to_reference_pct", "hausdorff_at", "area_change_pct", "volume_change_pct", "sharp_angle_deg",
     "feature_tolerance_pct", "feature_recall_edges", "feature_recall_length", "feature_recall_pct",
     "feature_max_gap_pct", "samples_per_side", "seed", "reference_samples", "candidate_samples",
     "reference_quality",

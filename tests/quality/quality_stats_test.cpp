@@ -425,6 +425,10 @@ TEST(CompareMeshes, VerticesOnlyMatchBruteForce) {
   EXPECT_NEAR(report.hausdorff_reference_to_candidate, forward, 1e-13);
   EXPECT_NEAR(report.hausdorff_candidate_to_reference, backward, 1e-13);
   EXPECT_NEAR(report.rms, std::sqrt(sum / (a.num_vertices() + b.num_vertices())), 1e-13);
+  // Where it is reached: a vertex of the side whose maximum is larger, at
+  // that distance from the other side.
+  const bool forward_larger = forward >= backward;
+  EXPECT_NEAR(brute_distance(report.hausdorff_point, forward_larger ? b : a), report.hausdorff, 1e-13);
   EXPECT_EQ(report.reference_samples, a.num_vertices());
   EXPECT_GT(report.hausdorff, 0.01);
 }
@@ -467,6 +471,7 @@ TEST(CompareMeshes, DeterministicForAnyThreadCount) {
     EXPECT_EQ(many.hausdorff_reference_to_candidate, other->hausdorff_reference_to_candidate);
     EXPECT_EQ(many.hausdorff_candidate_to_reference, other->hausdorff_candidate_to_reference);
     EXPECT_EQ(many.rms, other->rms);
+    EXPECT_EQ(many.hausdorff_point, other->hausdorff_point);
   }
   // Another seed draws other samples: the same figure up to sampling noise.
   const QualityReport reseeded = compare_meshes(sphere, bumpy, samples(50000, 8));
@@ -490,6 +495,8 @@ TEST(CompareMeshes, DeviationAtVerticesLocatesTheDistanceAndPeaksAtTheHausdorff)
   ASSERT_EQ(deviation.size(), static_cast<std::size_t>(spiked.num_vertices()));
   EXPECT_DOUBLE_EQ(deviation[spike], 0.3);
   EXPECT_DOUBLE_EQ(*std::max_element(deviation.begin(), deviation.end()), report.hausdorff);
+  // It is reached at the spike's tip, a vertex of the reference.
+  EXPECT_EQ(report.hausdorff_point, Eigen::Vector3d(spiked.vertices.row(spike)));
   for (Index v = 0; v < spiked.num_vertices(); ++v) {
     // The spike's one-ring (the grid's diagonals run from (i, j) to (i + 1, j + 1)).
     const Index di = v % 11 - 5, dj = v / 11 - 5;

@@ -163,11 +163,15 @@ struct QualityReport {
   double hausdorff = 0.0;                         ///< two-sided, max of the two below
   double hausdorff_reference_to_candidate = 0.0;  ///< max over reference samples
   double hausdorff_candidate_to_reference = 0.0;  ///< max over candidate samples
-  double rms = 0.0;                               ///< over both sample sets together
-  double hausdorff_pct = 0.0;                     ///< 100 * hausdorff / reference.bbox_diagonal
-  double rms_pct = 0.0;                           ///< 100 * rms / reference.bbox_diagonal
-  std::int64_t reference_samples = 0;             ///< measured points on the reference: vertices + samples
-  std::int64_t candidate_samples = 0;             ///< measured points on the candidate
+  /// Where `hausdorff` is reached: the point measured (of the reference, or
+  /// of the candidate where that side's maximum is larger) farthest from the
+  /// other mesh; the first such point where several are.
+  Eigen::Vector3d hausdorff_point = Eigen::Vector3d::Zero();
+  double rms = 0.0;                    ///< over both sample sets together
+  double hausdorff_pct = 0.0;          ///< 100 * hausdorff / reference.bbox_diagonal
+  double rms_pct = 0.0;                ///< 100 * rms / reference.bbox_diagonal
+  std::int64_t reference_samples = 0;  ///< measured points on the reference: vertices + samples
+  std::int64_t candidate_samples = 0;  ///< measured points on the candidate
 
   double area_change_pct = 0.0;  ///< 100 * (candidate.area - reference.area) / reference.area
   /// 100 * (candidate.volume - reference.volume) / |reference.volume|; empty
