@@ -617,7 +617,7 @@ std::vector<std::array<Index, 2>> sharp_edges_near(const TriangleMesh& surface, 
 /// with the denser sites of the components' shares by area
 /// (remesh::GivenSiteShare); where they cannot be kept either and the
 /// failure lies at places (remesh::DualRepairError), without the creases
-/// there, up to twice; and failing that, the remesh without any, and why.
+/// there; and failing that, the remesh without any, and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
@@ -631,7 +631,9 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   std::vector<std::array<Index, 2>> excluded;  // the sharp edges left out near those places
   std::vector<Eigen::Vector3d> dropped_near;   // the places
   std::string first_reason;                    // why the first try failed
-  constexpr int kMaxCreaseDrops = 2;
+  // Once: where leaving those out does not do, the creases are finer than
+  // the spacing in many places, and each try costs a relaxation.
+  constexpr int kMaxCreaseDrops = 1;
   // Each drop leaves out the creases within this many spacings of a place:
   // the faults lie within a cell or two of them.
   constexpr double kDropRadius = 2;
