@@ -95,6 +95,10 @@ void require_feature_and_repair_options(const remesh::RemeshOptions& options) {
     throw UsageError("max feature sites added " + std::to_string(options.max_feature_sites_added) +
                      ": must be a finite fraction >= 0 of the sites");
   }
+  if (!std::isfinite(options.feature_retry_radius) || options.feature_retry_radius < 0) {
+    throw UsageError("feature retry radius " + std::to_string(options.feature_retry_radius) +
+                     ": must be a finite number >= 0 (in spacings)");
+  }
   if (options.max_feature_repair_rounds < 0) {
     throw UsageError("max feature repair rounds " + std::to_string(options.max_feature_repair_rounds) +
                      ": must be >= 0");
@@ -616,8 +620,9 @@ std::vector<std::array<Index, 2>> sharp_edges_near(const TriangleMesh& surface, 
 /// kept with sites as dense beside the creases as elsewhere, they are tried
 /// with the denser sites of the components' shares by area
 /// (remesh::GivenSiteShare); where they cannot be kept either and the
-/// failure lies at places (remesh::DualRepairError), without the creases
-/// there; and failing that, the remesh without any, and why.
+/// failure lies at places (remesh::DualRepairError) near less than half of
+/// the creases, without those; and failing that, the remesh without any,
+/// and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
@@ -634,9 +639,6 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   // Once: where leaving those out does not do, the creases are finer than
   // the spacing in many places, and each try costs a relaxation.
   constexpr int kMaxCreaseDrops = 1;
-  // Each drop leaves out the creases within this many spacings of a place:
-  // the faults lie within a cell or two of them.
-  constexpr double kDropRadius = 2;
   const int tries = refinement ? 1 : 2;
   for (int drop = 0; drop <= kMaxCreaseDrops; ++drop) {
     for (int attempt = 0; attempt < (drop == 0 ? tries : 1); ++attempt) {
@@ -669,12 +671,15 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
         if (attempt == 0) first_sites = std::move(result.initial_sites);
       }
     }
-    if (drop == kMaxCreaseDrops || places.empty()) break;
+    const double spacings = options.remesh.feature_retry_radius;
+    if (drop == kMaxCreaseDrops || places.empty() || !(spacings > 0)) break;
     // The surface the features are on (its copy is held back during the stages where it is the input).
     const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
-    const double radius = kDropRadius * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
+    const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
     const std::vector<std::array<Index, 2>> near = sharp_edges_near(surface, result.features, places, radius);
-    if (near.empty()) break;
+    // Where they are most of the creases (a soup failing all over), the
+    // remesh without them would be all but the one without features.
+    if (near.empty() || 2 * near.size() > result.features.sharp_edges.size()) break;
     excluded.insert(excluded.end(), near.begin(), near.end());
     dropped_near.insert(dropped_near.end(), places.begin(), places.end());
     if (first_reason.empty()) first_reason = reason;

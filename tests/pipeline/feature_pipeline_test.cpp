@@ -401,6 +401,37 @@ TEST(FeaturePipeline, ATryThatWouldRepeatTheFailedOneIsNotRun) {
   EXPECT_EQ(relaxations, 2);
 }
 
+TEST(FeaturePipeline, NoRetryWithoutCreasesWhereTheyWouldBeMostOfThemOrWhereItIsOff) {
+  // cheburashka at 500 sites, as above: three relaxations (the first try,
+  // the second with denser sites beside the creases, the retry without
+  // those near the place, which succeeds). Where the radius reaches most of
+  // the creases, or is 0, no retry: three again, the third the remesh
+  // without them (a retry that failed would make four).
+  const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
+  const auto remesh_with_radius = [&](double radius, int& relaxations) {
+    pipeline::Stage last = pipeline::Stage::load;
+    pipeline::RemeshPipelineOptions options;
+    options.remesh.feature_retry_radius = radius;
+    options.progress = [&](pipeline::Stage stage, double) {
+      if (stage == pipeline::Stage::relax && last != pipeline::Stage::relax) ++relaxations;
+      last = stage;
+      return true;
+    };
+    return remesh_without_statistics(scan, 500, options);
+  };
+  int retried = 0, too_wide = 0, off = 0;
+  const pipeline::RemeshPipelineResult partly = remesh_with_radius(2, retried);
+  EXPECT_FALSE(partly.features.empty());
+  EXPECT_EQ(retried, 3);
+  for (const auto& [radius, relaxations] : {std::pair<double, int*>{100, &too_wide}, {0, &off}}) {
+    const pipeline::RemeshPipelineResult dropped = remesh_with_radius(radius, *relaxations);
+    EXPECT_TRUE(dropped.features.empty()) << radius;
+    EXPECT_TRUE(dropped.features_dropped_near.empty()) << radius;
+    EXPECT_NE(dropped.features_dropped_reason.find("after 4 "), std::string::npos) << dropped.features_dropped_reason;
+    EXPECT_EQ(*relaxations, 3) << radius;
+  }
+}
+
 TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsThem) {
   // cheburashka at 2,000 sites: some of its seven creases are finer than
   // the spacing, and the repair of the cut surface's dual adds 41 sites (2 %);

@@ -191,6 +191,8 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
             std::string::npos);
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_repair_rounds = -1; }).find("max repair rounds"),
             std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.feature_retry_radius = -1; }).find("feature retry radius"),
+            std::string::npos);
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_feature_repair_rounds = -2; }).find("max feature repair"),
             std::string::npos);
 }

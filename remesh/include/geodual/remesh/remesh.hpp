@@ -107,6 +107,11 @@ struct RemeshOptions {
   /// sites (twins included), as creases finer than the spacing make it, it
   /// gives up too (0: no bound).
   double max_feature_sites_added = 0.1;
+  /// Where that remesh fails at places (DualRepairError::places), the remesh
+  /// pipeline tries once more without the creases within this many spacings
+  /// of them, unless those are most of the creases, before it drops them all
+  /// (0: no such try).
+  double feature_retry_radius = 2;
   /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
   /// pipeline when it samples the sites: creases where the normals turn by at
   /// least this many degrees at half the remesh's spacing, in chains at least
