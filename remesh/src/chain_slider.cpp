@@ -40,11 +40,10 @@ ChainSlider::ChainSlider(const TriangleMesh& surface, const FeatureSet& features
     std::vector<std::array<Index, 2>>& sides = side_faces_[c];
     for (std::size_t i = 0; i + 1 < vertices.size(); ++i) {
       const Index a = vertices[i], b = vertices[i + 1];
-      const std::array<Index, 2> edge = {std::min(a, b), std::max(a, b)};
-      const auto it = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(), edge);
+      const Index e = topology.find_edge(a, b);
       std::array<Index, 2> faces = {-1, -1};
-      if (it != topology.edge_vertices.end() && *it == edge) {
-        const auto around = topology.edge_faces(static_cast<Index>(it - topology.edge_vertices.begin()));
+      if (e >= 0) {
+        const auto around = topology.edge_faces(e);
         for (std::size_t k = 0; k < around.size() && k < 2; ++k) faces[k] = around[k];
         // Side 0 goes on through the copy of a that side 0 of the last edge has.
         if (i > 0 && faces[1] >= 0 && sides.back()[0] >= 0 &&
@@ -53,7 +52,7 @@ ChainSlider::ChainSlider(const TriangleMesh& surface, const FeatureSet& features
         }
       }
       sides.push_back(faces);
-      edges_.push_back({edge, static_cast<Index>(c), static_cast<Index>(i)});
+      edges_.push_back({{std::min(a, b), std::max(a, b)}, static_cast<Index>(c), static_cast<Index>(i)});
     }
   }
   std::sort(edges_.begin(), edges_.end(), [](const EdgeOnChain& x, const EdgeOnChain& y) { return x.edge < y.edge; });

@@ -44,12 +44,9 @@ void add_twins(const TriangleMesh& surface, const MeshTopology& topology, const 
   if (key.lo == key.hi) {
     for (const Index copy : copies.of(key.lo)) out.push_back(SurfacePoint::at_vertex(copy));
   } else {
-    const auto edge = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(),
-                                       std::array<Index, 2>{key.lo, key.hi});
-    if (edge == topology.edge_vertices.end() || *edge != std::array<Index, 2>{key.lo, key.hi}) return;
-    for (const Index f : topology.edge_faces(static_cast<Index>(edge - topology.edge_vertices.begin()))) {
-      out.push_back(point_on_edge(surface, f, key.lo, key.hi, key.t));
-    }
+    const Index edge = topology.find_edge(key.lo, key.hi);
+    if (edge < 0) return;
+    for (const Index f : topology.edge_faces(edge)) out.push_back(point_on_edge(surface, f, key.lo, key.hi, key.t));
   }
   held.insert(std::upper_bound(held.begin(), held.end(), key), key);
 }
@@ -303,9 +300,7 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
     std::size_t j = i;
     while (j < held.size() && held[j].first == held[i].first) ++j;
     const SiteKey& key = held[i].first;
-    const auto edge = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(),
-                                       std::array<Index, 2>{key.lo, key.hi});
-    for (const Index f : topology.edge_faces(static_cast<Index>(edge - topology.edge_vertices.begin()))) {
+    for (const Index f : topology.edge_faces(topology.find_edge(key.lo, key.hi))) {
       const bool has =
           std::any_of(held.begin() + static_cast<std::ptrdiff_t>(i), held.begin() + static_cast<std::ptrdiff_t>(j),
                       [&](const auto& h) { return h.second == f; });
@@ -422,10 +417,8 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     const SiteKey& key = keys[site];
     if (key.lo < 0) return false;
     if (key.lo == key.hi) return surface_topology.vertex_on_boundary[key.lo] != 0;
-    const auto edge = std::lower_bound(surface_topology.edge_vertices.begin(), surface_topology.edge_vertices.end(),
-                                       std::array<Index, 2>{key.lo, key.hi});
-    return edge != surface_topology.edge_vertices.end() && *edge == std::array<Index, 2>{key.lo, key.hi} &&
-           surface_topology.is_boundary_edge(static_cast<Index>(edge - surface_topology.edge_vertices.begin()));
+    const Index edge = surface_topology.find_edge(key.lo, key.hi);
+    return edge >= 0 && surface_topology.is_boundary_edge(edge);
   };
   // Surface vertices on a chain: the cut split them, or a chain ends there
   // in the open (the tip of a slit, one copy).

@@ -247,11 +247,9 @@ bool unjoin_edges_left_nonmanifold(const TriangleMesh& cut_mesh, const std::vect
   std::vector<std::uint8_t> apart(static_cast<std::size_t>(topology.num_edges()), 0);
   for (Index e = 0; e < after.num_edges(); ++e) {
     if (after.is_manifold_edge(e)) continue;
-    std::array<Index, 2> ends = {original_vertex[static_cast<std::size_t>(after.edge_vertices[e][0])],
-                                 original_vertex[static_cast<std::size_t>(after.edge_vertices[e][1])]};
-    std::sort(ends.begin(), ends.end());
-    const auto at = std::lower_bound(topology.edge_vertices.begin(), topology.edge_vertices.end(), ends);
-    if (at != topology.edge_vertices.end() && *at == ends) apart[at - topology.edge_vertices.begin()] = 1;
+    const Index at = topology.find_edge(original_vertex[static_cast<std::size_t>(after.edge_vertices[e][0])],
+                                        original_vertex[static_cast<std::size_t>(after.edge_vertices[e][1])]);
+    if (at >= 0) apart[static_cast<std::size_t>(at)] = 1;
   }
   const auto before = joined.size();
   std::erase_if(joined, [&](const FacePair& pair) { return apart[static_cast<std::size_t>(pair.edge)] != 0; });
