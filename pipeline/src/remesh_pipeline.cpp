@@ -635,7 +635,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   std::vector<SurfacePoint> first_sites;       // of the first try, where it failed
   std::vector<std::array<Index, 2>> excluded;  // the sharp edges left out near those places
   std::vector<Eigen::Vector3d> dropped_near;   // the places
-  std::string first_reason;                    // why the first try failed
+  std::string dropped_reason;                  // why the try with them all failed
   // Once: where leaving those out does not do, the creases are finer than
   // the spacing in many places, and each try costs a relaxation.
   constexpr int kMaxCreaseDrops = 1;
@@ -658,7 +658,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
         }
         if (drop > 0) {
           result.features_dropped_near = std::move(dropped_near);
-          result.features_partly_dropped_reason = std::move(first_reason);
+          result.features_partly_dropped_reason = std::move(dropped_reason);
         }
         return;
       } catch (const Cancelled&) {
@@ -676,13 +676,12 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     // The surface the features are on (its copy is held back during the stages where it is the input).
     const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
     const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
-    const std::vector<std::array<Index, 2>> near = sharp_edges_near(surface, result.features, places, radius);
+    excluded = sharp_edges_near(surface, result.features, places, radius);
     // Where they are most of the creases (a soup failing all over), the
     // remesh without them would be all but the one without features.
-    if (near.empty() || 2 * near.size() > result.features.sharp_edges.size()) break;
-    excluded.insert(excluded.end(), near.begin(), near.end());
-    dropped_near.insert(dropped_near.end(), places.begin(), places.end());
-    if (first_reason.empty()) first_reason = reason;
+    if (excluded.empty() || 2 * excluded.size() > result.features.sharp_edges.size()) break;
+    dropped_near = std::move(places);
+    dropped_reason = reason;
   }
   result.features_dropped_reason = reason;
   result.features = {};
