@@ -6,6 +6,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/mesh/triangle_shape.hpp"
 
 #include <Eigen/Geometry>
 
@@ -36,28 +37,11 @@ struct FaceShape {
 FaceShape face_shape(const TriangleMesh& mesh, Index f) {
   FaceShape shape;
   if (!has_positive_area(mesh, f)) return shape;  // as analyze_mesh says
-  const Eigen::Vector3d p0 = mesh.vertices.row(mesh.faces(f, 0));
-  const Eigen::Vector3d p1 = mesh.vertices.row(mesh.faces(f, 1));
-  const Eigen::Vector3d p2 = mesh.vertices.row(mesh.faces(f, 2));
-  const Eigen::Vector3d e01 = p1 - p0;
-  const Eigen::Vector3d e12 = p2 - p1;
-  const Eigen::Vector3d e20 = p0 - p2;
-  const Eigen::Vector3d cross = e01.cross(-e20);
-
-  const double twice_area = cross.norm();
-  const double l01 = e01.norm();
-  const double l12 = e12.norm();
-  const double l20 = e20.norm();
-  const double half_perimeter = 0.5 * (l01 + l12 + l20);
-  const double longest = std::max({l01, l12, l20});
-  shape.area = 0.5 * twice_area;
-  // Q = 6/sqrt(3) * A / (p h); 1 for the equilateral triangle.
-  shape.q = 6.0 / std::sqrt(3.0) * shape.area / (half_perimeter * longest);
-  // The angle between edge vectors u, v is atan2(|u x v|, u . v), where
-  // |u x v| is twice the area at every corner.
-  shape.angles[0] = std::atan2(twice_area, e01.dot(-e20));
-  shape.angles[1] = std::atan2(twice_area, e12.dot(-e01));
-  shape.angles[2] = std::atan2(twice_area, e20.dot(-e12));
+  const TriangleShape triangle = triangle_shape(
+      mesh.vertices.row(mesh.faces(f, 0)), mesh.vertices.row(mesh.faces(f, 1)), mesh.vertices.row(mesh.faces(f, 2)));
+  shape.q = triangle.q;
+  shape.angles = triangle.angles;
+  shape.area = triangle.area;
   shape.degenerate = false;
   return shape;
 }

@@ -22,16 +22,6 @@
 namespace geodual::remesh {
 namespace {
 
-/// True for a face point on a boundary edge of the surface.
-bool on_boundary(const voronoi::SurfaceTopology& topology, const SurfacePoint& point) {
-  for (int c = 0; c < 3; ++c) {
-    if (point.barycentric[c] != 0) continue;
-    const Index edge = topology.face_edges[point.element][(c + 1) % 3];  // the side opposite corner c
-    if (edge >= 0 && (topology.edge_faces[edge][0] < 0 || topology.edge_faces[edge][1] < 0)) return true;
-  }
-  return false;
-}
-
 /// Per site, whether a step may move it: it is not on the boundary unless
 /// boundary sites move. (A site whose cell is empty stays too: the steps
 /// check that.)
@@ -52,7 +42,7 @@ std::vector<bool> movable_sites(const TriangleMesh& mesh, std::span<const Surfac
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const SurfacePoint& site = sites[i];
     movable[i] = movable[i] && !(site.kind == SurfacePoint::Kind::vertex ? bool(boundary_vertex[site.element])
-                                                                         : on_boundary(topology, site));
+                                                                         : detail::on_surface_boundary(topology, site));
   }
   return movable;
 }

@@ -34,6 +34,16 @@ Eigen::Vector3d barycentric_in(const TriangleMesh& mesh, Index face, const Eigen
 
 }  // namespace
 
+bool on_surface_boundary(const voronoi::SurfaceTopology& topology, const SurfacePoint& point) {
+  if (point.kind != SurfacePoint::Kind::face) return false;
+  for (int c = 0; c < 3; ++c) {
+    if (point.barycentric[c] != 0) continue;
+    const Index edge = topology.face_edges[point.element][(c + 1) % 3];  // the side opposite corner c
+    if (edge >= 0 && (topology.edge_faces[edge][0] < 0 || topology.edge_faces[edge][1] < 0)) return true;
+  }
+  return false;
+}
+
 SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                              const SurfacePoint& start, const Eigen::Vector3d& direction, double length) {
   if (start.kind != SurfacePoint::Kind::face || !(length > 0) || !direction.allFinite()) return start;

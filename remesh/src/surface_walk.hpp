@@ -21,6 +21,10 @@ namespace geodual::remesh::detail {
 SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                              const SurfacePoint& start, const Eigen::Vector3d& direction, double length);
 
+/// True for a face point on a boundary edge of the surface (a barycentric
+/// coordinate 0, the side opposite it in one face only).
+bool on_surface_boundary(const voronoi::SurfaceTopology& topology, const SurfacePoint& point);
+
 /// Per vertex, the faces around it that take part in the propagation (see
 /// `topology`): those of vertex v are around(v).
 struct VertexFans {
