@@ -195,6 +195,13 @@ class RemeshCommand final : public Command {
                     "fewer sites than the one before)")
         ->capture_default_str()
         ->check(integer_between(0, 1000));
+    command
+        .add_option("--smoothing-angle", options_.smoothing_angle,
+                    "Last, move the corners of triangles with an angle below this many degrees along the surface to "
+                    "where the smallest angle round them is largest (chain, corner, boundary and pinned vertices "
+                    "stay; 0, or --lloyd-iterations 0: none, every vertex at its site)")
+        ->capture_default_str()
+        ->check(number_between(0, 60));
     geodesic_.add_to(command);
     command.add_option("--preview", preview_path_, "Also render a picture of the result: .png");
     command
@@ -558,6 +565,8 @@ class RemeshCommand final : public Command {
     figures["sites_left_out"] = result.sites_left_out;
     figures["repair_rounds"] = result.repair_rounds;
     figures["repair_problems"] = result.repair_problems;
+    figures["smoothing_angle_deg"] = options_.smoothing_angle;
+    figures["vertices_smoothed"] = run.smoothing.vertices_moved;
     figures["vertices"] = result.mesh.num_vertices();
     figures["faces"] = result.mesh.num_faces();
     figures["euler_characteristic"] = quality.euler_characteristic;
@@ -687,6 +696,12 @@ class RemeshCommand final : public Command {
               "), CVT energy " + significant(relaxation.energy.front(), 5) + " -> " +
               significant(relaxation.energy.back(), 5));
     }
+    if (run.smoothing.vertices_moved > 0) {
+      table.add("smoothing", with_thousands(run.smoothing.vertices_moved) +
+                                 " vertices moved along the surface, min angle " +
+                                 significant(run.smoothing.min_angle_before, 3) + " -> " +
+                                 significant(run.smoothing.min_angle_after, 3) + " deg");
+    }
     table.add("output", output_path + " (" + with_thousands(result.mesh.num_vertices()) + " vertices, " +
                             with_thousands(result.mesh.num_faces()) + " faces)");
     if (const std::vector<std::string> kept = pipeline::attribute_list(run.attributes); !kept.empty()) {
@@ -754,6 +769,7 @@ class RemeshCommand final : public Command {
     options["sharp_angle"] = options_.sharp_angle;
     options["continuation_angle"] = options_.continuation_angle;
     options["pin_creases"] = options_.pin_short_creases;
+    options["smoothing_angle"] = options_.smoothing_angle;
     options["feature_file"] =
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();

@@ -8,6 +8,7 @@
 #include "geodual/mesh/vertex_copies.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
+#include "geodual/remesh/angle_smoothing.hpp"
 #include "geodual/remesh/chain_slider.hpp"
 #include "geodual/remesh/crease_pins.hpp"
 #include "geodual/remesh/curvature_density.hpp"
@@ -98,6 +99,10 @@ void require_feature_and_repair_options(const remesh::RemeshOptions& options) {
   if (!std::isfinite(options.feature_retry_radius) || options.feature_retry_radius < 0) {
     throw UsageError("feature retry radius " + std::to_string(options.feature_retry_radius) +
                      ": must be a finite number >= 0 (in spacings)");
+  }
+  if (!std::isfinite(options.smoothing_angle) || options.smoothing_angle < 0 || options.smoothing_angle > 60) {
+    throw UsageError("smoothing angle " + std::to_string(options.smoothing_angle) +
+                     ": must be in [0, 60] degrees (0: no smoothing)");
   }
   if (options.max_feature_repair_rounds < 0) {
     throw UsageError("max feature repair rounds " + std::to_string(options.max_feature_repair_rounds) +
@@ -246,6 +251,57 @@ PinnedCreases pin_short_creases(const RemeshPipelineResult& result, std::int64_t
   pinned.pins = std::move(crease_pins.sites);
   pinned.segments = std::move(crease_pins.segments);
   return pinned;
+}
+
+/// remesh::smooth_smallest_angles on the remesh, whose sites lie on
+/// `surface`: a vertex that welded twins share (a chain's) or a pin's stays,
+/// and so does one within `crease_tolerance` of the pinned `creases` (vertex
+/// polylines of `crease_mesh`), which may be what follows them; a vertex
+/// moved takes its site along.
+remesh::AngleSmoothingResult smooth_remesh(remesh::RepairedDual& remeshed, const TriangleMesh& surface,
+                                           const voronoi::SurfaceTopology& topology,
+                                           std::span<const Index> pin_vertices,
+                                           std::span<const remesh::FeatureChain> creases,
+                                           const TriangleMesh& crease_mesh, double crease_tolerance, double min_angle) {
+  const auto num_vertices = static_cast<std::size_t>(remeshed.mesh.num_vertices());
+  std::vector<SurfacePoint> points(num_vertices);
+  std::vector<std::uint8_t> sites_at(num_vertices, 0);  // up to 2: one, or more than one
+  const auto vertex_of = [&](std::size_t site) {
+    return remeshed.vertex_of_site.empty() ? site : static_cast<std::size_t>(remeshed.vertex_of_site[site]);
+  };
+  for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
+    const std::size_t v = vertex_of(site);
+    points[v] = remeshed.sites[site];
+    sites_at[v] = static_cast<std::uint8_t>(std::min(2, sites_at[v] + 1));
+  }
+  std::vector<std::uint8_t> fixed(num_vertices, 0);
+  for (std::size_t v = 0; v < num_vertices; ++v) fixed[v] = sites_at[v] != 1;
+  for (const Index v : pin_vertices) {
+    if (v >= 0) fixed[static_cast<std::size_t>(v)] = 1;
+  }
+  const auto near_a_crease = [&](const Eigen::Vector3d& x) {
+    for (const remesh::FeatureChain& crease : creases) {
+      for (std::size_t k = 0; k + 1 < crease.vertices.size(); ++k) {
+        const Eigen::Vector3d a = crease_mesh.vertices.row(crease.vertices[k]);
+        const Eigen::Vector3d ab = Eigen::Vector3d(crease_mesh.vertices.row(crease.vertices[k + 1])) - a;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        if ((a + t * ab - x).norm() <= crease_tolerance) return true;
+      }
+    }
+    return false;
+  };
+  if (!creases.empty()) {
+    for (std::size_t v = 0; v < num_vertices; ++v) {
+      if (!fixed[v] && near_a_crease(remeshed.mesh.vertices.row(static_cast<Index>(v)))) fixed[v] = 1;
+    }
+  }
+  const remesh::AngleSmoothingResult smoothed =
+      remesh::smooth_smallest_angles(surface, topology, remeshed.mesh, points, fixed, {.min_angle = min_angle});
+  for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
+    const std::size_t v = vertex_of(site);
+    if (!fixed[v]) remeshed.sites[site] = points[v];
+  }
+  return smoothed;
 }
 
 /// The stages after `load` on result.input, filling in `result`; Lloyd's
@@ -501,16 +557,29 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     if (note.empty()) throw;
     throw remesh::DualRepairError(e.what() + note, e.places());
   }
-  geodesic_surface.reset();
+  std::vector<Index> pin_vertex;
   if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
     // Onto the short creases: the pins' vertices joined by edges where flips can do it.
-    const std::vector<Index> pin_vertex = crease_pin_vertices(result);
+    pin_vertex = crease_pin_vertices(result);
     std::vector<std::array<Index, 2>> segments;
     for (const auto& [a, b] : pin_segments) {
       if (pin_vertex[a] >= 0 && pin_vertex[b] >= 0) segments.push_back({pin_vertex[a], pin_vertex[b]});
     }
     result.crease_segments = remesh::follow_segments(result.remesh.mesh, segments);
   }
+  result.smoothing = {};
+  // Without a relaxation the remesh is the dual of the sites as they are: no smoothing either.
+  if (options.remesh.smoothing_angle > 0 && options.remesh.lloyd.iterations > 0 && result.remesh.mesh.num_faces() > 0) {
+    // Where creases are pinned, what follows them within the feature recall's
+    // tolerance (0.1 % of the diagonal) stays.
+    const std::span<const remesh::FeatureChain> pinned_creases =
+        pin_count > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
+                      : std::span<const remesh::FeatureChain>();
+    result.smoothing =
+        smooth_remesh(result.remesh, surface, *geodesic_surface->topology(), pin_vertex, pinned_creases,
+                      manifold_surface, 1e-3 * result.input_report.bbox_diagonal, options.remesh.smoothing_angle);
+  }
+  geodesic_surface.reset();
   // The prepared surface was the largest thing held: handed back before the
   // copies and outputs that follow, which would otherwise come on top.
   if (options.remesh.lloyd.voronoi.geodesic.release_memory_between_phases) trim_heap();

@@ -37,6 +37,7 @@ struct RemeshResult {
   py::object narrowest_corner;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
+  std::int64_t vertices_smoothed = 0;
   py::object error_bound_met;
   py::object error_rounds;
   py::object timings;
@@ -74,8 +75,8 @@ std::vector<std::array<Index, 2>> edges_from_object(const py::object& object) {
 RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
                     const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
                     const py::object& colors, double sharp_angle, double continuation_angle, bool pin_creases,
-                    const py::object& feature_edges, const py::object& progress, bool statistics,
-                    const py::object& max_error, const py::object& max_sites) {
+                    const py::object& feature_edges, double smoothing_angle, const py::object& progress,
+                    bool statistics, const py::object& max_error, const py::object& max_sites) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
   if (sizings > 1) {
     throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
@@ -112,11 +113,16 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
     throw py::value_error("continuation_angle must be in [0, 180] degrees (0: off), got " +
                           std::to_string(continuation_angle));
   }
+  if (!(smoothing_angle >= 0 && smoothing_angle <= 60)) {
+    throw py::value_error("smoothing_angle must be in [0, 60] degrees (0: no smoothing), got " +
+                          std::to_string(smoothing_angle));
+  }
   options.remesh.lloyd.iterations = lloyd;
   options.sampling.seed = static_cast<std::uint64_t>(seed);
   options.remesh.sharp_angle = sharp_angle;
   options.remesh.continuation_angle = continuation_angle;
   options.remesh.pin_short_creases = pin_creases;
+  options.remesh.smoothing_angle = smoothing_angle;
   if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
   if (!max_error.is_none()) {
@@ -161,6 +167,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
           : py::object(py::float_(remesh::narrowest_corner_angle(run.surface.mesh, run.features)));
   result.sites_added = run.remesh.sites_added;
   result.sites_left_out = run.remesh.sites_left_out;
+  result.vertices_smoothed = run.smoothing.vertices_moved;
   result.error_bound_met = py::none();
   result.error_rounds = py::list();
   if (options.max_error_pct > 0) {
@@ -213,6 +220,8 @@ void add_remesh(py::module_& module) {
                     "sites the repair added where the dual was not a valid remesh")
       .def_readonly("sites_left_out", &RemeshResult::sites_left_out,
                     "given sites the repair left out (each cut a corner off a neighbour's cell)")
+      .def_readonly("vertices_smoothed", &RemeshResult::vertices_smoothed,
+                    "vertices moved off their sites to mend triangles with an angle below smoothing_angle")
       .def_readonly("error_bound_met", &RemeshResult::error_bound_met,
                     "with max_error: whether the remesh returned keeps within it (else it is the closest one "
                     "made); None without max_error")
@@ -231,8 +240,8 @@ void add_remesh(py::module_& module) {
              py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
              py::arg("continuation_angle") = remesh::RemeshOptions{}.continuation_angle,
              py::arg("pin_creases") = remesh::RemeshOptions{}.pin_short_creases, py::arg("feature_edges") = py::none(),
-             py::arg("progress") = py::none(), py::arg("statistics") = true, py::arg("max_error") = py::none(),
-             py::arg("max_sites") = py::none(),
+             py::arg("smoothing_angle") = remesh::RemeshOptions{}.smoothing_angle, py::arg("progress") = py::none(),
+             py::arg("statistics") = true, py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
@@ -268,6 +277,10 @@ result.sites_added_near_features), edges flipped onto them (False by default).
 feature_edges: None or a k x 2 integer array of vertex pairs, edges of F kept
 as features too whatever their angle (sharp_angle 0: only these); a pair that
 is no edge of F raises geodual.UsageError.
+smoothing_angle: last, the corners of triangles with an angle below this many
+degrees move along the surface to where the smallest angle round them is
+largest (result.vertices_smoothed; chain, corner, boundary and pinned
+vertices stay; 0, or lloyd=0: none, every vertex at its site; 30 by default).
 progress: None or progress(stage, fraction) with stage one of "sample",
 "relax", "dual", "statistics"; return False to cancel (geodual.Cancelled).
 Ctrl-C raises KeyboardInterrupt.

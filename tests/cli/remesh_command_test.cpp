@@ -75,7 +75,9 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
                             "statistics_s",
                             "feature_recall_pct",
                             "feature_max_gap_pct",
-                            "hausdorff_at"}) {
+                            "hausdorff_at",
+                            "smoothing_angle_deg",
+                            "vertices_smoothed"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
     // Where the Hausdorff distance is reached: a point of the input or the
@@ -454,6 +456,11 @@ TEST(RemeshCommand, BadRequestsFailCleanly) {
   // Never over the input.
   run = run_cli({"remesh", genus_four, "--sites", "100", "-o", genus_four});
   EXPECT_NE(run.exit_status, 0);
+  // A smoothing angle beyond the equilateral triangle's: usage error, nothing written.
+  run = run_cli({"remesh", genus_four, "--sites", "100", "--smoothing-angle", "61", "-o", out.string()});
+  EXPECT_EQ(run.exit_status, 2);
+  EXPECT_NE(run.err.find("--smoothing-angle"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(RemeshCommand, SaysHowManySitesRepairAddedAndWhy) {

@@ -195,6 +195,50 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
             std::string::npos);
   EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_feature_repair_rounds = -2; }).find("max feature repair"),
             std::string::npos);
+  for (const double angle : {-1.0, 61.0, std::nan("")}) {
+    EXPECT_NE(message([&](remesh::RemeshOptions& o) { o.smoothing_angle = angle; }).find("smoothing angle"),
+              std::string::npos)
+        << angle;
+  }
+}
+
+TEST(RemeshPipeline, TheWorstTrianglesAreSmoothedAlongTheSurfaceAndTheConnectivityStays) {
+  // homer at 500 sites: the dual of the relaxed sites has a few angles
+  // below 30 degrees, which the last step mends by moving a few vertices.
+  const io::LoadedMesh loaded = io::read_mesh("tests/data/homer.ply");
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 500;
+  options.statistics = false;
+  options.remesh.smoothing_angle = 0;
+  const pipeline::RemeshPipelineResult plain = pipeline::run_remesh_pipeline(loaded, options);
+  options.remesh.smoothing_angle = 30;
+  const pipeline::RemeshPipelineResult smoothed = pipeline::run_remesh_pipeline(loaded, options);
+  const quality::TriangleQuality before = quality::triangle_quality(plain.remesh.mesh);
+  const quality::TriangleQuality after = quality::triangle_quality(smoothed.remesh.mesh);
+  ASSERT_LT(before.theta_min_deg, 30);
+  EXPECT_EQ(plain.smoothing.vertices_moved, 0);
+  EXPECT_GT(smoothed.smoothing.vertices_moved, 0);
+  EXPECT_NEAR(smoothed.smoothing.min_angle_before, before.theta_min_deg, 1e-9);
+  EXPECT_NEAR(smoothed.smoothing.min_angle_after, after.theta_min_deg, 1e-9);
+  EXPECT_GE(after.theta_min_deg, 30);
+  EXPECT_GE(after.q_min, before.q_min);
+  EXPECT_NEAR(after.q_avg, before.q_avg, 2e-3);
+  // The same triangles; only the vertices moved differ.
+  EXPECT_EQ(smoothed.remesh.mesh.faces, plain.remesh.mesh.faces);
+  ASSERT_EQ(smoothed.remesh.mesh.num_vertices(), plain.remesh.mesh.num_vertices());
+  std::int64_t differ = 0;
+  for (Index v = 0; v < plain.remesh.mesh.num_vertices(); ++v) {
+    differ += plain.remesh.mesh.vertices.row(v) != smoothed.remesh.mesh.vertices.row(v);
+  }
+  EXPECT_EQ(differ, smoothed.smoothing.vertices_moved);
+  // Every vertex, moved or not, is where its site is on the input.
+  const std::vector<SurfacePoint> on_input = pipeline::remesh_vertices_on_input(smoothed);
+  const double diagonal =
+      (loaded.mesh.vertices.colwise().maxCoeff() - loaded.mesh.vertices.colwise().minCoeff()).norm();
+  for (Index v = 0; v < smoothed.remesh.mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d x = on_input[static_cast<std::size_t>(v)].position(loaded.mesh);
+    EXPECT_LT((x - Eigen::Vector3d(smoothed.remesh.mesh.vertices.row(v))).norm(), 1e-12 * diagonal) << v;
+  }
 }
 
 // A colour field linear in space is linear on every face, so the remesh's

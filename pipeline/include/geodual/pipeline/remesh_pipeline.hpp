@@ -21,6 +21,7 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/quality/quality_stats.hpp"
+#include "geodual/remesh/angle_smoothing.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/follow_segments.hpp"
@@ -140,6 +141,9 @@ struct RemeshPipelineResult {
   std::int64_t crease_pins = 0;
   std::int64_t first_crease_pin = 0;  ///< the pins are initial_sites[first_crease_pin, + crease_pins)
   remesh::FollowedSegments crease_segments;
+  /// The smoothing of the remesh's worst triangles (RemeshOptions::smoothing_angle):
+  /// the vertices it moved (with their sites) and the smallest angle before and after.
+  remesh::AngleSmoothingResult smoothing;
   /// Why the short creases were not pinned, where they were asked for (empty otherwise).
   std::string crease_pins_reason;
   /// Of initial_sites, the second (third...) copies of a feature point, one

@@ -135,6 +135,13 @@ struct RemeshOptions {
   /// Edges of the input (vertex index pairs) kept as features too, whatever
   /// their angle (a feature file's), sharp_angle 0 included.
   std::vector<std::array<Index, 2>> feature_edges = {};
+  /// The remesh pipeline's last step: the corners of triangles with an
+  /// angle below this many degrees move along the surface to where the
+  /// smallest angle round them is largest (angle_smoothing.hpp); chain,
+  /// corner, boundary and pinned vertices stay. 0, or no relaxation
+  /// (lloyd.iterations 0): none, every vertex at its site. (The pipeline
+  /// rejects a value outside [0, 60].)
+  double smoothing_angle = 30;
 };
 
 /// The Lloyd options remesh_from_sites relaxes `site_count` sites on

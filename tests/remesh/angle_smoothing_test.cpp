@@ -1,0 +1,262 @@
+// The smoothing of a remesh's worst triangles (angle_smoothing.hpp): on a
+// plane a grid with one vertex pushed aside gets it back to a good place, on
+// a sphere the vertex moved stays on the surface, and what must stay (fixed,
+// at a vertex of the surface, on the remesh's boundary) stays.
+
+#include "remesh/analytic_surfaces.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/triangle_shape.hpp"
+#include "geodual/remesh/angle_smoothing.hpp"
+#include "geodual/voronoi/geodesic_surface.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+namespace geodual {
+namespace {
+
+double smallest_angle_degrees(const TriangleMesh& mesh) {
+  double smallest = 180;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const TriangleShape shape = triangle_shape(mesh.vertices.row(mesh.faces(f, 0)), mesh.vertices.row(mesh.faces(f, 1)),
+                                               mesh.vertices.row(mesh.faces(f, 2)));
+    smallest = std::min(smallest, shape.min_angle() * 180 / std::numbers::pi);
+  }
+  return smallest;
+}
+
+/// The face point of `surface` (a flat mesh in z = 0) at (x, y), by search.
+SurfacePoint point_on_plane(const TriangleMesh& surface, double x, double y) {
+  for (Index f = 0; f < surface.num_faces(); ++f) {
+    const Eigen::Vector2d a = surface.vertices.row(surface.faces(f, 0)).head<2>();
+    const Eigen::Vector2d b = surface.vertices.row(surface.faces(f, 1)).head<2>();
+    const Eigen::Vector2d c = surface.vertices.row(surface.faces(f, 2)).head<2>();
+    const Eigen::Vector2d p(x, y);
+    auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+    const double area = cross(b - a, c - a);
+    const double wa = cross(b - p, c - p) / area, wb = cross(c - p, a - p) / area, wc = 1 - wa - wb;
+    if (wa >= 0 && wb >= 0 && wc >= 0) return SurfacePoint::in_face(f, wa, wb, wc);
+  }
+  ADD_FAILURE() << "no face holds (" << x << ", " << y << ")";
+  return {};
+}
+
+/// A remesh of part of the unit square: an n x n grid of cells over [0.1,
+/// 0.9]^2, two triangles each, its vertices at face points of `surface`.
+struct PlanarRemesh {
+  TriangleMesh mesh;
+  std::vector<SurfacePoint> points;
+};
+
+PlanarRemesh planar_grid(const TriangleMesh& surface, int n) {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<Index, 3>> faces;
+  PlanarRemesh remesh;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      // Off the surface's grid lines, so that each point lies inside one face.
+      const double x = 0.1 + 0.8 * i / n + 1e-3, y = 0.1 + 0.8 * j / n + 2e-3;
+      vertices.emplace_back(x, y, 0);
+      remesh.points.push_back(point_on_plane(surface, x, y));
+    }
+  }
+  const auto at = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  remesh.mesh = test::mesh_from_lists(vertices, faces);
+  return remesh;
+}
+
+/// Moves remesh vertex v to the face point of the plane at (x, y).
+void put_vertex(const TriangleMesh& surface, PlanarRemesh& remesh, Index v, double x, double y) {
+  remesh.points[static_cast<std::size_t>(v)] = point_on_plane(surface, x, y);
+  remesh.mesh.vertices.row(v) = remesh.points[static_cast<std::size_t>(v)].position(surface).transpose();
+}
+
+TEST(AngleSmoothing, AVertexPushedAsideOnAPlaneGoesBackToGoodAngles) {
+  const TriangleMesh surface = test::unit_square(16);
+  const voronoi::GeodesicSurface prepared(surface);
+  PlanarRemesh remesh = planar_grid(surface, 6);
+  const Index v = 3 * 7 + 3;  // the centre, (i, j) = (3, 3): its cells are 0.8 / 6 wide
+  put_vertex(surface, remesh, v, 0.5 + 0.06, 0.5 + 0.025);
+  const TriangleMesh before = remesh.mesh;
+  ASSERT_LT(smallest_angle_degrees(before), 25);
+
+  const remesh::AngleSmoothingResult result =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points);
+  EXPECT_GE(result.vertices_moved, 1);
+  EXPECT_NEAR(result.min_angle_before, smallest_angle_degrees(before), 1e-12);
+  EXPECT_NEAR(result.min_angle_after, smallest_angle_degrees(remesh.mesh), 1e-12);
+  // The grid's own angles (45 degrees) are within reach: well above the bound.
+  EXPECT_GE(result.min_angle_after, 40);
+  EXPECT_EQ(remesh.mesh.faces, before.faces);  // the connectivity stays
+  for (Index u = 0; u < remesh.mesh.num_vertices(); ++u) {
+    // Each vertex where its point is, on the plane; the grid's boundary where it was.
+    const Eigen::Vector3d x = remesh.mesh.vertices.row(u);
+    EXPECT_LT((x - remesh.points[static_cast<std::size_t>(u)].position(surface)).norm(), 1e-15);
+    EXPECT_EQ(x.z(), 0);
+    const int i = u % 7, j = u / 7;
+    if (i == 0 || j == 0 || i == 6 || j == 6) {
+      EXPECT_EQ(x, Eigen::Vector3d(before.vertices.row(u))) << "boundary vertex " << u;
+    }
+  }
+  // No triangle turned over: all still face +z.
+  for (Index f = 0; f < remesh.mesh.num_faces(); ++f) {
+    const Eigen::Vector3d a = remesh.mesh.vertices.row(remesh.mesh.faces(f, 0));
+    const Eigen::Vector3d b = remesh.mesh.vertices.row(remesh.mesh.faces(f, 1));
+    const Eigen::Vector3d c = remesh.mesh.vertices.row(remesh.mesh.faces(f, 2));
+    EXPECT_GT((b - a).cross(c - a).z(), 0) << "face " << f;
+  }
+}
+
+TEST(AngleSmoothing, FixedVerticesAndVerticesAtSurfaceVerticesStay) {
+  const TriangleMesh surface = test::unit_square(16);
+  const voronoi::GeodesicSurface prepared(surface);
+  PlanarRemesh remesh = planar_grid(surface, 6);
+  const Index v = 3 * 7 + 3;
+  put_vertex(surface, remesh, v, 0.5 + 0.06, 0.5 + 0.025);
+  // The pushed vertex's neighbours, which could mend its triangles too, are
+  // fixed; the vertex itself is fixed, then at a vertex of the surface.
+  std::vector<std::uint8_t> fixed(static_cast<std::size_t>(remesh.mesh.num_vertices()), 0);
+  for (Index f = 0; f < remesh.mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (remesh.mesh.faces(f, k) != v) continue;
+      for (int m = 0; m < 3; ++m) fixed[static_cast<std::size_t>(remesh.mesh.faces(f, m))] = 1;
+    }
+  }
+  const TriangleMesh before = remesh.mesh;
+  const remesh::AngleSmoothingResult held =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points, fixed);
+  EXPECT_EQ(held.vertices_moved, 0);
+  EXPECT_EQ(remesh.mesh.vertices, before.vertices);
+  EXPECT_EQ(held.min_angle_after, held.min_angle_before);
+
+  fixed[static_cast<std::size_t>(v)] = 0;
+  // At a vertex of the surface: (9, 8) of the 16 x 16 grid, x = 9/16, y = 1/2.
+  const Index corner = 8 * 17 + 9;
+  ASSERT_LT((Eigen::Vector3d(surface.vertices.row(corner)) - Eigen::Vector3d(9.0 / 16, 0.5, 0)).norm(), 1e-15);
+  remesh.points[static_cast<std::size_t>(v)] = SurfacePoint::at_vertex(corner);
+  remesh.mesh.vertices.row(v) = surface.vertices.row(corner);
+  const TriangleMesh at_corner = remesh.mesh;
+  const remesh::AngleSmoothingResult stayed =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points, fixed);
+  EXPECT_EQ(stayed.vertices_moved, 0);
+  EXPECT_EQ(remesh.mesh.vertices, at_corner.vertices);
+  // Unfixed, off the surface's vertices, it moves.
+  put_vertex(surface, remesh, v, 0.5 + 0.06, 0.5 + 0.025);
+  const remesh::AngleSmoothingResult moved =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points, fixed);
+  EXPECT_EQ(moved.vertices_moved, 1);
+  EXPECT_GT(moved.min_angle_after, moved.min_angle_before);
+}
+
+TEST(AngleSmoothing, AVertexMovedOnASphereStaysOnItsSurface) {
+  // The surface: a fine icosphere. The remesh: a coarse one, whose vertices
+  // are vertices of the fine one, one of them walked a third of an edge
+  // aside onto a face point of the fine one.
+  const TriangleMesh surface = test::icosphere(4);
+  const voronoi::GeodesicSurface prepared(surface);
+  TriangleMesh remesh = test::icosphere(2);
+  std::vector<SurfacePoint> points(static_cast<std::size_t>(remesh.num_vertices()));
+  for (Index v = 0; v < remesh.num_vertices(); ++v) {
+    // Subdivision keeps the coarse vertices first, at the same places.
+    ASSERT_LT((remesh.vertices.row(v) - surface.vertices.row(v)).norm(), 1e-12);
+    points[static_cast<std::size_t>(v)] = SurfacePoint::at_vertex(v);
+  }
+  const Index v = 20;
+  // A fine face a third of a coarse edge away from v: the one whose centroid
+  // is nearest to v's position pushed towards its first neighbour.
+  Index neighbour = -1;
+  for (Index f = 0; f < remesh.num_faces() && neighbour < 0; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (remesh.faces(f, k) == v) neighbour = remesh.faces(f, (k + 1) % 3);
+    }
+  }
+  const Eigen::Vector3d target =
+      (2 * Eigen::Vector3d(remesh.vertices.row(v)) + remesh.vertices.row(neighbour).transpose()) / 3;
+  Index nearest = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (Index f = 0; f < surface.num_faces(); ++f) {
+    const Eigen::Vector3d centroid =
+        (surface.vertices.row(surface.faces(f, 0)) + surface.vertices.row(surface.faces(f, 1)) +
+         surface.vertices.row(surface.faces(f, 2)))
+            .transpose() /
+        3;
+    if ((centroid - target).norm() < best) best = (centroid - target).norm(), nearest = f;
+  }
+  points[static_cast<std::size_t>(v)] = SurfacePoint::in_face(nearest, 0.3, 0.3, 0.4);
+  remesh.vertices.row(v) = points[static_cast<std::size_t>(v)].position(surface).transpose();
+  const TriangleMesh before = remesh;
+  const remesh::AngleSmoothingResult result =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh, points, {}, {.min_angle = 45});
+  ASSERT_EQ(result.vertices_moved, 1);
+  EXPECT_GT(result.min_angle_after, result.min_angle_before + 5);
+  for (Index u = 0; u < remesh.num_vertices(); ++u) {
+    if (u != v) {
+      EXPECT_EQ(Eigen::Vector3d(remesh.vertices.row(u)), Eigen::Vector3d(before.vertices.row(u)));
+    }
+  }
+  // On the fine surface: at its point, within the fine mesh's chord error of the sphere.
+  const Eigen::Vector3d x = remesh.vertices.row(v);
+  EXPECT_LT((x - points[static_cast<std::size_t>(v)].position(surface)).norm(), 1e-15);
+  EXPECT_LE(x.norm(), 1 + 1e-12);
+  EXPECT_GT(x.norm(), 0.995);
+  // Outward still: every face's normal points away from the centre.
+  for (Index f = 0; f < remesh.num_faces(); ++f) {
+    const Eigen::Vector3d a = remesh.vertices.row(remesh.faces(f, 0));
+    const Eigen::Vector3d b = remesh.vertices.row(remesh.faces(f, 1));
+    const Eigen::Vector3d c = remesh.vertices.row(remesh.faces(f, 2));
+    EXPECT_GT((b - a).cross(c - a).dot(a + b + c), 0) << "face " << f;
+  }
+}
+
+TEST(AngleSmoothing, ARemeshWithoutSmallAnglesIsLeftAsItIs) {
+  const TriangleMesh surface = test::unit_square(16);
+  const voronoi::GeodesicSurface prepared(surface);
+  PlanarRemesh remesh = planar_grid(surface, 6);  // 45 and 90 degrees throughout
+  const TriangleMesh before = remesh.mesh;
+  const remesh::AngleSmoothingResult result =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points);
+  EXPECT_EQ(result.vertices_moved, 0);
+  EXPECT_EQ(remesh.mesh.vertices, before.vertices);
+  EXPECT_NEAR(result.min_angle_before, 45, 0.1);
+  // Nor is any remesh with the bound at 0.
+  put_vertex(surface, remesh, 3 * 7 + 3, 0.56, 0.525);
+  const TriangleMesh pushed = remesh.mesh;
+  EXPECT_EQ(
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points, {}, {.min_angle = 0})
+          .vertices_moved,
+      0);
+  EXPECT_EQ(remesh.mesh.vertices, pushed.vertices);
+}
+
+TEST(AngleSmoothing, OptionsOutOfRangeAreUsageErrors) {
+  const TriangleMesh surface = test::unit_square(4);
+  const voronoi::GeodesicSurface prepared(surface);
+  PlanarRemesh remesh = planar_grid(surface, 2);
+  const auto smooth = [&](remesh::AngleSmoothingOptions options) {
+    remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points, {}, options);
+  };
+  EXPECT_THROW(smooth({.min_angle = 61}), UsageError);
+  EXPECT_THROW(smooth({.min_angle = -1}), UsageError);
+  EXPECT_THROW(smooth({.min_angle = std::numeric_limits<double>::quiet_NaN()}), UsageError);
+  EXPECT_THROW(smooth({.rounds = -1}), UsageError);
+  EXPECT_THROW(smooth({.max_move = std::numeric_limits<double>::infinity()}), UsageError);
+  remesh.points.pop_back();
+  EXPECT_THROW(smooth({}), UsageError);
+}
+
+}  // namespace
+}  // namespace geodual
