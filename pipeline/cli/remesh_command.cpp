@@ -621,6 +621,7 @@ class RemeshCommand final : public Command {
     json["lloyd_move_s"] = relaxation.move_seconds;
     json["warm_start_s"] = relaxation.warm_start_seconds;
     json["dual_s"] = result.dual_seconds;
+    json["smoothing_s"] = run.smoothing.seconds;
     const auto write_start = std::chrono::steady_clock::now();
     VertexAttributes attributes = run.attributes;
     std::vector<std::vector<Eigen::Vector3d>> lines;

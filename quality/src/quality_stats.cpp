@@ -16,6 +16,7 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/random.hpp"
 #include "geodual/mesh/sharp_edges.hpp"
+#include "geodual/mesh/triangle_distance.hpp"
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -93,46 +94,11 @@ double uniform(std::uint64_t stream, std::uint64_t counter) {
   return static_cast<double>(SplitMix64::nth(stream, counter) >> 11) * 0x1.0p-53;  // in [0, 1)
 }
 
-/// Squared distance from p to triangle abc: the Voronoi region of its
-/// vertices, edges and face that holds p decides which one is nearest
-/// (Ericson, Real-Time Collision Detection, 5.1.5); a handful of dot products.
+/// Squared distance from p to the triangle (geodual::squared_distance_to_triangle).
 double squared_distance_to_triangle(const Point& point, const Triangle& triangle) {
-  const Eigen::Vector3d p(point.x(), point.y(), point.z());
-  const Eigen::Vector3d a(triangle[0].x(), triangle[0].y(), triangle[0].z());
-  const Eigen::Vector3d b(triangle[1].x(), triangle[1].y(), triangle[1].z());
-  const Eigen::Vector3d c(triangle[2].x(), triangle[2].y(), triangle[2].z());
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();  // vertex a
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();  // vertex b
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).squaredNorm();  // edge ab
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();  // vertex c
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).squaredNorm();  // edge ac
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {  // edge bc
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).squaredNorm();
-  }
-  // Inside the face: the distance to its plane, |ap . n| / |n|, which keeps
-  // its accuracy on needles (the barycentric point a + v ab + w ac does not).
-  const Eigen::Vector3d normal = ab.cross(ac);
-  const double normal2 = normal.squaredNorm();
-  if (!(normal2 > 0)) {
-    // So thin that the area underflows: the nearest point is on an edge.
-    const auto segment = [&p](const Eigen::Vector3d& s, const Eigen::Vector3d& e) {
-      const Eigen::Vector3d d = e - s;
-      const double t = d.squaredNorm() > 0 ? std::clamp((p - s).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      return (p - (s + t * d)).squaredNorm();
-    };
-    return std::min({segment(a, b), segment(b, c), segment(c, a)});
-  }
-  const double height = ap.dot(normal);
-  return height * height / normal2;
+  const auto eigen = [](const Point& q) { return Eigen::Vector3d(q.x(), q.y(), q.z()); };
+  return geodual::squared_distance_to_triangle(eigen(point), eigen(triangle[0]), eigen(triangle[1]),
+                                               eigen(triangle[2]));
 }
 
 /// Squared distance from p to segment ab: to the foot of the perpendicular,

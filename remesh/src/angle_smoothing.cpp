@@ -1,7 +1,9 @@
 #include "geodual/remesh/angle_smoothing.hpp"
 
+#include "geodual/mesh/detail/index_hash_map.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/triangle_shape.hpp"
 #include "surface_walk.hpp"
 
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -62,6 +65,14 @@ class RingJudge {
     for (const Index f : faces) normal_.push_back(corners(f, mesh.vertices.row(vertex)).normal);
   }
 
+  /// Points of the surface whose distance from the triangles at() watches.
+  void watch(std::span<const Eigen::Vector3d> samples) {
+    samples_ = samples;
+    distance_.resize(samples.size());
+    const Eigen::Vector3d x = mesh_.vertices.row(vertex_);
+    for (std::size_t i = 0; i < samples.size(); ++i) distance_[i] = distance(samples[i], x);
+  }
+
   Ring at(const Eigen::Vector3d& x) const {
     Ring ring;
     for (std::size_t i = 0; i < faces_.size(); ++i) {
@@ -80,11 +91,29 @@ class RingJudge {
     return ring;
   }
 
+  /// Whether, with the vertex at x, no watched point is farther from the
+  /// triangles than it was by more than `slack`.
+  bool keeps_close(const Eigen::Vector3d& x, double slack) const {
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      if (distance(samples_[i], x) > distance_[i] + slack) return false;
+    }
+    return true;
+  }
+
  private:
   struct Corners {
     std::array<Eigen::Vector3d, 3> p;
     Eigen::Vector3d normal;
   };
+  /// From point q to the triangles with the vertex at x.
+  double distance(const Eigen::Vector3d& q, const Eigen::Vector3d& x) const {
+    double squared = std::numeric_limits<double>::infinity();
+    for (const Index f : faces_) {
+      const Corners c = corners(f, x);
+      squared = std::min(squared, squared_distance_to_triangle(q, c.p[0], c.p[1], c.p[2]));
+    }
+    return std::sqrt(squared);
+  }
   Corners corners(Index f, const Eigen::Vector3d& x) const {
     Corners c;
     for (int k = 0; k < 3; ++k) {
@@ -100,6 +129,8 @@ class RingJudge {
   Index vertex_;
   double bound_;
   std::vector<Eigen::Vector3d> normal_;
+  std::span<const Eigen::Vector3d> samples_;
+  std::vector<double> distance_;  // per sample, before the move
 };
 
 double smallest_angle(const TriangleMesh& mesh, Index f) {
@@ -137,18 +168,17 @@ class VertexSearch {
         bound_(bound),
         max_move_(max_move) {}
 
-  Move best_move(Index v) const {
-    const RingJudge judge(remesh_, around_.of(v), v, bound_);
+  Move best_move(Index v) {
+    RingJudge judge(remesh_, around_.of(v), v, bound_);
     const Eigen::Vector3d start_position = remesh_.vertices.row(v);
-    const Ring start = judge.at(start_position);
     const SurfacePoint origin = points_[static_cast<std::size_t>(v)];
-    Move move{origin, start_position, start.min_angle, start.min_angle};
+    Move move{origin, start_position, 0, 0};
     // The frame of the face the vertex lies on, and the scale of its edges.
     const Eigen::Vector3d a = surface_.vertices.row(surface_.faces(origin.element, 0));
     const Eigen::Vector3d b = surface_.vertices.row(surface_.faces(origin.element, 1));
     const Eigen::Vector3d c = surface_.vertices.row(surface_.faces(origin.element, 2));
     const Eigen::Vector3d normal = (b - a).cross(c - a);
-    if (start.folded || !(normal.norm() > 0) || !normal.allFinite()) return move;
+    if (!(normal.norm() > 0) || !normal.allFinite()) return move;
     const Eigen::Vector3d u = (b - a).normalized(), w = normal.normalized().cross(u);
     double edge = 0;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -166,6 +196,22 @@ class VertexSearch {
     edge /= ends;
     centroid /= ends;
     const double reach = max_move_ * edge;
+    // The surface's corners and face centres under the triangles round the
+    // vertex, wherever it moves within reach: no move may take the remesh
+    // farther from any of them than 3 % of an edge (a vertex that
+    // slides off a crease or a rim, within the surface, would cut it off).
+    double radius = 0;
+    for (const Index f : around_.of(v)) {
+      for (int k = 0; k < 3; ++k) {
+        radius = std::max(radius, (Eigen::Vector3d(remesh_.vertices.row(remesh_.faces(f, k))) - start_position).norm());
+      }
+    }
+    gather_samples(origin.element, start_position, radius + reach);
+    judge.watch(samples_);
+    const Ring start = judge.at(start_position);
+    move.min_angle_before = move.min_angle = start.min_angle;
+    if (start.folded) return move;
+    const double slack = 0.03 * edge;
     // Whether the vertex walked by `trial` (in the frame) does better than
     // the best so far, which it then becomes.
     const auto improves = [&](const Eigen::Vector2d& trial) {
@@ -176,7 +222,7 @@ class VertexSearch {
       const Eigen::Vector3d position = point.position(surface_);
       const Ring ring = judge.at(position);
       if (ring.folded || !(ring.min_angle > move.min_angle) || ring.min_q < start.min_q ||
-          ring.angles_below > start.angles_below) {
+          ring.angles_below > start.angles_below || !judge.keeps_close(position, slack)) {
         return false;
       }
       move = {point, position, start.min_angle, ring.min_angle};
@@ -219,6 +265,48 @@ class VertexSearch {
   }
 
  private:
+  /// samples_: the corners and centres of the surface's faces within
+  /// `radius` of x, reached from `face` across its edges (at most
+  /// kMaxFaces faces: a guard for surfaces far finer than the remesh).
+  void gather_samples(Index face, const Eigen::Vector3d& x, double radius) {
+    constexpr std::size_t kMaxFaces = 4096, kMaxSamples = 1024;
+    samples_.clear();
+    queue_.assign(1, face);
+    reached_.clear();
+    reached_.insert(face);
+    corners_.clear();
+    const auto within = [&](Index f) {
+      for (int k = 0; k < 3; ++k) {
+        if ((Eigen::Vector3d(surface_.vertices.row(surface_.faces(f, k))) - x).norm() <= radius) return true;
+      }
+      return false;
+    };
+    for (std::size_t next = 0; next < queue_.size() && queue_.size() < kMaxFaces; ++next) {
+      const Index f = queue_[next];
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        const Index corner = surface_.faces(f, k);
+        centre += surface_.vertices.row(corner).transpose() / 3;
+        if (corners_.insert(corner)) samples_.push_back(surface_.vertices.row(corner).transpose());
+      }
+      samples_.push_back(centre);
+      for (const Index edge : topology_.face_edges[static_cast<std::size_t>(f)]) {
+        if (edge < 0) continue;
+        for (const Index g : topology_.edge_faces[static_cast<std::size_t>(edge)]) {
+          if (g >= 0 && within(g) && reached_.insert(g)) queue_.push_back(g);
+        }
+      }
+    }
+    // Where the surface is much finer than the remesh, every k-th of them:
+    // still several per triangle.
+    if (samples_.size() > kMaxSamples) {
+      const std::size_t every = (samples_.size() + kMaxSamples - 1) / kMaxSamples;
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < samples_.size(); i += every) samples_[kept++] = samples_[i];
+      samples_.resize(kept);
+    }
+  }
+
   const TriangleMesh& surface_;
   const voronoi::SurfaceTopology& topology_;
   const TriangleMesh& remesh_;
@@ -226,6 +314,10 @@ class VertexSearch {
   const std::vector<SurfacePoint>& points_;
   double bound_;
   double max_move_;
+  // Scratch of gather_samples.
+  std::vector<Eigen::Vector3d> samples_;
+  std::vector<Index> queue_;
+  IndexHashSet reached_, corners_;
 };
 
 }  // namespace
@@ -243,10 +335,15 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
     throw UsageError("angle smoothing: " + std::to_string(points.size()) + " points for a remesh of " +
                      std::to_string(remesh.num_vertices()) + " vertices");
   }
+  const auto start_time = std::chrono::steady_clock::now();
   AngleSmoothingResult result;
   result.min_angle_before = result.min_angle_after = smallest_angle(remesh) / kRadiansPerDegree;
   const double bound = options.min_angle * kRadiansPerDegree;
-  if (remesh.num_faces() == 0 || !(result.min_angle_before < options.min_angle)) return result;
+  const auto finish = [&] {
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    return result;
+  };
+  if (remesh.num_faces() == 0 || !(result.min_angle_before < options.min_angle)) return finish();
 
   const FacesAround around = faces_around(remesh);
   const std::vector<std::uint8_t> on_remesh_boundary = build_mesh_topology(remesh).vertex_on_boundary;
@@ -258,9 +355,11 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
     return !(i < fixed.size() && fixed[i]) && !on_remesh_boundary[i] && !at_vertex &&
            !detail::on_surface_boundary(topology, point);
   };
-  const VertexSearch search(surface, topology, remesh, around, points, bound, options.max_move);
+  VertexSearch search(surface, topology, remesh, around, points, bound, options.max_move);
   std::vector<std::pair<double, Index>> worst;  // the triangles below the bound: smallest angle, face
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(remesh.num_vertices()), 0);
+  // Vertices whose search found no better place, as long as nothing round them moved.
+  std::vector<std::uint8_t> stuck(static_cast<std::size_t>(remesh.num_vertices()), 0);
   for (int round = 0; round < options.rounds; ++round) {
     worst.clear();
     for (Index f = 0; f < remesh.num_faces(); ++f) {
@@ -277,21 +376,30 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
       Index chosen_vertex = -1;
       for (int k = 0; k < 3; ++k) {
         const Index v = remesh.faces(f, k);
-        if (!movable(v)) continue;
+        if (!movable(v) || stuck[static_cast<std::size_t>(v)]) continue;
         const Move move = search.best_move(v);
-        if (move.better() && (!chosen || move.min_angle > chosen->min_angle)) chosen = move, chosen_vertex = v;
+        if (!move.better()) {
+          stuck[static_cast<std::size_t>(v)] = 1;
+        } else if (!chosen || move.min_angle > chosen->min_angle) {
+          chosen = move;
+          chosen_vertex = v;
+        }
       }
       if (!chosen) continue;
       remesh.vertices.row(chosen_vertex) = chosen->position.transpose();
       points[static_cast<std::size_t>(chosen_vertex)] = chosen->point;
       moved[static_cast<std::size_t>(chosen_vertex)] = 1;
       any_moved = true;
+      // Its neighbours' triangles changed: they may move again.
+      for (const Index g : around.of(chosen_vertex)) {
+        for (int k = 0; k < 3; ++k) stuck[static_cast<std::size_t>(remesh.faces(g, k))] = 0;
+      }
     }
     if (!any_moved) break;
   }
   result.vertices_moved = std::count(moved.begin(), moved.end(), std::uint8_t{1});
   result.min_angle_after = smallest_angle(remesh) / kRadiansPerDegree;
-  return result;
+  return finish();
 }
 
 }  // namespace geodual::remesh

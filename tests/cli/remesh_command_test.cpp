@@ -77,7 +77,8 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
                             "feature_max_gap_pct",
                             "hausdorff_at",
                             "smoothing_angle_deg",
-                            "vertices_smoothed"}) {
+                            "vertices_smoothed",
+                            "smoothing_s"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
     // Where the Hausdorff distance is reached: a point of the input or the

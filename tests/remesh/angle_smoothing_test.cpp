@@ -6,6 +6,7 @@
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/triangle_shape.hpp"
 #include "geodual/remesh/angle_smoothing.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
@@ -219,6 +220,58 @@ TEST(AngleSmoothing, AVertexMovedOnASphereStaysOnItsSurface) {
     const Eigen::Vector3d b = remesh.vertices.row(remesh.faces(f, 1));
     const Eigen::Vector3d c = remesh.vertices.row(remesh.faces(f, 2));
     EXPECT_GT((b - a).cross(c - a).dot(a + b + c), 0) << "face " << f;
+  }
+}
+
+TEST(AngleSmoothing, AVertexOnARidgeDoesNotSlideOffIt) {
+  // The surface: a roof, z = 0.3 - |y - 0.5| over the unit square, its ridge
+  // along y = 0.5. The remesh: the planar grid lifted onto it, its middle
+  // row on the ridge; one ridge vertex pushed along the ridge, so that its
+  // triangles are poor. Sliding back along the ridge mends them; sliding
+  // off it would cut the ridge, which the remesh must keep within 3 % of an
+  // edge of where it was.
+  TriangleMesh surface = test::unit_square(16);
+  const auto roof = [](double y) { return 0.3 - std::abs(y - 0.5); };
+  for (Index v = 0; v < surface.num_vertices(); ++v) surface.vertices(v, 2) = roof(surface.vertices(v, 1));
+  const voronoi::GeodesicSurface prepared(surface);
+  PlanarRemesh remesh = planar_grid(test::unit_square(16), 6);
+  const double y_ridge = 0.5;
+  for (Index v = 0; v < remesh.mesh.num_vertices(); ++v) {
+    const int j = v / 7;
+    if (j == 3) remesh.mesh.vertices(v, 1) = y_ridge;  // the middle row on the ridge
+    remesh.points[static_cast<std::size_t>(v)] =
+        point_on_plane(test::unit_square(16), remesh.mesh.vertices(v, 0), remesh.mesh.vertices(v, 1));
+    remesh.mesh.vertices.row(v) = remesh.points[static_cast<std::size_t>(v)].position(surface).transpose();
+  }
+  const Index v = 3 * 7 + 3;
+  remesh.points[static_cast<std::size_t>(v)] = point_on_plane(test::unit_square(16), 0.5 + 0.06, y_ridge);
+  remesh.mesh.vertices.row(v) = remesh.points[static_cast<std::size_t>(v)].position(surface).transpose();
+  // The ridge's points under the remesh, and how far the remesh is from them.
+  const auto ridge_gap = [&](const TriangleMesh& mesh) {
+    double worst = 0;
+    for (int i = 0; i <= 100; ++i) {
+      const Eigen::Vector3d q(0.2 + 0.6 * i / 100, y_ridge, roof(y_ridge));
+      double nearest = std::numeric_limits<double>::infinity();
+      for (Index f = 0; f < mesh.num_faces(); ++f) {
+        nearest = std::min(nearest, squared_distance_to_triangle(q, mesh.vertices.row(mesh.faces(f, 0)),
+                                                                 mesh.vertices.row(mesh.faces(f, 1)),
+                                                                 mesh.vertices.row(mesh.faces(f, 2))));
+      }
+      worst = std::max(worst, std::sqrt(nearest));
+    }
+    return worst;
+  };
+  const TriangleMesh before = remesh.mesh;
+  ASSERT_LT(smallest_angle_degrees(before), 30);
+  const remesh::AngleSmoothingResult result =
+      remesh::smooth_smallest_angles(surface, *prepared.topology(), remesh.mesh, remesh.points);
+  EXPECT_GE(result.vertices_moved, 1);
+  EXPECT_GT(result.min_angle_after, result.min_angle_before);
+  const double edge = 0.8 / 6;
+  EXPECT_LE(ridge_gap(remesh.mesh), ridge_gap(before) + 0.03 * edge * 1.5);
+  for (Index u = 0; u < remesh.mesh.num_vertices(); ++u) {
+    const Eigen::Vector3d x = remesh.mesh.vertices.row(u);
+    EXPECT_NEAR(x.z(), roof(x.y()), 1e-12) << "vertex " << u << " off the roof";
   }
 }
 
