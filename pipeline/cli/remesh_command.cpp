@@ -699,7 +699,8 @@ class RemeshCommand final : public Command {
     }
     if (run.smoothing.vertices_moved > 0) {
       table.add("smoothing", with_thousands(run.smoothing.vertices_moved) +
-                                 " vertices moved along the surface, min angle " +
+                                 (run.smoothing.vertices_moved == 1 ? " vertex" : " vertices") +
+                                 " moved along the surface, min angle " +
                                  significant(run.smoothing.min_angle_before, 3) + " -> " +
                                  significant(run.smoothing.min_angle_after, 3) + " deg");
     }
