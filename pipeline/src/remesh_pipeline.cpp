@@ -5,6 +5,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/vertex_copies.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
@@ -282,10 +283,11 @@ remesh::AngleSmoothingResult smooth_remesh(remesh::RepairedDual& remeshed, const
   const auto near_a_crease = [&](const Eigen::Vector3d& x) {
     for (const remesh::FeatureChain& crease : creases) {
       for (std::size_t k = 0; k + 1 < crease.vertices.size(); ++k) {
-        const Eigen::Vector3d a = crease_mesh.vertices.row(crease.vertices[k]);
-        const Eigen::Vector3d ab = Eigen::Vector3d(crease_mesh.vertices.row(crease.vertices[k + 1])) - a;
-        const double t = ab.squaredNorm() > 0 ? std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-        if ((a + t * ab - x).norm() <= crease_tolerance) return true;
+        if (std::sqrt(squared_distance_to_segment(x, crease_mesh.vertices.row(crease.vertices[k]),
+                                                  crease_mesh.vertices.row(crease.vertices[k + 1]))) <=
+            crease_tolerance) {
+          return true;
+        }
       }
     }
     return false;
@@ -571,13 +573,14 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   // Without a relaxation the remesh is the dual of the sites as they are: no smoothing either.
   if (options.remesh.smoothing_angle > 0 && options.remesh.lloyd.iterations > 0 && result.remesh.mesh.num_faces() > 0) {
     // Where creases are pinned, what follows them within the feature recall's
-    // tolerance (0.1 % of the diagonal) stays.
+    // tolerance stays.
     const std::span<const remesh::FeatureChain> pinned_creases =
         pin_count > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
                       : std::span<const remesh::FeatureChain>();
     result.smoothing =
         smooth_remesh(result.remesh, surface, *geodesic_surface->topology(), pin_vertex, pinned_creases,
-                      manifold_surface, 1e-3 * result.input_report.bbox_diagonal, options.remesh.smoothing_angle);
+                      manifold_surface, options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal,
+                      options.remesh.smoothing_angle);
   }
   geodesic_surface.reset();
   // The prepared surface was the largest thing held: handed back before the

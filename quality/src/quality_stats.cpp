@@ -101,16 +101,10 @@ double squared_distance_to_triangle(const Point& point, const Triangle& triangle
                                                eigen(triangle[2]));
 }
 
-/// Squared distance from p to segment ab: to the foot of the perpendicular,
-/// clamped to the segment.
+/// Squared distance from p to the segment (geodual::squared_distance_to_segment).
 double squared_distance_to_segment(const Point& point, const Segment& segment) {
-  const Eigen::Vector3d p(point.x(), point.y(), point.z());
-  const Eigen::Vector3d a(segment.source().x(), segment.source().y(), segment.source().z());
-  const Eigen::Vector3d b(segment.target().x(), segment.target().y(), segment.target().z());
-  const Eigen::Vector3d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).squaredNorm();
+  const auto eigen = [](const Point& q) { return Eigen::Vector3d(q.x(), q.y(), q.z()); };
+  return geodual::squared_distance_to_segment(eigen(point), eigen(segment.source()), eigen(segment.target()));
 }
 
 /// Traversal traits for the exact squared distance from a point to the

@@ -2,6 +2,7 @@
 
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/union_find.hpp"
 
 #include <algorithm>
@@ -12,12 +13,6 @@
 
 namespace geodual::remesh {
 namespace {
-
-double distance_to_segment(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double t = ab.squaredNorm() > 0 ? std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (a + t * ab - x).norm();
-}
 
 /// The indices into `chain` of its pins: its first vertex, then each time
 /// the farthest vertex whose chord from the last pin is at most `spacing`
@@ -36,7 +31,7 @@ std::vector<std::size_t> pins_along(const TriangleMesh& surface, const FeatureCh
       if ((at(next) - at(from)).norm() > spacing) break;
       bool keeps = true;
       for (std::size_t k = from + 1; k < next && keeps; ++k) {
-        keeps = distance_to_segment(at(k), at(from), at(next)) <= max_error;
+        keeps = std::sqrt(squared_distance_to_segment(at(k), at(from), at(next))) <= max_error;
       }
       if (!keeps) break;
       to = next;

@@ -1,7 +1,7 @@
 #pragma once
-// The distance from a point to a triangle in space, shared by the quality
-// statistics' nearest-triangle search and the smoothing's check that the
-// remesh stays close to the surface.
+// The distance from a point to a segment or a triangle in space, shared by
+// the quality statistics' nearest-primitive searches, the crease pins, and
+// the smoothing's check that the remesh stays close to the surface.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -9,6 +9,16 @@
 #include <algorithm>
 
 namespace geodual {
+
+/// Squared distance from p to segment ab: to the foot of the perpendicular,
+/// clamped to the segment.
+inline double squared_distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                          const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).squaredNorm();
+}
 
 /// Squared distance from p to triangle abc: the Voronoi region of its
 /// vertices, edges and face that holds p decides which one is nearest
@@ -38,12 +48,8 @@ inline double squared_distance_to_triangle(const Eigen::Vector3d& p, const Eigen
   const double normal2 = normal.squaredNorm();
   if (!(normal2 > 0)) {
     // So thin that the area underflows: the nearest point is on an edge.
-    const auto segment = [&p](const Eigen::Vector3d& s, const Eigen::Vector3d& e) {
-      const Eigen::Vector3d d = e - s;
-      const double t = d.squaredNorm() > 0 ? std::clamp((p - s).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      return (p - (s + t * d)).squaredNorm();
-    };
-    return std::min({segment(a, b), segment(b, c), segment(c, a)});
+    return std::min({squared_distance_to_segment(p, a, b), squared_distance_to_segment(p, b, c),
+                     squared_distance_to_segment(p, c, a)});
   }
   const double height = ap.dot(normal);
   return height * height / normal2;
