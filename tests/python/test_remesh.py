@@ -187,6 +187,20 @@ def test_pin_creases_puts_sites_on_the_short_creases_and_keeps_them(data_dir):
     assert sum(tuple(v) in at_input for v in plain.vertices) < pinned.crease_pins
 
 
+def test_smoothing_moves_a_few_vertices_and_keeps_the_triangles(data_dir):
+    # homer at 500 sites: the dual leaves a few angles below 30 degrees,
+    # which the smoothing mends by moving vertices, never the triangles.
+    V, F = geodual.read_mesh(data_dir / "homer.ply")
+    plain = geodual.remesh(V, F, sites=500, smoothing_angle=0, statistics=False)
+    smoothed = geodual.remesh(V, F, sites=500, statistics=False)
+    assert plain.vertices_smoothed == 0
+    assert smoothed.vertices_smoothed > 0
+    np.testing.assert_array_equal(smoothed.faces, plain.faces)
+    moved = np.any(smoothed.vertices != plain.vertices, axis=1)
+    assert moved.sum() == smoothed.vertices_smoothed
+    assert plain.stats["theta_min_deg"] < 30 <= smoothed.stats["theta_min_deg"]
+
+
 def test_max_error_remeshes_until_the_bound_holds_or_returns_the_closest(fertility):
     V, F = fertility
     met = geodual.remesh(V, F, sites=200, max_error=2.0)
@@ -239,6 +253,8 @@ def test_remesh_argument_errors(woody):
         geodual.remesh(V, F, lloyd=-1)
     with pytest.raises(ValueError, match=r"continuation_angle must be in \[0, 180\]"):
         geodual.remesh(V, F, continuation_angle=-1.0)
+    with pytest.raises(ValueError, match=r"smoothing_angle must be in \[0, 60\]"):
+        geodual.remesh(V, F, smoothing_angle=61.0)
     with pytest.raises(ValueError, match="colors has 3 rows for 694 vertices"):
         geodual.remesh(V, F, colors=np.zeros((3, 3)))
     with pytest.raises(TypeError, match="progress must be a callable"):
