@@ -202,6 +202,11 @@ class RemeshCommand final : public Command {
                     "stay; 0, or --lloyd-iterations 0: none, every vertex at its site)")
         ->capture_default_str()
         ->check(number_between(0, 60));
+    command.add_flag_callback(
+        "--no-fitting", [this] { options_.fit_deviations = false; },
+        "Do not move the vertices that answer for the input's points farthest from the remesh (a crease or a "
+        "scan's rim the remesh cuts off) along the surface to where that distance is least, before the "
+        "smoothing");
     geodesic_.add_to(command);
     command.add_option("--preview", preview_path_, "Also render a picture of the result: .png");
     command
@@ -567,6 +572,8 @@ class RemeshCommand final : public Command {
     figures["repair_problems"] = result.repair_problems;
     figures["smoothing_angle_deg"] = options_.smoothing_angle;
     figures["vertices_smoothed"] = run.smoothing.vertices_moved;
+    figures["fit_deviations"] = options_.fit_deviations;
+    figures["vertices_fitted"] = run.fitting.vertices_moved;
     figures["vertices"] = result.mesh.num_vertices();
     figures["faces"] = result.mesh.num_faces();
     figures["euler_characteristic"] = quality.euler_characteristic;
@@ -622,6 +629,7 @@ class RemeshCommand final : public Command {
     json["warm_start_s"] = relaxation.warm_start_seconds;
     json["dual_s"] = result.dual_seconds;
     json["smoothing_s"] = run.smoothing.seconds;
+    json["fitting_s"] = run.fitting.seconds;
     const auto write_start = std::chrono::steady_clock::now();
     VertexAttributes attributes = run.attributes;
     std::vector<std::vector<Eigen::Vector3d>> lines;
@@ -696,6 +704,15 @@ class RemeshCommand final : public Command {
               count(relaxation.iterations, "iteration") + " (" + count(relaxation.diagrams, "geodesic diagram") +
               "), CVT energy " + significant(relaxation.energy.front(), 5) + " -> " +
               significant(relaxation.energy.back(), 5));
+    }
+    if (run.fitting.vertices_moved > 0) {
+      table.add("fitting", with_thousands(run.fitting.vertices_moved) +
+                               (run.fitting.vertices_moved == 1 ? " vertex" : " vertices") +
+                               " moved towards the input's points farthest from the remesh, " +
+                               significant(100 * run.fitting.deviation_before / run.input_report.bbox_diagonal, 3) +
+                               " -> " +
+                               significant(100 * run.fitting.deviation_after / run.input_report.bbox_diagonal, 3) +
+                               " % of the diagonal away");
     }
     if (run.smoothing.vertices_moved > 0) {
       table.add("smoothing", with_thousands(run.smoothing.vertices_moved) +
@@ -772,6 +789,7 @@ class RemeshCommand final : public Command {
     options["continuation_angle"] = options_.continuation_angle;
     options["pin_creases"] = options_.pin_short_creases;
     options["smoothing_angle"] = options_.smoothing_angle;
+    options["fit_deviations"] = options_.fit_deviations;
     options["feature_file"] =
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();

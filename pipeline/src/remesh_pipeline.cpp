@@ -254,16 +254,18 @@ PinnedCreases pin_short_creases(const RemeshPipelineResult& result, std::int64_t
   return pinned;
 }
 
-/// remesh::smooth_smallest_angles on the remesh, whose sites lie on
-/// `surface`: a vertex that welded twins share (a chain's) or a pin's stays,
-/// and so does one within `crease_tolerance` of the pinned `creases` (vertex
-/// polylines of `crease_mesh`), which may be what follows them; a vertex
-/// moved takes its site along.
+/// remesh::smooth_largest_deviations (with `fit_deviations`) and then
+/// remesh::smooth_smallest_angles (with min_angle > 0) on the remesh, whose
+/// sites lie on `surface`: a vertex that welded twins share (a chain's) or a
+/// pin's stays, and so does one within `crease_tolerance` of the pinned
+/// `creases` (vertex polylines of `crease_mesh`), which may be what follows
+/// them; a vertex moved takes its site along.
 remesh::AngleSmoothingResult smooth_remesh(remesh::RepairedDual& remeshed, const TriangleMesh& surface,
                                            const voronoi::SurfaceTopology& topology,
                                            std::span<const Index> pin_vertices,
                                            std::span<const remesh::FeatureChain> creases,
-                                           const TriangleMesh& crease_mesh, double crease_tolerance, double min_angle) {
+                                           const TriangleMesh& crease_mesh, double crease_tolerance, double min_angle,
+                                           bool fit_deviations, remesh::DeviationSmoothingResult& fitting) {
   const auto num_vertices = static_cast<std::size_t>(remeshed.mesh.num_vertices());
   std::vector<SurfacePoint> points(num_vertices);
   std::vector<std::uint8_t> sites_at(num_vertices, 0);  // up to 2: one, or more than one
@@ -297,6 +299,8 @@ remesh::AngleSmoothingResult smooth_remesh(remesh::RepairedDual& remeshed, const
       if (!fixed[v] && near_a_crease(remeshed.mesh.vertices.row(static_cast<Index>(v)))) fixed[v] = 1;
     }
   }
+  fitting = {};
+  if (fit_deviations) fitting = remesh::smooth_largest_deviations(surface, topology, remeshed.mesh, points, fixed);
   const remesh::AngleSmoothingResult smoothed =
       remesh::smooth_smallest_angles(surface, topology, remeshed.mesh, points, fixed, {.min_angle = min_angle});
   for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
@@ -570,8 +574,10 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     result.crease_segments = remesh::follow_segments(result.remesh.mesh, segments);
   }
   result.smoothing = {};
+  result.fitting = {};
   // Without a relaxation the remesh is the dual of the sites as they are: no smoothing either.
-  if (options.remesh.smoothing_angle > 0 && options.remesh.lloyd.iterations > 0 && result.remesh.mesh.num_faces() > 0) {
+  if ((options.remesh.smoothing_angle > 0 || options.remesh.fit_deviations) && options.remesh.lloyd.iterations > 0 &&
+      result.remesh.mesh.num_faces() > 0) {
     // Where creases are pinned, what follows them within the feature recall's
     // tolerance stays.
     const std::span<const remesh::FeatureChain> pinned_creases =
@@ -580,7 +586,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     result.smoothing =
         smooth_remesh(result.remesh, surface, *geodesic_surface->topology(), pin_vertex, pinned_creases,
                       manifold_surface, options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal,
-                      options.remesh.smoothing_angle);
+                      options.remesh.smoothing_angle, options.remesh.fit_deviations, result.fitting);
   }
   geodesic_surface.reset();
   // The prepared surface was the largest thing held: handed back before the

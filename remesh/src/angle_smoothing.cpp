@@ -5,9 +5,13 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/triangle_shape.hpp"
+#include "sampling_grid.hpp"
 #include "surface_walk.hpp"
 
 #include <Eigen/Geometry>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -65,12 +69,24 @@ class RingJudge {
     for (const Index f : faces) normal_.push_back(corners(f, mesh.vertices.row(vertex)).normal);
   }
 
-  /// Points of the surface whose distance from the triangles at() watches.
-  void watch(std::span<const Eigen::Vector3d> samples) {
+  /// Points of the surface whose distance from the remesh the judge
+  /// watches: from these triangles, or from the `others` (which stay where
+  /// they are) where those are nearer.
+  void watch(std::span<const Eigen::Vector3d> samples, std::span<const Index> others = {}) {
     samples_ = samples;
     distance_.resize(samples.size());
+    beyond_.assign(samples.size(), std::numeric_limits<double>::infinity());
     const Eigen::Vector3d x = mesh_.vertices.row(vertex_);
-    for (std::size_t i = 0; i < samples.size(); ++i) distance_[i] = distance(samples[i], x);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      for (const Index f : others) {
+        beyond_[i] =
+            std::min(beyond_[i], squared_distance_to_triangle(samples[i], mesh_.vertices.row(mesh_.faces(f, 0)),
+                                                              mesh_.vertices.row(mesh_.faces(f, 1)),
+                                                              mesh_.vertices.row(mesh_.faces(f, 2))));
+      }
+      beyond_[i] = std::sqrt(beyond_[i]);
+      distance_[i] = std::min(distance(samples[i], x), beyond_[i]);
+    }
   }
 
   Ring at(const Eigen::Vector3d& x) const {
@@ -92,12 +108,34 @@ class RingJudge {
   }
 
   /// Whether, with the vertex at x, no watched point is farther from the
-  /// triangles than it was by more than `slack`.
+  /// remesh than it was by more than `slack`.
   bool keeps_close(const Eigen::Vector3d& x, double slack) const {
     for (std::size_t i = 0; i < samples_.size(); ++i) {
+      if (beyond_[i] <= distance_[i] + slack) continue;  // the other triangles keep it close
       if (distance(samples_[i], x) > distance_[i] + slack) return false;
     }
     return true;
+  }
+
+  /// The largest distance from the remesh, with the vertex at x, of the
+  /// first `count` watched points, and which of them it is.
+  std::pair<double, std::size_t> farthest(const Eigen::Vector3d& x, std::size_t count) const {
+    std::pair<double, std::size_t> most{0.0, 0};
+    for (std::size_t i = 0; i < count && i < samples_.size(); ++i) {
+      const double d = std::min(distance(samples_[i], x), beyond_[i]);
+      if (d > most.first) most = {d, i};
+    }
+    return most;
+  }
+
+  /// The mean quality of the triangles with the vertex at x.
+  double mean_q(const Eigen::Vector3d& x) const {
+    double sum = 0;
+    for (const Index f : faces_) {
+      const Corners c = corners(f, x);
+      sum += triangle_shape(c.p[0], c.p[1], c.p[2]).q;
+    }
+    return faces_.empty() ? 1.0 : sum / static_cast<double>(faces_.size());
   }
 
  private:
@@ -130,7 +168,8 @@ class RingJudge {
   double bound_;
   std::vector<Eigen::Vector3d> normal_;
   std::span<const Eigen::Vector3d> samples_;
-  std::vector<double> distance_;  // per sample, before the move
+  std::vector<double> distance_;  // per sample, from the remesh before the move
+  std::vector<double> beyond_;    // per sample, from the other triangles watched
 };
 
 double smallest_angle(const TriangleMesh& mesh, Index f) {
@@ -155,7 +194,16 @@ struct Move {
   bool better() const { return min_angle > min_angle_before; }
 };
 
-/// The search for a vertex's best place (smooth_smallest_angles).
+/// The floors a move keeps to (smooth_largest_deviations): the least
+/// smallest angle, worst Q and mean Q its triangles may end with.
+struct QualityFloors {
+  double min_angle = 0;  ///< radians
+  double min_q = 0;
+  double max_q_loss = 0;
+};
+
+/// The searches for a vertex's best place (smooth_smallest_angles,
+/// smooth_largest_deviations).
 class VertexSearch {
  public:
   VertexSearch(const TriangleMesh& surface, const voronoi::SurfaceTopology& topology, const TriangleMesh& remesh,
@@ -168,57 +216,28 @@ class VertexSearch {
         bound_(bound),
         max_move_(max_move) {}
 
+  /// Where the smallest angle of v's triangles is largest.
   Move best_move(Index v) {
-    RingJudge judge(remesh_, around_.of(v), v, bound_);
-    const Eigen::Vector3d start_position = remesh_.vertices.row(v);
     const SurfacePoint origin = points_[static_cast<std::size_t>(v)];
-    Move move{origin, start_position, 0, 0};
-    // The frame of the face the vertex lies on, and the scale of its edges.
-    const Eigen::Vector3d a = surface_.vertices.row(surface_.faces(origin.element, 0));
-    const Eigen::Vector3d b = surface_.vertices.row(surface_.faces(origin.element, 1));
-    const Eigen::Vector3d c = surface_.vertices.row(surface_.faces(origin.element, 2));
-    const Eigen::Vector3d normal = (b - a).cross(c - a);
-    if (!(normal.norm() > 0) || !normal.allFinite()) return move;
-    const Eigen::Vector3d u = (b - a).normalized(), w = normal.normalized().cross(u);
-    double edge = 0;
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    int ends = 0;
-    for (const Index f : around_.of(v)) {
-      for (int k = 0; k < 3; ++k) {
-        if (remesh_.faces(f, k) == v) continue;
-        const Eigen::Vector3d end = remesh_.vertices.row(remesh_.faces(f, k));
-        edge += (end - start_position).norm();
-        centroid += end;
-        ++ends;
-      }
-    }
-    if (ends == 0) return move;
-    edge /= ends;
-    centroid /= ends;
-    const double reach = max_move_ * edge;
+    Move move{origin, remesh_.vertices.row(v), 0, 0};
     // The surface's corners and face centres under the triangles round the
     // vertex, wherever it moves within reach: no move may take the remesh
     // farther from any of them than 3 % of an edge (a vertex that
     // slides off a crease or a rim, within the surface, would cut it off).
-    double radius = 0;
-    for (const Index f : around_.of(v)) {
-      for (int k = 0; k < 3; ++k) {
-        radius = std::max(radius, (Eigen::Vector3d(remesh_.vertices.row(remesh_.faces(f, k))) - start_position).norm());
-      }
-    }
-    gather_samples(origin.element, start_position, radius + reach);
+    if (!prepare(v, -1)) return move;
+    RingJudge judge(remesh_, around_.of(v), v, bound_);
     judge.watch(samples_);
-    const Ring start = judge.at(start_position);
+    const Ring start = judge.at(start_);
     move.min_angle_before = move.min_angle = start.min_angle;
     if (start.folded) return move;
-    const double slack = 0.03 * edge;
+    const double slack = 0.03 * edge_;
     // Whether the vertex walked by `trial` (in the frame) does better than
     // the best so far, which it then becomes.
     const auto improves = [&](const Eigen::Vector2d& trial) {
       const double length = trial.norm();
-      if (length > reach) return false;
+      if (length > reach_) return false;
       const SurfacePoint point =
-          detail::walk_on_surface(surface_, topology_, origin, trial.x() * u + trial.y() * w, length);
+          detail::walk_on_surface(surface_, topology_, origin, trial.x() * u_ + trial.y() * w_, length);
       const Eigen::Vector3d position = point.position(surface_);
       const Ring ring = judge.at(position);
       if (ring.folded || !(ring.min_angle > move.min_angle) || ring.min_q < start.min_q ||
@@ -232,13 +251,125 @@ class VertexSearch {
     // which a compass search can miss where two angles are smallest
     // together): the whole way, half or a quarter of it.
     Eigen::Vector2d offset = Eigen::Vector2d::Zero();
-    const Eigen::Vector2d towards((centroid - start_position).dot(u), (centroid - start_position).dot(w));
+    const Eigen::Vector2d towards = in_frame(centroid_);
     for (const double fraction : {1.0, 0.5, 0.25}) {
       if (improves(fraction * towards)) offset = fraction * towards;
     }
-    // Then a compass search: the best of eight steps is taken while one
-    // improves, and the step halves when none does (at most 64 rounds of
-    // trials: a guard, far above what a search takes).
+    compass_search(offset, improves, 256, 64);
+    return move;
+  }
+
+  /// Where the largest distance of the surface's points within
+  /// `reach_in_edges` mean edges of v from the remesh is least, within the
+  /// floors; sets `before` and `after` to that distance. A move that does
+  /// not lower it is none (Move::better() false).
+  Move least_deviation_move(Index v, double reach_in_edges, const QualityFloors& floors, double& before,
+                            double& after) {
+    const SurfacePoint origin = points_[static_cast<std::size_t>(v)];
+    Move move{origin, remesh_.vertices.row(v), 0, 0};
+    before = after = 0;
+    if (!prepare(v, reach_in_edges) || own_ == 0) return move;
+    RingJudge judge(remesh_, around_.of(v), v, bound_);
+    judge.watch(samples_, second_ring(v));
+    const Ring start = judge.at(start_);
+    if (start.folded) return move;
+    const auto [deviation, worst] = judge.farthest(start_, own_);
+    before = after = deviation;
+    const double min_angle = std::min(start.min_angle, floors.min_angle);
+    const double min_q = std::min(start.min_q, floors.min_q);
+    const double min_mean_q = judge.mean_q(start_) - floors.max_q_loss;
+    const double slack = 0.03 * edge_;
+    const auto improves = [&](const Eigen::Vector2d& trial) {
+      const double length = trial.norm();
+      if (length > reach_) return false;
+      const SurfacePoint point =
+          detail::walk_on_surface(surface_, topology_, origin, trial.x() * u_ + trial.y() * w_, length);
+      const Eigen::Vector3d position = point.position(surface_);
+      const Ring ring = judge.at(position);
+      if (ring.folded || ring.min_angle < min_angle || ring.min_q < min_q || ring.angles_below > start.angles_below ||
+          judge.mean_q(position) < min_mean_q) {
+        return false;
+      }
+      const double reached = judge.farthest(position, own_).first;
+      if (!(reached < after) || !judge.keeps_close(position, slack)) return false;
+      after = reached;
+      move = {point, position, 0, 1};
+      return true;
+    };
+    // First towards the farthest point (on the crease the remesh cuts off),
+    // then the compass search.
+    Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+    const Eigen::Vector2d towards = in_frame(samples_[worst]);
+    for (const double fraction : {1.0, 0.75, 0.5, 0.25}) {
+      if (improves(fraction * towards)) {
+        offset = fraction * towards;
+        break;
+      }
+    }
+    compass_search(offset, improves, 64, 24);
+    return move;
+  }
+
+ private:
+  /// The vertex's frame (the plane of the surface's face it lies on), its
+  /// mean edge, centroid of its neighbours, reach, and the samples: with
+  /// reach_in_edges < 0, those under its triangles wherever it moves within
+  /// reach; otherwise those within that many mean edges of it, of which the
+  /// first own_ are nearer to it than to any other vertex. False where the
+  /// vertex has no edges or its face no area.
+  bool prepare(Index v, double reach_in_edges) {
+    start_ = remesh_.vertices.row(v);
+    const SurfacePoint& origin = points_[static_cast<std::size_t>(v)];
+    const Eigen::Vector3d a = surface_.vertices.row(surface_.faces(origin.element, 0));
+    const Eigen::Vector3d b = surface_.vertices.row(surface_.faces(origin.element, 1));
+    const Eigen::Vector3d c = surface_.vertices.row(surface_.faces(origin.element, 2));
+    const Eigen::Vector3d normal = (b - a).cross(c - a);
+    if (!(normal.norm() > 0) || !normal.allFinite()) return false;
+    u_ = (b - a).normalized();
+    w_ = normal.normalized().cross(u_);
+    double edge = 0, radius = 0;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    int ends = 0;
+    for (const Index f : around_.of(v)) {
+      for (int k = 0; k < 3; ++k) {
+        if (remesh_.faces(f, k) == v) continue;
+        const Eigen::Vector3d end = remesh_.vertices.row(remesh_.faces(f, k));
+        edge += (end - start_).norm();
+        radius = std::max(radius, (end - start_).norm());
+        centroid += end;
+        ++ends;
+      }
+    }
+    if (ends == 0) return false;
+    edge_ = edge / ends;
+    centroid_ = centroid / ends;
+    reach_ = max_move_ * edge_;
+    gather_samples(origin.element, start_, reach_in_edges < 0 ? radius + reach_ : reach_in_edges * edge_);
+    if (reach_in_edges >= 0) {
+      // Its own first: nearer to it than to its neighbours.
+      const auto own_end = std::partition(samples_.begin(), samples_.end(), [&](const Eigen::Vector3d& q) {
+        const double d = (q - start_).squaredNorm();
+        for (const Index f : around_.of(v)) {
+          for (int k = 0; k < 3; ++k) {
+            if ((Eigen::Vector3d(remesh_.vertices.row(remesh_.faces(f, k))) - q).squaredNorm() < d) return false;
+          }
+        }
+        return true;
+      });
+      own_ = static_cast<std::size_t>(own_end - samples_.begin());
+    }
+    return true;
+  }
+
+  /// A point's offset from the vertex in its frame.
+  Eigen::Vector2d in_frame(const Eigen::Vector3d& x) const { return {(x - start_).dot(u_), (x - start_).dot(w_)}; }
+
+  /// The compass search from `offset`: the best of eight steps is taken
+  /// while one improves, and the step halves when none does, from an eighth
+  /// of an edge down to 1/`finest` of it (at most `max_rounds` rounds of
+  /// trials: a guard, far above what a search takes).
+  template <class Improves>
+  void compass_search(Eigen::Vector2d offset, Improves& improves, double finest, int max_rounds) const {
     constexpr double kDiagonal = 0.70710678118654752;
     constexpr std::array<std::array<double, 2>, 8> kDirections{{{1, 0},
                                                                 {-1, 0},
@@ -248,8 +379,8 @@ class VertexSearch {
                                                                 {-kDiagonal, kDiagonal},
                                                                 {kDiagonal, -kDiagonal},
                                                                 {-kDiagonal, -kDiagonal}}};
-    double step = edge / 8;
-    for (int tries = 0; step >= edge / 256 && tries < 64; ++tries) {
+    double step = edge_ / 8;
+    for (int tries = 0; step >= edge_ / finest && tries < max_rounds; ++tries) {
       Eigen::Vector2d best_offset = offset;
       for (const auto& [du, dw] : kDirections) {
         const Eigen::Vector2d trial = offset + step * Eigen::Vector2d(du, dw);
@@ -261,10 +392,27 @@ class VertexSearch {
         step /= 2;
       }
     }
-    return move;
   }
 
- private:
+  /// The triangles round v's neighbours that are not round v.
+  std::span<const Index> second_ring(Index v) {
+    second_ring_.clear();
+    const auto ring = around_.of(v);
+    for (const Index f : ring) {
+      for (int k = 0; k < 3; ++k) {
+        const Index w = remesh_.faces(f, k);
+        if (w == v) continue;
+        for (const Index g : around_.of(w)) {
+          if (std::find(ring.begin(), ring.end(), g) == ring.end() &&
+              std::find(second_ring_.begin(), second_ring_.end(), g) == second_ring_.end()) {
+            second_ring_.push_back(g);
+          }
+        }
+      }
+    }
+    return second_ring_;
+  }
+
   /// samples_: the corners and centres of the surface's faces within
   /// `radius` of x, reached from `face` across its edges (at most
   /// kMaxFaces faces: a guard for surfaces far finer than the remesh).
@@ -314,11 +462,106 @@ class VertexSearch {
   const std::vector<SurfacePoint>& points_;
   double bound_;
   double max_move_;
-  // Scratch of gather_samples.
+  // What prepare() found for the vertex searched.
+  Eigen::Vector3d start_, u_, w_, centroid_;
+  double edge_ = 0, reach_ = 0;
+  std::size_t own_ = 0;
+  // Scratch of gather_samples and second_ring.
   std::vector<Eigen::Vector3d> samples_;
   std::vector<Index> queue_;
   IndexHashSet reached_, corners_;
+  std::vector<Index> second_ring_;
 };
+
+/// Per vertex of `remesh`, whether a smoothing may move it (the contract of
+/// smooth_smallest_angles).
+std::vector<std::uint8_t> movable_vertices(const TriangleMesh& remesh, const voronoi::SurfaceTopology& topology,
+                                           const std::vector<SurfacePoint>& points,
+                                           std::span<const std::uint8_t> fixed) {
+  const std::vector<std::uint8_t> on_remesh_boundary = build_mesh_topology(remesh).vertex_on_boundary;
+  std::vector<std::uint8_t> movable(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SurfacePoint& point = points[i];
+    const bool at_vertex = point.kind == SurfacePoint::Kind::vertex ||
+                           (point.barycentric.array() == 0).count() >= 2;  // a face point at one of its corners
+    movable[i] = !(i < fixed.size() && fixed[i]) && !on_remesh_boundary[i] && !at_vertex &&
+                 !detail::on_surface_boundary(topology, point);
+  }
+  return movable;
+}
+
+void check_points(const TriangleMesh& remesh, const std::vector<SurfacePoint>& points, const std::string& what) {
+  if (points.size() != static_cast<std::size_t>(remesh.num_vertices())) {
+    throw UsageError(what + ": " + std::to_string(points.size()) + " points for a remesh of " +
+                     std::to_string(remesh.num_vertices()) + " vertices");
+  }
+}
+
+double mean_edge_length(const TriangleMesh& mesh) {
+  double sum = 0;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k)
+      sum += (mesh.vertices.row(mesh.faces(f, k)) - mesh.vertices.row(mesh.faces(f, (k + 1) % 3))).norm();
+  }
+  return mesh.num_faces() > 0 ? sum / (3.0 * static_cast<double>(mesh.num_faces())) : 0.0;
+}
+
+/// Per vertex of `remesh`, the largest distance from the remesh of the
+/// surface's vertices and face centres nearest to it (measured to its
+/// triangles and to those of the next nearest vertex, both within `radius`):
+/// the vertex the one-sided Hausdorff distance of each sample is charged to.
+std::vector<double> largest_deviations(const TriangleMesh& surface, const TriangleMesh& remesh,
+                                       const FacesAround& around, double radius) {
+  std::vector<Eigen::Vector3d> positions(static_cast<std::size_t>(remesh.num_vertices()));
+  for (Index v = 0; v < remesh.num_vertices(); ++v) positions[static_cast<std::size_t>(v)] = remesh.vertices.row(v);
+  const detail::PointGrid grid(positions, radius);
+  const Index num_samples = surface.num_vertices() + surface.num_faces();
+  const auto sample = [&](Index i) -> Eigen::Vector3d {
+    if (i < surface.num_vertices()) return surface.vertices.row(i);
+    const Index f = i - surface.num_vertices();
+    return (surface.vertices.row(surface.faces(f, 0)) + surface.vertices.row(surface.faces(f, 1)) +
+            surface.vertices.row(surface.faces(f, 2)))
+               .transpose() /
+           3;
+  };
+  // Per sample, its vertex and distance (on all threads), then the largest per vertex.
+  std::vector<Index> charged(static_cast<std::size_t>(num_samples), -1);
+  std::vector<double> deviation(static_cast<std::size_t>(num_samples), 0.0);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, num_samples, 4096), [&](const tbb::blocked_range<Index>& range) {
+    for (Index i = range.begin(); i != range.end(); ++i) {
+      const Eigen::Vector3d x = sample(i);
+      std::array<Index, 2> nearest{-1, -1};
+      std::array<double, 2> squared{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      grid.for_each_within(x, radius, [&](Index slot, double d2) {
+        const Index v = grid.original(slot);
+        if (d2 < squared[0] || (d2 == squared[0] && v < nearest[0])) {
+          nearest = {v, nearest[0]};
+          squared = {d2, squared[0]};
+        } else if (d2 < squared[1] || (d2 == squared[1] && v < nearest[1])) {
+          nearest[1] = v;
+          squared[1] = d2;
+        }
+      });
+      if (nearest[0] < 0) continue;
+      double closest = std::numeric_limits<double>::infinity();
+      for (const Index v : nearest) {
+        if (v < 0) continue;
+        for (const Index f : around.of(v)) {
+          closest = std::min(closest, squared_distance_to_triangle(x, remesh.vertices.row(remesh.faces(f, 0)),
+                                                                   remesh.vertices.row(remesh.faces(f, 1)),
+                                                                   remesh.vertices.row(remesh.faces(f, 2))));
+        }
+      }
+      charged[static_cast<std::size_t>(i)] = nearest[0];
+      deviation[static_cast<std::size_t>(i)] = std::sqrt(closest);
+    }
+  });
+  std::vector<double> largest(positions.size(), 0.0);
+  for (std::size_t i = 0; i < charged.size(); ++i) {
+    if (charged[i] >= 0) largest[charged[i]] = std::max(largest[charged[i]], deviation[i]);
+  }
+  return largest;
+}
 
 }  // namespace
 
@@ -331,10 +574,7 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
                      " must be in [0, 60], rounds " + std::to_string(options.rounds) + " >= 0 and max_move " +
                      std::to_string(options.max_move) + " finite and >= 0");
   }
-  if (points.size() != static_cast<std::size_t>(remesh.num_vertices())) {
-    throw UsageError("angle smoothing: " + std::to_string(points.size()) + " points for a remesh of " +
-                     std::to_string(remesh.num_vertices()) + " vertices");
-  }
+  check_points(remesh, points, "angle smoothing");
   const auto start_time = std::chrono::steady_clock::now();
   AngleSmoothingResult result;
   result.min_angle_before = result.min_angle_after = smallest_angle(remesh) / kRadiansPerDegree;
@@ -346,15 +586,8 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
   if (remesh.num_faces() == 0 || !(result.min_angle_before < options.min_angle)) return finish();
 
   const FacesAround around = faces_around(remesh);
-  const std::vector<std::uint8_t> on_remesh_boundary = build_mesh_topology(remesh).vertex_on_boundary;
-  const auto movable = [&](Index v) {
-    const auto i = static_cast<std::size_t>(v);
-    const SurfacePoint& point = points[i];
-    const bool at_vertex = point.kind == SurfacePoint::Kind::vertex ||
-                           (point.barycentric.array() == 0).count() >= 2;  // a face point at one of its corners
-    return !(i < fixed.size() && fixed[i]) && !on_remesh_boundary[i] && !at_vertex &&
-           !detail::on_surface_boundary(topology, point);
-  };
+  const std::vector<std::uint8_t> may_move = movable_vertices(remesh, topology, points, fixed);
+  const auto movable = [&](Index v) { return may_move[static_cast<std::size_t>(v)] != 0; };
   VertexSearch search(surface, topology, remesh, around, points, bound, options.max_move);
   std::vector<std::pair<double, Index>> worst;  // the triangles below the bound: smallest angle, face
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(remesh.num_vertices()), 0);
@@ -399,6 +632,75 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
   }
   result.vertices_moved = std::count(moved.begin(), moved.end(), std::uint8_t{1});
   result.min_angle_after = smallest_angle(remesh) / kRadiansPerDegree;
+  return finish();
+}
+
+DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
+                                                   const voronoi::SurfaceTopology& topology, TriangleMesh& remesh,
+                                                   std::vector<SurfacePoint>& points,
+                                                   std::span<const std::uint8_t> fixed,
+                                                   const DeviationSmoothingOptions& options) {
+  if (!(options.share >= 0 && options.share < 1) || options.rounds < 0 || !(options.reach > 0 && options.reach <= 2) ||
+      !(options.min_angle >= 0 && options.min_angle <= 60) || !(options.max_q_loss >= 0 && options.max_q_loss <= 1) ||
+      !(options.max_move >= 0 && std::isfinite(options.max_move))) {
+    throw UsageError("deviation smoothing: share " + std::to_string(options.share) + " must be in [0, 1), rounds " +
+                     std::to_string(options.rounds) + " >= 0, reach " + std::to_string(options.reach) +
+                     " in (0, 2], min_angle " + std::to_string(options.min_angle) + " in [0, 60], max_q_loss " +
+                     std::to_string(options.max_q_loss) + " in [0, 1] and max_move " +
+                     std::to_string(options.max_move) + " finite and >= 0");
+  }
+  check_points(remesh, points, "deviation smoothing");
+  const auto start_time = std::chrono::steady_clock::now();
+  DeviationSmoothingResult result;
+  const auto finish = [&] {
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    return result;
+  };
+  const double edge = mean_edge_length(remesh);
+  if (!(edge > 0)) return finish();
+  const FacesAround around = faces_around(remesh);
+  std::vector<double> deviation = largest_deviations(surface, remesh, around, edge);
+  result.deviation_before = result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
+  if (options.share == 0 || options.rounds == 0 || options.max_move == 0) return finish();
+  // The floors: the remesh's own smallest angle (or the bound, if lower) and worst Q.
+  QualityFloors floors{std::min(smallest_angle(remesh), options.min_angle * kRadiansPerDegree), 1.0,
+                       options.max_q_loss};
+  for (Index f = 0; f < remesh.num_faces(); ++f) {
+    floors.min_q = std::min(
+        floors.min_q, triangle_shape(remesh.vertices.row(remesh.faces(f, 0)), remesh.vertices.row(remesh.faces(f, 1)),
+                                     remesh.vertices.row(remesh.faces(f, 2)))
+                          .q);
+  }
+  const std::vector<std::uint8_t> movable = movable_vertices(remesh, topology, points, fixed);
+  VertexSearch search(surface, topology, remesh, around, points, options.min_angle * kRadiansPerDegree,
+                      options.max_move);
+  std::vector<std::uint8_t> moved(static_cast<std::size_t>(remesh.num_vertices()), 0);
+  std::vector<std::pair<double, Index>>
+      worst;  // the vertices to move: their deviation (negated, largest first), vertex
+  for (int round = 0; round < options.rounds; ++round) {
+    if (round > 0) deviation = largest_deviations(surface, remesh, around, edge);
+    const double largest = *std::max_element(deviation.begin(), deviation.end());
+    worst.clear();
+    for (Index v = 0; v < remesh.num_vertices(); ++v) {
+      const double d = deviation[static_cast<std::size_t>(v)];
+      if (movable[static_cast<std::size_t>(v)] && d >= options.share * largest && d > 0) worst.emplace_back(-d, v);
+    }
+    std::sort(worst.begin(), worst.end());
+    bool any_moved = false;
+    for (const auto& [negated, v] : worst) {
+      double before = 0, after = 0;
+      const Move move = search.least_deviation_move(v, options.reach, floors, before, after);
+      if (!move.better()) continue;
+      remesh.vertices.row(v) = move.position.transpose();
+      points[static_cast<std::size_t>(v)] = move.point;
+      moved[static_cast<std::size_t>(v)] = 1;
+      any_moved = true;
+    }
+    if (!any_moved) break;
+  }
+  deviation = largest_deviations(surface, remesh, around, edge);
+  result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
+  result.vertices_moved = std::count(moved.begin(), moved.end(), std::uint8_t{1});
   return finish();
 }
 

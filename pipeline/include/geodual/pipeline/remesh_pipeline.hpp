@@ -144,6 +144,10 @@ struct RemeshPipelineResult {
   /// The smoothing of the remesh's worst triangles (RemeshOptions::smoothing_angle):
   /// the vertices it moved (with their sites) and the smallest angle before and after.
   remesh::AngleSmoothingResult smoothing;
+  /// The fitting of the vertices that answer for the surface's points
+  /// farthest from the remesh (RemeshOptions::fit_deviations), before the
+  /// smoothing: the vertices it moved and the largest distance before and after.
+  remesh::DeviationSmoothingResult fitting;
   /// Why the short creases were not pinned, where they were asked for (empty otherwise).
   std::string crease_pins_reason;
   /// Of initial_sites, the second (third...) copies of a feature point, one

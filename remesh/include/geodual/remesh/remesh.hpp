@@ -142,6 +142,13 @@ struct RemeshOptions {
   /// (lloyd.iterations 0): none, every vertex at its site. (The pipeline
   /// rejects a value outside [0, 60].)
   double smoothing_angle = 30;
+  /// Before that, the vertices that answer for the surface's points farthest
+  /// from the remesh (a crease or a scan's rim that the dual cuts off) move
+  /// along the surface to where that distance is least, without lowering
+  /// the smallest angle below 30 degrees or the remesh's own, nor the worst
+  /// Q (smooth_largest_deviations in angle_smoothing.hpp); the same vertices
+  /// stay. None without a relaxation.
+  bool fit_deviations = true;
 };
 
 /// The Lloyd options remesh_from_sites relaxes `site_count` sites on
