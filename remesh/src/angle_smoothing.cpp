@@ -507,7 +507,7 @@ double mean_edge_length(const TriangleMesh& mesh) {
 }
 
 /// Per vertex of `remesh`, the largest distance from the remesh of the
-/// surface's vertices and face centres nearest to it (measured to its
+/// surface's vertices (and face centres, where they are coarse) nearest to it (measured to its
 /// triangles and to those of the next nearest vertex, both within `radius`):
 /// the vertex the one-sided Hausdorff distance of each sample is charged to.
 std::vector<double> largest_deviations(const TriangleMesh& surface, const TriangleMesh& remesh,
@@ -515,7 +515,10 @@ std::vector<double> largest_deviations(const TriangleMesh& surface, const Triang
   std::vector<Eigen::Vector3d> positions(static_cast<std::size_t>(remesh.num_vertices()));
   for (Index v = 0; v < remesh.num_vertices(); ++v) positions[static_cast<std::size_t>(v)] = remesh.vertices.row(v);
   const detail::PointGrid grid(positions, radius);
-  const Index num_samples = surface.num_vertices() + surface.num_faces();
+  // The surface's vertices, and its face centres too where its vertices are
+  // fewer than eight per remesh vertex.
+  const bool centres = surface.num_vertices() < 8 * remesh.num_vertices();
+  const Index num_samples = surface.num_vertices() + (centres ? surface.num_faces() : 0);
   const auto sample = [&](Index i) -> Eigen::Vector3d {
     if (i < surface.num_vertices()) return surface.vertices.row(i);
     const Index f = i - surface.num_vertices();

@@ -78,7 +78,10 @@ TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
                             "hausdorff_at",
                             "smoothing_angle_deg",
                             "vertices_smoothed",
-                            "smoothing_s"}) {
+                            "smoothing_s",
+                            "fit_deviations",
+                            "vertices_fitted",
+                            "fitting_s"}) {
       EXPECT_TRUE(json.contains(key)) << key;
     }
     // Where the Hausdorff distance is reached: a point of the input or the

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -50,21 +51,22 @@ SurfacePoint point_on_plane(const TriangleMesh& surface, double x, double y) {
   return {};
 }
 
-/// A remesh of part of the unit square: an n x n grid of cells over [0.1,
-/// 0.9]^2, two triangles each, its vertices at face points of `surface`.
+/// A remesh of part of the unit square: an n x n grid of cells over
+/// [margin, 1 - margin]^2, two triangles each, its vertices at face points of
+/// `surface`.
 struct PlanarRemesh {
   TriangleMesh mesh;
   std::vector<SurfacePoint> points;
 };
 
-PlanarRemesh planar_grid(const TriangleMesh& surface, int n) {
+PlanarRemesh planar_grid(const TriangleMesh& surface, int n, double margin = 0.1) {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<Index, 3>> faces;
   PlanarRemesh remesh;
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= n; ++i) {
       // Off the surface's grid lines, so that each point lies inside one face.
-      const double x = 0.1 + 0.8 * i / n + 1e-3, y = 0.1 + 0.8 * j / n + 2e-3;
+      const double x = margin + (1 - 2 * margin) * i / n + 1e-3, y = margin + (1 - 2 * margin) * j / n + 2e-3;
       vertices.emplace_back(x, y, 0);
       remesh.points.push_back(point_on_plane(surface, x, y));
     }
@@ -309,6 +311,121 @@ TEST(AngleSmoothing, OptionsOutOfRangeAreUsageErrors) {
   EXPECT_THROW(smooth({.max_move = std::numeric_limits<double>::infinity()}), UsageError);
   remesh.points.pop_back();
   EXPECT_THROW(smooth({}), UsageError);
+}
+
+/// The roof z = 0.3 - |y - 0.5| over the unit square (its ridge along y =
+/// 0.5), and a planar grid over nearly all of it lifted onto it, its middle
+/// row at y = 0.56: the triangles between the rows at y = 0.34 and 0.56 cut
+/// the ridge off.
+struct RoofCase {
+  TriangleMesh surface;
+  PlanarRemesh remesh;
+  static double roof(double y) { return 0.3 - std::abs(y - 0.5); }
+  /// The largest distance of the ridge's points under the remesh from it.
+  double ridge_gap() const {
+    double worst = 0;
+    for (int i = 0; i <= 100; ++i) {
+      const Eigen::Vector3d q(0.25 + 0.5 * i / 100, 0.5, roof(0.5));
+      double nearest = std::numeric_limits<double>::infinity();
+      const TriangleMesh& mesh = remesh.mesh;
+      for (Index f = 0; f < mesh.num_faces(); ++f) {
+        nearest = std::min(nearest, squared_distance_to_triangle(q, mesh.vertices.row(mesh.faces(f, 0)),
+                                                                 mesh.vertices.row(mesh.faces(f, 1)),
+                                                                 mesh.vertices.row(mesh.faces(f, 2))));
+      }
+      worst = std::max(worst, std::sqrt(nearest));
+    }
+    return worst;
+  }
+};
+
+RoofCase roof_case() {
+  RoofCase c{test::unit_square(16), planar_grid(test::unit_square(16), 6, 0.002)};
+  for (Index v = 0; v < c.surface.num_vertices(); ++v)
+    c.surface.vertices(v, 2) = RoofCase::roof(c.surface.vertices(v, 1));
+  for (Index v = 0; v < c.remesh.mesh.num_vertices(); ++v) {
+    if (v / 7 == 3) c.remesh.mesh.vertices(v, 1) = 0.56;
+    // A vertex on a flat side pushed aside, so that the remesh's worst
+    // triangles (which the moves may not go below) are there.
+    if (v == 8) c.remesh.mesh.vertices.row(v) += Eigen::RowVector3d(0.06, 0.03, 0);
+    c.remesh.points[static_cast<std::size_t>(v)] =
+        point_on_plane(test::unit_square(16), c.remesh.mesh.vertices(v, 0), c.remesh.mesh.vertices(v, 1));
+    c.remesh.mesh.vertices.row(v) = c.remesh.points[static_cast<std::size_t>(v)].position(c.surface).transpose();
+  }
+  return c;
+}
+
+double worst_q(const TriangleMesh& mesh) {
+  double worst = 1;
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    worst = std::min(worst, triangle_shape(mesh.vertices.row(mesh.faces(f, 0)), mesh.vertices.row(mesh.faces(f, 1)),
+                                           mesh.vertices.row(mesh.faces(f, 2)))
+                                .q);
+  }
+  return worst;
+}
+
+TEST(DeviationSmoothing, VerticesBesideARidgeMoveOntoItWithinTheQualityFloors) {
+  RoofCase c = roof_case();
+  const voronoi::GeodesicSurface prepared(c.surface);
+  const TriangleMesh before = c.remesh.mesh;
+  const double gap_before = c.ridge_gap();
+  ASSERT_GT(gap_before, 0.02);  // the chord from y = 0.37 to 0.56 passes under the ridge
+  const remesh::DeviationSmoothingResult result =
+      remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
+  EXPECT_GE(result.vertices_moved, 1);
+  EXPECT_LT(result.deviation_after, result.deviation_before);
+  EXPECT_LT(c.ridge_gap(), 0.5 * gap_before);
+  EXPECT_GE(smallest_angle_degrees(c.remesh.mesh), std::min(30.0, smallest_angle_degrees(before)) - 1e-9);
+  EXPECT_GE(worst_q(c.remesh.mesh), worst_q(before) - 1e-12);
+  for (Index u = 0; u < c.remesh.mesh.num_vertices(); ++u) {
+    const Eigen::Vector3d x = c.remesh.mesh.vertices.row(u);
+    EXPECT_NEAR(x.z(), RoofCase::roof(x.y()), 1e-12) << "vertex " << u << " off the roof";
+    EXPECT_TRUE(x.isApprox(c.remesh.points[static_cast<std::size_t>(u)].position(c.surface), 1e-12));
+  }
+  // The remesh's boundary stays.
+  for (const Index u : {Index{0}, Index{6}, Index{42}, Index{48}}) {
+    EXPECT_EQ(c.remesh.mesh.vertices.row(u), before.vertices.row(u));
+  }
+}
+
+TEST(DeviationSmoothing, FixedVerticesStayAndARemeshOnTheSurfaceIsLeftAsItIs) {
+  RoofCase c = roof_case();
+  const voronoi::GeodesicSurface prepared(c.surface);
+  const TriangleMesh before = c.remesh.mesh;
+  const std::vector<std::uint8_t> all(static_cast<std::size_t>(before.num_vertices()), 1);
+  EXPECT_EQ(remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points, all)
+                .vertices_moved,
+            0);
+  EXPECT_EQ(c.remesh.mesh.vertices, before.vertices);
+  // A grid on a plane lies on it: nothing is farther than rounding.
+  const TriangleMesh plane = test::unit_square(16);
+  const voronoi::GeodesicSurface flat(plane);
+  PlanarRemesh grid = planar_grid(plane, 6, 0.002);
+  const TriangleMesh grid_before = grid.mesh;
+  const remesh::DeviationSmoothingResult result =
+      remesh::smooth_largest_deviations(plane, *flat.topology(), grid.mesh, grid.points);
+  EXPECT_EQ(result.vertices_moved, 0);
+  EXPECT_LT(result.deviation_before, 0.01);  // the strip round the grid that it leaves uncovered
+  EXPECT_EQ(grid.mesh.vertices, grid_before.vertices);
+}
+
+TEST(DeviationSmoothing, OptionsOutOfRangeAreUsageErrors) {
+  const TriangleMesh surface = test::unit_square(4);
+  const voronoi::GeodesicSurface prepared(surface);
+  PlanarRemesh remesh = planar_grid(surface, 2);
+  const auto fit = [&](remesh::DeviationSmoothingOptions options) {
+    remesh::smooth_largest_deviations(surface, *prepared.topology(), remesh.mesh, remesh.points, {}, options);
+  };
+  EXPECT_THROW(fit({.share = 1}), UsageError);
+  EXPECT_THROW(fit({.share = -0.1}), UsageError);
+  EXPECT_THROW(fit({.rounds = -1}), UsageError);
+  EXPECT_THROW(fit({.reach = 0}), UsageError);
+  EXPECT_THROW(fit({.min_angle = 61}), UsageError);
+  EXPECT_THROW(fit({.max_q_loss = std::numeric_limits<double>::quiet_NaN()}), UsageError);
+  EXPECT_THROW(fit({.max_move = std::numeric_limits<double>::infinity()}), UsageError);
+  remesh.points.pop_back();
+  EXPECT_THROW(fit({}), UsageError);
 }
 
 }  // namespace
