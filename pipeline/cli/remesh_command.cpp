@@ -708,11 +708,11 @@ class RemeshCommand final : public Command {
     if (run.fitting.vertices_moved > 0) {
       table.add("fitting", with_thousands(run.fitting.vertices_moved) +
                                (run.fitting.vertices_moved == 1 ? " vertex" : " vertices") +
-                               " moved towards the input's points farthest from the remesh, " +
+                               " moved towards the input's points farthest from their triangles, " +
                                significant(100 * run.fitting.deviation_before / run.input_report.bbox_diagonal, 3) +
                                " -> " +
                                significant(100 * run.fitting.deviation_after / run.input_report.bbox_diagonal, 3) +
-                               " % of the diagonal away");
+                               " % of the diagonal");
     }
     if (run.smoothing.vertices_moved > 0) {
       table.add("smoothing", with_thousands(run.smoothing.vertices_moved) +
