@@ -234,17 +234,14 @@ class VertexSearch {
     // Whether the vertex walked by `trial` (in the frame) does better than
     // the best so far, which it then becomes.
     const auto improves = [&](const Eigen::Vector2d& trial) {
-      const double length = trial.norm();
-      if (length > reach_) return false;
-      const SurfacePoint point =
-          detail::walk_on_surface(surface_, topology_, origin, trial.x() * u_ + trial.y() * w_, length);
-      const Eigen::Vector3d position = point.position(surface_);
-      const Ring ring = judge.at(position);
+      const std::optional<Move> at = walked(origin, trial);
+      if (!at) return false;
+      const Ring ring = judge.at(at->position);
       if (ring.folded || !(ring.min_angle > move.min_angle) || ring.min_q < start.min_q ||
-          ring.angles_below > start.angles_below || !judge.keeps_close(position, slack)) {
+          ring.angles_below > start.angles_below || !judge.keeps_close(at->position, slack)) {
         return false;
       }
-      move = {point, position, start.min_angle, ring.min_angle};
+      move = {at->point, at->position, start.min_angle, ring.min_angle};
       return true;
     };
     // First towards the centroid of its neighbours (Laplacian smoothing,
@@ -280,20 +277,17 @@ class VertexSearch {
     const double min_mean_q = judge.mean_q(start_) - floors.max_q_loss;
     const double slack = 0.03 * edge_;
     const auto improves = [&](const Eigen::Vector2d& trial) {
-      const double length = trial.norm();
-      if (length > reach_) return false;
-      const SurfacePoint point =
-          detail::walk_on_surface(surface_, topology_, origin, trial.x() * u_ + trial.y() * w_, length);
-      const Eigen::Vector3d position = point.position(surface_);
-      const Ring ring = judge.at(position);
+      const std::optional<Move> at = walked(origin, trial);
+      if (!at) return false;
+      const Ring ring = judge.at(at->position);
       if (ring.folded || ring.min_angle < min_angle || ring.min_q < min_q || ring.angles_below > start.angles_below ||
-          judge.mean_q(position) < min_mean_q) {
+          judge.mean_q(at->position) < min_mean_q) {
         return false;
       }
-      const double reached = judge.farthest(position, own_).first;
-      if (!(reached < after) || !judge.keeps_close(position, slack)) return false;
+      const double reached = judge.farthest(at->position, own_).first;
+      if (!(reached < after) || !judge.keeps_close(at->position, slack)) return false;
       after = reached;
-      move = {point, position, 0, 1};
+      move = {at->point, at->position, 0, 1};
       return true;
     };
     // First towards the farthest point (on the crease the remesh cuts off),
@@ -359,6 +353,16 @@ class VertexSearch {
       own_ = static_cast<std::size_t>(own_end - samples_.begin());
     }
     return true;
+  }
+
+  /// The vertex walked on the surface from `origin` by `trial` (in its
+  /// frame), where that is within reach; only the place is filled in.
+  std::optional<Move> walked(const SurfacePoint& origin, const Eigen::Vector2d& trial) const {
+    const double length = trial.norm();
+    if (length > reach_) return std::nullopt;
+    const SurfacePoint point =
+        detail::walk_on_surface(surface_, topology_, origin, trial.x() * u_ + trial.y() * w_, length);
+    return Move{point, point.position(surface_), 0, 0};
   }
 
   /// A point's offset from the vertex in its frame.
