@@ -38,6 +38,7 @@ struct RemeshResult {
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
   std::int64_t vertices_smoothed = 0;
+  std::int64_t vertices_fitted = 0;
   py::object error_bound_met;
   py::object error_rounds;
   py::object timings;
@@ -75,8 +76,9 @@ std::vector<std::array<Index, 2>> edges_from_object(const py::object& object) {
 RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const py::object& sites,
                     const py::object& edge_length, const py::object& face_count, int lloyd, std::int64_t seed,
                     const py::object& colors, double sharp_angle, double continuation_angle, bool pin_creases,
-                    const py::object& feature_edges, double smoothing_angle, const py::object& progress,
-                    bool statistics, const py::object& max_error, const py::object& max_sites) {
+                    const py::object& feature_edges, double smoothing_angle, bool fit_deviations,
+                    const py::object& progress, bool statistics, const py::object& max_error,
+                    const py::object& max_sites) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
   if (sizings > 1) {
     throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
@@ -123,6 +125,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   options.remesh.continuation_angle = continuation_angle;
   options.remesh.pin_short_creases = pin_creases;
   options.remesh.smoothing_angle = smoothing_angle;
+  options.remesh.fit_deviations = fit_deviations;
   if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
   if (!max_error.is_none()) {
@@ -168,6 +171,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.sites_added = run.remesh.sites_added;
   result.sites_left_out = run.remesh.sites_left_out;
   result.vertices_smoothed = run.smoothing.vertices_moved;
+  result.vertices_fitted = run.fitting.vertices_moved;
   result.error_bound_met = py::none();
   result.error_rounds = py::list();
   if (options.max_error_pct > 0) {
@@ -222,6 +226,9 @@ void add_remesh(py::module_& module) {
                     "given sites the repair left out (each cut a corner off a neighbour's cell)")
       .def_readonly("vertices_smoothed", &RemeshResult::vertices_smoothed,
                     "vertices moved off their sites to mend triangles with an angle below smoothing_angle")
+      .def_readonly("vertices_fitted", &RemeshResult::vertices_fitted,
+                    "vertices moved off their sites towards the input's points farthest from the remesh "
+                    "(fit_deviations)")
       .def_readonly("error_bound_met", &RemeshResult::error_bound_met,
                     "with max_error: whether the remesh returned keeps within it (else it is the closest one "
                     "made); None without max_error")
@@ -240,7 +247,8 @@ void add_remesh(py::module_& module) {
              py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
              py::arg("continuation_angle") = remesh::RemeshOptions{}.continuation_angle,
              py::arg("pin_creases") = remesh::RemeshOptions{}.pin_short_creases, py::arg("feature_edges") = py::none(),
-             py::arg("smoothing_angle") = remesh::RemeshOptions{}.smoothing_angle, py::arg("progress") = py::none(),
+             py::arg("smoothing_angle") = remesh::RemeshOptions{}.smoothing_angle,
+             py::arg("fit_deviations") = remesh::RemeshOptions{}.fit_deviations, py::arg("progress") = py::none(),
              py::arg("statistics") = true, py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
              R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
@@ -281,6 +289,11 @@ smoothing_angle: last, the corners of triangles with an angle below this many
 degrees move along the surface to where the smallest angle round them is
 largest (result.vertices_smoothed; chain, corner, boundary and pinned
 vertices stay; 0, or lloyd=0: none, every vertex at its site; 30 by default).
+fit_deviations: before that, the vertices that answer for the input's points
+farthest from the remesh (a crease or a scan's rim the dual cuts off) move
+along the surface to where that distance is least, never below 30 degrees
+or the remesh's worst Q (result.vertices_fitted; True by default; none with
+lloyd=0).
 progress: None or progress(stage, fraction) with stage one of "sample",
 "relax", "dual", "statistics"; return False to cancel (geodual.Cancelled).
 Ctrl-C raises KeyboardInterrupt.

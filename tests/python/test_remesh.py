@@ -322,3 +322,16 @@ def test_help_is_useful():
     assert "polylines" in geodual.voronoi.__doc__ and "colors" in geodual.write_mesh.__doc__
     assert "edge_length" in geodual.remesh.__doc__ and "progress" in geodual.remesh.__doc__
     assert issubclass(geodual.Error, RuntimeError) and issubclass(geodual.UsageError, ValueError)
+
+
+def test_fitting_moves_vertices_towards_the_farthest_points_and_keeps_the_triangles(data_dir):
+    # homer at 500 sites: the fitting moves the vertices that answer for the
+    # input's points farthest from the remesh; the triangles stay and the
+    # Hausdorff distance falls.
+    V, F = geodual.read_mesh(data_dir / "homer.ply")
+    plain = geodual.remesh(V, F, sites=500, fit_deviations=False)
+    fitted = geodual.remesh(V, F, sites=500)
+    assert plain.vertices_fitted == 0
+    assert fitted.vertices_fitted > 0
+    np.testing.assert_array_equal(fitted.faces, plain.faces)
+    assert fitted.stats["hausdorff_pct"] < plain.stats["hausdorff_pct"]
