@@ -7,6 +7,7 @@
 #include "geodual/mesh/triangle_shape.hpp"
 #include "sampling_grid.hpp"
 #include "surface_walk.hpp"
+#include "vertex_fields.hpp"
 
 #include <Eigen/Geometry>
 
@@ -27,30 +28,6 @@ namespace geodual::remesh {
 namespace {
 
 constexpr double kRadiansPerDegree = std::numbers::pi / 180;
-
-/// The faces round each vertex of a mesh (CSR).
-struct FacesAround {
-  std::vector<Index> begin;
-  std::vector<Index> face;
-  std::span<const Index> of(Index v) const {
-    return {face.data() + begin[v], static_cast<std::size_t>(begin[v + 1] - begin[v])};
-  }
-};
-
-FacesAround faces_around(const TriangleMesh& mesh) {
-  FacesAround around;
-  around.begin.assign(static_cast<std::size_t>(mesh.num_vertices()) + 1, 0);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    for (int k = 0; k < 3; ++k) ++around.begin[mesh.faces(f, k) + 1];
-  }
-  for (Index v = 0; v < mesh.num_vertices(); ++v) around.begin[v + 1] += around.begin[v];
-  around.face.resize(static_cast<std::size_t>(around.begin.back()));
-  std::vector<Index> next(around.begin.begin(), around.begin.end() - 1);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    for (int k = 0; k < 3; ++k) around.face[next[mesh.faces(f, k)]++] = f;
-  }
-  return around;
-}
 
 /// The triangles round one vertex as it would be at another position: their
 /// smallest angle and quality, and whether any turned over.
@@ -207,7 +184,7 @@ struct QualityFloors {
 class VertexSearch {
  public:
   VertexSearch(const TriangleMesh& surface, const voronoi::SurfaceTopology& topology, const TriangleMesh& remesh,
-               const FacesAround& around, const std::vector<SurfacePoint>& points, double bound, double max_move)
+               const detail::VertexFans& around, const std::vector<SurfacePoint>& points, double bound, double max_move)
       : surface_(surface),
         topology_(topology),
         remesh_(remesh),
@@ -225,7 +202,7 @@ class VertexSearch {
     // farther from any of them than 3 % of an edge (a vertex that
     // slides off a crease or a rim, within the surface, would cut it off).
     if (!prepare(v, -1)) return move;
-    RingJudge judge(remesh_, around_.of(v), v, bound_);
+    RingJudge judge(remesh_, around_.around(v), v, bound_);
     judge.watch(samples_);
     const Ring start = judge.at(start_);
     move.min_angle_before = move.min_angle = start.min_angle;
@@ -259,17 +236,17 @@ class VertexSearch {
   /// Where the largest distance of the surface's points within
   /// `reach_in_edges` mean edges of v from the remesh is least, within the
   /// floors; sets `before` and `after` to that distance. A move that does
-  /// not lower it is none (Move::better() false).
-  Move least_deviation_move(Index v, double reach_in_edges, const QualityFloors& floors, double& before,
-                            double& after) {
+  /// not lower it is none.
+  std::optional<Move> least_deviation_move(Index v, double reach_in_edges, const QualityFloors& floors, double& before,
+                                           double& after) {
     const SurfacePoint origin = points_[static_cast<std::size_t>(v)];
-    Move move{origin, remesh_.vertices.row(v), 0, 0};
+    std::optional<Move> move;
     before = after = 0;
-    if (!prepare(v, reach_in_edges) || own_ == 0) return move;
-    RingJudge judge(remesh_, around_.of(v), v, bound_);
+    if (!prepare(v, reach_in_edges) || own_ == 0) return std::nullopt;
+    RingJudge judge(remesh_, around_.around(v), v, bound_);
     judge.watch(samples_, second_ring(v));
     const Ring start = judge.at(start_);
-    if (start.folded) return move;
+    if (start.folded) return std::nullopt;
     const auto [deviation, worst] = judge.farthest(start_, own_);
     before = after = deviation;
     const double min_angle = std::min(start.min_angle, floors.min_angle);
@@ -287,7 +264,7 @@ class VertexSearch {
       const double reached = judge.farthest(at->position, own_).first;
       if (!(reached < after) || !judge.keeps_close(at->position, slack)) return false;
       after = reached;
-      move = {at->point, at->position, 0, 1};
+      move = at;
       return true;
     };
     // First towards the farthest point (on the crease the remesh cuts off),
@@ -324,7 +301,7 @@ class VertexSearch {
     double edge = 0, radius = 0;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     int ends = 0;
-    for (const Index f : around_.of(v)) {
+    for (const Index f : around_.around(v)) {
       for (int k = 0; k < 3; ++k) {
         if (remesh_.faces(f, k) == v) continue;
         const Eigen::Vector3d end = remesh_.vertices.row(remesh_.faces(f, k));
@@ -343,7 +320,7 @@ class VertexSearch {
       // Its own first: nearer to it than to its neighbours.
       const auto own_end = std::partition(samples_.begin(), samples_.end(), [&](const Eigen::Vector3d& q) {
         const double d = (q - start_).squaredNorm();
-        for (const Index f : around_.of(v)) {
+        for (const Index f : around_.around(v)) {
           for (int k = 0; k < 3; ++k) {
             if ((Eigen::Vector3d(remesh_.vertices.row(remesh_.faces(f, k))) - q).squaredNorm() < d) return false;
           }
@@ -401,12 +378,12 @@ class VertexSearch {
   /// The triangles round v's neighbours that are not round v.
   std::span<const Index> second_ring(Index v) {
     second_ring_.clear();
-    const auto ring = around_.of(v);
+    const auto ring = around_.around(v);
     for (const Index f : ring) {
       for (int k = 0; k < 3; ++k) {
         const Index w = remesh_.faces(f, k);
         if (w == v) continue;
-        for (const Index g : around_.of(w)) {
+        for (const Index g : around_.around(w)) {
           if (std::find(ring.begin(), ring.end(), g) == ring.end() &&
               std::find(second_ring_.begin(), second_ring_.end(), g) == second_ring_.end()) {
             second_ring_.push_back(g);
@@ -462,7 +439,7 @@ class VertexSearch {
   const TriangleMesh& surface_;
   const voronoi::SurfaceTopology& topology_;
   const TriangleMesh& remesh_;
-  const FacesAround& around_;
+  const detail::VertexFans& around_;
   const std::vector<SurfacePoint>& points_;
   double bound_;
   double max_move_;
@@ -501,21 +478,12 @@ void check_points(const TriangleMesh& remesh, const std::vector<SurfacePoint>& p
   }
 }
 
-double mean_edge_length(const TriangleMesh& mesh) {
-  double sum = 0;
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    for (int k = 0; k < 3; ++k)
-      sum += (mesh.vertices.row(mesh.faces(f, k)) - mesh.vertices.row(mesh.faces(f, (k + 1) % 3))).norm();
-  }
-  return mesh.num_faces() > 0 ? sum / (3.0 * static_cast<double>(mesh.num_faces())) : 0.0;
-}
-
 /// Per vertex of `remesh`, the largest distance from the remesh of the
 /// surface's vertices (and face centres, where they are coarse) nearest to it (measured to its
 /// triangles and to those of the next nearest vertex, both within `radius`):
 /// the vertex the one-sided Hausdorff distance of each sample is charged to.
 std::vector<double> largest_deviations(const TriangleMesh& surface, const TriangleMesh& remesh,
-                                       const FacesAround& around, double radius) {
+                                       const detail::VertexFans& around, double radius) {
   std::vector<Eigen::Vector3d> positions(static_cast<std::size_t>(remesh.num_vertices()));
   for (Index v = 0; v < remesh.num_vertices(); ++v) positions[static_cast<std::size_t>(v)] = remesh.vertices.row(v);
   const detail::PointGrid grid(positions, radius);
@@ -553,7 +521,7 @@ std::vector<double> largest_deviations(const TriangleMesh& surface, const Triang
       double closest = std::numeric_limits<double>::infinity();
       for (const Index v : nearest) {
         if (v < 0) continue;
-        for (const Index f : around.of(v)) {
+        for (const Index f : around.around(v)) {
           closest = std::min(closest, squared_distance_to_triangle(x, remesh.vertices.row(remesh.faces(f, 0)),
                                                                    remesh.vertices.row(remesh.faces(f, 1)),
                                                                    remesh.vertices.row(remesh.faces(f, 2))));
@@ -592,7 +560,7 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
   };
   if (remesh.num_faces() == 0 || !(result.min_angle_before < options.min_angle)) return finish();
 
-  const FacesAround around = faces_around(remesh);
+  const detail::VertexFans around = detail::vertex_fans(remesh);
   const std::vector<std::uint8_t> may_move = movable_vertices(remesh, topology, points, fixed);
   const auto movable = [&](Index v) { return may_move[static_cast<std::size_t>(v)] != 0; };
   VertexSearch search(surface, topology, remesh, around, points, bound, options.max_move);
@@ -631,7 +599,7 @@ AngleSmoothingResult smooth_smallest_angles(const TriangleMesh& surface, const v
       moved[static_cast<std::size_t>(chosen_vertex)] = 1;
       any_moved = true;
       // Its neighbours' triangles changed: they may move again.
-      for (const Index g : around.of(chosen_vertex)) {
+      for (const Index g : around.around(chosen_vertex)) {
         for (int k = 0; k < 3; ++k) stuck[static_cast<std::size_t>(remesh.faces(g, k))] = 0;
       }
     }
@@ -663,9 +631,9 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     return result;
   };
-  const double edge = mean_edge_length(remesh);
+  const double edge = detail::mean_edge_length(remesh, detail::edge_sides(remesh));
   if (!(edge > 0)) return finish();
-  const FacesAround around = faces_around(remesh);
+  const detail::VertexFans around = detail::vertex_fans(remesh);
   std::vector<double> deviation = largest_deviations(surface, remesh, around, edge);
   result.deviation_before = result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
   if (options.share == 0 || options.rounds == 0 || options.max_move == 0) return finish();
@@ -696,10 +664,10 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
     bool any_moved = false;
     for (const auto& [negated, v] : worst) {
       double before = 0, after = 0;
-      const Move move = search.least_deviation_move(v, options.reach, floors, before, after);
-      if (!move.better()) continue;
-      remesh.vertices.row(v) = move.position.transpose();
-      points[static_cast<std::size_t>(v)] = move.point;
+      const std::optional<Move> move = search.least_deviation_move(v, options.reach, floors, before, after);
+      if (!move) continue;
+      remesh.vertices.row(v) = move->position.transpose();
+      points[static_cast<std::size_t>(v)] = move->point;
       moved[static_cast<std::size_t>(v)] = 1;
       any_moved = true;
     }

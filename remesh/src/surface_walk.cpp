@@ -124,21 +124,35 @@ SurfacePoint walk_on_surface(const TriangleMesh& mesh, const voronoi::SurfaceTop
   return stop();
 }
 
-VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology) {
+namespace {
+
+/// The fans round the vertices of the faces `kept` keeps.
+template <class Kept>
+VertexFans fans_of(const TriangleMesh& mesh, Kept kept) {
   VertexFans fans;
   fans.begin.assign(static_cast<std::size_t>(mesh.num_vertices()) + 1, 0);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (topology.face_edges[f][0] < 0) continue;
+    if (!kept(f)) continue;
     for (int c = 0; c < 3; ++c) ++fans.begin[mesh.faces(f, c) + 1];
   }
   std::partial_sum(fans.begin.begin(), fans.begin.end(), fans.begin.begin());
   fans.face.resize(static_cast<std::size_t>(fans.begin.back()));
   std::vector<Index> fill(fans.begin.begin(), fans.begin.end() - 1);
   for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (topology.face_edges[f][0] < 0) continue;
+    if (!kept(f)) continue;
     for (int c = 0; c < 3; ++c) fans.face[fill[mesh.faces(f, c)]++] = f;
   }
   return fans;
+}
+
+}  // namespace
+
+VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology) {
+  return fans_of(mesh, [&](Index f) { return topology.face_edges[f][0] >= 0; });
+}
+
+VertexFans vertex_fans(const TriangleMesh& mesh) {
+  return fans_of(mesh, [](Index) { return true; });
 }
 
 bool any_at_vertex(std::span<const SurfacePoint> sites) {

@@ -35,6 +35,8 @@ struct VertexFans {
   }
 };
 VertexFans vertex_fans(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology);
+/// The same for every face of `mesh` (a remesh, whose faces all have three corners).
+VertexFans vertex_fans(const TriangleMesh& mesh);
 
 /// Whether any of `sites` is at a vertex (SurfacePoint::Kind::vertex): only
 /// then are the fans round the vertices needed.
