@@ -18,9 +18,12 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -478,65 +481,122 @@ void check_points(const TriangleMesh& remesh, const std::vector<SurfacePoint>& p
   }
 }
 
-/// Per vertex of `remesh`, the largest distance from the remesh of the
-/// surface's vertices (and face centres, where they are coarse) nearest to it (measured to its
-/// triangles and to those of the next nearest vertex, both within `radius`):
-/// the vertex the one-sided Hausdorff distance of each sample is charged to.
-std::vector<double> largest_deviations(const TriangleMesh& surface, const TriangleMesh& remesh,
-                                       const detail::VertexFans& around, double radius) {
-  std::vector<Eigen::Vector3d> positions(static_cast<std::size_t>(remesh.num_vertices()));
-  for (Index v = 0; v < remesh.num_vertices(); ++v) positions[static_cast<std::size_t>(v)] = remesh.vertices.row(v);
-  const detail::PointGrid grid(positions, radius);
-  // The surface's vertices, and its face centres too where its vertices are
-  // fewer than eight per remesh vertex.
-  const bool centres = surface.num_vertices() < 8 * remesh.num_vertices();
-  const Index num_samples = surface.num_vertices() + (centres ? surface.num_faces() : 0);
-  const auto sample = [&](Index i) -> Eigen::Vector3d {
-    if (i < surface.num_vertices()) return surface.vertices.row(i);
-    const Index f = i - surface.num_vertices();
-    return (surface.vertices.row(surface.faces(f, 0)) + surface.vertices.row(surface.faces(f, 1)) +
-            surface.vertices.row(surface.faces(f, 2)))
+/// The one-sided distances from the remesh of the surface's vertices (and of
+/// its face centres, where its vertices are fewer than eight per remesh
+/// vertex): each sample is charged to its nearest remesh vertex and measured
+/// to its triangles and to those of the next nearest vertex, both within
+/// `radius`. After moves, only the samples they can have changed are
+/// measured again, the same as measuring all.
+class DeviationRanking {
+ public:
+  DeviationRanking(const TriangleMesh& surface, const TriangleMesh& remesh, const detail::VertexFans& around,
+                   double radius)
+      : surface_(surface),
+        remesh_(remesh),
+        around_(around),
+        radius_(radius),
+        centres_(surface.num_vertices() < 8 * remesh.num_vertices()),
+        nearest_(static_cast<std::size_t>(surface.num_vertices() + (centres_ ? surface.num_faces() : 0)), {-1, -1}),
+        deviation_(nearest_.size(), 0.0) {
+    std::vector<Index> all(nearest_.size());
+    std::iota(all.begin(), all.end(), Index{0});
+    measure(all);
+  }
+
+  /// After the vertices `moved` moved: the samples charged to them or to
+  /// their neighbours, or that they may have come within reach of (a sample
+  /// within the radius of a vertex's new place is charged to a vertex within
+  /// twice the radius of it), and those charged to none.
+  void update(std::span<const Index> moved) {
+    if (moved.empty()) return;
+    const detail::PointGrid grid = vertex_grid();
+    std::vector<std::uint8_t> changed(static_cast<std::size_t>(remesh_.num_vertices()), 0);
+    for (const Index m : moved) {
+      for (const Index f : around_.around(m)) {
+        for (int k = 0; k < 3; ++k) changed[static_cast<std::size_t>(remesh_.faces(f, k))] = 1;
+      }
+      const Eigen::Vector3d at = remesh_.vertices.row(m);
+      grid.for_each_within(at, 2 * radius_, [&](Index slot, double) { changed[grid.original(slot)] = 1; });
+    }
+    std::vector<Index> again;
+    for (std::size_t i = 0; i < nearest_.size(); ++i) {
+      const auto [first, second] = nearest_[i];
+      if (first < 0 || changed[first] || (second >= 0 && changed[second])) again.push_back(static_cast<Index>(i));
+    }
+    measure(again, grid);
+  }
+
+  /// Per remesh vertex, the largest distance of the samples charged to it.
+  std::vector<double> per_vertex() const {
+    std::vector<double> largest(static_cast<std::size_t>(remesh_.num_vertices()), 0.0);
+    for (std::size_t i = 0; i < nearest_.size(); ++i) {
+      if (const Index v = nearest_[i][0]; v >= 0) largest[v] = std::max(largest[v], deviation_[i]);
+    }
+    return largest;
+  }
+
+ private:
+  detail::PointGrid vertex_grid() const {
+    std::vector<Eigen::Vector3d> positions(static_cast<std::size_t>(remesh_.num_vertices()));
+    for (Index v = 0; v < remesh_.num_vertices(); ++v) positions[static_cast<std::size_t>(v)] = remesh_.vertices.row(v);
+    return detail::PointGrid(positions, radius_);
+  }
+
+  Eigen::Vector3d sample(Index i) const {
+    if (i < surface_.num_vertices()) return surface_.vertices.row(i);
+    const Index f = i - surface_.num_vertices();
+    return (surface_.vertices.row(surface_.faces(f, 0)) + surface_.vertices.row(surface_.faces(f, 1)) +
+            surface_.vertices.row(surface_.faces(f, 2)))
                .transpose() /
            3;
-  };
-  // Per sample, its vertex and distance (on all threads), then the largest per vertex.
-  std::vector<Index> charged(static_cast<std::size_t>(num_samples), -1);
-  std::vector<double> deviation(static_cast<std::size_t>(num_samples), 0.0);
-  tbb::parallel_for(tbb::blocked_range<Index>(0, num_samples, 4096), [&](const tbb::blocked_range<Index>& range) {
-    for (Index i = range.begin(); i != range.end(); ++i) {
-      const Eigen::Vector3d x = sample(i);
-      std::array<Index, 2> nearest{-1, -1};
-      std::array<double, 2> squared{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-      grid.for_each_within(x, radius, [&](Index slot, double d2) {
-        const Index v = grid.original(slot);
-        if (d2 < squared[0] || (d2 == squared[0] && v < nearest[0])) {
-          nearest = {v, nearest[0]};
-          squared = {d2, squared[0]};
-        } else if (d2 < squared[1] || (d2 == squared[1] && v < nearest[1])) {
-          nearest[1] = v;
-          squared[1] = d2;
-        }
-      });
-      if (nearest[0] < 0) continue;
-      double closest = std::numeric_limits<double>::infinity();
-      for (const Index v : nearest) {
-        if (v < 0) continue;
-        for (const Index f : around.around(v)) {
-          closest = std::min(closest, squared_distance_to_triangle(x, remesh.vertices.row(remesh.faces(f, 0)),
-                                                                   remesh.vertices.row(remesh.faces(f, 1)),
-                                                                   remesh.vertices.row(remesh.faces(f, 2))));
-        }
-      }
-      charged[static_cast<std::size_t>(i)] = nearest[0];
-      deviation[static_cast<std::size_t>(i)] = std::sqrt(closest);
-    }
-  });
-  std::vector<double> largest(positions.size(), 0.0);
-  for (std::size_t i = 0; i < charged.size(); ++i) {
-    if (charged[i] >= 0) largest[charged[i]] = std::max(largest[charged[i]], deviation[i]);
   }
-  return largest;
-}
+
+  void measure(std::span<const Index> samples) { measure(samples, vertex_grid()); }
+
+  /// The two nearest vertices and the distance of each of `samples`, on all threads.
+  void measure(std::span<const Index> samples, const detail::PointGrid& grid) {
+    const auto count = static_cast<Index>(samples.size());
+    tbb::parallel_for(tbb::blocked_range<Index>(0, count, 4096), [&](const tbb::blocked_range<Index>& range) {
+      for (Index k = range.begin(); k != range.end(); ++k) {
+        const auto i = static_cast<std::size_t>(samples[static_cast<std::size_t>(k)]);
+        const Eigen::Vector3d x = sample(static_cast<Index>(i));
+        std::array<Index, 2> nearest{-1, -1};
+        std::array<double, 2> squared{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        grid.for_each_within(x, radius_, [&](Index slot, double d2) {
+          const Index v = grid.original(slot);
+          if (d2 < squared[0] || (d2 == squared[0] && v < nearest[0])) {
+            nearest = {v, nearest[0]};
+            squared = {d2, squared[0]};
+          } else if (d2 < squared[1] || (d2 == squared[1] && v < nearest[1])) {
+            nearest[1] = v;
+            squared[1] = d2;
+          }
+        });
+        nearest_[i] = nearest;
+        deviation_[i] = 0;
+        if (nearest[0] < 0) continue;
+        double closest = std::numeric_limits<double>::infinity();
+        for (const Index v : nearest) {
+          if (v < 0) continue;
+          for (const Index f : around_.around(v)) {
+            closest = std::min(closest, squared_distance_to_triangle(x, remesh_.vertices.row(remesh_.faces(f, 0)),
+                                                                     remesh_.vertices.row(remesh_.faces(f, 1)),
+                                                                     remesh_.vertices.row(remesh_.faces(f, 2))));
+          }
+        }
+        deviation_[i] = std::sqrt(closest);
+      }
+    });
+  }
+
+  const TriangleMesh& surface_;
+  const TriangleMesh& remesh_;  // read as it is moved
+  const detail::VertexFans& around_;
+  double radius_;
+  bool centres_;
+  std::vector<std::array<Index, 2>> nearest_;  // per sample: its vertex, the next nearest (-1: none within the radius)
+  std::vector<double> deviation_;
+};
 
 }  // namespace
 
@@ -634,7 +694,8 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
   const double edge = detail::mean_edge_length(remesh, detail::edge_sides(remesh));
   if (!(edge > 0)) return finish();
   const detail::VertexFans around = detail::vertex_fans(remesh);
-  std::vector<double> deviation = largest_deviations(surface, remesh, around, edge);
+  DeviationRanking ranking(surface, remesh, around, edge);
+  std::vector<double> deviation = ranking.per_vertex();
   result.deviation_before = result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
   if (options.share == 0 || options.rounds == 0 || options.max_move == 0) return finish();
   // The floors: the remesh's own smallest angle (or the bound, if lower) and worst Q.
@@ -651,9 +712,14 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
                       options.max_move);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(remesh.num_vertices()), 0);
   std::vector<std::pair<double, Index>>
-      worst;  // the vertices to move: their deviation (negated, largest first), vertex
+      worst;                          // the vertices to move: their deviation (negated, largest first), vertex
+  std::vector<Index> moved_in_round;  // since the ranking was last brought up to date
   for (int round = 0; round < options.rounds; ++round) {
-    if (round > 0) deviation = largest_deviations(surface, remesh, around, edge);
+    if (round > 0) {
+      ranking.update(moved_in_round);
+      moved_in_round.clear();
+      deviation = ranking.per_vertex();
+    }
     const double largest = *std::max_element(deviation.begin(), deviation.end());
     worst.clear();
     for (Index v = 0; v < remesh.num_vertices(); ++v) {
@@ -669,11 +735,13 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
       remesh.vertices.row(v) = move->position.transpose();
       points[static_cast<std::size_t>(v)] = move->point;
       moved[static_cast<std::size_t>(v)] = 1;
+      moved_in_round.push_back(v);
       any_moved = true;
     }
     if (!any_moved) break;
   }
-  deviation = largest_deviations(surface, remesh, around, edge);
+  ranking.update(moved_in_round);
+  deviation = ranking.per_vertex();
   result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
   result.vertices_moved = std::count(moved.begin(), moved.end(), std::uint8_t{1});
   return finish();
