@@ -481,24 +481,31 @@ void check_points(const TriangleMesh& remesh, const std::vector<SurfacePoint>& p
   }
 }
 
-/// The one-sided distances from the remesh of the surface's vertices (and of
-/// its face centres, where its vertices are fewer than eight per remesh
-/// vertex): each sample is charged to its nearest remesh vertex and measured
-/// to its triangles and to those of the next nearest vertex, both within
-/// `radius`. After moves, only the samples they can have changed are
-/// measured again, the same as measuring all.
+/// The one-sided distances from the remesh of the surface's vertices (those
+/// of its faces: a scan's unreferenced vertices are not on it) and of its
+/// face centres, where those vertices are fewer than eight per remesh vertex:
+/// each sample is charged to its nearest remesh vertex and measured to its
+/// triangles and to those of the next nearest vertex, both within `radius`.
+/// After moves, only the samples they can have changed are measured again,
+/// the same as measuring all.
 class DeviationRanking {
  public:
   DeviationRanking(const TriangleMesh& surface, const TriangleMesh& remesh, const detail::VertexFans& around,
                    double radius)
-      : surface_(surface),
-        remesh_(remesh),
-        around_(around),
-        radius_(radius),
-        centres_(surface.num_vertices() < 8 * remesh.num_vertices()),
-        nearest_(static_cast<std::size_t>(surface.num_vertices() + (centres_ ? surface.num_faces() : 0)), {-1, -1}),
-        deviation_(nearest_.size(), 0.0) {
-    std::vector<Index> all(nearest_.size());
+      : surface_(surface), remesh_(remesh), around_(around), radius_(radius) {
+    std::vector<std::uint8_t> referenced(static_cast<std::size_t>(surface.num_vertices()), 0);
+    for (Index f = 0; f < surface.num_faces(); ++f) {
+      for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(surface.faces(f, k))] = 1;
+    }
+    for (Index v = 0; v < surface.num_vertices(); ++v) {
+      if (referenced[static_cast<std::size_t>(v)]) samples_.push_back(v);
+    }
+    if (static_cast<Index>(samples_.size()) < 8 * remesh.num_vertices()) {
+      for (Index f = 0; f < surface.num_faces(); ++f) samples_.push_back(surface.num_vertices() + f);
+    }
+    nearest_.assign(samples_.size(), {-1, -1});
+    deviation_.assign(samples_.size(), 0.0);
+    std::vector<Index> all(samples_.size());
     std::iota(all.begin(), all.end(), Index{0});
     measure(all);
   }
@@ -526,6 +533,37 @@ class DeviationRanking {
     measure(again, grid);
   }
 
+  /// The largest distance of the samples from the remesh, to any of its
+  /// triangles. A sample's measure bounds its distance from above (its
+  /// triangles are some of the remesh's), so the samples are measured
+  /// exactly from the largest bound down, until the next bound is below the
+  /// largest distance found. Samples charged to no vertex are measured too.
+  double largest_distance() const {
+    const detail::PointGrid grid = vertex_grid();
+    double longest_edge = 0;
+    for (Index f = 0; f < remesh_.num_faces(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        longest_edge = std::max(
+            longest_edge,
+            (remesh_.vertices.row(remesh_.faces(f, k)) - remesh_.vertices.row(remesh_.faces(f, (k + 1) % 3))).norm());
+      }
+    }
+    std::vector<std::pair<double, Index>> bounds(nearest_.size());
+    for (std::size_t i = 0; i < bounds.size(); ++i) {
+      bounds[i] = {nearest_[i][0] >= 0 ? deviation_[i] : std::numeric_limits<double>::infinity(),
+                   static_cast<Index>(i)};
+    }
+    std::make_heap(bounds.begin(), bounds.end());
+    double largest = 0;
+    while (!bounds.empty() && bounds.front().first > largest) {
+      std::pop_heap(bounds.begin(), bounds.end());
+      const auto [bound, i] = bounds.back();
+      bounds.pop_back();
+      largest = std::max(largest, distance_to_remesh(sample(i), bound, grid, longest_edge));
+    }
+    return largest;
+  }
+
   /// Per remesh vertex, the largest distance of the samples charged to it.
   std::vector<double> per_vertex() const {
     std::vector<double> largest(static_cast<std::size_t>(remesh_.num_vertices()), 0.0);
@@ -542,7 +580,30 @@ class DeviationRanking {
     return detail::PointGrid(positions, radius_);
   }
 
-  Eigen::Vector3d sample(Index i) const {
+  /// The distance of x from the remesh's triangles, at most `bound` (or
+  /// infinite): a triangle within it of x has its corners within it and the
+  /// longest edge, among the vertices `grid` holds.
+  double distance_to_remesh(const Eigen::Vector3d& x, double bound, const detail::PointGrid& grid,
+                            double longest_edge) const {
+    const auto to_face = [&](Index f) {
+      return squared_distance_to_triangle(x, remesh_.vertices.row(remesh_.faces(f, 0)),
+                                          remesh_.vertices.row(remesh_.faces(f, 1)),
+                                          remesh_.vertices.row(remesh_.faces(f, 2)));
+    };
+    double closest = std::numeric_limits<double>::infinity();
+    if (!std::isfinite(bound)) {
+      for (Index f = 0; f < remesh_.num_faces(); ++f) closest = std::min(closest, to_face(f));
+      return std::sqrt(closest);
+    }
+    grid.for_each_within(x, bound + longest_edge, [&](Index slot, double) {
+      for (const Index f : around_.around(grid.original(slot))) closest = std::min(closest, to_face(f));
+    });
+    return std::sqrt(closest);
+  }
+
+  /// The position of the k-th sample.
+  Eigen::Vector3d sample(Index k) const {
+    const Index i = samples_[static_cast<std::size_t>(k)];
     if (i < surface_.num_vertices()) return surface_.vertices.row(i);
     const Index f = i - surface_.num_vertices();
     return (surface_.vertices.row(surface_.faces(f, 0)) + surface_.vertices.row(surface_.faces(f, 1)) +
@@ -593,7 +654,7 @@ class DeviationRanking {
   const TriangleMesh& remesh_;  // read as it is moved
   const detail::VertexFans& around_;
   double radius_;
-  bool centres_;
+  std::vector<Index> samples_;                 // a surface vertex v, or face f as num_vertices() + f (its centre)
   std::vector<std::array<Index, 2>> nearest_;  // per sample: its vertex, the next nearest (-1: none within the radius)
   std::vector<double> deviation_;
 };
@@ -696,7 +757,7 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
   const detail::VertexFans around = detail::vertex_fans(remesh);
   DeviationRanking ranking(surface, remesh, around, edge);
   std::vector<double> deviation = ranking.per_vertex();
-  result.deviation_before = result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
+  result.deviation_before = result.deviation_after = ranking.largest_distance();
   if (options.share == 0 || options.rounds == 0 || options.max_move == 0) return finish();
   // The floors: the remesh's own smallest angle (or the bound, if lower) and worst Q.
   QualityFloors floors{std::min(smallest_angle(remesh), options.min_angle * kRadiansPerDegree), 1.0,
@@ -741,8 +802,7 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
     if (!any_moved) break;
   }
   ranking.update(moved_in_round);
-  deviation = ranking.per_vertex();
-  result.deviation_after = *std::max_element(deviation.begin(), deviation.end());
+  result.deviation_after = ranking.largest_distance();
   result.vertices_moved = std::count(moved.begin(), moved.end(), std::uint8_t{1});
   return finish();
 }

@@ -378,6 +378,52 @@ TEST(DeviationSmoothing, VerticesBesideARidgeMoveOntoItWithinTheQualityFloors) {
   }
 }
 
+/// By brute force: the largest distance from any triangle of `remesh` of the
+/// vertices of `surface`'s faces and of its face centres.
+double largest_distance_of_corners_and_centres(const TriangleMesh& surface, const TriangleMesh& remesh) {
+  const auto from_remesh = [&](const Eigen::Vector3d& x) {
+    double closest = std::numeric_limits<double>::infinity();
+    for (Index f = 0; f < remesh.num_faces(); ++f) {
+      closest = std::min(closest, squared_distance_to_triangle(x, remesh.vertices.row(remesh.faces(f, 0)),
+                                                               remesh.vertices.row(remesh.faces(f, 1)),
+                                                               remesh.vertices.row(remesh.faces(f, 2))));
+    }
+    return std::sqrt(closest);
+  };
+  double largest = 0;
+  for (Index f = 0; f < surface.num_faces(); ++f) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d corner = surface.vertices.row(surface.faces(f, k));
+      largest = std::max(largest, from_remesh(corner));
+      centre += corner / 3;
+    }
+    largest = std::max(largest, from_remesh(centre));
+  }
+  return largest;
+}
+
+TEST(DeviationSmoothing, TheDistancesReportedAreTheExactOnesAndLeaveOutUnreferencedVertices) {
+  RoofCase c = roof_case();
+  // A scan's stray vertex, in no face, a little above the roof beside a remesh vertex.
+  c.surface.vertices.conservativeResize(c.surface.num_vertices() + 1, 3);
+  c.surface.vertices.row(c.surface.num_vertices() - 1) = Eigen::RowVector3d(0.5, 0.334, RoofCase::roof(0.334) + 0.15);
+  const voronoi::GeodesicSurface prepared(c.surface);
+  // 290 surface vertices, fewer than 8 per remesh vertex (49): the face centres count too.
+  const double exact_before = largest_distance_of_corners_and_centres(c.surface, c.remesh.mesh);
+  ASSERT_LT(exact_before, 0.1);
+  EXPECT_NEAR(remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points, {},
+                                                {.rounds = 0})
+                  .deviation_before,
+              exact_before, 1e-12);
+  const remesh::DeviationSmoothingResult result =
+      remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
+  EXPECT_GE(result.vertices_moved, 1);
+  EXPECT_NEAR(result.deviation_before, exact_before, 1e-12);
+  EXPECT_NEAR(result.deviation_after, largest_distance_of_corners_and_centres(c.surface, c.remesh.mesh), 1e-12);
+  EXPECT_LT(result.deviation_after, exact_before);
+}
+
 TEST(DeviationSmoothing, FixedVerticesStayAndARemeshOnTheSurfaceIsLeftAsItIs) {
   RoofCase c = roof_case();
   const voronoi::GeodesicSurface prepared(c.surface);

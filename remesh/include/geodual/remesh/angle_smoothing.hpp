@@ -77,8 +77,9 @@ struct DeviationSmoothingOptions {
 
 struct DeviationSmoothingResult {
   std::int64_t vertices_moved = 0;
-  /// The largest distance of the surface's vertices and face centres from
-  /// the remesh, before and after, in the surface's units.
+  /// The largest distance from the remesh's triangles of the surface's
+  /// vertices (those of its faces) and, where those are fewer than eight per
+  /// remesh vertex, its face centres, before and after, in the surface's units.
   double deviation_before = 0;
   double deviation_after = 0;
   double seconds = 0;
