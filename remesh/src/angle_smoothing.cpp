@@ -759,18 +759,28 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
   std::vector<double> deviation = ranking.per_vertex();
   result.deviation_before = result.deviation_after = ranking.largest_distance();
   if (options.share == 0 || options.rounds == 0 || options.max_move == 0) return finish();
-  // The floors: the remesh's own smallest angle (or the bound, if lower) and worst Q.
-  QualityFloors floors{std::min(smallest_angle(remesh), options.min_angle * kRadiansPerDegree), 1.0,
-                       options.max_q_loss};
+  // The floors: the remesh's smallest angle (or the bound, if lower), and
+  // the worst Q of the triangles with no angle below the bound, which the
+  // angle smoothing (next in the pipeline) leaves as they are, so that the
+  // remesh's Qmin at the end is not lowered (without such triangles, the
+  // remesh's worst).
+  const double bound = options.min_angle * kRadiansPerDegree;
+  double worst_q = 1, worst_kept_q = 1;
+  bool any_kept = false;
   for (Index f = 0; f < remesh.num_faces(); ++f) {
-    floors.min_q = std::min(
-        floors.min_q, triangle_shape(remesh.vertices.row(remesh.faces(f, 0)), remesh.vertices.row(remesh.faces(f, 1)),
-                                     remesh.vertices.row(remesh.faces(f, 2)))
-                          .q);
+    const double q = triangle_shape(remesh.vertices.row(remesh.faces(f, 0)), remesh.vertices.row(remesh.faces(f, 1)),
+                                    remesh.vertices.row(remesh.faces(f, 2)))
+                         .q;
+    worst_q = std::min(worst_q, q);
+    if (smallest_angle(remesh, f) >= bound) {
+      worst_kept_q = std::min(worst_kept_q, q);
+      any_kept = true;
+    }
   }
+  const QualityFloors floors{std::min(smallest_angle(remesh), bound), any_kept ? worst_kept_q : worst_q,
+                             options.max_q_loss};
   const std::vector<std::uint8_t> movable = movable_vertices(remesh, topology, points, fixed);
-  VertexSearch search(surface, topology, remesh, around, points, options.min_angle * kRadiansPerDegree,
-                      options.max_move);
+  VertexSearch search(surface, topology, remesh, around, points, bound, options.max_move);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(remesh.num_vertices()), 0);
   std::vector<std::pair<double, Index>>
       worst;                          // the vertices to move: their deviation (negated, largest first), vertex

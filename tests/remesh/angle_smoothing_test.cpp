@@ -334,9 +334,10 @@ RoofCase roof_case() {
     c.surface.vertices(v, 2) = RoofCase::roof(c.surface.vertices(v, 1));
   for (Index v = 0; v < c.remesh.mesh.num_vertices(); ++v) {
     if (v / 7 == 3) c.remesh.mesh.vertices(v, 1) = 0.56;
-    // A vertex on a flat side pushed aside, so that the remesh's worst
-    // triangles (which the moves may not go below) are there.
-    if (v == 8) c.remesh.mesh.vertices.row(v) += Eigen::RowVector3d(0.06, 0.03, 0);
+    // A vertex of the boundary on a flat side pushed in, so that the
+    // remesh's worst triangles (Q 0.50, no angle below 31 degrees: the floor
+    // of the moves' Q) are there.
+    if (v == 44) c.remesh.mesh.vertices.row(v) += Eigen::RowVector3d(0.01, -0.045, 0);
     c.remesh.points[static_cast<std::size_t>(v)] =
         point_on_plane(test::unit_square(16), c.remesh.mesh.vertices(v, 0), c.remesh.mesh.vertices(v, 1));
     c.remesh.mesh.vertices.row(v) = c.remesh.points[static_cast<std::size_t>(v)].position(c.surface).transpose();
@@ -376,6 +377,49 @@ TEST(DeviationSmoothing, VerticesBesideARidgeMoveOntoItWithinTheQualityFloors) {
   for (const Index u : {Index{0}, Index{6}, Index{42}, Index{48}}) {
     EXPECT_EQ(c.remesh.mesh.vertices.row(u), before.vertices.row(u));
   }
+}
+
+TEST(DeviationSmoothing, MovesKeepToTheShapeOfTheTrianglesTheAngleSmoothingLeavesAlone) {
+  RoofCase c = roof_case();
+  // A sliver on a flat side, far from the ridge: the remesh's worst triangle,
+  // which the angle smoothing would mend, is no floor for the moves.
+  const Index pushed = 40;
+  c.remesh.points[pushed] = point_on_plane(test::unit_square(16), c.remesh.mesh.vertices(pushed, 0) + 0.12,
+                                           c.remesh.mesh.vertices(pushed, 1) + 0.1);
+  c.remesh.mesh.vertices.row(pushed) = c.remesh.points[pushed].position(c.surface).transpose();
+  const voronoi::GeodesicSurface prepared(c.surface);
+  const TriangleMesh before = c.remesh.mesh;
+  const auto shape = [](const TriangleMesh& mesh, Index f) {
+    return triangle_shape(mesh.vertices.row(mesh.faces(f, 0)), mesh.vertices.row(mesh.faces(f, 1)),
+                          mesh.vertices.row(mesh.faces(f, 2)));
+  };
+  double kept_worst_q = 1;  // of the triangles with no angle below 30 degrees
+  for (Index f = 0; f < before.num_faces(); ++f) {
+    const TriangleShape t = shape(before, f);
+    if (t.min_angle() * 180 / std::numbers::pi >= 30) kept_worst_q = std::min(kept_worst_q, t.q);
+  }
+  ASSERT_LT(smallest_angle_degrees(before), 20);
+  ASSERT_LT(worst_q(before), kept_worst_q - 0.1);
+  const remesh::DeviationSmoothingResult result =
+      remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
+  ASSERT_GE(result.vertices_moved, 1);
+  // Of the triangles the moves changed: none worse than the worst kept one
+  // or than the worst of them was, and no angle below 30 degrees or below
+  // the smallest of theirs.
+  double q_before = 1, q_after = 1, angle_before = 180, angle_after = 180;
+  for (Index f = 0; f < before.num_faces(); ++f) {
+    bool changed = false;
+    for (int k = 0; k < 3; ++k)
+      changed = changed || before.vertices.row(before.faces(f, k)) != c.remesh.mesh.vertices.row(before.faces(f, k));
+    if (!changed) continue;
+    q_before = std::min(q_before, shape(before, f).q);
+    q_after = std::min(q_after, shape(c.remesh.mesh, f).q);
+    angle_before = std::min(angle_before, shape(before, f).min_angle() * 180 / std::numbers::pi);
+    angle_after = std::min(angle_after, shape(c.remesh.mesh, f).min_angle() * 180 / std::numbers::pi);
+  }
+  EXPECT_GE(q_after, std::min(q_before, kept_worst_q) - 1e-12);
+  EXPECT_GE(angle_after, std::min(angle_before, 30.0) - 1e-9);
+  EXPECT_LT(result.deviation_after, result.deviation_before);
 }
 
 /// By brute force: the largest distance from any triangle of `remesh` of the

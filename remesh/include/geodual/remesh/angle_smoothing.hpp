@@ -92,7 +92,9 @@ struct DeviationSmoothingResult {
 /// smooth_smallest_angles, on a min-max objective. A move is kept only where
 /// that distance falls, no triangle turns over, no angle falls below
 /// options.min_angle or the remesh's smallest (whichever is less), no Q below
-/// the remesh's worst, the triangles' mean Q by at most options.max_q_loss,
+/// the worst of the triangles with no angle below options.min_angle (those
+/// smooth_smallest_angles leaves alone; the remesh's worst if there are none),
+/// the triangles' mean Q by at most options.max_q_loss,
 /// and no point of the surface under them ends up farther from them by more
 /// than 3 % of an edge. The same vertices stay as in smooth_smallest_angles.
 /// Deterministic. \throw geodual::UsageError for options out of range or
