@@ -765,20 +765,20 @@ DeviationSmoothingResult smooth_largest_deviations(const TriangleMesh& surface,
   // remesh's Qmin at the end is not lowered (without such triangles, the
   // remesh's worst).
   const double bound = options.min_angle * kRadiansPerDegree;
-  double worst_q = 1, worst_kept_q = 1;
+  double smallest = std::numbers::pi, worst_q = 1, worst_kept_q = 1;
   bool any_kept = false;
   for (Index f = 0; f < remesh.num_faces(); ++f) {
-    const double q = triangle_shape(remesh.vertices.row(remesh.faces(f, 0)), remesh.vertices.row(remesh.faces(f, 1)),
-                                    remesh.vertices.row(remesh.faces(f, 2)))
-                         .q;
-    worst_q = std::min(worst_q, q);
-    if (smallest_angle(remesh, f) >= bound) {
-      worst_kept_q = std::min(worst_kept_q, q);
+    const TriangleShape shape =
+        triangle_shape(remesh.vertices.row(remesh.faces(f, 0)), remesh.vertices.row(remesh.faces(f, 1)),
+                       remesh.vertices.row(remesh.faces(f, 2)));
+    smallest = std::min(smallest, shape.min_angle());
+    worst_q = std::min(worst_q, shape.q);
+    if (shape.min_angle() >= bound) {
+      worst_kept_q = std::min(worst_kept_q, shape.q);
       any_kept = true;
     }
   }
-  const QualityFloors floors{std::min(smallest_angle(remesh), bound), any_kept ? worst_kept_q : worst_q,
-                             options.max_q_loss};
+  const QualityFloors floors{std::min(smallest, bound), any_kept ? worst_kept_q : worst_q, options.max_q_loss};
   const std::vector<std::uint8_t> movable = movable_vertices(remesh, topology, points, fixed);
   VertexSearch search(surface, topology, remesh, around, points, bound, options.max_move);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(remesh.num_vertices()), 0);
