@@ -1,6 +1,9 @@
 // The progress line appears on a terminal and nowhere else, --threads does
-// not change the result, and Ctrl-C (SIGINT) exits 3 within a second in every
-// command, leaving no file.
+// not change the result, and Ctrl-C (SIGINT) stops every command with exit
+// status 3 and "cancelled", leaving no file. No test here asserts how long
+// that takes (a loaded machine must not turn the suite red): a run that
+// ignored the signal would finish with status 0 and its result, or be killed
+// by the safety net (status 137), and each assertion below tells those apart.
 
 #include "cli_runner.hpp"
 #include "scratch_folder.hpp"
@@ -53,17 +56,17 @@ TriangleMesh wavy_grid(int n, double phase) {
 struct InterruptedRun {
   int status = 0;
   std::string output;
-  double seconds_after_signal = 0;  ///< from SIGINT to exit
 };
 
-/// Runs the tool with `arguments`, sends SIGINT after `delay` seconds and
-/// SIGKILL 3 s later if it is still running.
+/// Seconds after SIGINT at which a run still going is killed (SIGKILL, status
+/// 137): a guard against a hang, not a bound the tests hold the run to.
+constexpr int kKillAfter = 60;
+
+/// Runs the tool with `arguments` and sends SIGINT after `delay` seconds.
 InterruptedRun interrupt_after(double delay, const std::string& arguments) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto [status, output] = shell("timeout --preserve-status -k 3 -s INT " + std::to_string(delay) + " " +
-                                      std::string(GEODUAL_CLI) + " " + arguments);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {status, output, seconds - delay};
+  const auto [status, output] = shell("timeout --preserve-status -k " + std::to_string(kKillAfter) + " -s INT " +
+                                      std::to_string(delay) + " " + std::string(GEODUAL_CLI) + " " + arguments);
+  return {status, output};
 }
 
 /// Runs the CLI with `arguments` in the background and interrupts it
@@ -74,12 +77,11 @@ InterruptedRun interrupt_after(double delay, const std::string& arguments) {
 InterruptedRun interrupt_after_file(const std::filesystem::path& file, double delay, const std::string& arguments) {
   const std::string script = std::string(GEODUAL_CLI) + " " + arguments + " & pid=$!; while [ ! -e '" + file.string() +
                              "' ] && kill -0 $pid 2>/dev/null; do sleep 0.02; done; sleep " + std::to_string(delay) +
-                             "; sent=$(date +%s.%N); kill -INT $pid 2>/dev/null; wait $pid; status=$?; "
-                             "echo \"signal-to-exit $(awk \"BEGIN { print $(date +%s.%N) - $sent }\")\"; exit $status";
+                             "; kill -INT $pid 2>/dev/null; (sleep " + std::to_string(kKillAfter) +
+                             "; kill -KILL $pid 2>/dev/null) & guard=$!; wait $pid; status=$?; "
+                             "kill $guard 2>/dev/null; exit $status";
   const auto [status, output] = shell("sh -c '" + script + "'");
-  const std::size_t at = output.rfind("signal-to-exit ");
-  const double seconds = at == std::string::npos ? 1e9 : std::stod(output.substr(at + 15));
-  return {status, output, seconds};
+  return {status, output};
 }
 
 /// Meshes written once for all the tests here: a large one of a million
@@ -108,23 +110,21 @@ class LargeMeshes : public ::testing::Test {
 
 ScratchFolder* LargeMeshes::folder_ = nullptr;
 
-TEST_F(LargeMeshes, CtrlCStopsStatsWithinASecond) {
+TEST_F(LargeMeshes, CtrlCStopsStats) {
   // 1.5 s in, while it measures the 2 x 10^8 sample distances (minutes).
   const InterruptedRun run =
       interrupt_after(1.5, "stats " + reference() + " " + candidate() + " --samples 100000000 --json");
   EXPECT_EQ(run.status, 3) << run.output;
-  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
   EXPECT_NE(run.output.find("cancelled"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("hausdorff"), std::string::npos) << run.output;  // no result printed
 }
 
-TEST_F(LargeMeshes, CtrlCStopsInfoWithinASecond) {
+TEST_F(LargeMeshes, CtrlCStopsInfo) {
   const auto preview = output_folder_.path() / "preview.png";
   // 0.3 s in, while it reads or analyses the mesh (each takes longer), before
   // the preview.
   const InterruptedRun run = interrupt_after(0.3, "info " + large() + " --json --preview " + preview.string());
   EXPECT_EQ(run.status, 3) << run.output;
-  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
   EXPECT_EQ(run.output.find("faces"), std::string::npos) << run.output;  // no result printed
   EXPECT_FALSE(std::filesystem::exists(preview));
 }
@@ -138,7 +138,6 @@ TEST_F(LargeMeshes, CtrlCStopsABatchKeepingTheFinishedScansOnly) {
   const InterruptedRun run =
       interrupt_after_file(folder / "woody.glb", 1.0, "remesh " + small + " " + large() + options);
   EXPECT_EQ(run.status, 3) << run.output;
-  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
   EXPECT_NE(run.output.find("cancelled"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("scans remeshed"), std::string::npos) << run.output;  // no summary
   // The finished scan's output and nothing else (no temporary file either).
@@ -146,7 +145,7 @@ TEST_F(LargeMeshes, CtrlCStopsABatchKeepingTheFinishedScansOnly) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()), 1);
 }
 
-TEST(Interrupt, CtrlCStopsTheStatisticsStageOfRemeshWithinASecond) {
+TEST(Interrupt, CtrlCStopsTheStatisticsStageOfRemesh) {
   ScratchFolder folder;
   const auto out = folder.path() / "out.ply";
   const std::string remesh = std::string("remesh ") + scan + " --sites 300 --lloyd 0 -o " + out.string();
@@ -158,7 +157,6 @@ TEST(Interrupt, CtrlCStopsTheStatisticsStageOfRemeshWithinASecond) {
   std::filesystem::remove(out);
   const InterruptedRun run = interrupt_after(before_statistics + 1, remesh + " --samples 1000000000");
   EXPECT_EQ(run.status, 3) << run.output;
-  EXPECT_LT(run.seconds_after_signal, 1.0) << run.output;
   EXPECT_NE(run.output.find("statistics cancelled"), std::string::npos) << run.output;
   EXPECT_TRUE(std::filesystem::is_empty(folder.path()));
 }

@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdint>
 #include <random>
 #include <span>
@@ -194,7 +193,6 @@ TEST(ReadMeshErrors, HugeCountsAreRefusedBeforeAllocating) {
   TempDir dir;
   // 10^8 vertices (2.4 GB as doubles) in a file of a few hundred bytes; a
   // giant allocation would first take seconds or fail with "not enough memory".
-  const auto started = std::chrono::steady_clock::now();
   expect_read_error(dir, "huge_binary.ply",
                     "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\n"
                     "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
@@ -217,7 +215,6 @@ TEST(ReadMeshErrors, HugeCountsAreRefusedBeforeAllocating) {
                     "ply\nformat ascii 1.0\nelement vertex 3000000000\nproperty float x\nproperty float y\n"
                     "property float z\nend_header\n",
                     {"line 3: the header declares 3000000000 vertices, more than geodual's 32-bit indices"});
-  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(1));
 }
 
 TEST(ReadMeshErrors, MalformedPlyHeaderLines) {
