@@ -716,7 +716,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   std::string dropped_reason;                  // why the try with them all failed
   // Once: where leaving those out does not do, the creases are finer than
   // the spacing in many places, and each try costs a relaxation.
-  constexpr int kMaxCreaseDrops = 1;
+  constexpr int kMaxCreaseDrops = 6;
   const int tries = refinement ? 1 : 2;
   for (int drop = 0; drop <= kMaxCreaseDrops; ++drop) {
     for (int attempt = 0; attempt < (drop == 0 ? tries : 1); ++attempt) {
@@ -754,10 +754,12 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     // The surface the features are on (its copy is held back during the stages where it is the input).
     const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
     const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
-    excluded = sharp_edges_near(surface, result.features, places, radius);
+    const auto near = sharp_edges_near(surface, result.features, places, radius);
+    if (near.empty()) break;
+    excluded.insert(excluded.end(), near.begin(), near.end());
     // Where they are most of the creases (a soup failing all over), the
     // remesh without them would be all but the one without features.
-    if (excluded.empty() || 2 * excluded.size() > result.features.sharp_edges.size()) break;
+    if (excluded.empty()) break;
     dropped_near = std::move(places);
     dropped_reason = reason;
   }

@@ -1,5 +1,7 @@
 #include "geodual/remesh/feature_cut.hpp"
 
+#include "crack_fill.hpp"
+
 #include "chain_points.hpp"
 #include "fault_places.hpp"
 
@@ -767,11 +769,10 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       recompute();
       continue;
     }
-    for (const auto& [site, point] : welded.site_moves) result.sites[site] = point;
-    const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
-    if (welded.cracked_edges == 0 && more.empty()) {
-      // Each piece's dual has only triangles of positive area; welded, three
-      // sites on one straight stretch of a chain could still make one flat.
+    // The weld as the remesh: every triangle of positive area (each piece's
+    // dual has only such; welded, three sites on one straight stretch of a
+    // chain could still make one flat) and every piece of the surface kept.
+    const auto accept = [&] {
       for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
         if (has_positive_area(welded.mesh, f)) continue;
         const Eigen::Vector3d corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
@@ -784,10 +785,33 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       }
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);
+    };
+    std::vector<std::pair<std::size_t, SurfacePoint>> moved_from;  // to undo the moves
+    for (const auto& [site, point] : welded.site_moves) {
+      moved_from.emplace_back(site, result.sites[site]);
+      result.sites[site] = point;
+    }
+    const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
+    if (welded.cracked_edges == 0 && more.empty()) {
+      accept();
       break;
     }
     dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (round >= options.max_rounds || (more.empty() && welded.site_moves.empty())) {
+      // The last resort: the cracks are holes of a few edges on the sites as
+      // they are; closed with triangles on their vertices, the weld is a
+      // remesh of the surface, the connectivity there not the dual's.
+      for (const auto& [site, point] : moved_from) result.sites[site] = point;
+      if (const std::optional<CrackFill> fill = close_cracks(welded.mesh, welded.crack_vertices)) {
+        accept();
+        result.cracks_closed = fill->holes;
+        result.crack_triangles = fill->triangles;
+        repair_problems.push_back(std::to_string(welded.cracked_edges) +
+                                  " edges of the welded remesh leaving the sharp features after " +
+                                  std::to_string(round) + " rounds, closed with " + std::to_string(fill->triangles) +
+                                  " triangles on their vertices");
+        break;
+      }
       std::vector<Eigen::Vector3d> ends;
       for (const Index v : welded.crack_vertices) ends.push_back(welded.mesh.vertices.row(v));
       throw weld_error("does not close along the sharp features after " + std::to_string(round) +

@@ -57,6 +57,11 @@ struct RepairedDual {
   /// round); empty when the first dual was valid.
   std::vector<std::string> repair_problems;
   int repair_rounds = 0;
+  /// welded_dual_with_repair's last resort: cracks of the weld that moving
+  /// sites did not close, closed with triangles on their own vertices
+  /// (crack_fill.hpp), and those triangles.
+  std::int64_t cracks_closed = 0;
+  std::int64_t crack_triangles = 0;
   double geodesic_seconds = 0;  ///< the repair rounds' diagrams
   double diagram_seconds = 0;
   double dual_seconds = 0;  ///< building and checking the duals

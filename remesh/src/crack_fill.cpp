@@ -1,0 +1,121 @@
+#include "crack_fill.hpp"
+
+#include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/triangle_shape.hpp"
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace geodual::remesh {
+namespace {
+
+/// The hole bounded by boundary loop `loop` of `topology`, as its vertices in
+/// the order a triangle filling it runs (opposite to the faces beside it), or
+/// empty where the loop is longer than `max_edges` or no simple cycle.
+std::vector<Index> hole_polygon(const TriangleMesh& mesh, const MeshTopology& topology, Index loop, int max_edges) {
+  std::vector<std::array<Index, 2>> steps;  // from, to, in the filling's order
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (topology.edge_boundary_loop[e] != loop) continue;
+    if (static_cast<int>(steps.size()) == max_edges) return {};
+    const Index f = topology.edge_faces(e)[0];
+    const int k = static_cast<int>(std::find(topology.face_edges[f].begin(), topology.face_edges[f].end(), e) -
+                                   topology.face_edges[f].begin());
+    steps.push_back({mesh.faces(f, (k + 1) % 3), mesh.faces(f, k)});
+  }
+  std::vector<Index> polygon;
+  if (steps.size() < 3) return polygon;
+  polygon.push_back(steps.front()[0]);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const Index from = polygon.back();
+    if (std::count_if(steps.begin(), steps.end(), [&](const auto& s) { return s[0] == from; }) != 1) return {};
+    polygon.push_back(std::find_if(steps.begin(), steps.end(), [&](const auto& s) { return s[0] == from; })->at(1));
+  }
+  if (polygon.back() != polygon.front()) return {};
+  polygon.pop_back();
+  std::vector<Index> sorted = polygon;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return {};  // through a vertex twice
+  return polygon;
+}
+
+/// The smallest angle of the triangle (a, b, c) of `mesh`'s vertices; 0 or
+/// not a number for a degenerate one.
+double smallest_angle(const TriangleMesh& mesh, Index a, Index b, Index c) {
+  return triangle_shape(mesh.vertices.row(a), mesh.vertices.row(b), mesh.vertices.row(c)).min_angle();
+}
+
+}  // namespace
+
+std::optional<CrackFill> close_cracks(TriangleMesh& mesh, std::span<const Index> crack_vertices, int max_edges) {
+  const MeshTopology topology = build_mesh_topology(mesh);
+  std::vector<std::uint8_t> crack(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const Index v : crack_vertices) crack[static_cast<std::size_t>(v)] = 1;
+  std::vector<std::uint8_t> loop_cracked(static_cast<std::size_t>(topology.num_boundary_loops), 0);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const Index loop = topology.edge_boundary_loop[e];
+    const auto [a, b] = topology.edge_vertices[e];
+    if (loop >= 0 && crack[a] && crack[b]) loop_cracked[static_cast<std::size_t>(loop)] = 1;
+  }
+  std::vector<std::array<Index, 3>> added;
+  std::vector<std::array<Index, 2>> new_edges;  // smaller end first
+  const auto is_edge = [&](Index a, Index b) {
+    const std::array<Index, 2> edge{std::min(a, b), std::max(a, b)};
+    return topology.find_edge(a, b) >= 0 || std::find(new_edges.begin(), new_edges.end(), edge) != new_edges.end();
+  };
+  const auto is_face = [&](Index a, Index b, Index c) {  // a face on these three vertices, either way round
+    const Index e = topology.find_edge(a, b);
+    if (e < 0) return false;
+    for (const Index f : topology.edge_faces(e)) {
+      if (mesh.faces(f, 0) == c || mesh.faces(f, 1) == c || mesh.faces(f, 2) == c) return true;
+    }
+    return false;
+  };
+  CrackFill fill;
+  for (Index loop = 0; loop < topology.num_boundary_loops; ++loop) {
+    if (!loop_cracked[static_cast<std::size_t>(loop)]) continue;
+    std::vector<Index> polygon = hole_polygon(mesh, topology, loop, max_edges);
+    if (polygon.empty()) return std::nullopt;
+    while (polygon.size() > 3) {
+      // The ear with the largest smallest angle whose closing edge is new.
+      std::size_t best = polygon.size();
+      double best_angle = 0;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Index prev = polygon[(i + polygon.size() - 1) % polygon.size()];
+        const Index next = polygon[(i + 1) % polygon.size()];
+        if (is_edge(prev, next)) continue;
+        const double angle = smallest_angle(mesh, prev, polygon[i], next);
+        if (angle > best_angle) {
+          best_angle = angle;
+          best = i;
+        }
+      }
+      if (best == polygon.size()) return std::nullopt;
+      const Index prev = polygon[(best + polygon.size() - 1) % polygon.size()];
+      const Index next = polygon[(best + 1) % polygon.size()];
+      added.push_back({prev, polygon[best], next});
+      new_edges.push_back({std::min(prev, next), std::max(prev, next)});
+      polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
+    }
+    if (is_face(polygon[0], polygon[1], polygon[2])) return std::nullopt;
+    if (!(smallest_angle(mesh, polygon[0], polygon[1], polygon[2]) > 0)) return std::nullopt;
+    added.push_back({polygon[0], polygon[1], polygon[2]});
+    ++fill.holes;
+  }
+  if (added.empty()) return fill;
+  TriangleMesh closed = mesh;
+  const Index first = closed.num_faces();
+  closed.faces.conservativeResize(first + static_cast<Index>(added.size()), 3);
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    for (int k = 0; k < 3; ++k) closed.faces(first + static_cast<Index>(i), k) = added[i][static_cast<std::size_t>(k)];
+  }
+  const MeshTopology after = build_mesh_topology(closed);
+  for (Index e = 0; e < after.num_edges(); ++e) {
+    if (!after.is_manifold_edge(e)) return std::nullopt;
+  }
+  fill.triangles = static_cast<std::int64_t>(added.size());
+  mesh = std::move(closed);
+  return fill;
+}
+
+}  // namespace geodual::remesh
