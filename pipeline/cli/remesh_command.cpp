@@ -490,6 +490,25 @@ class RemeshCommand final : public Command {
                   << "remeshed without the creases near the " << places << (places == 1 ? " place" : " places")
                   << " where the remesh that kept them failed: " << run.features_partly_dropped_reason << "\n";
     }
+    if (!run.features_left_out.empty()) {
+      double length = 0;
+      for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) length += stretch.length;
+      const pipeline::FeatureLeftOut& longest = run.features_left_out.front();
+      streams.err << "geodual remesh: warning: " << mesh_path
+                  << ": creases left out: " << with_thousands(static_cast<std::int64_t>(run.features_left_out.size()))
+                  << (run.features_left_out.size() == 1 ? " stretch, " : " stretches, ") << significant(length, 3)
+                  << " long together; the longest " << significant(longest.length, 3) << " near ("
+                  << significant(longest.place.x(), 4) << ", " << significant(longest.place.y(), 4) << ", "
+                  << significant(longest.place.z(), 4) << ") (JSON features_left_out lists them all)\n";
+    }
+    if (run.surface_euler_characteristic != run.input_report.euler_characteristic ||
+        run.surface_boundary_loops != run.input_report.boundary_loops) {
+      streams.err << "geodual remesh: warning: " << mesh_path
+                  << ": the cut to a manifold at its non-manifold edges and vertices changes the part's topology: "
+                  << "Euler characteristic " << run.input_report.euler_characteristic << " -> "
+                  << run.surface_euler_characteristic << ", boundary loops " << run.input_report.boundary_loops
+                  << " -> " << run.surface_boundary_loops << " (the remesh has the cut surface's)\n";
+    }
     if (run.sites_added_for_topology > 0) {
       streams.err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
@@ -562,6 +581,18 @@ class RemeshCommand final : public Command {
     figures["features_partly_dropped_reason"] = run.features_partly_dropped_reason.empty()
                                                     ? nlohmann::ordered_json(nullptr)
                                                     : nlohmann::ordered_json(run.features_partly_dropped_reason);
+    figures["features_left_out"] = nlohmann::ordered_json::array();
+    for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) {
+      figures["features_left_out"].push_back({{"edges", stretch.edges},
+                                              {"length", stretch.length},
+                                              {"place", {stretch.place.x(), stretch.place.y(), stretch.place.z()}}});
+    }
+    figures["cracks_closed"] = result.cracks_closed;
+    figures["crack_triangles"] = result.crack_triangles;
+    figures["input_euler_characteristic"] = run.input_report.euler_characteristic;
+    figures["input_boundary_loops"] = run.input_report.boundary_loops;
+    figures["surface_euler_characteristic"] = run.surface_euler_characteristic;
+    figures["surface_boundary_loops"] = run.surface_boundary_loops;
     figures["lloyd_iterations"] = relaxation.iterations;
     figures["warm_start_iterations"] = relaxation.warm_start_iterations;
     figures["lloyd_diagrams"] = relaxation.diagrams;

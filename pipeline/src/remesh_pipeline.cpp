@@ -6,6 +6,7 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/triangle_distance.hpp"
+#include "geodual/mesh/union_find.hpp"
 #include "geodual/mesh/vertex_copies.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
@@ -24,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -328,6 +330,14 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   result.surface = remesh::cut_to_manifold(result.input.mesh);
   report(options.progress, Stage::sample, 0.25);  // each step below takes a while on a large mesh: a chance to cancel
   result.dropped = dropped_surface(result.input.mesh, result.surface);
+  {
+    const MeshTopology cut_topology = build_mesh_topology(result.surface.mesh);
+    result.surface_euler_characteristic = 0;
+    for (const ComponentCounts& piece : cut_topology.components) {
+      result.surface_euler_characteristic += piece.euler_characteristic();
+    }
+    result.surface_boundary_loops = cut_topology.num_boundary_loops;
+  }
   if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
     throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
                 std::to_string(result.dropped.area_pct) +
@@ -694,28 +704,70 @@ std::vector<std::array<Index, 2>> sharp_edges_near(const TriangleMesh& surface, 
   return near;
 }
 
+/// `edges` (vertex pairs of `surface`) by stretch: joined where they share
+/// a vertex, longest first.
+std::vector<FeatureLeftOut> stretches_of(const TriangleMesh& surface, std::span<const std::array<Index, 2>> edges) {
+  UnionFind sets(static_cast<std::size_t>(surface.num_vertices()));
+  for (const auto& [a, b] : edges) sets.unite(a, b);
+  std::vector<Index> stretch_of_root(static_cast<std::size_t>(surface.num_vertices()), -1);
+  std::vector<FeatureLeftOut> stretches;
+  std::vector<Eigen::Vector3d> centroid;  // length-weighted sums, then means
+  for (const auto& [a, b] : edges) {
+    Index& stretch = stretch_of_root[static_cast<std::size_t>(sets.find(a))];
+    if (stretch < 0) {
+      stretch = static_cast<Index>(stretches.size());
+      stretches.emplace_back();
+      centroid.emplace_back(Eigen::Vector3d::Zero());
+    }
+    const Eigen::Vector3d pa = surface.vertices.row(a), pb = surface.vertices.row(b);
+    const double length = (pb - pa).norm();
+    ++stretches[stretch].edges;
+    stretches[stretch].length += length;
+    centroid[stretch] += length * (pa + pb) / 2;
+  }
+  std::vector<double> nearest(stretches.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t s = 0; s < stretches.size(); ++s) {
+    if (stretches[s].length > 0) centroid[s] /= stretches[s].length;
+  }
+  for (const auto& edge : edges) {
+    for (const Index v : edge) {
+      const Index s = stretch_of_root[static_cast<std::size_t>(sets.find(v))];
+      const Eigen::Vector3d x = surface.vertices.row(v);
+      if (const double d = (x - centroid[s]).squaredNorm(); d < nearest[s]) {
+        nearest[s] = d;
+        stretches[s].place = x;
+      }
+    }
+  }
+  std::stable_sort(stretches.begin(), stretches.end(),
+                   [](const FeatureLeftOut& a, const FeatureLeftOut& b) { return a.length > b.length; });
+  return stretches;
+}
+
 /// One remesh of result.input (run_stages); where the features cannot be
 /// kept with sites as dense beside the creases as elsewhere, they are tried
 /// with the denser sites of the components' shares by area
 /// (remesh::GivenSiteShare); where they cannot be kept either and the
-/// failure lies at places (remesh::DualRepairError) near less than half of
-/// the creases, without those; and failing that, the remesh without any,
-/// and why.
+/// failure lies at places (remesh::DualRepairError), again without the
+/// creases near those places, a few times, each try leaving out more where
+/// the last failed; and only where a failure names no place, or the tries
+/// run out, the remesh without any, and why. What is left out is reported
+/// (RemeshPipelineResult::features_left_out).
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
   const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
   // First with the sites beside the creases as dense as elsewhere, then
   // (sampled sites only) denser; then without the creases near the places
-  // the last try failed at, then without the features.
+  // the tries failed at, then without the features.
   std::string reason;                          // why the last try failed
   std::vector<Eigen::Vector3d> places;         // and where
   std::vector<SurfacePoint> first_sites;       // of the first try, where it failed
   std::vector<std::array<Index, 2>> excluded;  // the sharp edges left out near those places
   std::vector<Eigen::Vector3d> dropped_near;   // the places
   std::string dropped_reason;                  // why the try with them all failed
-  // Once: where leaving those out does not do, the creases are finer than
-  // the spacing in many places, and each try costs a relaxation.
+  // Each try costs a relaxation; a part that still fails after this many
+  // has creases finer than the spacing all over.
   constexpr int kMaxCreaseDrops = 6;
   const int tries = refinement ? 1 : 2;
   for (int drop = 0; drop <= kMaxCreaseDrops; ++drop) {
@@ -737,6 +789,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
         if (drop > 0) {
           result.features_dropped_near = std::move(dropped_near);
           result.features_partly_dropped_reason = std::move(dropped_reason);
+          result.features_left_out = stretches_of(result.surface.mesh, excluded);
         }
         return;
       } catch (const Cancelled&) {
@@ -757,13 +810,17 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     const auto near = sharp_edges_near(surface, result.features, places, radius);
     if (near.empty()) break;
     excluded.insert(excluded.end(), near.begin(), near.end());
-    // Where they are most of the creases (a soup failing all over), the
-    // remesh without them would be all but the one without features.
-    if (excluded.empty()) break;
-    dropped_near = std::move(places);
-    dropped_reason = reason;
+    dropped_near.insert(dropped_near.end(), places.begin(), places.end());
+    if (dropped_reason.empty()) dropped_reason = reason;
   }
   result.features_dropped_reason = reason;
+  {
+    // Every crease the tries kept, and those the last left out.
+    const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
+    std::vector<std::array<Index, 2>> all = result.features.sharp_edges;
+    all.insert(all.end(), excluded.begin(), excluded.end());
+    result.features_left_out = stretches_of(surface, all);
+  }
   result.features = {};
   result.feature_cut = {};
   result.feature_sites = result.site_twins = result.sites_added_near_features = 0;

@@ -14,6 +14,7 @@
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/features.hpp"
+#include "geodual/remesh/sizing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -401,12 +402,13 @@ TEST(FeaturePipeline, ATryThatWouldRepeatTheFailedOneIsNotRun) {
   EXPECT_EQ(relaxations, 2);
 }
 
-TEST(FeaturePipeline, NoRetryWithoutCreasesWhereTheyWouldBeMostOfThemOrWhereItIsOff) {
+TEST(FeaturePipeline, TheRetryLeavesOutOnlyTheCreasesNearTheFaultsAndReportsThem) {
   // cheburashka at 500 sites, as above: three relaxations (the first try,
   // the second with denser sites beside the creases, the retry without
-  // those near the place, which succeeds). Where the radius reaches most of
-  // the creases, or is 0, no retry: three again, the third the remesh
-  // without them (a retry that failed would make four).
+  // those near the place, which succeeds). The creases left out are
+  // reported by stretch, near the place; those kept are still features.
+  // With the radius 0, no retry: three again, the third the remesh without
+  // any (a retry that failed would make four), and every crease reported.
   const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
   const auto remesh_with_radius = [&](double radius, int& relaxations) {
     pipeline::Stage last = pipeline::Stage::load;
@@ -419,17 +421,38 @@ TEST(FeaturePipeline, NoRetryWithoutCreasesWhereTheyWouldBeMostOfThemOrWhereItIs
     };
     return remesh_without_statistics(scan, 500, options);
   };
-  int retried = 0, too_wide = 0, off = 0;
+  const auto total_length = [](const std::vector<pipeline::FeatureLeftOut>& stretches) {
+    double length = 0;
+    for (const pipeline::FeatureLeftOut& stretch : stretches) length += stretch.length;
+    return length;
+  };
+  int retried = 0, off = 0;
   const pipeline::RemeshPipelineResult partly = remesh_with_radius(2, retried);
   EXPECT_FALSE(partly.features.empty());
   EXPECT_EQ(retried, 3);
-  for (const auto& [radius, relaxations] : {std::pair<double, int*>{100, &too_wide}, {0, &off}}) {
-    const pipeline::RemeshPipelineResult dropped = remesh_with_radius(radius, *relaxations);
-    EXPECT_TRUE(dropped.features.empty()) << radius;
-    EXPECT_TRUE(dropped.features_dropped_near.empty()) << radius;
-    EXPECT_NE(dropped.features_dropped_reason.find("after 4 "), std::string::npos) << dropped.features_dropped_reason;
-    EXPECT_EQ(*relaxations, 3) << radius;
+  ASSERT_FALSE(partly.features_left_out.empty());
+  ASSERT_FALSE(partly.features_dropped_near.empty());
+  const double spacing = remesh::uniform_spacing(partly.surface.mesh, 500);
+  for (const pipeline::FeatureLeftOut& stretch : partly.features_left_out) {
+    EXPECT_GT(stretch.edges, 0);
+    EXPECT_GT(stretch.length, 0);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& place : partly.features_dropped_near) {
+      nearest = std::min(nearest, (place - stretch.place).norm());
+    }
+    // Its edges have an end within 2 spacings of a place; its vertex nearest
+    // its middle is within its length of that end.
+    EXPECT_LE(nearest, 2 * spacing + stretch.length) << stretch.place.transpose();
   }
+  const pipeline::RemeshPipelineResult dropped = remesh_with_radius(0, off);
+  EXPECT_TRUE(dropped.features.empty());
+  EXPECT_TRUE(dropped.features_dropped_near.empty());
+  EXPECT_NE(dropped.features_dropped_reason.find("after 4 "), std::string::npos) << dropped.features_dropped_reason;
+  EXPECT_EQ(off, 3);
+  // Every crease is left out: at least what the retry kept and left out
+  // together (leaving some out can make others too short to keep).
+  EXPECT_GE(total_length(dropped.features_left_out),
+            0.999 * (total_length(partly.features_left_out) + partly.features.sharp_length));
 }
 
 TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsThem) {

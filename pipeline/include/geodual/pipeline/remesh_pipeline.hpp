@@ -121,6 +121,15 @@ struct DroppedSurface {
 /// The faces of `input` that `cut` (its cut to a manifold) leaves out.
 DroppedSurface dropped_surface(const TriangleMesh& input, const remesh::ManifoldCut& cut);
 
+/// A stretch of sharp edges that the remesh does not keep as a chain of its
+/// edges, because the remesh that kept it failed near it: the edges left
+/// out, joined where they share a vertex.
+struct FeatureLeftOut {
+  std::int64_t edges = 0;
+  double length = 0;
+  Eigen::Vector3d place = Eigen::Vector3d::Zero();  ///< the stretch's vertex nearest its centroid
+};
+
 struct RemeshPipelineResult {
   io::LoadedMesh input;
   MeshReport input_report;
@@ -161,6 +170,13 @@ struct RemeshPipelineResult {
   /// and why the first try failed (empty otherwise).
   std::vector<Eigen::Vector3d> features_dropped_near;
   std::string features_partly_dropped_reason;
+  /// The creases left out by either fallback above, by stretch, longest first.
+  std::vector<FeatureLeftOut> features_left_out;
+  /// The surface remeshed (the input cut to a manifold at its non-manifold
+  /// edges and vertices): its Euler characteristic and boundary loops, which
+  /// differ from input_report's where the cut changed the part's topology.
+  std::int64_t surface_euler_characteristic = 0;
+  std::int64_t surface_boundary_loops = 0;
   std::vector<SurfacePoint> initial_sites;
   /// The site count derived from options.edge_length or options.faces, used
   /// instead of options.sites (0 when neither is set).

@@ -106,16 +106,17 @@ struct RemeshOptions {
   int max_repair_rounds = 10;
   /// The same for the remesh that keeps the sharp features, at most (never
   /// extended): where its dual needs more, the creases are finer than the
-  /// spacing, and the remesh pipeline remeshes without them.
+  /// spacing there, and the remesh pipeline leaves out those near the faults.
   int max_feature_repair_rounds = 4;
   /// ... and where its repair would add more than this fraction of the
   /// sites (twins included), as creases finer than the spacing make it, it
-  /// gives up too (0: no bound).
-  double max_feature_sites_added = 0.1;
+  /// gives up too (0: no bound). Half: a coarse CAD part's creases may need
+  /// that many more than the count asked; each added site is reported.
+  double max_feature_sites_added = 0.5;
   /// Where that remesh fails at places (DualRepairError::places), the remesh
-  /// pipeline tries once more without the creases within this many spacings
-  /// of them, unless those are most of the creases, before it drops them all
-  /// (0: no such try).
+  /// pipeline tries again without the creases within this many spacings of
+  /// them (up to six times, each leaving out more where the last failed)
+  /// before it drops them all (0: no such try).
   double feature_retry_radius = 2;
   /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
   /// pipeline when it samples the sites: creases where the normals turn by at
