@@ -4,7 +4,6 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/sharp_edges.hpp"
-#include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/union_find.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 
@@ -60,40 +59,9 @@ double turn_degrees(const TriangleMesh& mesh, Index a, Index v, Index b) {
   return std::atan2(in.cross(out).norm(), in.dot(out)) * 180 / std::numbers::pi;
 }
 
-/// Squared distance between segments pq and ab (Ericson, Real-Time Collision
-/// Detection, 5.1.9).
-double squared_distance_between_segments(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
-                                         const Eigen::Vector3d& b) {
-  const Eigen::Vector3d d1 = q - p, d2 = b - a, r = p - a;
-  const double aa = d1.squaredNorm(), ee = d2.squaredNorm(), f = d2.dot(r);
-  if (!(aa > 0)) return squared_distance_to_segment(p, a, b);
-  if (!(ee > 0)) return squared_distance_to_segment(a, p, q);
-  const double c = d1.dot(r), bb = d1.dot(d2), denominator = aa * ee - bb * bb;
-  double s = denominator > 0 ? std::clamp((bb * f - c * ee) / denominator, 0.0, 1.0) : 0.0;
-  double t = (bb * s + f) / ee;
-  if (t < 0) {
-    t = 0, s = std::clamp(-c / aa, 0.0, 1.0);
-  } else if (t > 1) {
-    t = 1, s = std::clamp((bb - c) / aa, 0.0, 1.0);
-  }
-  return (p + s * d1 - (a + t * d2)).squaredNorm();
-}
-
-/// Squared distance between segment pq and triangle abc, where the segment
-/// does not pierce the triangle (a surface's edge and a face near it): the
-/// nearest of its ends to the triangle and of the segment to the triangle's sides.
-double squared_distance_between_segment_and_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
-                                                     const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                                     const Eigen::Vector3d& c) {
-  return std::min({squared_distance_to_triangle(p, a, b, c), squared_distance_to_triangle(q, a, b, c),
-                   squared_distance_between_segments(p, q, a, b), squared_distance_between_segments(p, q, b, c),
-                   squared_distance_between_segments(p, q, c, a)});
-}
-
 /// Sharp edges that stay sharp at `scale` (FeatureOptions::scale): the faces
-/// within that distance of the edge (any point of them, not only a corner: the
-/// same patch of surface however finely it is tessellated), on each side,
-/// reached across edges with two faces that are not sharp, must not join up, and their
+/// with a corner within that distance of the edge, on each side, reached
+/// across edges with two faces that are not sharp, must not join up, and their
 /// area-weighted normals must turn by at least `angle` degrees. The faces
 /// round both ends are always within reach, so that where the input's edges
 /// are longer than the scale, the faces round a lone noisy edge still join.
@@ -121,11 +89,14 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
     const auto faces = topology.edge_faces(e);
     const Eigen::Vector3d start = mesh.vertices.row(topology.edge_vertices[e][0]);
     const Eigen::Vector3d along = Eigen::Vector3d(mesh.vertices.row(topology.edge_vertices[e][1])) - start;
-    const Eigen::Vector3d end = start + along;
-    const auto within_scale = [&](Index f) {  // f within `scale` of the edge
-      const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
-                            c = mesh.vertices.row(mesh.faces(f, 2));
-      return squared_distance_between_segment_and_triangle(start, end, a, b, c) <= scale * scale;
+    const auto within_scale = [&](Index f) {  // a corner of f within `scale` of the edge
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d x = mesh.vertices.row(mesh.faces(f, k));
+        const double t =
+            along.squaredNorm() > 0 ? std::clamp((x - start).dot(along) / along.squaredNorm(), 0.0, 1.0) : 0.0;
+        if ((start + t * along - x).squaredNorm() <= scale * scale) return true;
+      }
+      return false;
     };
     // Region growing from each side; stamp 2 i + side marks the faces reached.
     Eigen::Vector3d mean[2];

@@ -30,9 +30,8 @@ struct FeatureOptions {
   double continuation_angle = 0;
   double continuation_max_spread = 10;
   /// The radius at which an edge's sharpness is judged (0: its two faces
-  /// only). An edge stays sharp when the faces within this distance of it
-  /// (any point of a face: the same surface at any tessellation) on either
-  /// side, reached without crossing a sharp edge, are two
+  /// only). An edge stays sharp when the faces within this distance of its
+  /// midpoint on either side, reached without crossing a sharp edge, are two
   /// separate regions whose mean normals still turn by sharp_angle: a lone
   /// noisy edge, which the faces round its ends join across, is dropped.
   double scale = 0;
