@@ -15,6 +15,7 @@
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
+#include "geodual/remesh/remesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,10 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <random>
 #include <set>
+#include <string>
+#include <utility>
 
 namespace geodual {
 namespace {
@@ -251,6 +255,135 @@ TEST(Features, ACreaseContinuesWhereItsAngleFadesBetweenSmoothSidesOnly) {
   // Nor without a sharp edge to start from.
   continued.sharp_angle = 75;
   EXPECT_TRUE(remesh::detect_features(fading_fold(), continued).empty());
+}
+
+/// `mesh` with every triangle split in four at its edges' midpoints: the
+/// same surface at twice the resolution.
+TriangleMesh split_at_midpoints(const TriangleMesh& mesh) {
+  std::map<std::pair<Index, Index>, Index> midpoint;
+  std::vector<Eigen::RowVector3d> added;
+  const auto middle = [&](Index a, Index b) {
+    const auto [it, inserted] = midpoint.try_emplace({std::min(a, b), std::max(a, b)}, 0);
+    if (inserted) {
+      it->second = mesh.num_vertices() + static_cast<Index>(added.size());
+      added.push_back(0.5 * (mesh.vertices.row(a) + mesh.vertices.row(b)));
+    }
+    return it->second;
+  };
+  TriangleMesh split;
+  split.faces.resize(4 * mesh.num_faces(), 3);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    const Index a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    const Index ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
+    split.faces.row(4 * f) << a, ab, ca;
+    split.faces.row(4 * f + 1) << ab, b, bc;
+    split.faces.row(4 * f + 2) << ca, bc, c;
+    split.faces.row(4 * f + 3) << ab, bc, ca;
+  }
+  split.vertices.resize(mesh.num_vertices() + static_cast<Index>(added.size()), 3);
+  split.vertices.topRows(mesh.num_vertices()) = mesh.vertices;
+  for (std::size_t i = 0; i < added.size(); ++i)
+    split.vertices.row(mesh.num_vertices() + static_cast<Index>(i)) = added[i];
+  return split;
+}
+
+/// `mesh` refined unevenly to `faces` faces: again and again, an edge of a
+/// random face (its longest with `longest`, else any) split at a random point
+/// between `lo` and `hi` of its length, with both its faces. The same
+/// surface; `seed` picks the splits.
+TriangleMesh split_at_random(const TriangleMesh& mesh, Index faces, std::uint32_t seed, double lo = 0.2,
+                             double hi = 0.8, bool longest = true) {
+  std::mt19937 random(seed);
+  const auto uniform = [&] { return static_cast<double>(random()) / 4294967296.0; };
+  std::vector<Eigen::RowVector3d> vertices;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) vertices.push_back(mesh.vertices.row(v));
+  std::vector<std::array<Index, 3>> triangles;
+  std::map<std::pair<Index, Index>, std::size_t> face_of;  // directed edge -> face
+  const auto set = [&](std::size_t f, std::array<Index, 3> t) {
+    triangles[f] = t;
+    for (int k = 0; k < 3; ++k) face_of[{t[k], t[(k + 1) % 3]}] = f;
+  };
+  triangles.resize(static_cast<std::size_t>(mesh.num_faces()));
+  for (Index f = 0; f < mesh.num_faces(); ++f) set(f, {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)});
+  while (static_cast<Index>(triangles.size()) < faces) {
+    const auto t = triangles[static_cast<std::size_t>(uniform() * static_cast<double>(triangles.size()))];
+    int k = static_cast<int>(uniform() * 3);
+    if (longest) {
+      for (int j = 0; j < 3; ++j) {
+        const auto length = [&](int i) { return (vertices[t[i]] - vertices[t[(i + 1) % 3]]).squaredNorm(); };
+        if (length(j) > length(k)) k = j;
+      }
+    }
+    const Index a = t[k], b = t[(k + 1) % 3];
+    const Index p = static_cast<Index>(vertices.size());
+    vertices.push_back(vertices[a] + (lo + (hi - lo) * uniform()) * (vertices[b] - vertices[a]));
+    for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+      const auto it = face_of.find({x, y});
+      if (it == face_of.end()) continue;
+      const std::size_t f = it->second;
+      face_of.erase(it);
+      const auto g = triangles[f];
+      int i = 0;
+      while (g[i] != x) ++i;
+      const Index opposite = g[(i + 2) % 3];
+      set(f, {x, p, opposite});
+      triangles.emplace_back();
+      set(triangles.size() - 1, {p, y, opposite});
+    }
+  }
+  TriangleMesh split;
+  split.vertices.resize(static_cast<Index>(vertices.size()), 3);
+  for (std::size_t v = 0; v < vertices.size(); ++v) split.vertices.row(static_cast<Index>(v)) = vertices[v];
+  split.faces.resize(static_cast<Index>(triangles.size()), 3);
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    for (int k = 0; k < 3; ++k) split.faces(static_cast<Index>(f), k) = triangles[f][k];
+  }
+  return split;
+}
+
+/// The features detected on `mesh` with the remesh pipeline's options for
+/// `sites` sites (remesh_feature_options at RemeshOptions' defaults).
+remesh::FeatureSet pipeline_features(const TriangleMesh& mesh, std::int64_t sites) {
+  const remesh::RemeshOptions defaults;
+  return remesh::detect_features(
+      mesh, remesh::remesh_feature_options(mesh, sites, defaults.sharp_angle, defaults.min_feature_length,
+                                           defaults.continuation_angle));
+}
+
+TEST(Features, FinerTessellationsOfTheSamePartGiveTheSameCreases) {
+  // fandisk (13K faces) split once at its edges' midpoints (52K), and split
+  // unevenly to 31K faces, at random points of its faces' longest edges or
+  // of any edge, near their ends too (needles): the same surface, so the
+  // same creases at the remesh's scale, whatever the input's edge lengths.
+  const TriangleMesh fandisk = io::read_mesh("tests/data/fandisk.ply").mesh;
+  const std::vector<std::pair<std::string, TriangleMesh>> finer = {
+      {"midpoints", split_at_midpoints(fandisk)},
+      {"uneven", split_at_random(fandisk, 31000, 1)},
+      {"needles", split_at_random(fandisk, 31000, 2, 0.02, 0.98, false)}};
+  for (const std::int64_t sites : {2000, 500}) {
+    const remesh::FeatureSet coarse = pipeline_features(fandisk, sites);
+    EXPECT_GE(coarse.sharp_chains, 30);
+    for (const auto& [name, mesh] : finer) {
+      SCOPED_TRACE(name + " at " + std::to_string(sites) + " sites");
+      const remesh::FeatureSet fine = pipeline_features(mesh, sites);
+      EXPECT_EQ(fine.sharp_chains, coarse.sharp_chains);
+      EXPECT_NEAR(fine.sharp_length, coarse.sharp_length, 0.05 * coarse.sharp_length);
+    }
+  }
+}
+
+TEST(Features, ABoxGivesItsTwelveCreasesAtEveryResolution) {
+  // 4 x 4 and 24 x 24 cells per side, unevenly split too: the edges and
+  // nothing else, at the scale of 500 and of 100 sites.
+  for (const std::int64_t sites : {500, 100}) {
+    for (const TriangleMesh& box : {cube(4), cube(24), split_at_random(cube(4), 3000, 3, 0.02, 0.98, false)}) {
+      SCOPED_TRACE(std::to_string(box.num_faces()) + " faces at " + std::to_string(sites) + " sites");
+      const remesh::FeatureSet features = pipeline_features(box, sites);
+      EXPECT_EQ(features.sharp_chains, 12);
+      EXPECT_EQ(features.corners.size(), 8u);
+      EXPECT_NEAR(features.sharp_length, 12.0, 1e-9);
+    }
+  }
 }
 
 /// The vertex of `mesh` at p (exactly), or -1.
