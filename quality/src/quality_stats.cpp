@@ -512,6 +512,72 @@ void check_feature_options(const QualityOptions& options) {
     throw Error("feature recall: feature_tolerance_pct is " + std::to_string(options.feature_tolerance_pct) +
                 "; give a positive percentage of the bounding-box diagonal");
   }
+  if (!(options.long_crease_length >= 0.0 && std::isfinite(options.long_crease_length))) {
+    throw Error("feature recall: long_crease_length is " + std::to_string(options.long_crease_length) +
+                "; give a length of 0 (none) or more");
+  }
+}
+
+/// The sharp chains (FeatureRecall): per sharp edge (a position in
+/// `edges`), the chain it lies on, and per chain its length.
+struct SharpChains {
+  std::vector<std::size_t> chain_of_edge;
+  std::vector<double> length;
+};
+
+SharpChains sharp_chains(const TriangleMesh& mesh, const MeshTopology& topology, const std::vector<Index>& edges) {
+  // Per vertex, its sharp edges (positions in `edges`), in compressed rows.
+  const auto vertex_count = static_cast<std::size_t>(mesh.num_vertices());
+  std::vector<std::size_t> first(vertex_count + 1, 0);
+  for (const Index e : edges) {
+    const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+    ++first[static_cast<std::size_t>(a) + 1];
+    ++first[static_cast<std::size_t>(b) + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) first[v + 1] += first[v];
+  std::vector<std::size_t> incident(first[vertex_count]);
+  {
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(edges[i])];
+      incident[next[static_cast<std::size_t>(a)]++] = i;
+      incident[next[static_cast<std::size_t>(b)]++] = i;
+    }
+  }
+  const auto degree = [&](std::size_t v) { return first[v + 1] - first[v]; };
+
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  SharpChains chains;
+  chains.chain_of_edge.assign(edges.size(), none);
+  // A new chain from vertex v along sharp edge i, on until a vertex with
+  // other than two sharp edges, or back to an edge of the chain (a loop).
+  const auto walk = [&](std::size_t v, std::size_t i) {
+    const std::size_t chain = chains.length.size();
+    double length = 0.0;
+    while (chains.chain_of_edge[i] == none) {
+      chains.chain_of_edge[i] = chain;
+      const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(edges[i])];
+      length += (mesh.vertices.row(a) - mesh.vertices.row(b)).norm();
+      const auto w = static_cast<std::size_t>(static_cast<std::size_t>(a) == v ? b : a);
+      if (degree(w) != 2) break;
+      i = incident[first[w]] == i ? incident[first[w] + 1] : incident[first[w]];
+      v = w;
+    }
+    chains.length.push_back(length);
+  };
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    if (degree(v) == 2) continue;
+    for (std::size_t k = first[v]; k < first[v + 1]; ++k) {
+      if (chains.chain_of_edge[incident[k]] == none) walk(v, incident[k]);
+    }
+  }
+  // What is left are loops, each through vertices of two sharp edges only.
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (chains.chain_of_edge[i] == none) {
+      walk(static_cast<std::size_t>(topology.edge_vertices[static_cast<std::size_t>(edges[i])][0]), i);
+    }
+  }
+  return chains;
 }
 
 /// The feature recall of checked meshes and options, within the progress
@@ -525,14 +591,28 @@ FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh
   recall.tolerance = options.feature_tolerance_pct / 100.0 * diagonal;
   progress.phase(from, 0.3 * share);
   progress.check(0.0);
-  // The sharp edges' end points; the topology is freed before the tree is built.
+  // The sharp edges' end points, and whether each lies on a long crease;
+  // the topology is freed before the tree is built.
   std::vector<std::array<Eigen::Vector3d, 2>> sharp;
+  std::vector<char> on_long_crease;
   {
     const MeshTopology topology = build_mesh_topology(reference);
     progress.check(0.7);
-    for (const Index e : sharp_edges(reference, topology, options.sharp_angle_deg)) {
+    const std::vector<Index> edges = sharp_edges(reference, topology, options.sharp_angle_deg);
+    for (const Index e : edges) {
       const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
       sharp.push_back({reference.vertices.row(a).transpose(), reference.vertices.row(b).transpose()});
+    }
+    const SharpChains chains = sharp_chains(reference, topology, edges);
+    recall.chains = static_cast<std::int64_t>(chains.length.size());
+    on_long_crease.assign(edges.size(), 0);
+    if (options.long_crease_length > 0.0) {
+      recall.long_crease_length = options.long_crease_length;
+      for (const double length : chains.length) recall.long_chains += length >= options.long_crease_length;
+      for (std::size_t i = 0; i < edges.size(); ++i) {
+        on_long_crease[i] = chains.length[chains.chain_of_edge[i]] >= options.long_crease_length;
+        recall.long_edges += on_long_crease[i];
+      }
     }
   }
   recall.edges = static_cast<std::int64_t>(sharp.size());
@@ -574,6 +654,8 @@ FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh
   std::vector<double> block_length(blocks, 0.0);
   std::vector<double> block_recalled(blocks, 0.0);
   std::vector<double> block_max_squared(blocks, 0.0);
+  std::vector<double> block_long_length(blocks, 0.0);
+  std::vector<double> block_long_recalled(blocks, 0.0);
   const double tolerance_squared = recall.tolerance * recall.tolerance;
   std::atomic<std::int64_t> measured{0};
   const auto keep_going = [&] {
@@ -586,6 +668,8 @@ FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh
       double length = 0.0;
       double recalled = 0.0;
       double max_squared = 0.0;
+      double long_length = 0.0;
+      double long_recalled = 0.0;
       std::size_t near = 0;
       for (std::size_t i = b * block; i < std::min((b + 1) * block, sharp.size()); ++i) {
         const Eigen::Vector3d& a = sharp[i][0];
@@ -609,24 +693,35 @@ FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh
         }
         // Summed like the lengths, so that all recalled gives exactly 100 %.
         const double edge_length = (z - a).norm();
-        length += edge_length;
-        recalled +=
+        const double edge_recalled =
             halves == 2 * n ? edge_length : edge_length * static_cast<double>(halves) / static_cast<double>(2 * n);
+        length += edge_length;
+        recalled += edge_recalled;
+        if (on_long_crease[i] != 0) {
+          long_length += edge_length;
+          long_recalled += edge_recalled;
+        }
       }
       block_length[b] = length;
       block_recalled[b] = recalled;
       block_max_squared[b] = max_squared;
+      block_long_length[b] = long_length;
+      block_long_recalled[b] = long_recalled;
     }
   });
   progress.check(1.0);
   double recalled = 0.0;
+  double long_recalled = 0.0;
   double max_squared = 0.0;
   for (std::size_t b = 0; b < blocks; ++b) {
     recall.length += block_length[b];
     recalled += block_recalled[b];
+    recall.long_length += block_long_length[b];
+    long_recalled += block_long_recalled[b];
     max_squared = std::max(max_squared, block_max_squared[b]);
   }
   recall.recall_pct = recall.length > 0 ? 100.0 * recalled / recall.length : 100.0;
+  recall.long_recall_pct = recall.long_length > 0 ? 100.0 * long_recalled / recall.long_length : 100.0;
   recall.max_gap = std::sqrt(max_squared);
   recall.max_gap_pct = 100.0 * recall.max_gap / diagonal;
   return recall;

@@ -1,12 +1,15 @@
-// Every mesh of tests/data loads with exactly the counts its
-// MANIFEST.tsv gives, and analyze_mesh finds exactly the defects listed there.
-// The manifest is parsed here; no figure is copied into this file.
+// Every mesh of tests/data, and of the CAD corpus tests/data/cad (OpenSCAD
+// renders, bench/render_cad_corpus.sh), loads with exactly the counts its
+// folder's MANIFEST.tsv gives, and analyze_mesh finds exactly the defects
+// listed there. The manifests are parsed here; no figure is copied into this
+// file.
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -21,8 +24,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The test meshes (tests/data in the source tree).
-fs::path mesh_folder() { return fs::path(GEODUAL_SOURCE_DIR) / "tests" / "data"; }
+/// A folder of test meshes with a MANIFEST.tsv, and the fewest rows it has.
+struct MeshFolder {
+  const char* name;  ///< for the test's name
+  const char* path;  ///< under tests/data in the source tree
+  std::size_t min_rows;
+};
 
 /// One row of MANIFEST.tsv, by column name.
 using ManifestRow = std::map<std::string, std::string>;
@@ -53,20 +60,25 @@ std::vector<ManifestRow> read_manifest(const fs::path& path) {
 
 std::int64_t integer(const ManifestRow& row, const std::string& column) { return std::stoll(row.at(column)); }
 
-class Manifest : public testing::Test {
+class Manifest : public testing::TestWithParam<MeshFolder> {
  protected:
   void SetUp() override {
-    manifest_ = mesh_folder() / "MANIFEST.tsv";
+    folder_ = fs::path(GEODUAL_SOURCE_DIR) / "tests" / "data" / GetParam().path;
+    manifest_ = folder_ / "MANIFEST.tsv";
     ASSERT_TRUE(fs::exists(manifest_)) << manifest_ << " not found";
     rows_ = read_manifest(manifest_);
   }
 
+  fs::path folder_;
   fs::path manifest_;
   std::vector<ManifestRow> rows_;
 };
 
-TEST_F(Manifest, HasTheColumnsThisTestChecks) {
-  ASSERT_GE(rows_.size(), 14U) << manifest_;
+INSTANTIATE_TEST_SUITE_P(TestData, Manifest, testing::Values(MeshFolder{"scans", "", 14}, MeshFolder{"cad", "cad", 40}),
+                         [](const testing::TestParamInfo<MeshFolder>& info) { return std::string(info.param.name); });
+
+TEST_P(Manifest, HasTheColumnsThisTestChecks) {
+  ASSERT_GE(rows_.size(), GetParam().min_rows) << manifest_;
   for (const char* column : {"file", "vertices", "faces", "components", "boundary_loops", "nonmanifold_edges",
                              "nonmanifold_vertices", "degenerate_faces", "duplicate_vertices", "unreferenced_vertices",
                              "duplicate_triangles", "euler_characteristic", "genus", "bbox_diag"}) {
@@ -74,10 +86,11 @@ TEST_F(Manifest, HasTheColumnsThisTestChecks) {
   }
 }
 
-TEST_F(Manifest, EveryMeshHasExactlyTheListedCountsAndDefects) {
+TEST_P(Manifest, EveryMeshHasExactlyTheListedCountsAndDefects) {
   for (const ManifestRow& row : rows_) {
-    const fs::path path = mesh_folder() / row.at("file");
+    const fs::path path = folder_ / row.at("file");
     SCOPED_TRACE(path.string());
+    if (row.count("bytes") == 1) EXPECT_EQ(static_cast<std::int64_t>(fs::file_size(path)), integer(row, "bytes"));
     const io::LoadedMesh loaded = io::read_mesh(path);
     EXPECT_EQ(loaded.mesh.num_vertices(), integer(row, "vertices"));
     EXPECT_EQ(loaded.mesh.num_faces(), integer(row, "faces"));
@@ -108,6 +121,17 @@ TEST_F(Manifest, EveryMeshHasExactlyTheListedCountsAndDefects) {
     const double diagonal = std::stod(row.at("bbox_diag"));
     const double unit = std::pow(10.0, std::floor(std::log10(diagonal)) - 3);
     EXPECT_NEAR(report.bbox_diagonal, diagonal, 0.5 * unit);
+  }
+}
+
+TEST_P(Manifest, ListsEveryMeshOfItsFolder) {
+  std::vector<std::string> listed;
+  for (const ManifestRow& row : rows_) listed.push_back(row.at("file"));
+  for (const auto& entry : fs::directory_iterator(folder_)) {
+    const std::string extension = entry.path().extension().string();
+    if (!entry.is_regular_file() || (extension != ".ply" && extension != ".stl")) continue;
+    EXPECT_NE(std::find(listed.begin(), listed.end(), entry.path().filename().string()), listed.end())
+        << entry.path() << " is not in " << manifest_;
   }
 }
 

@@ -2,7 +2,9 @@
 // meshes of itself (every crease is an edge: recall 100, gap 0), against the
 // cube with one corner cut off (three creases end in chords), against larger
 // cubes (every crease at one known distance from the nearest edge), and a
-// sphere (no crease at all).
+// sphere (no crease at all); the recall on the long creases alone (sharp
+// chains at least a length long) on the cut cube, a finer cube and a
+// cylinder whose rims are loops.
 
 #include "remesh/analytic_surfaces.hpp"
 
@@ -19,6 +21,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -325,6 +328,126 @@ TEST(FeatureRecall, BadRequestsAreErrors) {
   } catch (const Error& error) {
     EXPECT_EQ(std::string(error.what()).rfind("candidate mesh: ", 0), 0U) << error.what();
   }
+}
+
+/// The segments from->to of `points` as the candidate's only edges: faces
+/// (a, b, b), whose one edge is a-b.
+TriangleMesh segments(const TriangleMesh& points, const std::vector<std::array<Index, 2>>& ends) {
+  TriangleMesh mesh;
+  mesh.vertices = points.vertices;
+  mesh.faces.resize(static_cast<Eigen::Index>(ends.size()), 3);
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    mesh.faces.row(static_cast<Eigen::Index>(i)) << ends[i][0], ends[i][1], ends[i][1];
+  }
+  return mesh;
+}
+
+/// A closed cylinder of radius 1 and height 1, its rims n-gons, its caps fans
+/// from their centres, oriented outwards.
+TriangleMesh closed_cylinder(int n) {
+  std::vector<Vec> p{Vec(0, 0, 0), Vec(0, 0, 1)};
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n;
+    p.emplace_back(std::cos(t), std::sin(t), 0);
+    p.emplace_back(std::cos(t), std::sin(t), 1);
+  }
+  std::vector<std::array<Index, 3>> faces;
+  for (int i = 0; i < n; ++i) {
+    const Index b = 2 + 2 * i, t = b + 1, b1 = 2 + 2 * ((i + 1) % n), t1 = b1 + 1;
+    faces.push_back({b, b1, t1});
+    faces.push_back({b, t1, t});
+    faces.push_back({1, t, t1});
+    faces.push_back({0, b1, b});
+  }
+  return make_mesh(p, faces);
+}
+
+TEST(FeatureRecall, LongCreasesAreTheChainsAtLeastTheLengthAsked) {
+  // The cube with a corner cut off at a = 0.25 has 12 chains, one per
+  // crease, between the cube's seven corners (three sharp edges each) and
+  // the cut's three points (one each: the chords turn by 54.7 degrees): nine
+  // of length 1 and three of 0.75 (6-cx, 5-cy, 3-cz; cx, cy, cz are 7, 8, 9).
+  const TriangleMesh cut = cube_cut_at_corner(0.25);
+  const std::vector<std::array<Index, 2>> full{{0, 1}, {0, 2}, {0, 4}, {1, 3}, {1, 5}, {2, 3}, {2, 6}, {4, 5}, {4, 6}};
+  const std::vector<std::array<Index, 2>> truncated{{6, 7}, {5, 8}, {3, 9}};
+  QualityOptions options;
+  options.long_crease_length = 0.9;
+  const FeatureRecall itself = feature_recall(cut, cut, options);
+  EXPECT_EQ(itself.edges, 12);
+  EXPECT_EQ(itself.chains, 12);
+  EXPECT_EQ(itself.long_crease_length, 0.9);
+  EXPECT_EQ(itself.long_chains, 9);
+  EXPECT_EQ(itself.long_edges, 9);
+  EXPECT_NEAR(itself.long_length, 9.0, 1e-12);
+  EXPECT_EQ(itself.long_recall_pct, 100.0);
+
+  // Only the full creases as edges: all of the long creases, and of the
+  // short ones only what lies within the tolerance tau of a corner where
+  // they meet a full one (tau each, up to the trapezoid rule's tau / 20).
+  const double tau = 0.001 * cube_diagonal;
+  const FeatureRecall on_full = feature_recall(cut, segments(cut, full), options);
+  EXPECT_EQ(on_full.long_recall_pct, 100.0);
+  EXPECT_NEAR(on_full.recall_pct, 100 * (9 + 3 * tau) / 11.25, 100 * 3 * (tau / 20) / 11.25);
+  // Only the short ones: of the long creases, tau at each of the six ends
+  // that meet a short one.
+  const FeatureRecall on_truncated = feature_recall(cut, segments(cut, truncated), options);
+  EXPECT_NEAR(on_truncated.long_recall_pct, 100 * 6 * tau / 9, 100 * 6 * (tau / 20) / 9);
+  EXPECT_NEAR(on_truncated.recall_pct, 100 * (2.25 + 6 * tau) / 11.25, 100 * 6 * (tau / 20) / 11.25);
+
+  // A shorter length takes all, a longer one none (and then the recall is 100).
+  options.long_crease_length = 0.7;
+  const FeatureRecall all = feature_recall(cut, segments(cut, full), options);
+  EXPECT_EQ(all.long_chains, 12);
+  EXPECT_NEAR(all.long_length, 11.25, 1e-12);
+  EXPECT_EQ(all.long_recall_pct, all.recall_pct);
+  options.long_crease_length = 1.5;
+  const FeatureRecall none = feature_recall(cut, segments(cut, truncated), options);
+  EXPECT_EQ(none.long_chains, 0);
+  EXPECT_EQ(none.long_length, 0.0);
+  EXPECT_EQ(none.long_recall_pct, 100.0);
+  // 0: not measured, but the chains are counted.
+  options.long_crease_length = 0;
+  const FeatureRecall off = feature_recall(cut, segments(cut, truncated), options);
+  EXPECT_EQ(off.chains, 12);
+  EXPECT_EQ(off.long_crease_length, 0.0);
+  EXPECT_EQ(off.long_chains, 0);
+  EXPECT_EQ(off.long_recall_pct, 100.0);
+  // compare_meshes carries it.
+  options.long_crease_length = 0.9;
+  options.samples_per_side = 100;
+  const QualityReport report = compare_meshes(cut, cut, options);
+  ASSERT_TRUE(report.features.has_value());
+  EXPECT_EQ(report.features->long_chains, 9);
+
+  for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    options.long_crease_length = bad;
+    EXPECT_THROW(feature_recall(cut, cut, options), Error) << bad;
+  }
+}
+
+TEST(FeatureRecall, ChainsRunThroughVerticesOfTwoSharpEdgesAndClose) {
+  // The cube as a 3 x 3 grid per side: each crease is three sharp edges whose
+  // inner vertices have two, so one chain of length 1.
+  QualityOptions options;
+  options.long_crease_length = 0.9;
+  const FeatureRecall grid = feature_recall(grid_cube(3), grid_cube(3), options);
+  EXPECT_EQ(grid.edges, 36);
+  EXPECT_EQ(grid.chains, 12);
+  EXPECT_EQ(grid.long_chains, 12);
+  EXPECT_EQ(grid.long_edges, 36);
+
+  // A closed cylinder of 12 sides: the side's edges turn by 30 degrees, the
+  // rims by 90: two loops without a corner, each 12 * 2 sin(pi / 12) long.
+  const TriangleMesh cylinder = closed_cylinder(12);
+  const double rim = 24 * std::sin(std::numbers::pi / 12);
+  options.long_crease_length = rim * 0.999;
+  const FeatureRecall loops = feature_recall(cylinder, cylinder, options);
+  EXPECT_EQ(loops.edges, 24);
+  EXPECT_EQ(loops.chains, 2);
+  EXPECT_EQ(loops.long_chains, 2);
+  EXPECT_NEAR(loops.long_length, 2 * rim, 1e-12);
+  options.long_crease_length = rim * 1.001;
+  EXPECT_EQ(feature_recall(cylinder, cylinder, options).long_chains, 0);
 }
 
 TEST(FeatureRecall, FandiskAgainstItself) {

@@ -58,6 +58,11 @@ struct QualityOptions {
   /// passes within this distance, in % of the reference's bounding-box
   /// diagonal (> 0).
   double feature_tolerance_pct = 0.1;
+  /// Also the recall on the long creases alone (FeatureRecall::long_recall_pct):
+  /// the sharp chains at least this long, in mesh units (> 0; a remesh's
+  /// spacing, such as remesh::uniform_spacing, is the usual choice); 0
+  /// leaves it out.
+  double long_crease_length = 0.0;
   /// Also give, per vertex of the reference, the largest distance measured
   /// at it (QualityReport::deviation_at_vertices): where a remesh needs
   /// more vertices to come closer.
@@ -129,6 +134,12 @@ double face_quality(const TriangleMesh& mesh, Index face);
 /// tolerance at each place where the distance crosses the tolerance.
 /// JSON names (geodual stats --json, the remesh's extras): feature_recall_edges,
 /// feature_recall_length, feature_recall_pct, feature_max_gap_pct.
+///
+/// With QualityOptions::long_crease_length, the same share on the long
+/// creases alone: the sharp edges form chains, maximal polylines of sharp
+/// edges whose inner vertices have exactly two sharp edges (a chain ends
+/// where one, three or more sharp edges meet, or closes as a loop); the
+/// chains at least that long are the long creases.
 struct FeatureRecall {
   double sharp_angle_deg = 0.0;  ///< the threshold used
   double tolerance = 0.0;        ///< feature_tolerance_pct of the diagonal, in mesh units
@@ -140,6 +151,15 @@ struct FeatureRecall {
   double recall_pct = 100.0;
   double max_gap = 0.0;      ///< largest distance from a sampled point of a sharp edge to the candidate's edges
   double max_gap_pct = 0.0;  ///< 100 * max_gap / the reference's bounding-box diagonal
+
+  std::int64_t chains = 0;          ///< sharp chains of the reference
+  double long_crease_length = 0.0;  ///< the threshold used; 0: the figures below were not measured
+  std::int64_t long_chains = 0;     ///< chains at least long_crease_length long
+  std::int64_t long_edges = 0;      ///< their sharp edges
+  double long_length = 0.0;         ///< their total length, in mesh units
+  /// 100 * (length of the long chains' edges within the tolerance of a
+  /// candidate edge) / long_length; 100 when there is no long chain.
+  double long_recall_pct = 100.0;
 };
 
 /// The candidate's quality and its distance to the reference.
@@ -196,10 +216,11 @@ QualityReport compare_meshes(const TriangleMesh& reference, const TriangleMesh& 
                              const QualityOptions& options = {});
 
 /// The feature recall alone (compare_meshes computes it too), with
-/// options.sharp_angle_deg, feature_tolerance_pct and progress. Throws
+/// options.sharp_angle_deg, feature_tolerance_pct, long_crease_length and progress. Throws
 /// geodual::Error (naming which mesh) for a mesh without faces, a face index
 /// out of range or a non-finite coordinate, for a sharp angle outside
-/// (0, 180], a tolerance that is not positive, and for a tolerance so small
+/// (0, 180], a tolerance that is not positive, a long-crease length that is
+/// negative or not finite, and for a tolerance so small
 /// that the sharp edges would need more than max_feature_samples samples.
 FeatureRecall feature_recall(const TriangleMesh& reference, const TriangleMesh& candidate,
                              const QualityOptions& options = {});
