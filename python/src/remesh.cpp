@@ -34,6 +34,8 @@ struct RemeshResult {
   std::int64_t feature_chains = 0;
   py::object features_dropped_reason;
   py::object features_dropped_near;
+  py::list features_left_out;
+  std::int64_t cracks_closed = 0;
   py::object narrowest_corner;
   std::int64_t sites_added = 0;
   std::int64_t sites_left_out = 0;
@@ -164,6 +166,14 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.features_dropped_reason =
       run.features_dropped_reason.empty() ? py::none() : py::object(py::str(run.features_dropped_reason));
   result.features_dropped_near = points_to_array(run.features_dropped_near);
+  for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) {
+    py::dict entry;
+    entry["edges"] = stretch.edges;
+    entry["length"] = stretch.length;
+    entry["place"] = py::make_tuple(stretch.place.x(), stretch.place.y(), stretch.place.z());
+    result.features_left_out.append(entry);
+  }
+  result.cracks_closed = run.remesh.cracks_closed;
   result.narrowest_corner =
       run.features.corners.empty()
           ? py::none()
@@ -217,6 +227,12 @@ void add_remesh(py::module_& module) {
       .def_readonly("features_dropped_near", &RemeshResult::features_dropped_near,
                     "float64 k x 3: the places where the remesh that kept all the features failed, near which "
                     "creases were left out (0 x 3 where none was)")
+      .def_readonly("features_left_out", &RemeshResult::features_left_out,
+                    "the creases left out where the remesh that kept them failed, by stretch, longest first: "
+                    "dicts with 'edges', 'length' and 'place' (x, y, z), the stretch's vertex nearest its middle")
+      .def_readonly("cracks_closed", &RemeshResult::cracks_closed,
+                    "cracks of the weld along the features that no site move closed, closed with triangles on "
+                    "their own vertices")
       .def_readonly("narrowest_corner", &RemeshResult::narrowest_corner,
                     "the narrowest angle in degrees between two kept features at a corner, which bounds the "
                     "remesh's smallest angle there; None without corners")

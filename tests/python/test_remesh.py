@@ -166,8 +166,15 @@ def test_says_which_features_were_kept_and_where_creases_were_left_out(data_dir)
     assert partly.features_dropped_near.shape == (1, 3)
     lo, hi = V.min(axis=0), V.max(axis=0)
     assert np.all(partly.features_dropped_near >= lo) and np.all(partly.features_dropped_near <= hi)
+    assert kept.features_left_out == [] and len(partly.features_left_out) > 0
+    lengths = [stretch["length"] for stretch in partly.features_left_out]
+    assert all(length > 0 for length in lengths) and lengths == sorted(lengths, reverse=True)
+    for stretch in partly.features_left_out:
+        assert stretch["edges"] > 0
+        assert np.all(np.array(stretch["place"]) >= lo) and np.all(np.array(stretch["place"]) <= hi)
     none = geodual.remesh(V, F, sites=500, sharp_angle=0, statistics=False)
     assert none.feature_chains == 0 and none.features_dropped_near.shape == (0, 3)
+    assert none.features_left_out == []
 
 
 def test_pin_creases_puts_sites_on_the_short_creases_and_keeps_them(data_dir):
