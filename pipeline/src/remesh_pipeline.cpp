@@ -470,7 +470,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     if (sampled.sites_added_for_topology > 0) {
       // The loops of the surface cut to a manifold (those of the features' cut are the chains' sides).
       result.sites_added_reason +=
-          loops_from_cut(feature_sites ? build_mesh_topology(manifold).num_boundary_loops : sampled.boundary_loops);
+          loops_from_cut(feature_sites ? result.surface_boundary_loops : sampled.boundary_loops);
     }
   }
   sample_clock.stop();
@@ -569,7 +569,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   } catch (const remesh::DualRepairError& e) {
     // The message names the surface's pieces and loops: say where loops the
     // input does not have come from.
-    const std::string note = loops_from_cut(build_mesh_topology(manifold_surface).num_boundary_loops);
+    const std::string note = loops_from_cut(result.surface_boundary_loops);
     if (note.empty()) throw;
     throw remesh::DualRepairError(e.what() + note, e.places());
   }

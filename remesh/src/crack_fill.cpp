@@ -5,19 +5,21 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 #include <vector>
 
 namespace geodual::remesh {
 namespace {
 
-/// The hole bounded by boundary loop `loop` of `topology`, as its vertices in
-/// the order a triangle filling it runs (opposite to the faces beside it), or
-/// empty where the loop is longer than `max_edges` or no simple cycle.
-std::vector<Index> hole_polygon(const TriangleMesh& mesh, const MeshTopology& topology, Index loop, int max_edges) {
+/// The hole bounded by the boundary edges `loop_edges` (one loop of
+/// `topology`), as its vertices in the order a triangle filling it runs
+/// (opposite to the faces beside it), or empty where the loop is longer than
+/// `max_edges` or no simple cycle.
+std::vector<Index> hole_polygon(const TriangleMesh& mesh, const MeshTopology& topology,
+                                std::span<const Index> loop_edges, int max_edges) {
+  if (static_cast<int>(loop_edges.size()) > max_edges) return {};
   std::vector<std::array<Index, 2>> steps;  // from, to, in the filling's order
-  for (Index e = 0; e < topology.num_edges(); ++e) {
-    if (topology.edge_boundary_loop[e] != loop) continue;
-    if (static_cast<int>(steps.size()) == max_edges) return {};
+  for (const Index e : loop_edges) {
     const Index f = topology.edge_faces(e)[0];
     const int k = static_cast<int>(std::find(topology.face_edges[f].begin(), topology.face_edges[f].end(), e) -
                                    topology.face_edges[f].begin());
@@ -52,10 +54,13 @@ std::optional<CrackFill> close_cracks(TriangleMesh& mesh, std::span<const Index>
   std::vector<std::uint8_t> crack(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (const Index v : crack_vertices) crack[static_cast<std::size_t>(v)] = 1;
   std::vector<std::uint8_t> loop_cracked(static_cast<std::size_t>(topology.num_boundary_loops), 0);
+  std::vector<std::vector<Index>> loop_edges(static_cast<std::size_t>(topology.num_boundary_loops));
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const Index loop = topology.edge_boundary_loop[e];
+    if (loop < 0) continue;
     const auto [a, b] = topology.edge_vertices[e];
-    if (loop >= 0 && crack[a] && crack[b]) loop_cracked[static_cast<std::size_t>(loop)] = 1;
+    if (crack[a] && crack[b]) loop_cracked[static_cast<std::size_t>(loop)] = 1;
+    loop_edges[static_cast<std::size_t>(loop)].push_back(e);
   }
   std::vector<std::array<Index, 3>> added;
   std::vector<std::array<Index, 2>> new_edges;  // smaller end first
@@ -74,7 +79,7 @@ std::optional<CrackFill> close_cracks(TriangleMesh& mesh, std::span<const Index>
   CrackFill fill;
   for (Index loop = 0; loop < topology.num_boundary_loops; ++loop) {
     if (!loop_cracked[static_cast<std::size_t>(loop)]) continue;
-    std::vector<Index> polygon = hole_polygon(mesh, topology, loop, max_edges);
+    std::vector<Index> polygon = hole_polygon(mesh, topology, loop_edges[static_cast<std::size_t>(loop)], max_edges);
     if (polygon.empty()) return std::nullopt;
     while (polygon.size() > 3) {
       // The ear with the largest smallest angle whose closing edge is new.
