@@ -75,7 +75,9 @@ class Manifest : public testing::TestWithParam<MeshFolder> {
 };
 
 INSTANTIATE_TEST_SUITE_P(TestData, Manifest, testing::Values(MeshFolder{"scans", "", 14}, MeshFolder{"cad", "cad", 40}),
-                         [](const testing::TestParamInfo<MeshFolder>& info) { return std::string(info.param.name); });
+                         [](const testing::TestParamInfo<MeshFolder>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
 
 TEST_P(Manifest, HasTheColumnsThisTestChecks) {
   ASSERT_GE(rows_.size(), GetParam().min_rows) << manifest_;
@@ -90,7 +92,9 @@ TEST_P(Manifest, EveryMeshHasExactlyTheListedCountsAndDefects) {
   for (const ManifestRow& row : rows_) {
     const fs::path path = folder_ / row.at("file");
     SCOPED_TRACE(path.string());
-    if (row.count("bytes") == 1) EXPECT_EQ(static_cast<std::int64_t>(fs::file_size(path)), integer(row, "bytes"));
+    if (row.count("bytes") == 1) {
+      EXPECT_EQ(static_cast<std::int64_t>(fs::file_size(path)), integer(row, "bytes"));
+    }
     const io::LoadedMesh loaded = io::read_mesh(path);
     EXPECT_EQ(loaded.mesh.num_vertices(), integer(row, "vertices"));
     EXPECT_EQ(loaded.mesh.num_faces(), integer(row, "faces"));
