@@ -638,9 +638,14 @@ class RemeshCommand final : public Command {
         figures["feature_recall_length"] = features->length;
         figures["feature_recall_pct"] = features->recall_pct;
         figures["feature_max_gap_pct"] = features->max_gap_pct;
+        figures["feature_long_crease_length"] = features->long_crease_length;
+        figures["feature_long_creases"] = features->long_chains;
+        figures["feature_long_length"] = features->long_length;
+        figures["feature_long_recall_pct"] = features->long_recall_pct;
       } else {
         for (const char* key :
-             {"feature_recall_edges", "feature_recall_length", "feature_recall_pct", "feature_max_gap_pct"}) {
+             {"feature_recall_edges", "feature_recall_length", "feature_recall_pct", "feature_max_gap_pct",
+              "feature_long_crease_length", "feature_long_creases", "feature_long_length", "feature_long_recall_pct"}) {
           figures[key] = nullptr;
         }
       }

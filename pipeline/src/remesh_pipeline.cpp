@@ -613,6 +613,11 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     report(options.progress, Stage::statistics, 0.0);
     StageClock statistics_clock(result.timings, Stage::statistics);
     quality::QualityOptions quality_options = options.quality;
+    if (quality_options.long_crease_length == 0) {
+      // The creases a remesh of this many vertices can keep: those at least its spacing long.
+      quality_options.long_crease_length =
+          remesh::uniform_spacing(result.input.mesh, std::max<Index>(4, result.remesh.mesh.num_vertices()));
+    }
     if (options.progress) {
       quality_options.progress = [&](double fraction) { return options.progress(Stage::statistics, fraction); };
     }
@@ -750,16 +755,16 @@ std::vector<FeatureLeftOut> stretches_of(const TriangleMesh& surface, std::span<
 /// (remesh::GivenSiteShare); where they cannot be kept either and the
 /// failure lies at places (remesh::DualRepairError), again without the
 /// creases near those places, a few times, each try leaving out more where
-/// the last failed; and only where a failure names no place, or the tries
-/// run out, the remesh without any, and why. What is left out is reported
-/// (RemeshPipelineResult::features_left_out).
+/// the last failed; where a failure names no place near a crease, or the
+/// tries run out, on with as many repair rounds as the remesh without
+/// features gets (its faults may lie away from the creases: a thin part, a
+/// handle the sites missed), again leaving out creases where it fails; and
+/// only where that fails too, the remesh without any, and why. What is left
+/// out is reported (RemeshPipelineResult::features_left_out).
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
   const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
-  // First with the sites beside the creases as dense as elsewhere, then
-  // (sampled sites only) denser; then without the creases near the places
-  // the tries failed at, then without the features.
   std::string reason;                          // why the last try failed
   std::vector<Eigen::Vector3d> places;         // and where
   std::vector<SurfacePoint> first_sites;       // of the first try, where it failed
@@ -768,15 +773,20 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   std::string dropped_reason;                  // why the try with them all failed
   // Each try costs a relaxation; a part that still fails after this many
   // has creases finer than the spacing all over.
-  constexpr int kMaxCreaseDrops = 6;
-  const int tries = refinement ? 1 : 2;
-  for (int drop = 0; drop <= kMaxCreaseDrops; ++drop) {
-    for (int attempt = 0; attempt < (drop == 0 ? tries : 1); ++attempt) {
+  constexpr int kMaxCreaseDrops = 6, kMaxPatientDrops = 2;
+  RemeshPipelineOptions patient = options;
+  patient.remesh.max_feature_repair_rounds =
+      std::max(options.remesh.max_feature_repair_rounds, options.remesh.max_repair_rounds);
+  bool patient_now = false;  // the tries with patient's repair rounds have begun
+  int drops_left = kMaxCreaseDrops;
+  for (int round = 0;; ++round) {
+    const int attempts = round == 0 && !refinement ? 2 : 1;
+    for (int attempt = 0; attempt < attempts; ++attempt) {
       try {
-        if (attempt > 0 || drop > 0) result.timings.clear();
+        if (round > 0 || attempt > 0) result.timings.clear();
         // Where the denser sites come out the same (few sites beside short
         // creases), the second try would only repeat the first.
-        if (!run_stages(result, options, input_density, refinement,
+        if (!run_stages(result, patient_now ? patient : options, input_density, refinement,
                         attempt == 0 ? remesh::GivenSiteShare::half_cell : remesh::GivenSiteShare::none,
                         attempt > 0 ? &first_sites : nullptr, excluded)) {
           break;
@@ -786,7 +796,14 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
               result.remesh.repair_problems.begin(),
               "sites beside the creases made denser, as the weld with them as dense as elsewhere failed: " + reason);
         }
-        if (drop > 0) {
+        if (patient_now) {
+          result.remesh.repair_problems.insert(
+              result.remesh.repair_problems.begin(),
+              "the creases kept with up to " + std::to_string(patient.remesh.max_feature_repair_rounds) +
+                  " repair rounds, as " + std::to_string(options.remesh.max_feature_repair_rounds) +
+                  " were not enough: " + reason);
+        }
+        if (!excluded.empty()) {
           result.features_dropped_near = std::move(dropped_near);
           result.features_partly_dropped_reason = std::move(dropped_reason);
           result.features_left_out = stretches_of(result.surface.mesh, excluded);
@@ -799,19 +816,27 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
         reason = e.what();
         const auto* repair = dynamic_cast<const remesh::DualRepairError*>(&e);
         places = repair ? repair->places() : std::vector<Eigen::Vector3d>{};
-        if (attempt == 0) first_sites = std::move(result.initial_sites);
+        if (round == 0 && attempt == 0) first_sites = std::move(result.initial_sites);
       }
     }
-    const double spacings = options.remesh.feature_retry_radius;
-    if (drop == kMaxCreaseDrops || places.empty() || !(spacings > 0)) break;
     // The surface the features are on (its copy is held back during the stages where it is the input).
     const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
-    const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
-    const auto near = sharp_edges_near(surface, result.features, places, radius);
-    if (near.empty()) break;
-    excluded.insert(excluded.end(), near.begin(), near.end());
-    dropped_near.insert(dropped_near.end(), places.begin(), places.end());
-    if (dropped_reason.empty()) dropped_reason = reason;
+    std::vector<std::array<Index, 2>> near;
+    if (const double spacings = options.remesh.feature_retry_radius; spacings > 0 && !places.empty()) {
+      const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
+      near = sharp_edges_near(surface, result.features, places, radius);
+    }
+    if (drops_left > 0 && !near.empty()) {
+      --drops_left;
+      excluded.insert(excluded.end(), near.begin(), near.end());
+      dropped_near.insert(dropped_near.end(), places.begin(), places.end());
+      if (dropped_reason.empty()) dropped_reason = reason;
+    } else if (!patient_now && patient.remesh.max_feature_repair_rounds > options.remesh.max_feature_repair_rounds) {
+      patient_now = true;
+      drops_left = kMaxPatientDrops;
+    } else {
+      break;
+    }
   }
   result.features_dropped_reason = reason;
   {

@@ -192,6 +192,7 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     stretch.tight = parts > most;
     return stretch;
   };
+
   // Chain ends per vertex: a corner where one chain ends alone has no wedge
   // to keep the first sites' distances equal in.
   std::map<Index, int> ends_at;
@@ -581,15 +582,23 @@ std::vector<SurfacePoint> sites_not_marked(std::span<const SurfacePoint> sites,
   return kept;
 }
 
-/// The first piece of `surface` (a component with area) that the welded
-/// remesh does not keep, described for an error message, or "" when it keeps
-/// them all. A piece is kept when its sites are the vertices of one piece of
-/// the remesh, which holds no other piece's sites and has the same Euler
-/// characteristic and boundary loops. (Each piece of the cut is checked on
-/// its own before the weld, but only those holding sites: a piece of the cut
-/// whose sites were all left out would go missing unseen.)
-std::string first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& cut,
-                                 std::span<const SurfacePoint> sites, const WeldedDual& welded) {
+/// The first piece of `surface` (cut along the features) that the welded
+/// remesh does not keep: `what` describes it for an error message ("" when it
+/// keeps them all), `sites` are where it went wrong. A piece is kept when its
+/// sites are the vertices of one piece of the remesh, which holds no other
+/// piece's sites and has the same Euler characteristic and boundary loops.
+/// (Each piece of the cut is checked on its own before the weld, but only
+/// those holding sites: a piece of the cut whose sites were all left out
+/// would go missing unseen.)
+struct PieceNotKept {
+  std::string what;
+  /// Indices of the sites that went astray: those of the piece away from the
+  /// remesh piece most of them are on, or another piece's on that one (none
+  /// where only the counts differ).
+  std::vector<std::size_t> sites;
+};
+PieceNotKept first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& cut,
+                                  std::span<const SurfacePoint> sites, const WeldedDual& welded) {
   const MeshTopology pieces = build_mesh_topology(surface);
   const MeshTopology remeshed = build_mesh_topology(welded.mesh);
   std::vector<std::uint8_t> has_area(pieces.components.size(), 0);
@@ -597,6 +606,8 @@ std::string first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& 
     const Index piece = pieces.face_component[f];
     if (piece >= 0 && has_positive_area(surface, f)) has_area[piece] = 1;
   }
+  // Per site, its piece of the surface and of the remesh (-1: none).
+  std::vector<Index> piece_of(sites.size(), -1), made_of(sites.size(), -1);
   // Per piece of the surface, the piece of the remesh its sites are on (-1:
   // none, -2: several, or a site on none); per piece of the remesh, the
   // surface's piece whose sites it holds (-2: several).
@@ -610,6 +621,8 @@ std::string first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& 
                             : pieces.face_component[site.element];
     const Index vertex = welded.vertex_of_site[s];
     const Index made = vertex >= 0 ? remeshed.vertex_component[vertex] : -1;
+    piece_of[s] = piece;
+    made_of[s] = made;
     if (piece < 0) continue;
     Index& mine = remeshed_of[piece];
     if (made < 0 || (mine >= 0 && mine != made)) {
@@ -631,23 +644,36 @@ std::string first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& 
     if (!has_area[piece]) continue;
     const ComponentCounts& expected = pieces.components[piece];
     const Index made = remeshed_of[piece];
-    std::string remesh;
+    PieceNotKept lost;
+    const auto piece_index = static_cast<Index>(piece);
     if (made == -1) {
-      remesh = "no vertex";
+      lost.what = "no vertex";
     } else if (made == -2) {
-      remesh = "its sites on several pieces, or on none";
-    } else if (surface_of[made] != static_cast<Index>(piece)) {
-      remesh = "a piece shared with another";
+      lost.what = "its sites on several pieces, or on none";
+      std::vector<std::int64_t> on(remeshed.components.size(), 0);
+      for (std::size_t s = 0; s < sites.size(); ++s) {
+        if (piece_of[s] == piece_index && made_of[s] >= 0) ++on[made_of[s]];
+      }
+      const auto most = static_cast<Index>(std::max_element(on.begin(), on.end()) - on.begin());
+      for (std::size_t s = 0; s < sites.size(); ++s) {
+        if (piece_of[s] == piece_index && made_of[s] != most) lost.sites.push_back(s);
+      }
+    } else if (surface_of[made] != piece_index) {
+      lost.what = "a piece shared with another";
+      for (std::size_t s = 0; s < sites.size(); ++s) {
+        if (made_of[s] == made && piece_of[s] != piece_index) lost.sites.push_back(s);
+      }
     } else if (remeshed.components[made].euler_characteristic() != expected.euler_characteristic() ||
                remeshed.components[made].boundary_loops != expected.boundary_loops) {
-      remesh = counts(remeshed.components[made]);
+      lost.what = counts(remeshed.components[made]);
     } else {
       continue;
     }
-    return "the piece with input vertex " + std::to_string(first_vertex[piece]) + " (" +
-           std::to_string(expected.faces) + " faces, " + counts(expected) + "; in the remesh: " + remesh + ")";
+    lost.what = "the piece with input vertex " + std::to_string(first_vertex[piece]) + " (" +
+                std::to_string(expected.faces) + " faces, " + counts(expected) + "; in the remesh: " + lost.what + ")";
+    return lost;
   }
-  return "";
+  return {};
 }
 
 /// The positions of `sites` (on `mesh`) whose index is in `which`: for
@@ -780,8 +806,10 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
             "the remesh welded along the sharp features has a triangle of zero area, at " + point_text(corner),
             {corner});
       }
-      if (const std::string lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.empty()) {
-        throw DualRepairError("the remesh welded along the sharp features does not keep " + lost + kRemedy, {});
+      if (const PieceNotKept lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.what.empty()) {
+        throw weld_error("welded along the sharp features does not keep " + lost.what,
+                         positions(cut.mesh, std::span<const SurfacePoint>(result.sites), lost.sites), spacing,
+                         kRemedy);
       }
       result.mesh = std::move(welded.mesh);
       result.vertex_of_site = std::move(welded.vertex_of_site);

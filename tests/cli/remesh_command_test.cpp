@@ -718,6 +718,28 @@ TEST(RemeshCommand, SitesAddedForTopologyAreReported) {
   EXPECT_EQ(enough.err.find("raised"), std::string::npos) << enough.err;
 }
 
+TEST(RemeshCommand, ReportsTheRecallOnTheCreasesAtLeastOneSpacingLong) {
+  // A unit cube's twelve edges are its creases, each longer than the spacing
+  // of 300 vertices: kept with the features, rounded off without them.
+  ScratchFolder folder;
+  const auto input = folder.write("cube.obj", cubes_obj(1));
+  const auto out = folder.path() / "cube.ply";
+  const auto recall = [&](const char* sharp_angle) {
+    const CliRun run = run_cli({"remesh", input.string(), "--sites", "300", "--sharp-angle", sharp_angle, "--samples",
+                                "20000", "-q", "--json", "-o", out.string()});
+    EXPECT_EQ(run.exit_status, 0) << run.err;
+    const nlohmann::json json = nlohmann::json::parse(run.out);
+    const double spacing = json["feature_long_crease_length"].get<double>();
+    EXPECT_GT(spacing, 0.05);
+    EXPECT_LT(spacing, 0.2);
+    EXPECT_EQ(json["feature_long_creases"].get<std::int64_t>(), 12);
+    EXPECT_NEAR(json["feature_long_length"].get<double>(), 12.0, 1e-9);
+    return json["feature_long_recall_pct"].get<double>();
+  };
+  EXPECT_GE(recall("60"), 99.0);
+  EXPECT_LT(recall("0"), 50.0);
+}
+
 TEST(RemeshCommand, DuplicateFacesLoseNoSurface) {
   // A cube with its first face again, flipped, and its second face again:
   // the copies are left out, the cube stays closed and whole.
