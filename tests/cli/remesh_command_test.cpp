@@ -716,6 +716,8 @@ TEST(RemeshCommand, SitesAddedForTopologyAreReported) {
   ASSERT_EQ(enough.exit_status, 0) << enough.err;
   EXPECT_EQ(nlohmann::json::parse(enough.out)["sites_added_for_topology"].get<std::int64_t>(), 0);
   EXPECT_EQ(enough.err.find("raised"), std::string::npos) << enough.err;
+  // Closed manifold cubes: the cut changes nothing, and nothing is said of it.
+  EXPECT_EQ(enough.err.find("changes the part's topology"), std::string::npos) << enough.err;
 }
 
 TEST(RemeshCommand, ReportsTheRecallOnTheCreasesAtLeastOneSpacingLong) {
@@ -803,6 +805,16 @@ TEST(RemeshCommand, LoopsMadeByTheCutAreNamedAsSuch) {
   const MeshReport output = analyze_mesh(io::read_mesh(out).mesh);
   EXPECT_EQ(output.components, 3);
   EXPECT_EQ(output.boundary_loops, 3);
+  // The topology changed by the cut is said on stderr and in JSON: the
+  // input's and the cut surface's (three disks), which the remesh has.
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["surface_euler_characteristic"].get<std::int64_t>(), 3);
+  EXPECT_EQ(json["surface_boundary_loops"].get<std::int64_t>(), 3);
+  EXPECT_EQ(output.euler_characteristic, 3);
+  EXPECT_TRUE(json["input_euler_characteristic"].get<std::int64_t>() != 3 ||
+              json["input_boundary_loops"].get<std::int64_t>() != 3)
+      << run.out;
+  EXPECT_NE(run.err.find("changes the part's topology"), std::string::npos) << run.err;
 }
 
 // --- Batches: several scans, one output each in --output-dir ---------------
