@@ -192,7 +192,6 @@ FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& featur
     stretch.tight = parts > most;
     return stretch;
   };
-
   // Chain ends per vertex: a corner where one chain ends alone has no wedge
   // to keep the first sites' distances equal in.
   std::map<Index, int> ends_at;
