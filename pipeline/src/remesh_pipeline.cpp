@@ -543,8 +543,10 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   report(options.progress, Stage::relax, 1.0);
 
   // Dual with repair; each repair round's diagram reports its progress.
-  remesh::RepairOptions repair{.max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi};
+  remesh::RepairOptions repair{
+      .max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi, .dual = {}};
   if (features) {
+    repair.dual.close_boundary_stretches = options.remesh.close_crease_stretches;
     repair.max_rounds = std::min(repair.max_rounds, options.remesh.max_feature_repair_rounds);
     repair.extend_while_converging = false;
     if (options.remesh.max_feature_sites_added > 0) {

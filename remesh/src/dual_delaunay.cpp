@@ -1,4 +1,6 @@
 #include "geodual/remesh/dual_delaunay.hpp"
+
+#include "boundary_triangles.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 
 #include "geodual/mesh/detail/point_grid.hpp"
@@ -490,7 +492,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
 
 }  // namespace
 
-DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram) {
+DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram, const DualOptions& options) {
   const voronoi::GeodesicField& field = diagram.field;
   const Index num_sites = static_cast<Index>(field.sites.size());
   DualMesh dual;
@@ -521,6 +523,12 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     for (std::size_t i = 1; i + 1 < k; ++i) {
       triangles.push_back({corners[apex], corners[(apex + i) % k], corners[(apex + i + 1) % k]});
       voronoi_vertex_of.push_back(static_cast<Index>(v));
+    }
+  }
+  if (options.close_boundary_stretches) {
+    for (const auto& t : detail::boundary_triangles(input, diagram, triangles, dual.mesh.vertices)) {
+      triangles.push_back(t);
+      voronoi_vertex_of.push_back(-1);
     }
   }
   dual.mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
@@ -628,6 +636,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     std::vector<Index> farthest(fans.original_vertex.size(), -1);
     for (Index t = 0; t < fans.mesh.num_faces(); ++t) {
       const Index v = voronoi_vertex_of[t];
+      if (v < 0) continue;  // a triangle along the boundary
       for (int c = 0; c < 3; ++c) {
         Index& tip = farthest[fans.mesh.faces(t, c)];
         if (several_fans[fans.original_vertex[fans.mesh.faces(t, c)]] &&

@@ -43,7 +43,7 @@ RepairedDual repair_dual(const TriangleMesh& mesh, std::optional<voronoi::Geodes
       result.diagram_seconds += result.diagram.stats.extraction_seconds;
     }
     const auto start = std::chrono::steady_clock::now();
-    DualMesh dual = dual_delaunay(mesh, result.diagram);
+    DualMesh dual = dual_delaunay(mesh, result.diagram, options.dual);
     result.dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result.repair_rounds = round;
     if (dual.check.valid) {
@@ -125,8 +125,9 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   if (release_memory) trim_heap();  // the preparation's scratch
   result.relaxation = lloyd_relax(geodesic_surface, std::move(sites), lloyd);
   // The relaxed diagram moves on to the dual (its first round's diagram).
-  result.dual = dual_with_repair(geodesic_surface, result.relaxation.sites, std::move(result.relaxation.diagram),
-                                 {.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi});
+  result.dual =
+      dual_with_repair(geodesic_surface, result.relaxation.sites, std::move(result.relaxation.diagram),
+                       {.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi, .dual = {}});
   return result;
 }
 

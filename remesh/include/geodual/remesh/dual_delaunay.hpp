@@ -46,7 +46,17 @@ struct DualMesh {
   DualCheck check;
 };
 
+struct DualOptions {
+  /// Also close the dual along the mesh boundary: where cells of sites off
+  /// the boundary reach it between two consecutive sites on it, triangles on
+  /// those sites make the stretch between the two an edge (across a strip
+  /// narrower than the spacing, the zigzag between its sides). What a cut
+  /// along creases needs, whose sides are lined with sites (feature_cut.hpp).
+  bool close_boundary_stretches = false;
+};
+
 /// Builds the dual triangle mesh of `diagram` (computed on `input`) and checks it.
-DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram);
+DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                       const DualOptions& options = {});
 
 }  // namespace geodual::remesh

@@ -36,6 +36,7 @@ struct RepairOptions {
   /// sites (0: no bound).
   std::int64_t max_sites_added = 0;
   voronoi::VoronoiOptions voronoi;  ///< for the repair rounds' diagrams
+  DualOptions dual;                 ///< for every round's dual
 };
 
 /// The dual-with-repair stage's result: the remesh.
@@ -118,6 +119,13 @@ struct RemeshOptions {
   /// them (up to six times, each leaving out more where the last failed)
   /// before it drops them all (0: no such try).
   double feature_retry_radius = 2;
+  /// That remesh closes its dual along the chains' sides
+  /// (DualOptions::close_boundary_stretches): the stretch between two
+  /// consecutive chain sites is an edge by construction where another cell
+  /// reaches the chain between them, or a strip narrower than the spacing
+  /// lies between two chains, instead of a repair that adds sites there.
+  /// false: the repair alone.
+  bool close_crease_stretches = true;
   /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
   /// pipeline when it samples the sites: creases where the normals turn by at
   /// least this many degrees at half the remesh's spacing, in chains at least
