@@ -569,15 +569,16 @@ TEST(RemeshCommand, FeatureColoursPaintTheCreasesKept) {
 }
 
 TEST(RemeshCommand, SaysWhereItLeftCreasesOutAndWhy) {
-  // cheburashka at 500 sites: the remesh that keeps its seven creases fails
-  // at one place; the creases there are left out, the others kept.
+  // OpenSCAD's surface_image at 500 sites: the remesh that keeps its 87
+  // creases fails at one place; the creases there are left out, the others
+  // kept.
   ScratchFolder folder;
-  const auto out = folder.path() / "cheburashka.glb";
-  const CliRun run = run_cli(
-      {"remesh", "tests/data/cheburashka.ply", "--sites", "500", "--samples", "-1", "--json", "-o", out.string()});
+  const auto out = folder.path() / "surface_image.glb";
+  const CliRun run = run_cli({"remesh", "tests/data/cad/surface_image.stl", "--sites", "500", "--samples", "-1",
+                              "--json", "-o", out.string()});
   ASSERT_EQ(run.exit_status, 0) << run.err;
-  EXPECT_NE(run.err.find("tests/data/cheburashka.ply: the sharp features could not all be kept, remeshed without the "
-                         "creases near the 1 place where the remesh that kept them failed: "),
+  EXPECT_NE(run.err.find("tests/data/cad/surface_image.stl: the sharp features could not all be kept, remeshed "
+                         "without the creases near the 1 place where the remesh that kept them failed: "),
             std::string::npos)
       << run.err;
   const nlohmann::json figures = nlohmann::json::parse(run.out);

@@ -49,6 +49,16 @@ pipeline::RemeshPipelineResult remesh_without_statistics(io::LoadedMesh loaded, 
   return pipeline::run_remesh_pipeline(std::move(loaded), options);
 }
 
+/// The pipeline's options with the remesh that keeps the creases repairing
+/// its dual alone, without closing it along the chains' sides
+/// (RemeshOptions::close_crease_stretches): how it ran before, where the
+/// cases below make the repair fail and the retries run.
+pipeline::RemeshPipelineOptions repair_alone() {
+  pipeline::RemeshPipelineOptions options;
+  options.remesh.close_crease_stretches = false;
+  return options;
+}
+
 /// The options of a remesh whose warm start goes without momentum, for 50
 /// steps (the default before momentum): the sites it reaches on the thick
 /// plate make the dual's repair fail in the ways the tests below need, where
@@ -329,8 +339,9 @@ TEST(FeaturePipeline, RepairPointsThatDoubleAPointOnACreaseGiveWayToItsTwins) {
   // welded made triangles with a side of almost nothing (on assembly_47 at
   // 2,000 sites, Qmin 0.001, before its sites beside the creases were as
   // dense as elsewhere).
+  // (With the repair alone: closed along the chains, the dual needs none there.)
   const pipeline::RemeshPipelineResult result =
-      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 2000);
+      remesh_without_statistics(io::read_mesh("tests/data/cheburashka.ply"), 2000, repair_alone());
   ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   const std::vector<std::string>& problems = result.remesh.repair_problems;
   EXPECT_TRUE(std::any_of(problems.begin(), problems.end(),
@@ -343,9 +354,10 @@ TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreLeftOutWhereItFail
   // spacing, and the dual of the cut surface needs more than the 4 rounds of
   // repair the remesh that keeps them gets (10 without them). The repair
   // fails at one place: the creases within two spacings of it are left out,
-  // the others kept.
+  // the others kept. (With the repair alone: see below for the dual closed
+  // along the chains, which keeps them all.)
   const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
-  const pipeline::RemeshPipelineResult result = remesh_without_statistics(scan, 500);
+  const pipeline::RemeshPipelineResult result = remesh_without_statistics(scan, 500, repair_alone());
   EXPECT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   EXPECT_NE(result.features_partly_dropped_reason.find("after 4 "), std::string::npos)  // "... repair rounds"
       << result.features_partly_dropped_reason;
@@ -381,15 +393,38 @@ TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreLeftOutWhereItFail
   EXPECT_EQ(remeshed.num_boundary_loops, 0);
 }
 
+TEST(FeaturePipeline, TheDualClosedAlongTheChainsKeepsTheCreasesTheRepairAloneLeftOut) {
+  // cheburashka at 500 sites, whose creases the repair alone leaves out in
+  // part (the tests above): closed along the chains' sides, the dual keeps
+  // every crease, with the input's topology and no sliver.
+  const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
+  const pipeline::RemeshPipelineResult alone = remesh_without_statistics(scan, 500, repair_alone());
+  ASSERT_FALSE(alone.features_left_out.empty());
+  const pipeline::RemeshPipelineResult closed = remesh_without_statistics(scan, 500);
+  EXPECT_TRUE(closed.features_dropped_reason.empty()) << closed.features_dropped_reason;
+  EXPECT_TRUE(closed.features_partly_dropped_reason.empty()) << closed.features_partly_dropped_reason;
+  EXPECT_TRUE(closed.features_left_out.empty());
+  EXPECT_GT(closed.features.sharp_edges.size(), alone.features.sharp_edges.size());
+  // More of the input's sharp edges lie on remesh edges.
+  EXPECT_GT(quality::feature_recall(scan.mesh, closed.remesh.mesh).recall_pct,
+            quality::feature_recall(scan.mesh, alone.remesh.mesh).recall_pct);
+  const MeshTopology remeshed = build_mesh_topology(closed.remesh.mesh);
+  ASSERT_EQ(remeshed.num_components(), 1);
+  EXPECT_EQ(remeshed.components[0].euler_characteristic(), 2);
+  EXPECT_EQ(remeshed.num_boundary_loops, 0);
+  EXPECT_GT(quality::triangle_quality(closed.remesh.mesh).theta_min_deg, 10.0);
+}
+
 TEST(FeaturePipeline, ATryThatWouldRepeatTheFailedOneIsNotRun) {
   // bunny_res2 at 2,000 sites: its creases do not weld. The second try, with
   // the sites beside them denser, samples the same sites as the first (few
   // sites beside short creases), so it would fail the same way: not run.
   // Three relaxations (with the features, again with as many repair rounds
   // as without them, then without), not four.
+  // (With the repair alone: closed along the chains, they weld.)
   int relaxations = 0;  // reports entering the relax stage
   pipeline::Stage last = pipeline::Stage::load;
-  pipeline::RemeshPipelineOptions options;
+  pipeline::RemeshPipelineOptions options = repair_alone();
   options.progress = [&](pipeline::Stage stage, double) {
     if (stage == pipeline::Stage::relax && last != pipeline::Stage::relax) ++relaxations;
     last = stage;
@@ -415,7 +450,7 @@ TEST(FeaturePipeline, TheRetryLeavesOutOnlyTheCreasesNearTheFaultsAndReportsThem
   const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
   const auto remesh_with_radius = [&](double radius, int& relaxations) {
     pipeline::Stage last = pipeline::Stage::load;
-    pipeline::RemeshPipelineOptions options;
+    pipeline::RemeshPipelineOptions options = repair_alone();
     options.remesh.feature_retry_radius = radius;
     options.progress = [&](pipeline::Stage stage, double) {
       if (stage == pipeline::Stage::relax && last != pipeline::Stage::relax) ++relaxations;
@@ -591,8 +626,9 @@ TEST(FeaturePipeline, AWeldDoesNotCloseACrackAllButOnAnotherSite) {
   // site there (1.2e-8 of the diagonal): a needle of 6e-5 degrees. That
   // site is left out instead, the site there serving the crack; the crease
   // is kept and the input's topology.
+  // (With the repair alone: closed along the chains, the weld has no crack there.)
   const io::LoadedMesh loaded = io::read_mesh("tests/data/ogre.ply");
-  const pipeline::RemeshPipelineResult result = remesh_without_statistics(loaded, 5000);
+  const pipeline::RemeshPipelineResult result = remesh_without_statistics(loaded, 5000, repair_alone());
   EXPECT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   EXPECT_NE(remesh::problems_line(result.remesh.repair_problems).find("all but on another site"), std::string::npos)
       << remesh::problems_line(result.remesh.repair_problems);

@@ -157,9 +157,9 @@ def test_says_which_features_were_kept_and_where_creases_were_left_out(data_dir)
     assert kept.feature_chains >= 30
     assert kept.features_dropped_reason is None
     assert kept.features_dropped_near.shape == (0, 3)
-    # cheburashka at 500 sites: the remesh that keeps its creases fails at
-    # one place; those near it are left out, the others kept.
-    V, F = geodual.read_mesh(data_dir / "cheburashka.ply")
+    # OpenSCAD's surface_image at 500 sites: the remesh that keeps its creases
+    # fails at one place; those near it are left out, the others kept.
+    V, F = geodual.read_mesh(data_dir / "cad" / "surface_image.stl")
     partly = geodual.remesh(V, F, sites=500, statistics=False)
     assert partly.feature_chains > 0
     assert partly.features_dropped_reason is None
