@@ -1,6 +1,6 @@
 #include "boundary_triangles.hpp"
 
-#include "geodual/mesh/triangle_shape.hpp"
+#include "ear_clipping.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -107,40 +107,6 @@ std::optional<LoopPlace> place_of(const TriangleMesh& mesh, const voronoi::Surfa
   return std::nullopt;
 }
 
-/// The triangles of the polygon (counter-clockwise), ear by ear, the ear
-/// whose smallest angle is largest first, none closing an edge `taken`
-/// already has (undirected), with an angle below `min_angle` (radians) or
-/// an edge longer than `max_edge`; nothing where that fails.
-std::vector<std::array<Index, 3>> clip_ears(std::vector<Index> polygon, const VertexMatrix& positions,
-                                            const std::set<std::array<Index, 2>>& taken, double min_angle,
-                                            double max_edge) {
-  std::vector<std::array<Index, 3>> ears;
-  const auto angle = [&](Index a, Index b, Index c) {
-    const Eigen::Vector3d p = positions.row(a), q = positions.row(b), r = positions.row(c);
-    const double longest = std::max({(q - p).norm(), (r - q).norm(), (p - r).norm()});
-    return longest <= max_edge ? triangle_shape(p, q, r).min_angle() : 0.0;
-  };
-  const auto is_taken = [&](Index a, Index b) { return taken.count({std::min(a, b), std::max(a, b)}) > 0; };
-  while (polygon.size() > 3) {
-    std::size_t best = polygon.size();
-    double best_angle = min_angle;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-      const Index prev = polygon[(i + polygon.size() - 1) % polygon.size()];
-      const Index next = polygon[(i + 1) % polygon.size()];
-      if (is_taken(prev, next)) continue;
-      const double a = angle(prev, polygon[i], next);
-      if (a > best_angle) best_angle = a, best = i;
-    }
-    if (best == polygon.size()) return {};
-    ears.push_back(
-        {polygon[(best + polygon.size() - 1) % polygon.size()], polygon[best], polygon[(best + 1) % polygon.size()]});
-    polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
-  }
-  if (!(angle(polygon[0], polygon[1], polygon[2]) >= min_angle)) return {};
-  ears.push_back({polygon[0], polygon[1], polygon[2]});
-  return ears;
-}
-
 }  // namespace
 
 std::vector<std::array<Index, 3>> boundary_triangles(const TriangleMesh& mesh, const voronoi::VoronoiDiagram& diagram,
@@ -216,8 +182,8 @@ std::vector<std::array<Index, 3>> boundary_triangles(const TriangleMesh& mesh, c
         std::sort(sorted.begin(), sorted.end());
         const double max_edge = max_reach * (positions.row(from) - positions.row(to)).norm();
         if (std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end()) {
-          for (const auto& t :
-               clip_ears(polygon, positions, undirected, min_angle * std::numbers::pi / 180, max_edge)) {
+          const auto is_edge = [&](Index a, Index b) { return undirected.count({std::min(a, b), std::max(a, b)}) > 0; };
+          for (const auto& t : clip_ears(polygon, positions, is_edge, min_angle * std::numbers::pi / 180, max_edge)) {
             added.push_back(t);
             for (int c = 0; c < 3; ++c) {
               const Index a = t[static_cast<std::size_t>(c)], b = t[static_cast<std::size_t>((c + 1) % 3)];

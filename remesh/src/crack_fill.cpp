@@ -1,7 +1,8 @@
 #include "crack_fill.hpp"
 
+#include "ear_clipping.hpp"
+
 #include "geodual/mesh/mesh_topology.hpp"
-#include "geodual/mesh/triangle_shape.hpp"
 
 #include <algorithm>
 #include <array>
@@ -41,12 +42,6 @@ std::vector<Index> hole_polygon(const TriangleMesh& mesh, const MeshTopology& to
   return polygon;
 }
 
-/// The smallest angle of the triangle (a, b, c) of `mesh`'s vertices; 0 or
-/// not a number for a degenerate one.
-double smallest_angle(const TriangleMesh& mesh, Index a, Index b, Index c) {
-  return triangle_shape(mesh.vertices.row(a), mesh.vertices.row(b), mesh.vertices.row(c)).min_angle();
-}
-
 }  // namespace
 
 std::optional<CrackFill> close_cracks(TriangleMesh& mesh, std::span<const Index> crack_vertices, int max_edges) {
@@ -79,32 +74,17 @@ std::optional<CrackFill> close_cracks(TriangleMesh& mesh, std::span<const Index>
   CrackFill fill;
   for (Index loop = 0; loop < topology.num_boundary_loops; ++loop) {
     if (!loop_cracked[static_cast<std::size_t>(loop)]) continue;
-    std::vector<Index> polygon = hole_polygon(mesh, topology, loop_edges[static_cast<std::size_t>(loop)], max_edges);
+    const std::vector<Index> polygon =
+        hole_polygon(mesh, topology, loop_edges[static_cast<std::size_t>(loop)], max_edges);
     if (polygon.empty()) return std::nullopt;
-    while (polygon.size() > 3) {
-      // The ear with the largest smallest angle whose closing edge is new.
-      std::size_t best = polygon.size();
-      double best_angle = 0;
-      for (std::size_t i = 0; i < polygon.size(); ++i) {
-        const Index prev = polygon[(i + polygon.size() - 1) % polygon.size()];
-        const Index next = polygon[(i + 1) % polygon.size()];
-        if (is_edge(prev, next)) continue;
-        const double angle = smallest_angle(mesh, prev, polygon[i], next);
-        if (angle > best_angle) {
-          best_angle = angle;
-          best = i;
-        }
+    const std::vector<std::array<Index, 3>> ears = detail::clip_ears(polygon, mesh.vertices, is_edge);
+    if (ears.empty() || is_face(ears.back()[0], ears.back()[1], ears.back()[2])) return std::nullopt;
+    for (std::size_t i = 0; i < ears.size(); ++i) {
+      added.push_back(ears[i]);
+      if (i + 1 < ears.size()) {  // its closing side, a side of the next
+        new_edges.push_back({std::min(ears[i][0], ears[i][2]), std::max(ears[i][0], ears[i][2])});
       }
-      if (best == polygon.size()) return std::nullopt;
-      const Index prev = polygon[(best + polygon.size() - 1) % polygon.size()];
-      const Index next = polygon[(best + 1) % polygon.size()];
-      added.push_back({prev, polygon[best], next});
-      new_edges.push_back({std::min(prev, next), std::max(prev, next)});
-      polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
     }
-    if (is_face(polygon[0], polygon[1], polygon[2])) return std::nullopt;
-    if (!(smallest_angle(mesh, polygon[0], polygon[1], polygon[2]) > 0)) return std::nullopt;
-    added.push_back({polygon[0], polygon[1], polygon[2]});
     ++fill.holes;
   }
   if (added.empty()) return fill;
