@@ -5,19 +5,15 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
-#include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/union_find.hpp"
-#include "geodual/mesh/vertex_copies.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
-#include "geodual/remesh/angle_smoothing.hpp"
 #include "geodual/remesh/chain_slider.hpp"
-#include "geodual/remesh/crease_pins.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/error_density.hpp"
 #include "geodual/remesh/follow_segments.hpp"
+#include "geodual/remesh/remesh_smoothing.hpp"
 #include "geodual/remesh/sizing.hpp"
-#include "geodual/remesh/spacing_density.hpp"
 
 #include <Eigen/Geometry>
 
@@ -180,21 +176,6 @@ RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, con
 
 namespace {
 
-/// The input's edges `edges` (vertex pairs) on the surface cut to a manifold:
-/// every pair of copies of their ends (the detection keeps those that are edges).
-std::vector<std::array<Index, 2>> edges_on_cut(const remesh::ManifoldCut& cut, Index num_input_vertices,
-                                               const std::vector<std::array<Index, 2>>& edges) {
-  if (edges.empty()) return {};
-  const VertexCopies copies = group_vertex_copies(cut.original_vertex, num_input_vertices);
-  std::vector<std::array<Index, 2>> on_cut;
-  for (const auto& [a, b] : edges) {
-    for (const Index i : copies.of(a)) {
-      for (const Index j : copies.of(b)) on_cut.push_back({i, j});
-    }
-  }
-  return on_cut;
-}
-
 /// A remesh that starts from the sites of the last (on the same cut surface),
 /// with `added` more where the last strayed furthest from the input
 /// (remesh_within_error).
@@ -203,114 +184,6 @@ struct SiteRefinement {
   std::vector<double> deviation;  ///< per input vertex
   std::int64_t added = 0;
 };
-
-/// The pins on result.features.short_creases (crease_pins.hpp), on the
-/// surface the relaxation works on, and the density round them folded into
-/// `density` (per vertex of that surface; empty: 1) with the sites it asks
-/// for beyond `sites` in `sites_asked`. The spacing grows away from the pins
-/// twice as fast as from the chains' dense points: the pins are many (a
-/// fillet's coarse edges) and the slower growth would more than double the
-/// count on such parts, for a few degrees of the smallest angle
-/// (docs/algorithms.md#short-creases-pinned). The pins and the sites round
-/// them take at most half of `sites`; where they would take more (a scan's
-/// noisy edges), there are none and `reason` says why. Flooring their spacing
-/// to fit made slivers between pins closer than the floor.
-struct PinnedCreases {
-  std::vector<SurfacePoint> pins;
-  std::vector<std::array<std::size_t, 2>> segments;  ///< pairs of pins a remesh edge should join
-  std::string reason;
-};
-PinnedCreases pin_short_creases(const RemeshPipelineResult& result, std::int64_t sites, std::vector<double>& density,
-                                std::int64_t& sites_asked) {
-  const TriangleMesh& manifold = result.surface.mesh;
-  const double spacing = remesh::uniform_spacing(manifold, sites);
-  remesh::CreasePins crease_pins = remesh::crease_pins(
-      manifold, result.features, {.spacing = spacing, .max_chord_error = 5e-4 * result.input_report.bbox_diagonal});
-  const TriangleMesh& working = result.features.empty() ? manifold : result.feature_cut.mesh;
-  if (!result.features.empty()) {
-    // Onto the features' cut: its faces are the surface's, its vertices copies.
-    std::vector<Index> copy(static_cast<std::size_t>(manifold.num_vertices()), -1);
-    for (std::size_t c = result.feature_cut.original_vertex.size(); c-- > 0;) {
-      copy[result.feature_cut.original_vertex[c]] = static_cast<Index>(c);
-    }
-    for (SurfacePoint& pin : crease_pins.sites) pin.element = copy[pin.element];
-  }
-  PinnedCreases pinned;
-  if (crease_pins.sites.empty()) return pinned;
-  constexpr double kMaxShare = 0.5;
-  std::vector<double> with_pins =
-      remesh::spacing_density(working, crease_pins.spacing, {.spacing = spacing, .gradation = 0.3});
-  for (std::size_t v = 0; v < density.size(); ++v) with_pins[v] = std::max(with_pins[v], density[v]);
-  const std::int64_t asked = remesh::sites_for_density(working, sites, {}, with_pins) - sites;
-  if (static_cast<double>(asked - sites_asked) + static_cast<double>(crease_pins.sites.size()) >
-      kMaxShare * static_cast<double>(sites)) {
-    pinned.reason = "the " + std::to_string(crease_pins.sites.size()) +
-                    " sites pinned on the short creases and those round them would be more than half the " +
-                    std::to_string(sites) + " sites asked: not pinned";
-    return pinned;
-  }
-  density = std::move(with_pins);
-  sites_asked = asked;
-  pinned.pins = std::move(crease_pins.sites);
-  pinned.segments = std::move(crease_pins.segments);
-  return pinned;
-}
-
-/// remesh::smooth_largest_deviations (with `fit_deviations`) and then
-/// remesh::smooth_smallest_angles (with min_angle > 0) on the remesh, whose
-/// sites lie on `surface`: a vertex that welded twins share (a chain's) or a
-/// pin's stays, and so does one within `crease_tolerance` of the pinned
-/// `creases` (vertex polylines of `crease_mesh`), which may be what follows
-/// them; a vertex moved takes its site along.
-remesh::AngleSmoothingResult smooth_remesh(remesh::RepairedDual& remeshed, const TriangleMesh& surface,
-                                           const voronoi::SurfaceTopology& topology,
-                                           std::span<const Index> pin_vertices,
-                                           std::span<const remesh::FeatureChain> creases,
-                                           const TriangleMesh& crease_mesh, double crease_tolerance, double min_angle,
-                                           bool fit_deviations, remesh::DeviationSmoothingResult& fitting) {
-  const auto num_vertices = static_cast<std::size_t>(remeshed.mesh.num_vertices());
-  std::vector<SurfacePoint> points(num_vertices);
-  std::vector<std::uint8_t> sites_at(num_vertices, 0);  // up to 2: one, or more than one
-  const auto vertex_of = [&](std::size_t site) {
-    return remeshed.vertex_of_site.empty() ? site : static_cast<std::size_t>(remeshed.vertex_of_site[site]);
-  };
-  for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
-    const std::size_t v = vertex_of(site);
-    points[v] = remeshed.sites[site];
-    sites_at[v] = static_cast<std::uint8_t>(std::min(2, sites_at[v] + 1));
-  }
-  std::vector<std::uint8_t> fixed(num_vertices, 0);
-  for (std::size_t v = 0; v < num_vertices; ++v) fixed[v] = sites_at[v] != 1;
-  for (const Index v : pin_vertices) {
-    if (v >= 0) fixed[static_cast<std::size_t>(v)] = 1;
-  }
-  const auto near_a_crease = [&](const Eigen::Vector3d& x) {
-    for (const remesh::FeatureChain& crease : creases) {
-      for (std::size_t k = 0; k + 1 < crease.vertices.size(); ++k) {
-        if (std::sqrt(squared_distance_to_segment(x, crease_mesh.vertices.row(crease.vertices[k]),
-                                                  crease_mesh.vertices.row(crease.vertices[k + 1]))) <=
-            crease_tolerance) {
-          return true;
-        }
-      }
-    }
-    return false;
-  };
-  if (!creases.empty()) {
-    for (std::size_t v = 0; v < num_vertices; ++v) {
-      if (!fixed[v] && near_a_crease(remeshed.mesh.vertices.row(static_cast<Index>(v)))) fixed[v] = 1;
-    }
-  }
-  fitting = {};
-  if (fit_deviations) fitting = remesh::smooth_largest_deviations(surface, topology, remeshed.mesh, points, fixed);
-  const remesh::AngleSmoothingResult smoothed =
-      remesh::smooth_smallest_angles(surface, topology, remeshed.mesh, points, fixed, {.min_angle = min_angle});
-  for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
-    const std::size_t v = vertex_of(site);
-    if (!fixed[v]) remeshed.sites[site] = points[v];
-  }
-  return smoothed;
-}
 
 /// The stages after `load` on result.input, filling in `result`; Lloyd's
 /// density is multiplied by `input_density` (per input vertex; empty: 1).
@@ -356,20 +229,18 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   };
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
-  std::size_t pin_begin = 0, pin_count = 0;              // the sites pinned on short creases
-  std::vector<std::array<std::size_t, 2>> pin_segments;  // pairs of pins (from pin_begin on) a remesh edge should join
-  std::vector<double> chain_density;                     // per vertex of result.feature_cut.mesh; empty: 1
-  double chain_spacing = 0;                              // the spacing chain_density was made for
-  std::int64_t sites_near_features = 0;                  // the sites chain_density asks for
-  result.sites_added_near_features = 0;
   if (options.edge_length > 0) {
     sites = result.sites_for_sizing = remesh::sites_for_edge_length(result.surface.mesh, options.edge_length);
   } else if (options.faces > 0) {
     sites = result.sites_for_sizing = remesh::sites_for_faces(result.surface.mesh, options.faces);
   }
+  remesh::RemeshSites initial;                           // the sites and where the pins are among them
+  std::vector<double> feature_density;                   // per vertex of result.feature_cut.mesh; empty: 1
+  std::vector<std::array<std::size_t, 2>> pin_segments;  // pairs of pins a remesh edge should join
+  result.sites_added_near_features = 0;
   if (options.given_sites) {
-    result.initial_sites = remesh::points_on_cut(result.surface, *options.given_sites);
-    remesh::require_a_site_on_every_piece(result.surface.mesh, result.initial_sites);
+    initial.sites = remesh::points_on_cut(result.surface, *options.given_sites);
+    remesh::require_a_site_on_every_piece(result.surface.mesh, initial.sites);
   } else if (refinement) {
     const TriangleMesh& manifold = result.surface.mesh;
     auto on_surface = [&](std::span<const double> field) {  // per input vertex -> per surface vertex
@@ -379,100 +250,43 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
       for (std::size_t v = 0; v < values.size(); ++v) values[v] = field[result.surface.original_vertex[v]];
       return values;
     };
-    result.initial_sites = remesh::add_sites_at_deviations(manifold, refinement->sites,
-                                                           on_surface(refinement->deviation), on_surface(input_density),
-                                                           remesh::uniform_spacing(manifold, sites), refinement->added);
+    initial.sites = remesh::add_sites_at_deviations(manifold, refinement->sites, on_surface(refinement->deviation),
+                                                    on_surface(input_density), remesh::uniform_spacing(manifold, sites),
+                                                    refinement->added);
   } else {
-    // Sharp features: cut open and lined with sites, the rest sampled around them.
+    // Sharp features: cut open and lined with sites, short creases pinned,
+    // the rest sampled around them.
     const TriangleMesh& manifold = result.surface.mesh;
-    std::optional<remesh::FeatureSites> feature_sites;
-    if ((options.remesh.sharp_angle > 0 || !options.remesh.feature_edges.empty()) && sites >= 4) {
-      const double spacing = remesh::uniform_spacing(manifold, sites);
-      remesh::FeatureOptions feature_options =
-          remesh::remesh_feature_options(manifold, sites, options.remesh.sharp_angle, options.remesh.min_feature_length,
-                                         options.remesh.continuation_angle);
-      feature_options.given_edges =
-          edges_on_cut(result.surface, result.input.mesh.num_vertices(), options.remesh.feature_edges);
-      feature_options.excluded_edges.assign(excluded_edges.begin(), excluded_edges.end());
-      result.features = remesh::detect_features(manifold, feature_options);
-      if (!result.features.empty()) {
-        result.feature_cut = remesh::cut_along_features(manifold, result.features);
-        // Chords within 0.05 % of the diagonal (the statistics' feature recall
-        // tolerance is 0.1 %), but no closer than 3/4 of the spacing: sites
-        // denser along a chain than around it make slivers against it. Where
-        // that leaves a chord beyond the recall tolerance, down to 0.4 of the
-        // spacing, with the sites around them as close: a denser relaxation
-        // there, and the sites that density asks for. Unless those are more
-        // than a tenth of the count asked (the creases bend too much for
-        // it), or the surface's faces are too wide to carry the density.
-        remesh::FeatureSiteOptions site_options{.spacing = spacing,
-                                                .max_chord_error = 5e-4 * result.input_report.bbox_diagonal,
-                                                .min_spacing = 0.75 * spacing,
-                                                .tight_spacing = 0.4 * spacing};
-        feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut, site_options);
-        if (!feature_sites->dense_points.empty()) {
-          const TriangleMesh& cut = result.feature_cut.mesh;
-          chain_spacing = spacing;
-          chain_density = remesh::spacing_density(cut, feature_sites->dense_points, {.spacing = spacing});
-          sites_near_features = remesh::sites_for_density(cut, sites, {}, chain_density) - sites;
-          constexpr double kMaxShareNearFeatures = 0.1;
-          if (static_cast<double>(sites_near_features) > kMaxShareNearFeatures * static_cast<double>(sites) ||
-              !remesh::carries_density(cut, chain_density, spacing)) {
-            chain_density.clear();
-            sites_near_features = 0;
-            site_options.tight_spacing = 0;
-            feature_sites = remesh::feature_sites(manifold, result.features, result.feature_cut, site_options);
-          }
-        }
-        result.feature_sites = feature_sites->points;
-        result.site_twins = static_cast<std::int64_t>(feature_sites->sites.size()) - feature_sites->points;
-      }
+    remesh::FeatureSamplingOptions feature_options =
+        remesh::feature_sampling_options(options.remesh, result.input.mesh, result.surface);
+    feature_options.excluded_edges.assign(excluded_edges.begin(), excluded_edges.end());
+    feature_options.max_chord_error = 5e-4 * result.input_report.bbox_diagonal;
+    remesh::FeatureSampling creases = remesh::sample_features(manifold, sites, feature_options);
+    remesh::ShortCreasePins pins;
+    if (options.remesh.pin_short_creases) {
+      pins = remesh::pin_short_creases(manifold, sites, creases, feature_options.max_chord_error);
     }
-    // Short creases: sites pinned on them, the sites round them as close.
-    PinnedCreases pinned_creases;
-    if (options.remesh.pin_short_creases && !result.features.short_creases.empty()) {
-      pinned_creases = pin_short_creases(result, sites, chain_density, sites_near_features);
-      if (!pinned_creases.pins.empty()) chain_spacing = remesh::uniform_spacing(manifold, sites);
-      result.crease_pins_reason = std::move(pinned_creases.reason);
-    }
-    std::vector<SurfacePoint>& pins = pinned_creases.pins;
-    pin_segments = std::move(pinned_creases.segments);
     report(options.progress, Stage::sample, 0.5);
-    const auto pinned = static_cast<std::int64_t>(pins.size());  // within the count
-    remesh::SampledSites sampled =
-        feature_sites
-            ? remesh::sample_sites_around(result.feature_cut.mesh,
-                                          std::max<std::int64_t>(0, sites - feature_sites->points - pinned),
-                                          feature_sites->sites, options.sampling, given_share)
-            : remesh::sample_sites_for_topology(manifold, std::max<std::int64_t>(4, sites - pinned), options.sampling);
-    result.initial_sites = std::move(sampled.sites);
-    pin_begin = result.initial_sites.size();
-    result.initial_sites.insert(result.initial_sites.end(), pins.begin(), pins.end());
-    if (!chain_density.empty()) {
-      // The sites the chains' density asks for, where it is densest, off the
-      // chains, half a local spacing apart.
-      const TriangleMesh& cut = result.features.empty() ? manifold : result.feature_cut.mesh;
-      std::vector<double> excess(chain_density.size());
-      const MeshTopology topology = build_mesh_topology(cut);
-      for (std::size_t v = 0; v < excess.size(); ++v) {
-        excess[v] = topology.vertex_on_boundary[v] != 0 ? 0.0 : chain_density[v] - 1;
-      }
-      const std::size_t before = result.initial_sites.size();
-      result.initial_sites = remesh::add_sites_at_deviations(cut, result.initial_sites, excess, chain_density,
-                                                             chain_spacing, sites_near_features);
-      result.sites_added_near_features = static_cast<std::int64_t>(result.initial_sites.size() - before);
-    }
-    pin_count = pins.size();
-    result.crease_pins = static_cast<std::int64_t>(pin_count);
-    result.first_crease_pin = static_cast<std::int64_t>(pin_begin);
-    result.sites_added_for_topology = sampled.sites_added_for_topology;
-    result.sites_added_reason = sampled.topology_reason;
-    if (sampled.sites_added_for_topology > 0) {
+    initial = remesh::sample_remesh_sites(manifold, sites, creases, pins, options.sampling, given_share);
+    result.crease_pins_reason = std::move(pins.reason);
+    pin_segments = std::move(pins.segments);
+    result.feature_sites = creases.sites.points;
+    result.site_twins = static_cast<std::int64_t>(creases.sites.sites.size()) - creases.sites.points;
+    result.features = std::move(creases.features);
+    result.feature_cut = std::move(creases.cut);
+    feature_density = std::move(creases.density);
+    result.sites_added_near_features = initial.sites_added_near_features;
+    result.sites_added_for_topology = initial.sites_added_for_topology;
+    result.sites_added_reason = initial.topology_reason;
+    if (initial.sites_added_for_topology > 0) {
       // The loops of the surface cut to a manifold (those of the features' cut are the chains' sides).
       result.sites_added_reason +=
-          loops_from_cut(feature_sites ? result.surface_boundary_loops : sampled.boundary_loops);
+          loops_from_cut(result.features.empty() ? initial.boundary_loops : result.surface_boundary_loops);
     }
   }
+  result.initial_sites = initial.sites;
+  result.crease_pins = initial.pins;
+  result.first_crease_pin = initial.first_pin;
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
   if (tried_sites && result.initial_sites == *tried_sites) return false;
@@ -491,19 +305,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   // each diagram; Lloyd's accepted iterations split the stage.
   const bool features = !result.features.empty();
   const TriangleMesh& surface = features ? result.feature_cut.mesh : manifold_surface;
-  remesh::LloydOptions lloyd =
-      remesh::relaxation_options(surface, static_cast<std::int64_t>(result.initial_sites.size()), options.remesh);
-  if (pin_count > 0) {
-    lloyd.fixed_sites.assign(result.initial_sites.size(), 0);
-    std::fill_n(lloyd.fixed_sites.begin() + static_cast<std::ptrdiff_t>(pin_begin), pin_count, std::uint8_t{1});
-  }
-  if (!chain_density.empty() && lloyd.iterations > 0) {
-    if (lloyd.density.empty()) {
-      lloyd.density = std::move(chain_density);
-    } else {
-      for (std::size_t v = 0; v < lloyd.density.size(); ++v) lloyd.density[v] *= chain_density[v];
-    }
-  }
+  remesh::LloydOptions lloyd = remesh::relaxation_options(surface, initial, feature_density, options.remesh);
   if (!input_density.empty() && lloyd.iterations > 0) {
     // Each vertex of the surface copies one of the input's (through the cuts).
     std::vector<double> density(static_cast<std::size_t>(surface.num_vertices()));
@@ -543,17 +345,8 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   report(options.progress, Stage::relax, 1.0);
 
   // Dual with repair; each repair round's diagram reports its progress.
-  remesh::RepairOptions repair{
-      .max_rounds = options.remesh.max_repair_rounds, .voronoi = options.remesh.lloyd.voronoi, .dual = {}};
-  if (features) {
-    repair.dual.close_boundary_stretches = options.remesh.close_crease_stretches;
-    repair.max_rounds = std::min(repair.max_rounds, options.remesh.max_feature_repair_rounds);
-    repair.extend_while_converging = false;
-    if (options.remesh.max_feature_sites_added > 0) {
-      repair.max_sites_added = std::max<std::int64_t>(
-          1, std::llround(options.remesh.max_feature_sites_added * static_cast<double>(result.initial_sites.size())));
-    }
-  }
+  remesh::RepairOptions repair =
+      remesh::repair_options(options.remesh, features, static_cast<std::int64_t>(result.initial_sites.size()));
   if (options.progress) {
     repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
   }
@@ -579,11 +372,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
     // Onto the short creases: the pins' vertices joined by edges where flips can do it.
     pin_vertex = crease_pin_vertices(result);
-    std::vector<std::array<Index, 2>> segments;
-    for (const auto& [a, b] : pin_segments) {
-      if (pin_vertex[a] >= 0 && pin_vertex[b] >= 0) segments.push_back({pin_vertex[a], pin_vertex[b]});
-    }
-    result.crease_segments = remesh::follow_segments(result.remesh.mesh, segments);
+    result.crease_segments = remesh::follow_pin_segments(result.remesh.mesh, pin_vertex, pin_segments);
   }
   result.smoothing = {};
   result.fitting = {};
@@ -593,12 +382,16 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     // Where creases are pinned, what follows them within the feature recall's
     // tolerance stays.
     const std::span<const remesh::FeatureChain> pinned_creases =
-        pin_count > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
-                      : std::span<const remesh::FeatureChain>();
-    result.smoothing =
-        smooth_remesh(result.remesh, surface, *geodesic_surface->topology(), pin_vertex, pinned_creases,
-                      manifold_surface, options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal,
-                      options.remesh.smoothing_angle, options.remesh.fit_deviations, result.fitting);
+        result.crease_pins > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
+                               : std::span<const remesh::FeatureChain>();
+    const remesh::RemeshSmoothing smoothed = remesh::smooth_remesh(
+        result.remesh, surface, *geodesic_surface->topology(),
+        {.smoothing_angle = options.remesh.smoothing_angle,
+         .fit_deviations = options.remesh.fit_deviations,
+         .crease_tolerance = options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal},
+        pin_vertex, pinned_creases, &manifold_surface);
+    result.smoothing = smoothed.smoothing;
+    result.fitting = smoothed.fitting;
   }
   geodesic_surface.reset();
   // The prepared surface was the largest thing held: handed back before the
@@ -634,47 +427,13 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
 }  // namespace
 
 std::vector<Index> crease_pin_vertices(const RemeshPipelineResult& result) {
-  // The repair may leave sites out (RepairedDual::sites): the pins, at
-  // vertices, are found by their vertex.
-  std::vector<Index> pin_of_vertex;
-  for (std::int64_t pin = 0; pin < result.crease_pins; ++pin) {
-    const SurfacePoint& site = result.initial_sites[static_cast<std::size_t>(result.first_crease_pin + pin)];
-    if (pin_of_vertex.size() <= static_cast<std::size_t>(site.element)) {
-      pin_of_vertex.resize(static_cast<std::size_t>(site.element) + 1, -1);
-    }
-    pin_of_vertex[static_cast<std::size_t>(site.element)] = static_cast<Index>(pin);
-  }
-  std::vector<Index> vertex(static_cast<std::size_t>(result.crease_pins), -1);
-  for (std::size_t s = 0; s < result.remesh.sites.size(); ++s) {
-    const SurfacePoint& site = result.remesh.sites[s];
-    if (site.kind != SurfacePoint::Kind::vertex || static_cast<std::size_t>(site.element) >= pin_of_vertex.size()) {
-      continue;
-    }
-    const Index pin = pin_of_vertex[static_cast<std::size_t>(site.element)];
-    if (pin < 0) continue;
-    vertex[static_cast<std::size_t>(pin)] =
-        result.remesh.vertex_of_site.empty() ? static_cast<Index>(s) : result.remesh.vertex_of_site[s];
-  }
-  return vertex;
+  return remesh::pin_vertices(result.remesh, std::span<const SurfacePoint>(result.initial_sites)
+                                                 .subspan(static_cast<std::size_t>(result.first_crease_pin),
+                                                          static_cast<std::size_t>(result.crease_pins)));
 }
 
 std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& result) {
-  const remesh::RepairedDual& remeshed = result.remesh;
-  std::vector<SurfacePoint> points(static_cast<std::size_t>(remeshed.mesh.num_vertices()));
-  const bool features = !result.features.empty();  // then the sites are on result.feature_cut.mesh
-  for (std::size_t site = 0; site < remeshed.sites.size(); ++site) {
-    SurfacePoint point = remeshed.sites[site];
-    if (point.kind == SurfacePoint::Kind::vertex) {
-      // A copy of a copy: feature cut -> manifold cut -> input.
-      Index v = point.element;
-      if (features) v = result.feature_cut.original_vertex[static_cast<std::size_t>(v)];
-      point.element = result.surface.original_vertex[static_cast<std::size_t>(v)];
-    }
-    const std::size_t vertex =
-        remeshed.vertex_of_site.empty() ? site : static_cast<std::size_t>(remeshed.vertex_of_site[site]);
-    points[vertex] = point;  // welded twins are copies of one point
-  }
-  return points;
+  return remesh::remesh_points_on_input(result.remesh, result.surface, result.feature_cut);
 }
 
 namespace {

@@ -159,4 +159,15 @@ FollowedSegments follow_segments(TriangleMesh& mesh, std::span<const std::array<
   return result;
 }
 
+FollowedSegments follow_pin_segments(TriangleMesh& mesh, std::span<const Index> pin_vertex,
+                                     std::span<const std::array<std::size_t, 2>> segments,
+                                     const FollowSegmentsOptions& options) {
+  if (segments.empty() || mesh.num_faces() == 0) return {};
+  std::vector<std::array<Index, 2>> joined;
+  for (const auto& [a, b] : segments) {
+    if (pin_vertex[a] >= 0 && pin_vertex[b] >= 0) joined.push_back({pin_vertex[a], pin_vertex[b]});
+  }
+  return follow_segments(mesh, joined, options);
+}
+
 }  // namespace geodual::remesh

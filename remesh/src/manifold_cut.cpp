@@ -5,6 +5,7 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/sharp_edges.hpp"
 #include "geodual/mesh/union_find.hpp"
+#include "geodual/mesh/vertex_copies.hpp"
 
 #include <Eigen/Geometry>
 
@@ -366,6 +367,19 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
     }
   }
   return cut;
+}
+
+std::vector<std::array<Index, 2>> edges_on_cut(const ManifoldCut& cut, Index num_input_vertices,
+                                               std::span<const std::array<Index, 2>> edges) {
+  if (edges.empty()) return {};
+  const VertexCopies copies = group_vertex_copies(cut.original_vertex, num_input_vertices);
+  std::vector<std::array<Index, 2>> on_cut;
+  for (const auto& [a, b] : edges) {
+    for (const Index i : copies.of(a)) {
+      for (const Index j : copies.of(b)) on_cut.push_back({i, j});
+    }
+  }
+  return on_cut;
 }
 
 }  // namespace geodual::remesh

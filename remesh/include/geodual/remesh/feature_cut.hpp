@@ -14,8 +14,8 @@
 
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/remesh/dual_repair.hpp"
 #include "geodual/remesh/features.hpp"
-#include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/spacing_density.hpp"
 
 #include <cstdint>

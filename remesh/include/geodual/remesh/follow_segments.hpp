@@ -10,6 +10,7 @@
 #include "geodual/mesh/triangle_mesh.hpp"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -34,5 +35,11 @@ struct FollowSegmentsOptions {
 /// Deterministic: segments are taken in order.
 FollowedSegments follow_segments(TriangleMesh& mesh, std::span<const std::array<Index, 2>> segments,
                                  const FollowSegmentsOptions& options = {});
+
+/// follow_segments on pairs of pins (ShortCreasePins::segments) by their
+/// vertices in `mesh` (pin_vertices): those with both vertices there.
+FollowedSegments follow_pin_segments(TriangleMesh& mesh, std::span<const Index> pin_vertex,
+                                     std::span<const std::array<std::size_t, 2>> segments,
+                                     const FollowSegmentsOptions& options = {});
 
 }  // namespace geodual::remesh

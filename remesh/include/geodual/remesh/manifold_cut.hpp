@@ -15,7 +15,9 @@
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace geodual::remesh {
@@ -60,5 +62,11 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
 /// it there (the cut may have split the vertex or disabled its faces); face
 /// points, and vertices with no such face, are kept as they are.
 std::vector<SurfacePoint> points_on_cut(const ManifoldCut& cut, std::vector<SurfacePoint> points);
+
+/// Edges of the input (vertex pairs, `num_input_vertices` vertices) on the
+/// cut: every pair of copies of their ends (those that are edges of
+/// cut.mesh are the edge's copies).
+std::vector<std::array<Index, 2>> edges_on_cut(const ManifoldCut& cut, Index num_input_vertices,
+                                               std::span<const std::array<Index, 2>> edges);
 
 }  // namespace geodual::remesh

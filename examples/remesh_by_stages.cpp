@@ -1,0 +1,87 @@
+// Remeshes a mesh with geodual's stages called one by one: the same remesh,
+// byte for byte, as `geodual remesh MESH --sites SITES -o OUT.ply` with its
+// default options (sharp features, deviation fitting and angle smoothing
+// included), where the CLI's first try keeps the features. Where it does
+// not, this program stops and says so; the CLI then tries again with the
+// creases near the failure left out (docs/library.md).
+//
+//   remesh_by_stages MESH SITES OUT.ply
+
+#include <geodual/io/read_mesh.hpp>
+#include <geodual/io/write_mesh.hpp>
+#include <geodual/mesh/coordinate_range.hpp>
+#include <geodual/remesh/chain_slider.hpp>
+#include <geodual/remesh/remesh.hpp>
+#include <geodual/remesh/remesh_smoothing.hpp>
+
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace remesh = geodual::remesh;
+
+int main(int argc, char** argv) {
+  if (argc != 4) {
+    std::cerr << "usage: remesh_by_stages MESH SITES OUT.ply\n";
+    return 2;
+  }
+  try {
+    const geodual::io::LoadedMesh input = geodual::io::read_mesh(argv[1]);
+    const std::int64_t sites = std::stoll(argv[2]);
+    const remesh::RemeshOptions options;  // the CLI's defaults
+    const remesh::SamplingOptions sampling{.strategy = remesh::SamplingStrategy::poisson};
+
+    // The surface: the input cut apart at non-manifold edges and vertices.
+    const remesh::ManifoldCut surface = remesh::cut_to_manifold(input.mesh);
+
+    // Features: creases at the remesh's scale, cut open and lined with sites.
+    remesh::FeatureSamplingOptions feature_options = remesh::feature_sampling_options(options, input.mesh, surface);
+    feature_options.max_chord_error = 5e-4 * geodual::referenced_bounding_box(input.mesh).diagonal();
+    const remesh::FeatureSampling creases = remesh::sample_features(surface.mesh, sites, feature_options);
+
+    // Sites: blue noise around the chains' sites, on the surface cut along them.
+    const remesh::RemeshSites initial = remesh::sample_remesh_sites(surface.mesh, sites, creases, {}, sampling);
+    const geodual::TriangleMesh& cut = creases.sites_surface(surface.mesh);
+
+    // Relaxation (Lloyd-Newton), the sites on chains sliding along them; the
+    // surface is prepared once for every diagram of this stage and the next.
+    remesh::LloydOptions lloyd = remesh::relaxation_options(cut, initial, creases.density, options);
+    std::optional<remesh::ChainSlider> slider;
+    if (!creases.empty()) {
+      slider.emplace(surface.mesh, creases.features, creases.cut);
+      lloyd.slide_boundary_sites = std::cref(*slider);
+    }
+    const geodual::voronoi::GeodesicSurface prepared(cut);
+    remesh::LloydResult relaxed = remesh::lloyd_relax(prepared, initial.sites, lloyd);
+
+    // The dual with repair, welded along the chains.
+    const remesh::RepairOptions repair =
+        remesh::repair_options(options, !creases.empty(), static_cast<std::int64_t>(initial.sites.size()));
+    remesh::RepairedDual remeshed =
+        creases.empty() ? remesh::dual_with_repair(prepared, relaxed.sites, std::move(relaxed.diagram), repair)
+                        : remesh::welded_dual_with_repair(prepared, surface.mesh, creases.features, creases.cut,
+                                                          relaxed.sites, std::move(relaxed.diagram), repair);
+
+    // Deviation fitting and angle smoothing; the input's attributes carried over.
+    remesh::smooth_remesh(remeshed, cut, *prepared.topology(),
+                          {.smoothing_angle = options.smoothing_angle, .fit_deviations = options.fit_deviations});
+    const geodual::VertexAttributes attributes = geodual::interpolate_attributes(
+        input.mesh, input.attributes, remesh::remesh_points_on_input(remeshed, surface, creases.cut));
+    geodual::io::write_mesh(argv[3], remeshed.mesh, attributes);
+
+    std::cout << "vertices " << remeshed.mesh.num_vertices() << ", faces " << remeshed.mesh.num_faces() << ", chains "
+              << creases.features.sharp_chains << ", sites added by repair " << remeshed.sites_added << '\n';
+  } catch (const remesh::DualRepairError& error) {
+    std::cerr << "remesh_by_stages: " << error.what()
+              << " (geodual remesh tries again with the creases near there left out)\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "remesh_by_stages: " << error.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
