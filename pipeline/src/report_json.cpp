@@ -1,5 +1,9 @@
 #include "geodual/pipeline/report_json.hpp"
 
+#include "geodual/pipeline/version.hpp"
+#include "geodual/remesh/features.hpp"
+#include "geodual/remesh/sample_sites.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -124,6 +128,123 @@ nlohmann::ordered_json read_info_json(const io::ReadInfo& info) {
   json["welded_corners"] = info.welded_corners;
   json["notes"] = info.notes;
   return json;
+}
+
+nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const RemeshPipelineOptions& options) {
+  const quality::TriangleQuality quality =
+      run.statistics ? run.statistics->candidate : quality::triangle_quality(run.remesh.mesh);
+  nlohmann::ordered_json figures;
+  figures["geodual_version"] = build_version();
+  figures["input_vertices"] = run.input.mesh.num_vertices();
+  figures["input_faces"] = run.input.mesh.num_faces();
+  figures["vertices_split"] = run.surface.vertices_split;
+  figures["dropped_faces"] = run.dropped.faces;
+  figures["dropped_area_pct"] = run.dropped.area_pct;
+  figures["sampling"] = !options.given_sites
+                            ? nlohmann::ordered_json(remesh::sampling_strategy_name(options.sampling.strategy))
+                            : nlohmann::ordered_json(nullptr);
+  figures["seed"] = options.sampling.seed;
+  figures["edge_length_target"] =
+      options.edge_length > 0 ? nlohmann::ordered_json(options.edge_length) : nlohmann::ordered_json(nullptr);
+  figures["faces_target"] = options.faces > 0 ? nlohmann::ordered_json(options.faces) : nlohmann::ordered_json(nullptr);
+  figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
+  figures["sites_added_for_topology"] = run.sites_added_for_topology;
+  figures["sharp_angle_deg"] = options.remesh.sharp_angle;
+  figures["continuation_angle_deg"] = options.remesh.continuation_angle;
+  figures["feature_chains"] = run.features.sharp_chains;
+  figures["feature_corners"] = run.features.corners.size();
+  figures["feature_length"] = run.features.sharp_length;
+  figures["feature_narrowest_corner_deg"] =
+      run.features.corners.empty()
+          ? nlohmann::ordered_json(nullptr)
+          : nlohmann::ordered_json(remesh::narrowest_corner_angle(run.surface.mesh, run.features));
+  figures["feature_sites"] = run.feature_sites;
+  figures["sites_added_near_features"] = run.sites_added_near_features;
+  figures["crease_pins"] = run.crease_pins;
+  figures["crease_segments"] = run.crease_segments.segments;
+  figures["crease_segments_followed"] = run.crease_segments.edges;
+  figures["crease_pins_reason"] =
+      run.crease_pins_reason.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(run.crease_pins_reason);
+  figures["features_dropped_reason"] = run.features_dropped_reason.empty()
+                                           ? nlohmann::ordered_json(nullptr)
+                                           : nlohmann::ordered_json(run.features_dropped_reason);
+  figures["features_dropped_near"] = nlohmann::ordered_json::array();
+  for (const Eigen::Vector3d& place : run.features_dropped_near) {
+    figures["features_dropped_near"].push_back({place.x(), place.y(), place.z()});
+  }
+  figures["features_partly_dropped_reason"] = run.features_partly_dropped_reason.empty()
+                                                  ? nlohmann::ordered_json(nullptr)
+                                                  : nlohmann::ordered_json(run.features_partly_dropped_reason);
+  figures["features_left_out"] = nlohmann::ordered_json::array();
+  for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) {
+    figures["features_left_out"].push_back({{"edges", stretch.edges},
+                                            {"length", stretch.length},
+                                            {"place", {stretch.place.x(), stretch.place.y(), stretch.place.z()}}});
+  }
+  figures["cracks_closed"] = run.remesh.cracks_closed;
+  figures["crack_triangles"] = run.remesh.crack_triangles;
+  figures["input_euler_characteristic"] = run.input_report.euler_characteristic;
+  figures["input_boundary_loops"] = run.input_report.boundary_loops;
+  figures["surface_euler_characteristic"] = run.surface_euler_characteristic;
+  figures["surface_boundary_loops"] = run.surface_boundary_loops;
+  figures["lloyd_iterations"] = run.relaxation.iterations;
+  figures["warm_start_iterations"] = run.relaxation.warm_start_iterations;
+  figures["lloyd_diagrams"] = run.relaxation.diagrams;
+  figures["energy_history"] = run.relaxation.energy;
+  figures["sites_added"] = run.remesh.sites_added;
+  figures["sites_left_out"] = run.remesh.sites_left_out;
+  figures["repair_rounds"] = run.remesh.repair_rounds;
+  figures["repair_problems"] = run.remesh.repair_problems;
+  figures["smoothing_angle_deg"] = options.remesh.smoothing_angle;
+  figures["vertices_smoothed"] = run.smoothing.vertices_moved;
+  figures["fit_deviations"] = options.remesh.fit_deviations;
+  figures["vertices_fitted"] = run.fitting.vertices_moved;
+  figures["vertices"] = run.remesh.mesh.num_vertices();
+  figures["faces"] = run.remesh.mesh.num_faces();
+  figures["euler_characteristic"] = quality.euler_characteristic;
+  figures["boundary_loops"] = quality.boundary_loops;
+  figures["q_min"] = quality.q_min;
+  figures["q_avg"] = quality.q_avg;
+  figures["theta_min_deg"] = quality.theta_min_deg;
+  figures["theta_min_avg_deg"] = quality.theta_min_avg_deg;
+  figures["pct_angles_lt30"] = quality.pct_angles_lt30;
+  figures["p30"] = quality.p30;
+  figures["pct_valence6"] =
+      quality.pct_valence6 ? nlohmann::ordered_json(*quality.pct_valence6) : nlohmann::ordered_json(nullptr);
+  figures["max_error_pct"] =
+      options.max_error_pct > 0 ? nlohmann::ordered_json(options.max_error_pct) : nlohmann::ordered_json(nullptr);
+  figures["error_bound_met"] =
+      options.max_error_pct > 0 ? nlohmann::ordered_json(run.error_bound_met) : nlohmann::ordered_json(nullptr);
+  nlohmann::ordered_json error_rounds = nlohmann::ordered_json::array();
+  for (const pipeline::ErrorRound& round : run.error_rounds) {
+    error_rounds.push_back({{"sites", round.sites}, {"hausdorff_pct", round.hausdorff_pct}});
+  }
+  figures["error_rounds"] = error_rounds;
+  if (run.statistics) {
+    figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
+    const Eigen::Vector3d& farthest = run.statistics->hausdorff_point;
+    figures["hausdorff_at"] = {farthest.x(), farthest.y(), farthest.z()};
+    figures["rms_pct"] = run.statistics->rms_pct;
+    figures["area_change_pct"] = run.statistics->area_change_pct;
+    // The feature recall (null where the statistics left it out).
+    if (const std::optional<quality::FeatureRecall>& features = run.statistics->features) {
+      figures["feature_recall_edges"] = features->edges;
+      figures["feature_recall_length"] = features->length;
+      figures["feature_recall_pct"] = features->recall_pct;
+      figures["feature_max_gap_pct"] = features->max_gap_pct;
+      figures["feature_long_crease_length"] = features->long_crease_length;
+      figures["feature_long_creases"] = features->long_chains;
+      figures["feature_long_length"] = features->long_length;
+      figures["feature_long_recall_pct"] = features->long_recall_pct;
+    } else {
+      for (const char* key :
+           {"feature_recall_edges", "feature_recall_length", "feature_recall_pct", "feature_max_gap_pct",
+            "feature_long_crease_length", "feature_long_creases", "feature_long_length", "feature_long_recall_pct"}) {
+        figures[key] = nullptr;
+      }
+    }
+  }
+  return figures;
 }
 
 }  // namespace geodual::pipeline

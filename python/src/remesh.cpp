@@ -9,7 +9,8 @@
 #include "geodual/mesh/coordinate_range.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
-#include "geodual/remesh/features.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cmath>
@@ -27,6 +28,7 @@ struct RemeshResult {
   py::object faces;
   py::object colors;
   py::object stats;
+  py::object report;
   std::int64_t sites = 0;
   std::int64_t sites_added_for_topology = 0;
   std::int64_t sites_added_near_features = 0;
@@ -158,30 +160,30 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.colors = run.attributes.colors.rows() > 0 ? py::object(colors_to_array(run.attributes.colors)) : py::none();
   result.stats = json_to_python(run.statistics ? pipeline::quality_report_json(*run.statistics, options.quality)
                                                : pipeline::triangle_quality_json(quality::triangle_quality(mesh)));
-  result.sites = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
-  result.sites_added_for_topology = run.sites_added_for_topology;
-  result.sites_added_near_features = run.sites_added_near_features;
-  result.crease_pins = run.crease_pins;
-  result.feature_chains = run.features.sharp_chains;
-  result.features_dropped_reason =
-      run.features_dropped_reason.empty() ? py::none() : py::object(py::str(run.features_dropped_reason));
+  // The counts from the one report the CLI writes too (pipeline::remesh_report_json).
+  const nlohmann::ordered_json report = pipeline::remesh_report_json(run, options);
+  result.report = json_to_python(report);
+  result.sites = report["sites"].get<std::int64_t>();
+  result.sites_added_for_topology = report["sites_added_for_topology"].get<std::int64_t>();
+  result.sites_added_near_features = report["sites_added_near_features"].get<std::int64_t>();
+  result.crease_pins = report["crease_pins"].get<std::int64_t>();
+  result.feature_chains = report["feature_chains"].get<std::int64_t>();
+  result.features_dropped_reason = json_to_python(report["features_dropped_reason"]);
   result.features_dropped_near = points_to_array(run.features_dropped_near);
-  for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) {
+  for (const nlohmann::ordered_json& stretch : report["features_left_out"]) {
     py::dict entry;
-    entry["edges"] = stretch.edges;
-    entry["length"] = stretch.length;
-    entry["place"] = py::make_tuple(stretch.place.x(), stretch.place.y(), stretch.place.z());
+    entry["edges"] = stretch["edges"].get<std::int64_t>();
+    entry["length"] = stretch["length"].get<double>();
+    entry["place"] = py::make_tuple(stretch["place"][0].get<double>(), stretch["place"][1].get<double>(),
+                                    stretch["place"][2].get<double>());
     result.features_left_out.append(entry);
   }
-  result.cracks_closed = run.remesh.cracks_closed;
-  result.narrowest_corner =
-      run.features.corners.empty()
-          ? py::none()
-          : py::object(py::float_(remesh::narrowest_corner_angle(run.surface.mesh, run.features)));
-  result.sites_added = run.remesh.sites_added;
-  result.sites_left_out = run.remesh.sites_left_out;
-  result.vertices_smoothed = run.smoothing.vertices_moved;
-  result.vertices_fitted = run.fitting.vertices_moved;
+  result.cracks_closed = report["cracks_closed"].get<std::int64_t>();
+  result.narrowest_corner = json_to_python(report["feature_narrowest_corner_deg"]);
+  result.sites_added = report["sites_added"].get<std::int64_t>();
+  result.sites_left_out = report["sites_left_out"].get<std::int64_t>();
+  result.vertices_smoothed = report["vertices_smoothed"].get<std::int64_t>();
+  result.vertices_fitted = report["vertices_fitted"].get<std::int64_t>();
   result.error_bound_met = py::none();
   result.error_rounds = py::list();
   if (options.max_error_pct > 0) {
@@ -211,6 +213,9 @@ void add_remesh(py::module_& module) {
                     "dict: with statistics=True the keys of `geodual stats --json` (the remesh's quality "
                     "figures, Hausdorff/RMS distance to the input, reference_quality...); otherwise the remesh's "
                     "quality figures only")
+      .def_readonly("report", &RemeshResult::report,
+                    "dict: what the remesh is, under the keys of `geodual remesh --json` less the paths, times and "
+                    "memory (docs/formats.md)")
       .def_readonly("sites", &RemeshResult::sites, "the sites sampled (or given), before repair")
       .def_readonly("sites_added_for_topology", &RemeshResult::sites_added_for_topology,
                     "sites sampled beyond the count asked because the surface's pieces and boundary loops need "

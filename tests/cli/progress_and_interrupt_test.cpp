@@ -78,7 +78,7 @@ InterruptedRun interrupt_after_file(const std::filesystem::path& file, double de
   const std::string script = std::string(GEODUAL_CLI) + " " + arguments + " & pid=$!; while [ ! -e '" + file.string() +
                              "' ] && kill -0 $pid 2>/dev/null; do sleep 0.02; done; sleep " + std::to_string(delay) +
                              "; kill -INT $pid 2>/dev/null; (sleep " + std::to_string(kKillAfter) +
-                             "; kill -KILL $pid 2>/dev/null) & guard=$!; wait $pid; status=$?; "
+                             "; kill -KILL $pid 2>/dev/null) >/dev/null 2>&1 & guard=$!; wait $pid; status=$?; "
                              "kill $guard 2>/dev/null; exit $status";
   const auto [status, output] = shell("sh -c '" + script + "'");
   return {status, output};

@@ -61,6 +61,30 @@ def test_remesh_2000_sites_gives_2000_vertices_and_the_stats(fertility):
     assert np.all(result.vertices.max(axis=0) <= V.max(axis=0) + 1e-9)
 
 
+def test_remesh_report_is_the_cli_json_less_paths_and_times(woody, tmp_path):
+    # One report (pipeline::remesh_report_json) for Python and the CLI: the
+    # same figures for the same mesh, options and seed.
+    import json
+    import subprocess
+    V, F = woody
+    result = geodual.remesh(V, F, sites=300, statistics=False)
+    report = result.report
+    assert report["vertices"] == len(result.vertices) and report["faces"] == len(result.faces)
+    assert report["sites"] == result.sites and report["sites_added"] == result.sites_added
+    assert report["sampling"] == "poisson" and report["seed"] == 1
+    assert report["q_min"] == result.stats["q_min"]
+    cli = os.environ["GEODUAL_CLI"]  # set by ctest
+    mesh = os.path.join(os.path.dirname(__file__), "..", "data", "woody.ply")
+    run = subprocess.run([cli, "remesh", mesh, "--sites", "300", "--samples", "-1", "--json", "--quiet",
+                          "-o", str(tmp_path / "woody.ply")], capture_output=True, text=True, check=True)
+    figures = json.loads(run.stdout)
+    for key in ("mesh", "output", "attributes", "time_s", "peak_memory_bytes"):
+        figures.pop(key)
+    figures = {k: v for k, v in figures.items() if not k.endswith("_s")}
+    assert list(figures) == list(report)
+    assert figures == report
+
+
 def test_remesh_is_deterministic_and_seeded(woody):
     V, F = woody
     a = geodual.remesh(V, F, sites=200, lloyd=3, statistics=False)

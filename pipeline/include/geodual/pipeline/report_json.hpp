@@ -5,6 +5,7 @@
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/quality/quality_stats.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -39,6 +40,12 @@ nlohmann::ordered_json triangle_quality_json(const quality::TriangleQuality& qua
 /// those the report was made with.
 nlohmann::ordered_json quality_report_json(const quality::QualityReport& report,
                                            const quality::QualityOptions& options);
+
+/// What a remesh is, under the keys of `geodual remesh --json` less the
+/// paths, times and memory: the same bytes for the same input, options and
+/// seed (the CLI writes them into a glTF output's extras; Python returns
+/// them as `report`). docs/formats.md lists the keys.
+nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const RemeshPipelineOptions& options);
 
 /// format, encoding, file_bytes, polygons_split, welded_corners, notes.
 nlohmann::ordered_json read_info_json(const io::ReadInfo& info);
