@@ -37,14 +37,16 @@ int main(int argc, char** argv) {
 
     // The surface: the input cut apart at non-manifold edges and vertices.
     const remesh::ManifoldCut surface = remesh::cut_to_manifold(input.mesh);
+    // Its topology, built once for the features and the sampling (remesh/remesh_surface.hpp).
+    std::optional<remesh::RemeshSurface> prepared(std::in_place, surface.mesh);
 
     // Features: creases at the remesh's scale, cut open and lined with sites.
     remesh::FeatureSamplingOptions feature_options = remesh::feature_sampling_options(options, input.mesh, surface);
     feature_options.max_chord_error = 5e-4 * geodual::referenced_bounding_box(input.mesh).diagonal();
-    const remesh::FeatureSampling creases = remesh::sample_features(surface.mesh, sites, feature_options);
+    const remesh::FeatureSampling creases = remesh::sample_features(*prepared, sites, feature_options);
 
     // Sites: blue noise around the chains' sites, on the surface cut along them.
-    const remesh::RemeshSites initial = remesh::sample_remesh_sites(surface.mesh, sites, creases, {}, sampling);
+    const remesh::RemeshSites initial = remesh::sample_remesh_sites(*prepared, sites, creases, {}, sampling);
     const geodual::TriangleMesh& cut = creases.sites_surface(surface.mesh);
 
     // Relaxation (Lloyd-Newton), the sites on chains sliding along them; the
@@ -52,22 +54,23 @@ int main(int argc, char** argv) {
     remesh::LloydOptions lloyd = remesh::relaxation_options(cut, initial, creases.density, options);
     std::optional<remesh::ChainSlider> slider;
     if (!creases.empty()) {
-      slider.emplace(surface.mesh, creases.features, creases.cut);
+      slider.emplace(*prepared, creases.features, creases.cut);
       lloyd.slide_boundary_sites = std::cref(*slider);
     }
-    const geodual::voronoi::GeodesicSurface prepared(cut);
-    remesh::LloydResult relaxed = remesh::lloyd_relax(prepared, initial.sites, lloyd);
+    prepared.reset();  // not needed by the relaxation, whose memory peaks
+    const geodual::voronoi::GeodesicSurface geodesic(cut);
+    remesh::LloydResult relaxed = remesh::lloyd_relax(geodesic, initial.sites, lloyd);
 
     // The dual with repair, welded along the chains.
     const remesh::RepairOptions repair =
         remesh::repair_options(options, !creases.empty(), static_cast<std::int64_t>(initial.sites.size()));
     remesh::RepairedDual remeshed =
-        creases.empty() ? remesh::dual_with_repair(prepared, relaxed.sites, std::move(relaxed.diagram), repair)
-                        : remesh::welded_dual_with_repair(prepared, surface.mesh, creases.features, creases.cut,
+        creases.empty() ? remesh::dual_with_repair(geodesic, relaxed.sites, std::move(relaxed.diagram), repair)
+                        : remesh::welded_dual_with_repair(geodesic, surface.mesh, creases.features, creases.cut,
                                                           relaxed.sites, std::move(relaxed.diagram), repair);
 
     // Deviation fitting and angle smoothing; the input's attributes carried over.
-    remesh::smooth_remesh(remeshed, cut, *prepared.topology(),
+    remesh::smooth_remesh(remeshed, cut, *geodesic.topology(),
                           {.smoothing_angle = options.smoothing_angle, .fit_deviations = options.fit_deviations});
     const geodual::VertexAttributes attributes = geodual::interpolate_attributes(
         input.mesh, input.attributes, remesh::remesh_points_on_input(remeshed, surface, creases.cut));

@@ -13,6 +13,7 @@
 #include "geodual/remesh/error_density.hpp"
 #include "geodual/remesh/follow_segments.hpp"
 #include "geodual/remesh/remesh_smoothing.hpp"
+#include "geodual/remesh/remesh_surface.hpp"
 #include "geodual/remesh/sizing.hpp"
 
 #include <Eigen/Geometry>
@@ -203,14 +204,24 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   result.surface = remesh::cut_to_manifold(result.input.mesh);
   report(options.progress, Stage::sample, 0.25);  // each step below takes a while on a large mesh: a chance to cancel
   result.dropped = dropped_surface(result.input.mesh, result.surface);
-  {
-    const MeshTopology cut_topology = build_mesh_topology(result.surface.mesh);
-    result.surface_euler_characteristic = 0;
-    for (const ComponentCounts& piece : cut_topology.components) {
-      result.surface_euler_characteristic += piece.euler_characteristic();
-    }
-    result.surface_boundary_loops = cut_topology.num_boundary_loops;
+  std::vector<SurfacePoint> given_sites;
+  if (options.given_sites) given_sites = remesh::points_on_cut(result.surface, *options.given_sites);
+  // Where the cut changed nothing, its mesh is a copy of the input's: the
+  // stages work on the input's (the relaxation is the peak of the memory),
+  // and the copy is made again after them.
+  const bool cut_is_input = result.surface.mesh.vertices.rows() == result.input.mesh.vertices.rows() &&
+                            result.surface.mesh.faces.rows() == result.input.mesh.faces.rows() &&
+                            result.surface.mesh.vertices == result.input.mesh.vertices &&
+                            result.surface.mesh.faces == result.input.mesh.faces;
+  if (cut_is_input) result.surface.mesh = TriangleMesh{};
+  const TriangleMesh& manifold_surface = cut_is_input ? result.input.mesh : result.surface.mesh;
+  // Its topology, built once for the sizing, the features and the sampling; gone before the relaxation.
+  std::optional<remesh::RemeshSurface> prepared(std::in_place, manifold_surface);
+  result.surface_euler_characteristic = 0;
+  for (const ComponentCounts& piece : prepared->topology().components) {
+    result.surface_euler_characteristic += piece.euler_characteristic();
   }
+  result.surface_boundary_loops = prepared->topology().num_boundary_loops;
   if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
     throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
                 std::to_string(result.dropped.area_pct) +
@@ -230,19 +241,20 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
   if (options.edge_length > 0) {
-    sites = result.sites_for_sizing = remesh::sites_for_edge_length(result.surface.mesh, options.edge_length);
+    sites = result.sites_for_sizing = remesh::sites_for_edge_length(*prepared, options.edge_length);
   } else if (options.faces > 0) {
-    sites = result.sites_for_sizing = remesh::sites_for_faces(result.surface.mesh, options.faces);
+    sites = result.sites_for_sizing = remesh::sites_for_faces(*prepared, options.faces);
   }
-  remesh::RemeshSites initial;                           // the sites and where the pins are among them
-  std::vector<double> feature_density;                   // per vertex of result.feature_cut.mesh; empty: 1
-  std::vector<std::array<std::size_t, 2>> pin_segments;  // pairs of pins a remesh edge should join
+  std::optional<remesh::ChainSlider> slide_along_chains;  // with features
+  remesh::RemeshSites initial;                            // the sites and where the pins are among them
+  std::vector<double> feature_density;                    // per vertex of result.feature_cut.mesh; empty: 1
+  std::vector<std::array<std::size_t, 2>> pin_segments;   // pairs of pins a remesh edge should join
   result.sites_added_near_features = 0;
   if (options.given_sites) {
-    initial.sites = remesh::points_on_cut(result.surface, *options.given_sites);
-    remesh::require_a_site_on_every_piece(result.surface.mesh, initial.sites);
+    initial.sites = std::move(given_sites);
+    remesh::require_a_site_on_every_piece(manifold_surface, initial.sites);
   } else if (refinement) {
-    const TriangleMesh& manifold = result.surface.mesh;
+    const TriangleMesh& manifold = manifold_surface;
     auto on_surface = [&](std::span<const double> field) {  // per input vertex -> per surface vertex
       std::vector<double> values;
       if (field.empty()) return values;
@@ -256,18 +268,17 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   } else {
     // Sharp features: cut open and lined with sites, short creases pinned,
     // the rest sampled around them.
-    const TriangleMesh& manifold = result.surface.mesh;
     remesh::FeatureSamplingOptions feature_options =
         remesh::feature_sampling_options(options.remesh, result.input.mesh, result.surface);
     feature_options.excluded_edges.assign(excluded_edges.begin(), excluded_edges.end());
     feature_options.max_chord_error = 5e-4 * result.input_report.bbox_diagonal;
-    remesh::FeatureSampling creases = remesh::sample_features(manifold, sites, feature_options);
+    remesh::FeatureSampling creases = remesh::sample_features(*prepared, sites, feature_options);
     remesh::ShortCreasePins pins;
     if (options.remesh.pin_short_creases) {
-      pins = remesh::pin_short_creases(manifold, sites, creases, feature_options.max_chord_error);
+      pins = remesh::pin_short_creases(*prepared, sites, creases, feature_options.max_chord_error);
     }
     report(options.progress, Stage::sample, 0.5);
-    initial = remesh::sample_remesh_sites(manifold, sites, creases, pins, options.sampling, given_share);
+    initial = remesh::sample_remesh_sites(*prepared, sites, creases, pins, options.sampling, given_share);
     result.crease_pins_reason = std::move(pins.reason);
     pin_segments = std::move(pins.segments);
     result.feature_sites = creases.sites.points;
@@ -275,6 +286,8 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     result.features = std::move(creases.features);
     result.feature_cut = std::move(creases.cut);
     feature_density = std::move(creases.density);
+    // The sites on chains slide along them in the relaxation; corners stay.
+    if (!result.features.empty()) slide_along_chains.emplace(*prepared, result.features, result.feature_cut);
     result.sites_added_near_features = initial.sites_added_near_features;
     result.sites_added_for_topology = initial.sites_added_for_topology;
     result.sites_added_reason = initial.topology_reason;
@@ -291,15 +304,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   report(options.progress, Stage::sample, 1.0);
   if (tried_sites && result.initial_sites == *tried_sites) return false;
 
-  // Where the cut changed nothing, its mesh is a copy of the input's: the
-  // later stages (the relaxation is the peak of the memory) work on the
-  // input's, and the copy is made again after them.
-  const bool cut_is_input = result.surface.mesh.vertices.rows() == result.input.mesh.vertices.rows() &&
-                            result.surface.mesh.faces.rows() == result.input.mesh.faces.rows() &&
-                            result.surface.mesh.vertices == result.input.mesh.vertices &&
-                            result.surface.mesh.faces == result.input.mesh.faces;
-  if (cut_is_input) result.surface.mesh = TriangleMesh{};
-  const TriangleMesh& manifold_surface = cut_is_input ? result.input.mesh : result.surface.mesh;
+  prepared.reset();
 
   // Relaxation: the geodesic engine reports the fraction of faces reached in
   // each diagram; Lloyd's accepted iterations split the stage.
@@ -332,12 +337,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   }
   report(options.progress, Stage::relax, 0.0);
   StageClock relax_clock(result.timings, Stage::relax);
-  // The sites on chains slide along them; corners stay.
-  std::optional<remesh::ChainSlider> slide_along_chains;
-  if (features) {
-    slide_along_chains.emplace(manifold_surface, result.features, result.feature_cut);
-    lloyd.slide_boundary_sites = std::cref(*slide_along_chains);
-  }
+  if (slide_along_chains) lloyd.slide_boundary_sites = std::cref(*slide_along_chains);
   // Prepared once for every diagram of the relax and dual stages; gone before the statistics.
   std::optional<voronoi::GeodesicSurface> geodesic_surface(std::in_place, surface);
   result.relaxation = remesh::lloyd_relax(*geodesic_surface, result.initial_sites, lloyd);

@@ -32,8 +32,12 @@ struct ChainPoint {
 }  // namespace
 
 ChainSlider::ChainSlider(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut)
-    : surface_(&surface), features_(&features), cut_(&cut) {
-  const MeshTopology topology = build_mesh_topology(surface);
+    : ChainSlider(RemeshSurface(surface), features, cut) {}
+
+ChainSlider::ChainSlider(const RemeshSurface& prepared, const FeatureSet& features, const FeatureCut& cut)
+    : surface_(&prepared.mesh()), features_(&features), cut_(&cut) {
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& topology = prepared.topology();
   side_faces_.resize(features.chains.size());
   for (std::size_t c = 0; c < features.chains.size(); ++c) {
     const std::vector<Index>& vertices = features.chains[c].vertices;

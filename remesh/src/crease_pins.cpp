@@ -62,6 +62,11 @@ void for_each_pair_within(const std::vector<Eigen::Vector3d>& points, double rad
 }  // namespace
 
 CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, const CreasePinOptions& options) {
+  return crease_pins(RemeshSurface(surface), features, options);
+}
+
+CreasePins crease_pins(const RemeshSurface& prepared, const FeatureSet& features, const CreasePinOptions& options) {
+  const TriangleMesh& surface = prepared.mesh();
   if (!(options.spacing > 0) || !(options.max_chord_error > 0) || !(options.neighbour_spacing >= 1)) {
     throw UsageError("crease pins: spacing " + std::to_string(options.spacing) + " and chord error " +
                      std::to_string(options.max_chord_error) + " must be > 0, neighbour spacing " +
@@ -73,7 +78,7 @@ CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, 
   for (const FeatureChain& chain : features.chains) {
     for (const Index v : chain.vertices) taken[v] = 1;
   }
-  const MeshTopology topology = build_mesh_topology(surface);
+  const MeshTopology& topology = prepared.topology();
   for (std::size_t v = 0; v < num_vertices; ++v) taken[v] |= topology.vertex_on_boundary[v];
 
   // One pin per vertex, in the order of first use, and the segments between them.

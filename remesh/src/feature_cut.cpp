@@ -66,7 +66,12 @@ VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
 }  // namespace
 
 FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& features) {
-  const MeshTopology topology = build_mesh_topology(surface);
+  return cut_along_features(RemeshSurface(surface), features);
+}
+
+FeatureCut cut_along_features(const RemeshSurface& prepared, const FeatureSet& features) {
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& topology = prepared.topology();
   const Index num_faces = surface.num_faces(), num_vertices = static_cast<Index>(surface.vertices.rows());
   // Corners at one vertex stay together across every edge with two faces
   // that is not sharp: one class per sector between the chains.
@@ -117,8 +122,14 @@ FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& fea
 
 FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                            const FeatureSiteOptions& options) {
+  return feature_sites(RemeshSurface(surface), features, cut, options);
+}
+
+FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& features, const FeatureCut& cut,
+                           const FeatureSiteOptions& options) {
   if (!(options.spacing > 0)) throw UsageError("feature_sites: the spacing must be positive");
-  const MeshTopology topology = build_mesh_topology(surface);
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& topology = prepared.topology();
   const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
   FeatureSites result;
   std::vector<SiteKey> held;

@@ -41,9 +41,10 @@ double chord_error(const TriangleMesh& surface, double given) {
 
 }  // namespace
 
-FeatureSampling sample_features(const TriangleMesh& surface, std::int64_t sites,
+FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t sites,
                                 const FeatureSamplingOptions& options) {
   check_options(options);
+  const TriangleMesh& surface = prepared.mesh();
   FeatureSampling sampling;
   if ((options.sharp_angle <= 0 && options.given_edges.empty()) || sites < 4) return sampling;
   const double spacing = uniform_spacing(surface, sites);
@@ -51,15 +52,15 @@ FeatureSampling sample_features(const TriangleMesh& surface, std::int64_t sites,
                                                           options.min_feature_length, options.continuation_angle);
   feature_options.given_edges = options.given_edges;
   feature_options.excluded_edges = options.excluded_edges;
-  sampling.features = detect_features(surface, feature_options);
+  sampling.features = detect_features(prepared, feature_options);
   if (sampling.features.empty()) return sampling;
-  sampling.cut = cut_along_features(surface, sampling.features);
+  sampling.cut = cut_along_features(prepared, sampling.features);
   const TriangleMesh& cut = sampling.cut.mesh;
   FeatureSiteOptions site_options{.spacing = spacing,
                                   .max_chord_error = chord_error(surface, options.max_chord_error),
                                   .min_spacing = options.min_spacing * spacing,
                                   .tight_spacing = options.tight_spacing * spacing};
-  sampling.sites = feature_sites(surface, sampling.features, sampling.cut, site_options);
+  sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
   if (sampling.sites.dense_points.empty()) return sampling;
   sampling.density = spacing_density(cut, sampling.sites.dense_points, {.spacing = spacing});
   sampling.density_spacing = spacing;
@@ -71,18 +72,19 @@ FeatureSampling sample_features(const TriangleMesh& surface, std::int64_t sites,
     sampling.density_spacing = 0;
     sampling.sites_near_features = 0;
     site_options.tight_spacing = 0;
-    sampling.sites = feature_sites(surface, sampling.features, sampling.cut, site_options);
+    sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
   }
   return sampling;
 }
 
-ShortCreasePins pin_short_creases(const TriangleMesh& surface, std::int64_t sites, FeatureSampling& sampling,
+ShortCreasePins pin_short_creases(const RemeshSurface& prepared, std::int64_t sites, FeatureSampling& sampling,
                                   double max_chord_error) {
+  const TriangleMesh& surface = prepared.mesh();
   ShortCreasePins pinned;
   if (sampling.features.short_creases.empty()) return pinned;
   const double spacing = uniform_spacing(surface, sites);
   CreasePins crease_pins = remesh::crease_pins(
-      surface, sampling.features, {.spacing = spacing, .max_chord_error = chord_error(surface, max_chord_error)});
+      prepared, sampling.features, {.spacing = spacing, .max_chord_error = chord_error(surface, max_chord_error)});
   if (crease_pins.sites.empty()) return pinned;
   if (!sampling.empty()) {
     // Onto the features' cut: its faces are the surface's, its vertices copies.

@@ -290,9 +290,15 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
 }
 
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {
+  if (!(options.sharp_angle > 0) && options.given_edges.empty()) return {};
+  return detect_features(RemeshSurface(surface), options);
+}
+
+FeatureSet detect_features(const RemeshSurface& prepared, const FeatureOptions& options) {
   FeatureSet features;
   if (!(options.sharp_angle > 0) && options.given_edges.empty()) return features;
-  const MeshTopology topology = build_mesh_topology(surface);
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& topology = prepared.topology();
   std::vector<Index> sharp, sharp_alone;  // the latter judged on their two faces alone
   if (options.sharp_angle > 0) {
     sharp = sharp_alone = sharp_edges(surface, topology, options.sharp_angle);

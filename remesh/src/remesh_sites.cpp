@@ -4,13 +4,14 @@
 #include "geodual/remesh/error_density.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 namespace geodual::remesh {
 
-RemeshSites sample_remesh_sites(const TriangleMesh& surface, std::int64_t count, const FeatureSampling& features,
+RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count, const FeatureSampling& features,
                                 const ShortCreasePins& pins, const SamplingOptions& options, GivenSiteShare share) {
-  const TriangleMesh& sites_surface = features.sites_surface(surface);
+  const TriangleMesh& sites_surface = features.sites_surface(surface.mesh());
   const auto pinned = static_cast<std::int64_t>(pins.pins.size());
   SampledSites sampled =
       features.empty()
@@ -29,7 +30,9 @@ RemeshSites sample_remesh_sites(const TriangleMesh& surface, std::int64_t count,
   // The sites the density asks for beyond the count, where it is densest,
   // off the boundary (the chains' sides, lined with sites already).
   std::vector<double> excess(features.density.size());
-  const MeshTopology topology = build_mesh_topology(sites_surface);
+  std::optional<MeshTopology> cut_topology;  // the surface's own without features
+  const MeshTopology& topology =
+      features.empty() ? surface.topology() : cut_topology.emplace(build_mesh_topology(sites_surface));
   for (std::size_t v = 0; v < excess.size(); ++v) {
     excess[v] = topology.vertex_on_boundary[v] != 0 ? 0.0 : features.density[v] - 1;
   }

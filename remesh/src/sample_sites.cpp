@@ -224,8 +224,9 @@ std::vector<std::uint8_t> loops_holding(const TriangleMesh& mesh, const Sampling
 
 /// sample_sites, with the count raised to the topology's minimum first when
 /// `raise_for_topology`.
-SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options,
-                    bool raise_for_topology, std::span<const SurfacePoint> given = {},
+/// `topology`: the mesh's, or null to build it.
+SampledSites sample(const TriangleMesh& mesh, const MeshTopology* topology, std::int64_t count,
+                    const SamplingOptions& options, bool raise_for_topology, std::span<const SurfacePoint> given = {},
                     GivenSiteShare given_share = GivenSiteShare::none) {
   if (count < 4 && given.empty()) {
     throw UsageError("site count " + std::to_string(count) + " is too small: at least 4 sites are needed");
@@ -235,7 +236,8 @@ SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const Sampling
                      std::to_string(std::numeric_limits<Index>::max()) + " sites");
   }
   if (count < 0) throw UsageError("site count " + std::to_string(count) + " is negative");
-  const SamplingSurface surface = detail::build_sampling_surface(mesh, options.sites_on_boundary);
+  const SamplingSurface surface = topology ? detail::build_sampling_surface(mesh, *topology, options.sites_on_boundary)
+                                           : detail::build_sampling_surface(mesh, options.sites_on_boundary);
   if (std::none_of(surface.component_area.begin(), surface.component_area.end(), [](double a) { return a > 0; })) {
     throw Error(
         "sample_sites: the mesh has no face with positive area and three distinct corners: nowhere to put sites");
@@ -349,17 +351,22 @@ SampledSites sample(const TriangleMesh& mesh, std::int64_t count, const Sampling
 }  // namespace
 
 std::vector<SurfacePoint> sample_sites(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
-  return sample(mesh, count, options, false).sites;
+  return sample(mesh, nullptr, count, options, false).sites;
 }
 
 SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count, const SamplingOptions& options) {
-  return sample(mesh, count, options, true);
+  return sample(mesh, nullptr, count, options, true);
+}
+
+SampledSites sample_sites_for_topology(const RemeshSurface& surface, std::int64_t count,
+                                       const SamplingOptions& options) {
+  return sample(surface.mesh(), &surface.topology(), count, options, true);
 }
 
 SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
                                  std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options,
                                  GivenSiteShare given_share) {
-  return sample(mesh, count, options, true, boundary_sites, given_share);
+  return sample(mesh, nullptr, count, options, true, boundary_sites, given_share);
 }
 
 SamplingStrategy parse_sampling_strategy(std::string_view name) {

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -215,7 +216,11 @@ void SamplingSurface::stratified_points(Index component, std::int64_t count, Rng
   }
 }
 
-SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_boundary_loops) {
+namespace {
+
+/// build_sampling_surface with `prepared` the mesh's topology, or built here
+/// (after the faces are checked) when null.
+SamplingSurface sampling_surface(const TriangleMesh& mesh, const MeshTopology* prepared, bool with_boundary_loops) {
   SamplingSurface surface;
   surface.mesh = &mesh;
   const Index num_faces = mesh.num_faces();
@@ -242,8 +247,9 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
     surface.face_area[f] = has_positive_area(mesh, f) ? face_area(mesh, f) : 0.0;
   }
   // Components: faces joined through shared vertices, in the order of their first face.
-  MeshTopology topology = build_mesh_topology(mesh);
-  surface.face_component = std::move(topology.face_component);
+  std::optional<MeshTopology> built;
+  const MeshTopology& topology = prepared ? *prepared : built.emplace(build_mesh_topology(mesh));
+  surface.face_component = topology.face_component;
   surface.num_components = topology.num_components();
   group_by_component(proper_faces, surface.face_component, surface.num_components, surface.component_face_begin,
                      surface.component_faces);
@@ -266,6 +272,17 @@ SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_bound
   }
   if (with_boundary_loops) find_boundary_loops(surface, topology);
   return surface;
+}
+
+}  // namespace
+
+SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_boundary_loops) {
+  return sampling_surface(mesh, nullptr, with_boundary_loops);
+}
+
+SamplingSurface build_sampling_surface(const TriangleMesh& mesh, const MeshTopology& topology,
+                                       bool with_boundary_loops) {
+  return sampling_surface(mesh, &topology, with_boundary_loops);
 }
 
 /// Splits `total` into integer parts proportional to `weights` (all > 0),

@@ -4,6 +4,7 @@
 // faces by area), and the boundary loops. Plus the portable random number
 // generator and the exact barycentric lattice all sites live on.
 
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/random.hpp"
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
@@ -115,6 +116,9 @@ struct SamplingSurface {
 };
 
 SamplingSurface build_sampling_surface(const TriangleMesh& mesh, bool with_boundary_loops);
+/// The same with the mesh's topology built already (RemeshSurface); the faces must be valid.
+SamplingSurface build_sampling_surface(const TriangleMesh& mesh, const MeshTopology& topology,
+                                       bool with_boundary_loops);
 
 /// A site's position exactly as SurfacePoint::position computes it.
 inline Eigen::Vector3d site_position(const TriangleMesh& mesh, const SurfacePoint& site) { return site.position(mesh); }

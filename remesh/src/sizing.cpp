@@ -30,12 +30,15 @@ std::int64_t vertices_from(double faces, double boundary_edges, std::int64_t eul
 
 }  // namespace
 
-SizingMeasures sizing_measures(const TriangleMesh& surface) {
+SizingMeasures sizing_measures(const TriangleMesh& surface) { return sizing_measures(RemeshSurface(surface)); }
+
+SizingMeasures sizing_measures(const RemeshSurface& prepared) {
+  const TriangleMesh& surface = prepared.mesh();
   SizingMeasures measures;
   for (Index f = 0; f < surface.num_faces(); ++f) {
     if (!has_repeated_corner(surface, f)) measures.area += face_area(surface, f);
   }
-  const MeshTopology topology = build_mesh_topology(surface);
+  const MeshTopology& topology = prepared.topology();
   for (Index e = 0; e < topology.num_edges(); ++e) {
     if (!topology.is_boundary_edge(e)) continue;
     const auto& ends = topology.edge_vertices[static_cast<std::size_t>(e)];
@@ -48,6 +51,10 @@ SizingMeasures sizing_measures(const TriangleMesh& surface) {
 }
 
 std::int64_t sites_for_edge_length(const TriangleMesh& surface, double edge_length) {
+  return sites_for_edge_length(RemeshSurface(surface), edge_length);
+}
+
+std::int64_t sites_for_edge_length(const RemeshSurface& surface, double edge_length) {
   std::ostringstream what_text;
   what_text << "edge length " << edge_length;
   const std::string what = what_text.str();
@@ -58,6 +65,10 @@ std::int64_t sites_for_edge_length(const TriangleMesh& surface, double edge_leng
 }
 
 std::int64_t sites_for_faces(const TriangleMesh& surface, std::int64_t faces) {
+  return sites_for_faces(RemeshSurface(surface), faces);
+}
+
+std::int64_t sites_for_faces(const RemeshSurface& surface, std::int64_t faces) {
   const std::string what = std::to_string(faces) + " faces";
   if (faces < 1) throw UsageError(what + ": must be at least 1");
   const SizingMeasures measures = sizing_measures(surface);

@@ -25,6 +25,7 @@ class ChainSlider {
  public:
   /// Holds references to all three. \pre cut = cut_along_features(surface, features).
   ChainSlider(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut);
+  ChainSlider(const RemeshSurface& surface, const FeatureSet& features, const FeatureCut& cut);
 
   /// `sites` on cut.mesh, each with its cell's mass and first moment (of the
   /// log map, or of x - site: moment / mass is Lloyd's step); returns them

@@ -47,5 +47,6 @@ struct CreasePins {
 /// The pins on features.short_creases, detected on `surface`. Deterministic.
 /// \throw UsageError for options out of range.
 CreasePins crease_pins(const TriangleMesh& surface, const FeatureSet& features, const CreasePinOptions& options);
+CreasePins crease_pins(const RemeshSurface& surface, const FeatureSet& features, const CreasePinOptions& options);
 
 }  // namespace geodual::remesh

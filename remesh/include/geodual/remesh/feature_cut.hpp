@@ -34,6 +34,7 @@ struct FeatureCut {
 
 /// \pre surface is a 2-manifold and features were detected on it.
 FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& features);
+FeatureCut cut_along_features(const RemeshSurface& surface, const FeatureSet& features);
 
 struct FeatureSiteOptions {
   double spacing = 0;  ///< the remesh's edge length (> 0)
@@ -65,6 +66,8 @@ struct FeatureSites {
 /// closed chain at least 3), at most options.spacing apart and closer where
 /// the chord error asks for it.
 FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                           const FeatureSiteOptions& options);
+FeatureSites feature_sites(const RemeshSurface& surface, const FeatureSet& features, const FeatureCut& cut,
                            const FeatureSiteOptions& options);
 
 /// The twins `sites` (on cut.mesh) lack: for each site on a sharp edge, the

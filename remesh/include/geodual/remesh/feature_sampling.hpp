@@ -6,6 +6,7 @@
 // Short creases can get sites pinned on them as well (crease_pins.hpp).
 // See docs/algorithms.md#sharp-features.
 //
+//   const geodual::remesh::RemeshSurface surface(cut.mesh);  // cut_to_manifold's
 //   auto creases = geodual::remesh::sample_features(surface, 2000);
 //   // creases.sites.sites: on creases.cut.mesh, the fixed sites the others are sampled around
 
@@ -13,6 +14,7 @@
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
+#include "geodual/remesh/remesh_surface.hpp"
 
 #include <array>
 #include <cstddef>
@@ -66,10 +68,10 @@ struct FeatureSampling {
   const TriangleMesh& sites_surface(const TriangleMesh& surface) const { return empty() ? surface : cut.mesh; }
 };
 
-/// The features of `surface` (a 2-manifold, such as cut_to_manifold's mesh)
+/// The features of `surface` (a 2-manifold, such as cut_to_manifold's mesh, prepared)
 /// for a remesh of `sites` sites, the cut along them and the sites on them.
 /// Deterministic. \throw UsageError for options out of range.
-FeatureSampling sample_features(const TriangleMesh& surface, std::int64_t sites,
+FeatureSampling sample_features(const RemeshSurface& surface, std::int64_t sites,
                                 const FeatureSamplingOptions& options = {});
 
 /// Sites pinned on the short creases (FeatureSet::short_creases), on the
@@ -89,7 +91,7 @@ struct ShortCreasePins {
 /// them take at most half of `sites`; where they would take more (a scan's
 /// noisy edges) there are none, `sampling` is left as it was and `reason`
 /// says why. `max_chord_error` as FeatureSamplingOptions's (0: the same default).
-ShortCreasePins pin_short_creases(const TriangleMesh& surface, std::int64_t sites, FeatureSampling& sampling,
+ShortCreasePins pin_short_creases(const RemeshSurface& surface, std::int64_t sites, FeatureSampling& sampling,
                                   double max_chord_error = 0);
 
 }  // namespace geodual::remesh

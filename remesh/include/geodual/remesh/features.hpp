@@ -10,6 +10,7 @@
 //   h}); features.chains[0].vertices  // a polyline of surface vertices, corner to corner
 
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/remesh/remesh_surface.hpp"
 
 #include <array>
 #include <cstdint>
@@ -100,6 +101,7 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
 /// The features of `surface`, a 2-manifold (such as cut_to_manifold's
 /// mesh): sharp edges have exactly two faces. Deterministic.
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options = {});
+FeatureSet detect_features(const RemeshSurface& surface, const FeatureOptions& options = {});
 
 /// The narrowest angle at a corner of `features` (detected on `surface`)
 /// between two features that meet there: at each corner, the faces round it

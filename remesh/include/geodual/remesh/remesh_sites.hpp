@@ -37,7 +37,7 @@ struct RemeshSites {
 /// the sites_near_features that features.density asks for, where it is
 /// densest, off the boundary, half a local spacing apart
 /// (add_sites_at_deviations). Deterministic. \throw as sample_sites.
-RemeshSites sample_remesh_sites(const TriangleMesh& surface, std::int64_t count, const FeatureSampling& features,
+RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count, const FeatureSampling& features,
                                 const ShortCreasePins& pins = {}, const SamplingOptions& options = {},
                                 GivenSiteShare share = GivenSiteShare::half_cell);
 

@@ -5,6 +5,7 @@
 
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/remesh/remesh_surface.hpp"
 
 #include <cstdint>
 #include <span>
@@ -59,6 +60,8 @@ struct SampledSites {
 /// sites are then shared as sample_sites shares them. Throws as sample_sites
 /// does otherwise.
 SampledSites sample_sites_for_topology(const TriangleMesh& mesh, std::int64_t count,
+                                       const SamplingOptions& options = {});
+SampledSites sample_sites_for_topology(const RemeshSurface& surface, std::int64_t count,
                                        const SamplingOptions& options = {});
 
 /// How sample_sites_around shares its sites among the components that hold given ones.

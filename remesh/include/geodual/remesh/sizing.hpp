@@ -5,6 +5,7 @@
 // take no part. The count is rounded to the nearest integer, at least 1.
 
 #include "geodual/mesh/triangle_mesh.hpp"
+#include "geodual/remesh/remesh_surface.hpp"
 
 #include <cstdint>
 
@@ -21,15 +22,18 @@ struct SizingMeasures {
 };
 
 SizingMeasures sizing_measures(const TriangleMesh& surface);
+SizingMeasures sizing_measures(const RemeshSurface& surface);
 
 /// Sites for near-equilateral triangles of side `edge_length`.
 /// \throw UsageError unless edge_length is finite and > 0, or when the count
 /// would be above max_sized_sites.
 std::int64_t sites_for_edge_length(const TriangleMesh& surface, double edge_length);
+std::int64_t sites_for_edge_length(const RemeshSurface& surface, double edge_length);
 
 /// Sites for a remesh of about `faces` near-equilateral triangles.
 /// \throw UsageError unless 1 <= faces, or when the count would be above
 /// max_sized_sites.
 std::int64_t sites_for_faces(const TriangleMesh& surface, std::int64_t faces);
+std::int64_t sites_for_faces(const RemeshSurface& surface, std::int64_t faces);
 
 }  // namespace geodual::remesh
