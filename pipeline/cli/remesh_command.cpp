@@ -477,64 +477,7 @@ class RemeshCommand final : public Command {
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
     const remesh::RepairedDual& result = run.remesh;
     const remesh::LloydResult& relaxation = run.relaxation;
-    const quality::TriangleQuality quality =
-        run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
-    if (!run.features_dropped_reason.empty()) {
-      streams.err << "geodual remesh: warning: " << mesh_path
-                  << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason
-                  << "\n";
-    }
-    if (!run.features_dropped_near.empty()) {
-      const std::size_t places = run.features_dropped_near.size();
-      streams.err << "geodual remesh: warning: " << mesh_path << ": the sharp features could not all be kept, "
-                  << "remeshed without the creases near the " << places << (places == 1 ? " place" : " places")
-                  << " where the remesh that kept them failed: " << run.features_partly_dropped_reason << "\n";
-    }
-    if (!run.features_left_out.empty()) {
-      double length = 0;
-      for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) length += stretch.length;
-      const pipeline::FeatureLeftOut& longest = run.features_left_out.front();
-      streams.err << "geodual remesh: warning: " << mesh_path
-                  << ": creases left out: " << with_thousands(static_cast<std::int64_t>(run.features_left_out.size()))
-                  << (run.features_left_out.size() == 1 ? " stretch, " : " stretches, ") << significant(length, 3)
-                  << " long together; the longest " << significant(longest.length, 3) << " near ("
-                  << significant(longest.place.x(), 4) << ", " << significant(longest.place.y(), 4) << ", "
-                  << significant(longest.place.z(), 4) << ") (JSON features_left_out lists them all)\n";
-    }
-    if (run.surface_euler_characteristic != run.input_report.euler_characteristic ||
-        run.surface_boundary_loops != run.input_report.boundary_loops) {
-      streams.err << "geodual remesh: warning: " << mesh_path
-                  << ": the cut to a manifold at its non-manifold edges and vertices changes the part's topology: "
-                  << "Euler characteristic " << run.input_report.euler_characteristic << " -> "
-                  << run.surface_euler_characteristic << ", boundary loops " << run.input_report.boundary_loops
-                  << " -> " << run.surface_boundary_loops << " (the remesh has the cut surface's)\n";
-    }
-    if (run.sites_added_for_topology > 0) {
-      streams.err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
-    }
-    if (!run.crease_pins_reason.empty()) {
-      streams.err << "geodual remesh: note: " << mesh_path << ": " << run.crease_pins_reason << "\n";
-    }
-    if (result.sites_added > 0 || result.sites_left_out > 0) {
-      const std::string problems = remesh::problems_line(result.repair_problems);
-      streams.err << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
-                  << " sites"
-                  << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "")
-                  << " in " << result.repair_rounds
-                  << " rounds, where the dual of the Voronoi diagram was not a valid remesh (" << problems << ")\n";
-    }
-    if (!run.error_bound_met) {
-      streams.err << "geodual remesh: warning: " << mesh_path << ": the Hausdorff distance is "
-                  << significant(run.statistics->hausdorff_pct, 3) << " %, above --max-error "
-                  << significant(max_error_pct_, 3) << " %, after " << error_rounds_line(run.error_rounds)
-                  << "; the closest remesh is written (raise --max-sites to go on)\n";
-    }
-    if (run.dropped.area_pct > options.max_dropped_area_pct) {
-      streams.err << "geodual remesh: warning: " << mesh_path << ": " << run.dropped.faces << " faces ("
-                  << significant(run.dropped.area_pct, 3)
-                  << " % of the area) left out as scraps or flaps of non-manifold pieces; --strict makes this an "
-                     "error\n";
-    }
+    print_notes(mesh_path, run, options, streams.err);
 
     // The figures: what the remesh is, the same bytes for the same input,
     // options and seed (they go into the output's extras); then the paths,
@@ -576,7 +519,78 @@ class RemeshCommand final : public Command {
     json["peak_memory_bytes"] = peak_memory_bytes();
     if (!report_path_.empty()) write_report(mesh_path, run, json);
 
-    if (json_) return json;
+    if (!json_) print_table(mesh_path, output_path, run, options, seconds_since(start), write_seconds, streams.out);
+    return json;
+  }
+
+  /// The warnings and notes of one remesh, on `err`.
+  void print_notes(const std::string& mesh_path, const pipeline::RemeshPipelineResult& run,
+                   const pipeline::RemeshPipelineOptions& options, std::ostream& err) const {
+    const remesh::RepairedDual& result = run.remesh;
+    if (!run.features_dropped_reason.empty()) {
+      err << "geodual remesh: warning: " << mesh_path
+          << ": the sharp features could not be kept, remeshed without them: " << run.features_dropped_reason << "\n";
+    }
+    if (!run.features_dropped_near.empty()) {
+      const std::size_t places = run.features_dropped_near.size();
+      err << "geodual remesh: warning: " << mesh_path << ": the sharp features could not all be kept, "
+          << "remeshed without the creases near the " << places << (places == 1 ? " place" : " places")
+          << " where the remesh that kept them failed: " << run.features_partly_dropped_reason << "\n";
+    }
+    if (!run.features_left_out.empty()) {
+      double length = 0;
+      for (const pipeline::FeatureLeftOut& stretch : run.features_left_out) length += stretch.length;
+      const pipeline::FeatureLeftOut& longest = run.features_left_out.front();
+      err << "geodual remesh: warning: " << mesh_path
+          << ": creases left out: " << with_thousands(static_cast<std::int64_t>(run.features_left_out.size()))
+          << (run.features_left_out.size() == 1 ? " stretch, " : " stretches, ") << significant(length, 3)
+          << " long together; the longest " << significant(longest.length, 3) << " near ("
+          << significant(longest.place.x(), 4) << ", " << significant(longest.place.y(), 4) << ", "
+          << significant(longest.place.z(), 4) << ") (JSON features_left_out lists them all)\n";
+    }
+    if (run.surface_euler_characteristic != run.input_report.euler_characteristic ||
+        run.surface_boundary_loops != run.input_report.boundary_loops) {
+      err << "geodual remesh: warning: " << mesh_path
+          << ": the cut to a manifold at its non-manifold edges and vertices changes the part's topology: "
+          << "Euler characteristic " << run.input_report.euler_characteristic << " -> "
+          << run.surface_euler_characteristic << ", boundary loops " << run.input_report.boundary_loops << " -> "
+          << run.surface_boundary_loops << " (the remesh has the cut surface's)\n";
+    }
+    if (run.sites_added_for_topology > 0) {
+      err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
+    }
+    if (!run.crease_pins_reason.empty()) {
+      err << "geodual remesh: note: " << mesh_path << ": " << run.crease_pins_reason << "\n";
+    }
+    if (result.sites_added > 0 || result.sites_left_out > 0) {
+      const std::string problems = remesh::problems_line(result.repair_problems);
+      err << "geodual remesh: note: " << mesh_path << ": repair added " << with_thousands(result.sites_added)
+          << " sites" << (result.sites_left_out > 0 ? " and left out " + with_thousands(result.sites_left_out) : "")
+          << " in " << result.repair_rounds << " rounds, where the dual of the Voronoi diagram was not a valid remesh ("
+          << problems << ")\n";
+    }
+    if (!run.error_bound_met) {
+      err << "geodual remesh: warning: " << mesh_path << ": the Hausdorff distance is "
+          << significant(run.statistics->hausdorff_pct, 3) << " %, above --max-error " << significant(max_error_pct_, 3)
+          << " %, after " << error_rounds_line(run.error_rounds)
+          << "; the closest remesh is written (raise --max-sites to go on)\n";
+    }
+    if (run.dropped.area_pct > options.max_dropped_area_pct) {
+      err << "geodual remesh: warning: " << mesh_path << ": " << run.dropped.faces << " faces ("
+          << significant(run.dropped.area_pct, 3)
+          << " % of the area) left out as scraps or flaps of non-manifold pieces; --strict makes this an "
+             "error\n";
+    }
+  }
+
+  /// The table of one remesh that the CLI prints without --json.
+  void print_table(const std::string& mesh_path, const std::string& output_path,
+                   const pipeline::RemeshPipelineResult& run, const pipeline::RemeshPipelineOptions& options,
+                   double total_seconds, double write_seconds, std::ostream& out) const {
+    const remesh::RepairedDual& result = run.remesh;
+    const remesh::LloydResult& relaxation = run.relaxation;
+    const quality::TriangleQuality quality =
+        run.statistics ? run.statistics->candidate : quality::triangle_quality(result.mesh);
     KeyValueTable table;
     table.add("input",
               mesh_path + " (" + with_thousands(run.input.mesh.num_vertices()) + " vertices, " +
@@ -678,11 +692,10 @@ class RemeshCommand final : public Command {
     for (const auto& [stage, seconds] : pipeline::seconds_per_stage(run.timings)) {
       stages += (stages.empty() ? "" : ", ") + std::string(pipeline::stage_name(stage)) + " " + duration(seconds);
     }
-    table.add("time", duration(seconds_since(start)) + " (" + stages + ", write " + duration(write_seconds) + ")");
+    table.add("time", duration(total_seconds) + " (" + stages + ", write " + duration(write_seconds) + ")");
     table.add("peak memory", byte_size(static_cast<std::uintmax_t>(peak_memory_bytes())));
     if (!preview_path_.empty()) table.add("preview", preview_path_);
-    table.print(streams.out);
-    return json;
+    table.print(out);
   }
 
   /// --report: everything a comparison needs, in one JSON file.
