@@ -761,7 +761,7 @@ class RemeshCommand final : public Command {
   std::string output_dir_;
   std::string format_ = "glb";
   int jobs_ = 0;
-  SiteSource sites_{"poisson"};  // blue noise: Lloyd converges from it in fewer steps
+  SiteSource sites_;  // blue noise (the library's default): Lloyd converges from it in fewer steps
   std::string preview_path_;
   remesh::RemeshOptions options_;
   GeodesicFlags geodesic_;

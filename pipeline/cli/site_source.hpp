@@ -27,7 +27,7 @@ class SiteSource {
   static constexpr std::int64_t max_sites = 100'000'000;
 
   /// `default_sampling`: what --sampling is when not given.
-  explicit SiteSource(std::string default_sampling = "random") : sampling_(std::move(default_sampling)) {}
+  explicit SiteSource(std::string default_sampling = "poisson") : sampling_(std::move(default_sampling)) {}
   /// Adds --sites, --site-file, --sampling and --seed to `command`.
   void add_to(CLI::App& command);
   /// Adds --edge-length and --faces as further sources (after add_to).

@@ -153,7 +153,7 @@ class VoronoiCommand final : public Command {
 
  private:
   std::string mesh_path_;
-  SiteSource sites_;
+  SiteSource sites_{"random"};  // a diagram of independent sites, as the benchmarks draw them
   std::string output_path_;
   std::string preview_path_;
   voronoi::VoronoiOptions options_;

@@ -234,7 +234,7 @@ TEST(Features, ACreaseContinuesWhereItsAngleFadesBetweenSmoothSidesOnly) {
   // The fold's line turns by 60 degrees up to y = 1/3 and by 30 up to
   // y = 4/3; judged at the scale, with the faces round the edges' ends,
   // somewhat less far.
-  const remesh::FeatureOptions sharp{.sharp_angle = 60, .scale = 0.1};
+  const remesh::FeatureOptions sharp{.sharp_angle = 60, .continuation_angle = 0, .scale = 0.1};
   const double sharp_reach = reach(fading_fold(), sharp);
   EXPECT_GT(sharp_reach, 0.1);
   EXPECT_LE(sharp_reach, 0.35);

@@ -63,7 +63,7 @@ struct RemeshPipelineOptions {
   std::int64_t faces = 0;
   /// Blue noise (Poisson disk), seed 1, sites on boundary loops: the relaxation
   /// converges from evenly spread sites in fewer steps than from random ones.
-  remesh::SamplingOptions sampling{.strategy = remesh::SamplingStrategy::poisson};
+  remesh::SamplingOptions sampling;
   remesh::RemeshOptions remesh;  ///< 10 Lloyd iterations, up to 10 repair rounds
   /// Fail (geodual::Error, before the relaxation) when more than
   /// `max_dropped_area_pct` of the input's area is left out; false: report it only.

@@ -28,7 +28,7 @@ struct FeatureOptions {
   /// normal there within continuation_max_spread degrees of its side's mean.
   /// A machined crease whose angle fades keeps its weaker part; a scan's
   /// noisy sides keep none.
-  double continuation_angle = 0;
+  double continuation_angle = 30;
   double continuation_max_spread = 10;
   /// The radius at which an edge's sharpness is judged (0: its two faces
   /// only). An edge stays sharp when the faces within this distance of its
@@ -96,7 +96,7 @@ struct FeatureSet {
 /// between them at least half a spacing wide, creases continued at
 /// continuation_angle between smooth sides.
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
-                                      double min_length, double continuation_angle = 0);
+                                      double min_length, double continuation_angle = 30);
 
 /// The features of `surface`, a 2-manifold (such as cut_to_manifold's
 /// mesh): sharp edges have exactly two faces. Deterministic.

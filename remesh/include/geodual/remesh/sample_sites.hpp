@@ -23,7 +23,7 @@ enum class SamplingStrategy {
 };
 
 struct SamplingOptions {
-  SamplingStrategy strategy = SamplingStrategy::random;
+  SamplingStrategy strategy = SamplingStrategy::poisson;
   /// The same mesh, count and options give the same sites, bit for bit, on every platform.
   std::uint64_t seed = 1;
   /// Sites along every boundary loop (at least 3 each), so that the dual keeps holes and borders.
