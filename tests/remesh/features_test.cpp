@@ -161,14 +161,16 @@ TriangleMesh ridge() {
 
 TEST(Features, ACreaseIsJudgedWithTheFacesRoundItsEndsEvenWhereItsEdgesOutreachTheScale) {
   const TriangleMesh mesh = ridge();
-  const remesh::FeatureSet edge_only = remesh::detect_features(mesh, {.min_chain_length = 0.5});
+  const remesh::FeatureSet edge_only =
+      remesh::detect_features(mesh, {.continuation_angle = 0, .min_chain_length = 0.5});
   // Every ridge edge is sharp on its own, the two where it rises included.
   ASSERT_FALSE(edge_only.empty());
   EXPECT_GT(edge_only.sharp_length, 4.0 + 1.0);
   // At a scale of a tenth of an edge, the faces round each end of the
   // crease, which go round its free ends, join: those edges are not a crease
   // at any scale; the four between the raised vertices stay.
-  const remesh::FeatureSet at_scale = remesh::detect_features(mesh, {.scale = 0.1, .min_chain_length = 0.5});
+  const remesh::FeatureSet at_scale =
+      remesh::detect_features(mesh, {.continuation_angle = 0, .scale = 0.1, .min_chain_length = 0.5});
   EXPECT_EQ(at_scale.sharp_chains, 1);
   EXPECT_NEAR(at_scale.sharp_length, 4.0, 1e-12);
   for (const auto& [a, b] : at_scale.sharp_edges) {
@@ -179,7 +181,7 @@ TEST(Features, ACreaseIsJudgedWithTheFacesRoundItsEndsEvenWhereItsEdgesOutreachT
 
 TEST(Features, ACreaseWithAFreeEndMustBeTheDanglingLengthLong) {
   // The ridge's crease, 4 long, ends in the open at both ends.
-  const remesh::FeatureOptions options{.scale = 0.1, .min_chain_length = 0.5};
+  const remesh::FeatureOptions options{.continuation_angle = 0, .scale = 0.1, .min_chain_length = 0.5};
   remesh::FeatureOptions dangling = options;
   dangling.min_dangling_chain_length = 3.9;
   EXPECT_NEAR(remesh::detect_features(ridge(), dangling).sharp_length, 4.0, 1e-12);

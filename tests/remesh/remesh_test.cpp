@@ -261,7 +261,8 @@ TEST(DualDelaunay, RepairGoesOnPastItsRoundsOnlyWhileItConverges) {
   // extension it gives up. (A motorBike soup at 5,000 sites: 1 repair site
   // left after 10 rounds, valid after 11.)
   const TriangleMesh torus = test::torus(1.0, 0.4, 64, 32);
-  const std::vector<SurfacePoint> sites = remesh::sample_sites(torus, 5);
+  const std::vector<SurfacePoint> sites =
+      remesh::sample_sites(torus, 5, {.strategy = remesh::SamplingStrategy::random});
   const voronoi::VoronoiDiagram diagram = voronoi::compute_voronoi(torus, sites);
   const remesh::RepairedDual full = remesh::dual_with_repair(torus, sites, diagram);
   ASSERT_TRUE(full.check.valid);
