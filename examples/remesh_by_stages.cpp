@@ -13,6 +13,7 @@
 #include <geodual/remesh/chain_slider.hpp>
 #include <geodual/remesh/remesh.hpp>
 #include <geodual/remesh/remesh_smoothing.hpp>
+#include <geodual/remesh/welded_dual.hpp>
 
 #include <cstdint>
 #include <exception>

@@ -15,6 +15,7 @@
 #include "geodual/remesh/remesh_smoothing.hpp"
 #include "geodual/remesh/remesh_surface.hpp"
 #include "geodual/remesh/sizing.hpp"
+#include "geodual/remesh/welded_dual.hpp"
 
 #include <Eigen/Geometry>
 

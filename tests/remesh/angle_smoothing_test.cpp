@@ -9,6 +9,7 @@
 #include "geodual/mesh/triangle_distance.hpp"
 #include "geodual/mesh/triangle_shape.hpp"
 #include "geodual/remesh/angle_smoothing.hpp"
+#include "geodual/remesh/deviation_fitting.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
 
 #include <gtest/gtest.h>
@@ -355,14 +356,14 @@ double worst_q(const TriangleMesh& mesh) {
   return worst;
 }
 
-TEST(DeviationSmoothing, VerticesBesideARidgeMoveOntoItWithinTheQualityFloors) {
+TEST(DeviationFitting, VerticesBesideARidgeMoveOntoItWithinTheQualityFloors) {
   RoofCase c = roof_case();
   const voronoi::GeodesicSurface prepared(c.surface);
   const TriangleMesh before = c.remesh.mesh;
   const double gap_before = c.ridge_gap();
   ASSERT_GT(gap_before, 0.02);  // the chord from y = 0.37 to 0.56 passes under the ridge
-  const remesh::DeviationSmoothingResult result =
-      remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
+  const remesh::DeviationFittingResult result =
+      remesh::fit_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
   EXPECT_GE(result.vertices_moved, 1);
   EXPECT_LT(result.deviation_after, result.deviation_before);
   EXPECT_LT(c.ridge_gap(), 0.5 * gap_before);
@@ -379,7 +380,7 @@ TEST(DeviationSmoothing, VerticesBesideARidgeMoveOntoItWithinTheQualityFloors) {
   }
 }
 
-TEST(DeviationSmoothing, MovesKeepToTheShapeOfTheTrianglesTheAngleSmoothingLeavesAlone) {
+TEST(DeviationFitting, MovesKeepToTheShapeOfTheTrianglesTheAngleSmoothingLeavesAlone) {
   RoofCase c = roof_case();
   // A sliver on a flat side, far from the ridge: the remesh's worst triangle,
   // which the angle smoothing would mend, is no floor for the moves.
@@ -400,8 +401,8 @@ TEST(DeviationSmoothing, MovesKeepToTheShapeOfTheTrianglesTheAngleSmoothingLeave
   }
   ASSERT_LT(smallest_angle_degrees(before), 20);
   ASSERT_LT(worst_q(before), kept_worst_q - 0.1);
-  const remesh::DeviationSmoothingResult result =
-      remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
+  const remesh::DeviationFittingResult result =
+      remesh::fit_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
   ASSERT_GE(result.vertices_moved, 1);
   // Of the triangles the moves changed: none worse than the worst kept one
   // or than the worst of them was, and no angle below 30 degrees or below
@@ -447,7 +448,7 @@ double largest_distance_of_corners_and_centres(const TriangleMesh& surface, cons
   return largest;
 }
 
-TEST(DeviationSmoothing, TheDistancesReportedAreTheExactOnesAndLeaveOutUnreferencedVertices) {
+TEST(DeviationFitting, TheDistancesReportedAreTheExactOnesAndLeaveOutUnreferencedVertices) {
   RoofCase c = roof_case();
   // A scan's stray vertex, in no face, a little above the roof beside a remesh vertex.
   c.surface.vertices.conservativeResize(c.surface.num_vertices() + 1, 3);
@@ -456,25 +457,23 @@ TEST(DeviationSmoothing, TheDistancesReportedAreTheExactOnesAndLeaveOutUnreferen
   // 290 surface vertices, fewer than 8 per remesh vertex (49): the face centres count too.
   const double exact_before = largest_distance_of_corners_and_centres(c.surface, c.remesh.mesh);
   ASSERT_LT(exact_before, 0.1);
-  EXPECT_NEAR(remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points, {},
-                                                {.rounds = 0})
+  EXPECT_NEAR(remesh::fit_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points, {}, {.rounds = 0})
                   .deviation_before,
               exact_before, 1e-12);
-  const remesh::DeviationSmoothingResult result =
-      remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
+  const remesh::DeviationFittingResult result =
+      remesh::fit_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points);
   EXPECT_GE(result.vertices_moved, 1);
   EXPECT_NEAR(result.deviation_before, exact_before, 1e-12);
   EXPECT_NEAR(result.deviation_after, largest_distance_of_corners_and_centres(c.surface, c.remesh.mesh), 1e-12);
   EXPECT_LT(result.deviation_after, exact_before);
 }
 
-TEST(DeviationSmoothing, FixedVerticesStayAndARemeshOnTheSurfaceIsLeftAsItIs) {
+TEST(DeviationFitting, FixedVerticesStayAndARemeshOnTheSurfaceIsLeftAsItIs) {
   RoofCase c = roof_case();
   const voronoi::GeodesicSurface prepared(c.surface);
   const TriangleMesh before = c.remesh.mesh;
   const std::vector<std::uint8_t> all(static_cast<std::size_t>(before.num_vertices()), 1);
-  EXPECT_EQ(remesh::smooth_largest_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points, all)
-                .vertices_moved,
+  EXPECT_EQ(remesh::fit_deviations(c.surface, *prepared.topology(), c.remesh.mesh, c.remesh.points, all).vertices_moved,
             0);
   EXPECT_EQ(c.remesh.mesh.vertices, before.vertices);
   // A grid on a plane lies on it: nothing is farther than rounding.
@@ -482,19 +481,18 @@ TEST(DeviationSmoothing, FixedVerticesStayAndARemeshOnTheSurfaceIsLeftAsItIs) {
   const voronoi::GeodesicSurface flat(plane);
   PlanarRemesh grid = planar_grid(plane, 6, 0.002);
   const TriangleMesh grid_before = grid.mesh;
-  const remesh::DeviationSmoothingResult result =
-      remesh::smooth_largest_deviations(plane, *flat.topology(), grid.mesh, grid.points);
+  const remesh::DeviationFittingResult result = remesh::fit_deviations(plane, *flat.topology(), grid.mesh, grid.points);
   EXPECT_EQ(result.vertices_moved, 0);
   EXPECT_LT(result.deviation_before, 0.01);  // the strip round the grid that it leaves uncovered
   EXPECT_EQ(grid.mesh.vertices, grid_before.vertices);
 }
 
-TEST(DeviationSmoothing, OptionsOutOfRangeAreUsageErrors) {
+TEST(DeviationFitting, OptionsOutOfRangeAreUsageErrors) {
   const TriangleMesh surface = test::unit_square(4);
   const voronoi::GeodesicSurface prepared(surface);
   PlanarRemesh remesh = planar_grid(surface, 2);
-  const auto fit = [&](remesh::DeviationSmoothingOptions options) {
-    remesh::smooth_largest_deviations(surface, *prepared.topology(), remesh.mesh, remesh.points, {}, options);
+  const auto fit = [&](remesh::DeviationFittingOptions options) {
+    remesh::fit_deviations(surface, *prepared.topology(), remesh.mesh, remesh.points, {}, options);
   };
   EXPECT_THROW(fit({.share = 1}), UsageError);
   EXPECT_THROW(fit({.share = -0.1}), UsageError);

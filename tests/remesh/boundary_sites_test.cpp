@@ -1,11 +1,11 @@
-// Boundary sites (remesh/src/boundary_sites.hpp): the walk along a loop and
+// Boundary sites (remesh/src/sampling/boundary_sites.hpp): the walk along a loop and
 // the slit ends and corners that get a site of their own. Oracles:
 // hand-built loops whose slits and corners are known (a square slit to its
 // centre, a rectangle, polygons), loops without any (a disk's rim, a ragged
 // or rounded outline, a Möbius strip's edge), and loops the walk runs partly
 // against their faces' orientation.
 
-#include "../../remesh/src/boundary_sites.hpp"
+#include "../../remesh/src/sampling/boundary_sites.hpp"
 #include "remesh/analytic_surfaces.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // The dual closed along the mesh boundary between the sites on it
-// (DualOptions::close_boundary_stretches, remesh/src/boundary_triangles.hpp),
+// (DualOptions::close_boundary_stretches, remesh/src/dual/boundary_triangles.hpp),
 // on hand-built planar cases: a strip narrower than the sites' spacing,
 // whose cells meet at no Voronoi vertex, becomes the zigzag between its two
 // sides; a site off the boundary whose cell reaches it leaves the dual's

@@ -1,9 +1,9 @@
-// Closing the weld's cracks on their own vertices (remesh/src/crack_fill.hpp):
+// Closing the weld's cracks on their own vertices (remesh/src/dual/crack_fill.hpp):
 // holes cut into a closed sphere come back closed, oriented as their
 // neighbours; holes that are too long, or no simple cycle, are refused and
 // the mesh left as it was.
 
-#include "../../remesh/src/crack_fill.hpp"
+#include "../../remesh/src/dual/crack_fill.hpp"
 
 #include "analytic_surfaces.hpp"
 #include "geodual/mesh/mesh_topology.hpp"

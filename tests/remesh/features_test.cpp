@@ -16,6 +16,7 @@
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/remesh.hpp"
+#include "geodual/remesh/welded_dual.hpp"
 
 #include <gtest/gtest.h>
 

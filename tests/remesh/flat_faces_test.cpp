@@ -3,7 +3,7 @@
 // them) are flat to the geodesic engine, which refuses a site on them.
 // Sampling must never put a site there, by the engine's own test.
 
-#include "../../remesh/src/surface_walk.hpp"
+#include "../../remesh/src/common/surface_walk.hpp"
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/mesh/error.hpp"

@@ -2,7 +2,7 @@
 // geodesic diagram (an independent computation from the exact geodesics),
 // its cells tile a closed surface, and threads do not change it.
 
-#include "../../remesh/src/restricted_voronoi.hpp"
+#include "../../remesh/src/relax/restricted_voronoi.hpp"
 #include "remesh/analytic_surfaces.hpp"
 
 #include "geodual/io/read_mesh.hpp"

@@ -2,7 +2,7 @@
 // ends inside a zero-area face, where a site would have no barycentric
 // coordinates.
 
-#include "../../remesh/src/surface_walk.hpp"
+#include "../../remesh/src/common/surface_walk.hpp"
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/remesh/manifold_cut.hpp"

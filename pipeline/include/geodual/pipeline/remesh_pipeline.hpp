@@ -22,6 +22,7 @@
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/angle_smoothing.hpp"
+#include "geodual/remesh/deviation_fitting.hpp"
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/follow_segments.hpp"
@@ -156,7 +157,7 @@ struct RemeshPipelineResult {
   /// The fitting of the vertices that answer for the surface's points
   /// farthest from the remesh (RemeshOptions::fit_deviations), before the
   /// smoothing: the vertices it moved and the largest distance before and after.
-  remesh::DeviationSmoothingResult fitting;
+  remesh::DeviationFittingResult fitting;
   /// Why the short creases were not pinned, where they were asked for (empty otherwise).
   std::string crease_pins_reason;
   /// Of initial_sites, the second (third...) copies of a feature point, one

@@ -42,7 +42,7 @@ struct RepairedDual {
   /// The given sites (less DualCheck::redundant_sites), then those added by repair.
   std::vector<SurfacePoint> sites;
   /// Per site, its vertex in `mesh` where twins along sharp chains were
-  /// welded into one (feature_cut.hpp); empty: vertex i is sites[i].
+  /// welded into one (welded_dual.hpp); empty: vertex i is sites[i].
   std::vector<Index> vertex_of_site;
   voronoi::VoronoiDiagram diagram;  ///< of the final sites
   DualCheck check;                  ///< of the final dual (valid)

@@ -88,6 +88,8 @@ struct FeatureSet {
   /// their own: where the remesher pins sites instead (crease_pins.hpp).
   std::vector<FeatureChain> short_creases;
   bool empty() const { return sharp_edges.empty(); }
+  /// Whether the edge between vertices a and b (either order) is sharp.
+  bool is_sharp(Index a, Index b) const;
 };
 
 /// The options the remesh pipeline detects features with for `sites` sites

@@ -51,7 +51,7 @@ struct LloydOptions {
   /// Newton-accelerated steps (Lloyd–Newton): each step solves the CVT
   /// energy's Hessian system, damped by at least `newton_damping` times
   /// Lloyd's diagonal, each site's step at most `newton_max_step` times the
-  /// square root of its cell's area (see remesh/src/cvt_newton.hpp). A step
+  /// square root of its cell's area (see remesh/src/relax/cvt_newton.hpp). A step
   /// that would not lower the energy is retried more damped, then replaced by
   /// Lloyd's. false: plain (over-relaxed) Lloyd steps only.
   bool newton = true;
@@ -61,7 +61,7 @@ struct LloydOptions {
   /// the energy becomes sum_i int_cell rho(x) d(x, s_i)^2 dA, and its
   /// minimisers space the sites like rho^(-1/4) (see curvature_density.hpp).
   /// The weighted integrals come from the diagram's to first order in rho's
-  /// variation across a cell (remesh/src/weighted_cells.hpp). Empty: rho = 1,
+  /// variation across a cell (remesh/src/relax/weighted_cells.hpp). Empty: rho = 1,
   /// the plain geodesic CVT.
   std::vector<double> density;
   /// Sites on the mesh boundary stay where they are (they carry the

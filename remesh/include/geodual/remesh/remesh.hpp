@@ -95,7 +95,7 @@ struct RemeshOptions {
   /// from the remesh (a crease or a scan's rim that the dual cuts off) move
   /// along the surface to where that distance is least, without lowering
   /// the smallest angle below 30 degrees or the remesh's own, nor the worst
-  /// Q (smooth_largest_deviations in angle_smoothing.hpp); the same vertices
+  /// Q (fit_deviations in deviation_fitting.hpp); the same vertices
   /// stay. None without a relaxation.
   bool fit_deviations = true;
 };

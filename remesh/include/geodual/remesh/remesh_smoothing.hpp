@@ -1,6 +1,6 @@
 #pragma once
 // The last stage of a remesh: its vertices fitted to the surface where it
-// strays farthest (smooth_largest_deviations), then its smallest angles
+// strays farthest (fit_deviations), then its smallest angles
 // raised (smooth_smallest_angles), each vertex moved along the surface and
 // its site with it; the vertices that carry a crease stay.
 //
@@ -9,6 +9,7 @@
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/remesh/angle_smoothing.hpp"
+#include "geodual/remesh/deviation_fitting.hpp"
 #include "geodual/remesh/dual_repair.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/voronoi/geodesic_surface.hpp"
@@ -21,13 +22,13 @@ namespace geodual::remesh {
 struct RemeshSmoothingOptions {
   /// smooth_smallest_angles's bound, degrees (0: no angle smoothing; at most 60).
   double smoothing_angle = 30;
-  bool fit_deviations = true;  ///< smooth_largest_deviations first
+  bool fit_deviations = true;  ///< fit_deviations first
   /// A vertex within this distance of a pinned crease stays (it may be what follows the crease).
   double crease_tolerance = 0;
 };
 
 struct RemeshSmoothing {
-  DeviationSmoothingResult fitting;
+  DeviationFittingResult fitting;
   AngleSmoothingResult smoothing;
 };
 

@@ -1,0 +1,256 @@
+#include "geodual/remesh/feature_cut.hpp"
+
+#include "features/chain_points.hpp"
+
+#include "geodual/mesh/error.hpp"
+#include "geodual/mesh/face_area.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/vertex_copies.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace geodual::remesh {
+namespace {
+
+using detail::ChainWalk;
+using detail::point_on_edge;
+using detail::site_key;
+using detail::SiteKey;
+
+/// Appends to `out` the point `key` on each face of its edge (at each copy
+/// of its vertex), unless `held` (sorted) has it already; then holds it.
+void add_twins(const TriangleMesh& surface, const MeshTopology& topology, const VertexCopies& copies,
+               const SiteKey& key, std::vector<SiteKey>& held, std::vector<SurfacePoint>& out) {
+  if (key.lo < 0) return;
+  if (std::binary_search(held.begin(), held.end(), key)) return;
+  if (key.lo == key.hi) {
+    for (const Index copy : copies.of(key.lo)) out.push_back(SurfacePoint::at_vertex(copy));
+  } else {
+    const Index edge = topology.find_edge(key.lo, key.hi);
+    if (edge < 0) return;
+    for (const Index f : topology.edge_faces(edge)) out.push_back(point_on_edge(surface, f, key.lo, key.hi, key.t));
+  }
+  held.insert(std::upper_bound(held.begin(), held.end(), key), key);
+}
+
+/// Per surface vertex, its copies in cut.mesh that faces use.
+VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
+  std::vector<std::uint8_t> used(cut.original_vertex.size(), 0);
+  for (Index f = 0; f < cut.mesh.num_faces(); ++f) {
+    if (has_repeated_corner(cut.mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(cut.mesh.faces(f, k))] = 1;
+  }
+  return group_vertex_copies(cut.original_vertex, num_vertices, used);
+}
+
+}  // namespace
+
+FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                           const FeatureSiteOptions& options) {
+  return feature_sites(RemeshSurface(surface), features, cut, options);
+}
+
+FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& features, const FeatureCut& cut,
+                           const FeatureSiteOptions& options) {
+  if (!(options.spacing > 0)) throw UsageError("feature_sites: the spacing must be positive");
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& topology = prepared.topology();
+  const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
+  FeatureSites result;
+  std::vector<SiteKey> held;
+  const auto add = [&](const SiteKey& key) {
+    const std::size_t before = held.size();
+    add_twins(surface, topology, copies, key, held, result.sites);
+    if (held.size() > before) ++result.points;
+  };
+  for (const Index v : features.corners) add({v, v, 0});
+  // Each chain's own spacing: even, about options.spacing.
+  std::vector<ChainWalk> walks;
+  std::vector<std::int64_t> segments;
+  for (const FeatureChain& chain : features.chains) {
+    const ChainWalk& walk = walks.emplace_back(surface, chain);
+    segments.push_back(std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(walk.length() / options.spacing)));
+  }
+  // Round a corner, the first site of every chain at one distance d: the
+  // smallest of their spacings and half their lengths. In a wedge of angle
+  // theta between two chains, the corner's cell meets the cells of the first
+  // sites at distances d1 <= d2 at a Voronoi vertex only if d1 >= d2 cos(theta)
+  // (the bisectors must cross inside the wedge); equal distances meet in any
+  // wedge. Half the length leaves room for the chain's other end.
+  std::map<Index, double> corner_distance;
+  for (std::size_t c = 0; c < walks.size(); ++c) {
+    const FeatureChain& chain = features.chains[c];
+    if (chain.closed) continue;
+    const double own = std::min(walks[c].length() / static_cast<double>(segments[c]), 0.5 * walks[c].length());
+    for (const Index end : {chain.vertices.front(), chain.vertices.back()}) {
+      const auto [it, inserted] = corner_distance.try_emplace(end, own);
+      if (!inserted) it->second = std::min(it->second, own);
+    }
+  }
+  // A stretch whose chord leaves the chain by more than the chord error is
+  // split evenly into the fewest parts that keep to it (at most 16, no
+  // shorter than min_spacing): the chain gets denser where it bends, there
+  // only. Where the shortest parts still leave it by more than twice the
+  // error, parts down to tight_spacing, if some number of them keeps to
+  // twice the error.
+  struct Stretch {
+    double from, to;
+    int parts = 1;
+    bool tight = false;  ///< its parts are shorter than min_spacing
+  };
+  const auto most_parts = [](double length, double spacing) {
+    return spacing > 0 ? static_cast<int>(std::min(16.0, std::floor(length / spacing))) : 16;
+  };
+  const auto fits = [](const ChainWalk& walk, double from, double to, int parts, double error) {
+    for (int k = 0; k < parts; ++k) {
+      if (!walk.within(from + (to - from) * k / parts, from + (to - from) * (k + 1) / parts, error)) return false;
+    }
+    return true;
+  };
+  const auto split = [&](const ChainWalk& walk, double from, double to) {
+    Stretch stretch{from, to};
+    if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return stretch;
+    const int most = most_parts(to - from, options.min_spacing);
+    const int most_tight =
+        std::max(most, most_parts(to - from, options.tight_spacing > 0 ? options.tight_spacing : options.min_spacing));
+    int parts = std::min(most, 2);
+    while (parts < most && !fits(walk, from, to, parts, options.max_chord_error)) ++parts;
+    parts = std::max(parts, 1);
+    if (!fits(walk, from, to, parts, 2 * options.max_chord_error)) {
+      // Closer parts only where some number of them keeps to twice the error
+      // (a smooth bend): a chain that wiggles at the input's scale (a scan's
+      // noise) would not keep to it at any spacing the tight one allows.
+      int tight = parts + 1;
+      while (tight <= most_tight && !fits(walk, from, to, tight, 2 * options.max_chord_error)) ++tight;
+      if (tight <= most_tight) parts = tight;
+    }
+    stretch.parts = parts;
+    stretch.tight = parts > most;
+    return stretch;
+  };
+  // Chain ends per vertex: a corner where one chain ends alone has no wedge
+  // to keep the first sites' distances equal in.
+  std::map<Index, int> ends_at;
+  for (const FeatureChain& chain : features.chains) {
+    if (chain.closed) continue;
+    ++ends_at[chain.vertices.front()];
+    ++ends_at[chain.vertices.back()];
+  }
+  std::vector<double> at;
+  std::vector<Stretch> stretches;
+  for (std::size_t c = 0; c < walks.size(); ++c) {
+    const FeatureChain& chain = features.chains[c];
+    const double length = walks[c].length(), own = length / static_cast<double>(segments[c]);
+    if (!(length > 0)) continue;
+    // The stretch ends: evenly round a closed chain; on an open one, from the
+    // corners' first sites, evenly about `own` apart in between.
+    std::vector<double> ends;
+    if (chain.closed) {
+      for (std::int64_t k = 0; k <= segments[c]; ++k) ends.push_back(own * static_cast<double>(k));
+    } else {
+      const double first = corner_distance.at(chain.vertices.front());
+      const double last = length - corner_distance.at(chain.vertices.back());
+      ends.push_back(0);
+      if (last - first < 0.25 * std::min(first, length - last)) {
+        ends.push_back(0.5 * (first + last));
+      } else {
+        const auto gaps = std::max<std::int64_t>(1, std::llround((last - first) / own));
+        for (std::int64_t k = 0; k <= gaps; ++k) {
+          ends.push_back(first + (last - first) * static_cast<double>(k) / static_cast<double>(gaps));
+        }
+      }
+      ends.push_back(length);
+    }
+    stretches.clear();
+    for (std::size_t k = 0; k + 1 < ends.size(); ++k) stretches.push_back(split(walks[c], ends[k], ends[k + 1]));
+    // At a corner where this chain ends alone, the stretch from it takes the
+    // spacing of a tight stretch after it: the sites round the corner are as
+    // close as the chain's there.
+    if (!chain.closed && stretches.size() >= 2) {
+      for (const bool front : {true, false}) {
+        Stretch& end = front ? stretches.front() : stretches.back();
+        const Stretch& next = front ? stretches[1] : stretches[stretches.size() - 2];
+        if (end.tight || !next.tight || ends_at[front ? chain.vertices.front() : chain.vertices.back()] > 1) continue;
+        const double spacing = (next.to - next.from) / next.parts;
+        const auto parts = static_cast<int>(std::llround((end.to - end.from) / spacing));
+        if (parts > end.parts) end.parts = parts, end.tight = true;
+      }
+    }
+    at.clear();
+    for (std::size_t k = 0; k < stretches.size(); ++k) {
+      const auto [from, to, parts, tight] = stretches[k];
+      if (k > 0) at.push_back(from);
+      for (int j = 1; j < parts; ++j) at.push_back(from + (to - from) * j / parts);
+      if (tight) {  // the stretch's points, ends included
+        for (int j = 0; j <= parts; ++j) {
+          result.dense_points.push_back({walks[c].point(from + (to - from) * j / parts), (to - from) / parts});
+        }
+      }
+    }
+    if (chain.closed) at.push_back(0);  // the closing end is a site too (the open ends are corners)
+    for (const double s : at) add(walks[c].key_at(s));
+  }
+  return result;
+}
+
+std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                                        std::span<const SurfacePoint> sites) {
+  std::vector<SurfacePoint> missing;
+  if (features.empty()) return missing;
+  const MeshTopology topology = build_mesh_topology(surface);
+  // Sites at a vertex the cut split: every copy needs one.
+  const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
+  std::vector<Index> at_vertex_held;    // cut vertices holding a site
+  std::vector<Index> at_vertex_wanted;  // surface vertices with more than one copy holding one
+  for (const SurfacePoint& site : sites) {
+    const SiteKey key = site_key(surface, cut, site);
+    if (key.lo < 0 || key.lo != key.hi || copies.of(key.lo).size() < 2) continue;
+    at_vertex_wanted.push_back(key.lo);
+    if (site.kind == SurfacePoint::Kind::vertex) {
+      at_vertex_held.push_back(site.element);
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        if (site.barycentric[k] == 1) at_vertex_held.push_back(cut.mesh.faces(site.element, k));
+      }
+    }
+  }
+  std::sort(at_vertex_held.begin(), at_vertex_held.end());
+  std::sort(at_vertex_wanted.begin(), at_vertex_wanted.end());
+  at_vertex_wanted.erase(std::unique(at_vertex_wanted.begin(), at_vertex_wanted.end()), at_vertex_wanted.end());
+  for (const Index v : at_vertex_wanted) {
+    for (const Index copy : copies.of(v)) {
+      if (!std::binary_search(at_vertex_held.begin(), at_vertex_held.end(), copy)) {
+        missing.push_back(SurfacePoint::at_vertex(copy));
+      }
+    }
+  }
+  // Per sharp-edge point held: the faces holding it.
+  std::vector<std::pair<SiteKey, Index>> held;
+  for (const SurfacePoint& site : sites) {
+    if (site.kind != SurfacePoint::Kind::face) continue;
+    const SiteKey key = site_key(surface, cut, site);
+    if (key.lo >= 0 && key.lo != key.hi && features.is_sharp(key.lo, key.hi)) held.push_back({key, site.element});
+  }
+  std::sort(held.begin(), held.end(), [](const auto& x, const auto& y) {
+    return x.first < y.first || (x.first == y.first && x.second < y.second);
+  });
+  for (std::size_t i = 0; i < held.size();) {
+    std::size_t j = i;
+    while (j < held.size() && held[j].first == held[i].first) ++j;
+    const SiteKey& key = held[i].first;
+    for (const Index f : topology.edge_faces(topology.find_edge(key.lo, key.hi))) {
+      const bool has =
+          std::any_of(held.begin() + static_cast<std::ptrdiff_t>(i), held.begin() + static_cast<std::ptrdiff_t>(j),
+                      [&](const auto& h) { return h.second == f; });
+      if (!has) missing.push_back(point_on_edge(surface, f, key.lo, key.hi, key.t));
+    }
+    i = j;
+  }
+  return missing;
+}
+}  // namespace geodual::remesh
