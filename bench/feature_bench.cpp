@@ -21,9 +21,9 @@
 //
 //   geodual  geodual::pipeline::run_remesh_pipeline with its default options
 //            (what `geodual remesh --sites n` does) at n sites;
-//            --geodual-sharp-angle DEG sets RemeshOptions::sharp_angle (the
+//            --geodual-sharp-angle DEG sets FeatureSamplingOptions::sharp_angle (the
 //            remesher's own features) instead of its default;
-//            --geodual-pin-creases sets RemeshOptions::pin_short_creases.
+//            --geodual-pin-creases sets FeatureRemeshOptions::pin_short_creases.
 //   CGAL protected
 //            CGAL::Polygon_mesh_processing on a Surface_mesh of the input:
 //            detect_sharp_edges at --sharp-angle (default 60 degrees) into an
@@ -112,8 +112,8 @@ struct Options {
   std::vector<std::int64_t> vertex_counts = {3000, 10000};
   double sharp_angle_deg = 60.0;
   double feature_tolerance_pct = quality::QualityOptions{}.feature_tolerance_pct;
-  std::optional<double> geodual_sharp_angle;  ///< RemeshOptions::sharp_angle; empty: its default
-  bool geodual_pin_creases = false;           ///< RemeshOptions::pin_short_creases
+  std::optional<double> geodual_sharp_angle;  ///< FeatureSamplingOptions::sharp_angle; empty: its default
+  bool geodual_pin_creases = false;           ///< FeatureRemeshOptions::pin_short_creases
   ComparisonOptions comparison;               ///< CGAL's iterations (3) and search, the statistics, the time limit
   std::vector<std::filesystem::path> meshes;
   bool corpus = false;  ///< --corpus: one table over all meshes
@@ -173,8 +173,8 @@ void add_figures(RunResult& run, const TriangleMesh& input, const TriangleMesh& 
 RunResult run_geodual(const io::LoadedMesh& input, std::int64_t sites, const Options& options) {
   pipeline::RemeshPipelineOptions pipeline_options;
   pipeline_options.sites = sites;
-  if (options.geodual_sharp_angle) pipeline_options.remesh.sharp_angle = *options.geodual_sharp_angle;
-  pipeline_options.remesh.pin_short_creases = options.geodual_pin_creases;
+  if (options.geodual_sharp_angle) pipeline_options.features.sampling.sharp_angle = *options.geodual_sharp_angle;
+  pipeline_options.features.pin_short_creases = options.geodual_pin_creases;
   pipeline_options.statistics = false;  // measured below, the same way for both rows
   RunResult run;
   reset_peak_rss();

@@ -25,7 +25,7 @@
 //   geodual+plain  with --plain-lloyd: the same, plain (over-relaxed) Lloyd
 //                  steps.
 //   geodual+adapt  with --adapt S: the Lloyd row's run with curvature-adapted
-//                  sizing (RemeshOptions::curvature_adaptation = S, a
+//                  sizing (RemeshOptions::curvature strength S, a
 //                  weighted CVT; see remesh/curvature_density.hpp).
 //   CGAL           (not with --no-cgal) CGAL::Polygon_mesh_processing::isotropic_remeshing of a
 //                  Surface_mesh built from the input, number_of_iterations N
@@ -107,7 +107,7 @@ RemeshRun run_geodual(const io::LoadedMesh& input, std::int64_t sites, int lloyd
   pipeline_options.sites = sites;
   pipeline_options.remesh.lloyd.iterations = lloyd;
   pipeline_options.remesh.lloyd.newton = newton;
-  pipeline_options.remesh.curvature_adaptation = adapt;
+  if (adapt > 0) pipeline_options.remesh.curvature = remesh::CurvatureDensityOptions{.strength = adapt};
   pipeline_options.remesh.lloyd.tolerance = options.lloyd_tolerance;
   pipeline_options.remesh.lloyd.warm_start_iterations = options.warm_start;
   pipeline_options.remesh.lloyd.warm_start_momentum = options.momentum;

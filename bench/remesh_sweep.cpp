@@ -11,8 +11,8 @@
 //   --only NAME,...   run only these meshes (names as --list prints them)
 //   --time-limit S    wall-clock limit of one run in seconds (default 600)
 //   --lloyd K         Lloyd iterations (default: the pipeline's)
-//   --sharp-angle DEG the features kept (RemeshOptions::sharp_angle; default: the pipeline's, 0: none)
-//   --continuation-angle DEG  their continuation (RemeshOptions::continuation_angle; default: the pipeline's)
+//   --sharp-angle DEG the features kept (FeatureSamplingOptions::sharp_angle; default: the pipeline's, 0: none)
+//   --continuation-angle DEG  their continuation (FeatureSamplingOptions::continuation_angle; default: the pipeline's)
 //   --samples N       statistics samples per side (default 100000)
 //   --repo DIR        repository root holding tests/data and examples/data (default .)
 //   --list            print the mesh names (and the generated ones' faces and topology) and exit
@@ -298,8 +298,8 @@ RunOutcome remesh_once(const SweepMesh& mesh, std::int64_t sites, const Options&
   pipeline_options.sites = sites;
   pipeline_options.quality.samples_per_side = options.samples;
   if (options.lloyd) pipeline_options.remesh.lloyd.iterations = *options.lloyd;
-  if (options.sharp_angle) pipeline_options.remesh.sharp_angle = *options.sharp_angle;
-  if (options.continuation_angle) pipeline_options.remesh.continuation_angle = *options.continuation_angle;
+  if (options.sharp_angle) pipeline_options.features.sampling.sharp_angle = *options.sharp_angle;
+  if (options.continuation_angle) pipeline_options.features.sampling.continuation_angle = *options.continuation_angle;
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), pipeline_options);
   RunFigures figures = figures_of(result);
   figures.peak_rss = peak_rss_bytes().value_or(0);

@@ -33,8 +33,11 @@ int main(int argc, char** argv) {
   try {
     const geodual::io::LoadedMesh input = geodual::io::read_mesh(argv[1]);
     const std::int64_t sites = std::stoll(argv[2]);
-    const remesh::RemeshOptions options;  // the CLI's defaults
-    const remesh::SamplingOptions sampling{.strategy = remesh::SamplingStrategy::poisson};
+    // The CLI's defaults, stage by stage.
+    const remesh::SamplingOptions sampling;          // blue noise, seed 1
+    const remesh::FeatureRemeshOptions features;     // creases at 60 degrees, continued at 30
+    const remesh::RemeshOptions options;             // Lloyd-Newton, up to 10 repair rounds
+    const remesh::RemeshSmoothingOptions smoothing;  // deviation fitting, angle smoothing at 30 degrees
 
     // The surface: the input cut apart at non-manifold edges and vertices.
     const remesh::ManifoldCut surface = remesh::cut_to_manifold(input.mesh);
@@ -42,7 +45,7 @@ int main(int argc, char** argv) {
     std::optional<remesh::RemeshSurface> prepared(std::in_place, surface.mesh);
 
     // Features: creases at the remesh's scale, cut open and lined with sites.
-    remesh::FeatureSamplingOptions feature_options = remesh::feature_sampling_options(options, input.mesh, surface);
+    remesh::FeatureSamplingOptions feature_options = remesh::feature_sampling_options(features, input.mesh, surface);
     feature_options.max_chord_error = 5e-4 * geodual::referenced_bounding_box(input.mesh).diagonal();
     const remesh::FeatureSampling creases = remesh::sample_features(*prepared, sites, feature_options);
 
@@ -64,15 +67,15 @@ int main(int argc, char** argv) {
 
     // The dual with repair, welded along the chains.
     const remesh::RepairOptions repair =
-        remesh::repair_options(options, !creases.empty(), static_cast<std::int64_t>(initial.sites.size()));
+        creases.empty() ? remesh::repair_options(options)
+                        : remesh::repair_options(options, features, static_cast<std::int64_t>(initial.sites.size()));
     remesh::RepairedDual remeshed =
         creases.empty() ? remesh::dual_with_repair(geodesic, relaxed.sites, std::move(relaxed.diagram), repair)
                         : remesh::welded_dual_with_repair(geodesic, surface.mesh, creases.features, creases.cut,
                                                           relaxed.sites, std::move(relaxed.diagram), repair);
 
     // Deviation fitting and angle smoothing; the input's attributes carried over.
-    remesh::smooth_remesh(remeshed, cut, *geodesic.topology(),
-                          {.smoothing_angle = options.smoothing_angle, .fit_deviations = options.fit_deviations});
+    remesh::smooth_remesh(remeshed, cut, *geodesic.topology(), smoothing);
     const geodual::VertexAttributes attributes = geodual::interpolate_attributes(
         input.mesh, input.attributes, remesh::remesh_points_on_input(remeshed, surface, creases.cut));
     geodual::io::write_mesh(argv[3], remeshed.mesh, attributes);

@@ -70,10 +70,10 @@ class InfoCommand final : public Command {
     double narrowest_corner = 360;
     if (sharp_angle_ > 0 && report.faces > 0) {
       const TriangleMesh surface = remesh::cut_to_manifold(loaded.mesh).mesh;
-      features =
-          remesh::detect_features(surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_,
-                                                                          remesh::RemeshOptions{}.min_feature_length,
-                                                                          remesh::RemeshOptions{}.continuation_angle));
+      features = remesh::detect_features(
+          surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_,
+                                                  remesh::FeatureSamplingOptions{}.min_feature_length,
+                                                  remesh::FeatureSamplingOptions{}.continuation_angle));
       narrowest_corner = remesh::narrowest_corner_angle(surface, features);
     }
     const double analysis_seconds = seconds_since(analysis_start);

@@ -149,27 +149,27 @@ class RemeshCommand final : public Command {
         "--no-newton,--plain-lloyd", [this] { options_.lloyd.newton = false; },
         "Plain (over-relaxed) Lloyd steps instead of the default Newton-accelerated ones");
     command
-        .add_option("--curvature-adaptation", options_.curvature_adaptation,
+        .add_option("--curvature-adaptation", curvature_adaptation_,
                     "Smaller cells where the surface bends sharply at the remesh's scale: Lloyd towards a "
                     "curvature-weighted CVT of this strength (0: uniform; 1 lowers the Hausdorff distance "
                     "at some cost in the worst triangles)")
         ->capture_default_str()
         ->check(finite_non_negative());
     command
-        .add_option("--sharp-angle", options_.sharp_angle,
+        .add_option("--sharp-angle", features_.sampling.sharp_angle,
                     "Keep creases where the normals turn by at least this many degrees (in chains at least half a "
                     "remesh spacing long, two where they fade out) as chains of edges, corners included (0: none; "
                     "ignored with --site-file)")
         ->capture_default_str()
         ->check(number_between(0, 180));
     command
-        .add_option("--continuation-angle", options_.continuation_angle,
+        .add_option("--continuation-angle", features_.sampling.continuation_angle,
                     "Continue those creases through edges where the normals turn by at least this many degrees "
                     "and both sides are smooth at the remesh's scale (a machined crease whose angle fades; 0, or "
                     "not below --sharp-angle: off)")
         ->capture_default_str()
         ->check(number_between(0, 180));
-    command.add_flag("--pin-creases", options_.pin_short_creases,
+    command.add_flag("--pin-creases", features_.pin_short_creases,
                      "Also follow the creases at --sharp-angle too short to cut along (a fillet's coarse edges, a "
                      "crease that fades within a spacing): sites pinned on their vertices, the sites round them as "
                      "close (beyond --sites: up to twice as many on parts with many such creases), edges flipped "
@@ -196,14 +196,14 @@ class RemeshCommand final : public Command {
         ->capture_default_str()
         ->check(integer_between(0, 1000));
     command
-        .add_option("--smoothing-angle", options_.smoothing_angle,
+        .add_option("--smoothing-angle", smoothing_.smoothing_angle,
                     "Last, move the corners of triangles with an angle below this many degrees along the surface to "
                     "where the smallest angle round them is largest (chain, corner, boundary and pinned vertices "
                     "stay; 0, or --lloyd-iterations 0: none, every vertex at its site)")
         ->capture_default_str()
         ->check(number_between(0, 60));
     command.add_flag_callback(
-        "--no-fitting", [this] { options_.fit_deviations = false; },
+        "--no-fitting", [this] { smoothing_.fit_deviations = false; },
         "Do not move the vertices that answer for the input's points farthest from the remesh (a crease or a "
         "scan's rim the remesh cuts off) along the surface to where that distance is least, before the "
         "smoothing");
@@ -446,6 +446,10 @@ class RemeshCommand final : public Command {
     options.sites = sites_.count();
     options.sampling = sites_.sampling_options();
     options.remesh = options_;
+    if (curvature_adaptation_ > 0)
+      options.remesh.curvature = remesh::CurvatureDensityOptions{.strength = curvature_adaptation_};
+    options.features = features_;
+    options.smoothing = smoothing_;
     geodesic_.apply(options.remesh.lloyd.voronoi.geodesic);
     options.strict = strict_;
     options.attributes = attributes_ == "all";
@@ -471,7 +475,7 @@ class RemeshCommand final : public Command {
       }
     }
     if (!sites_.file().empty()) options.given_sites = sites_.sites(loaded.mesh);
-    if (!feature_file_.empty()) options.remesh.feature_edges = read_feature_file(feature_file_, loaded.mesh);
+    if (!feature_file_.empty()) options.features.sampling.given_edges = read_feature_file(feature_file_, loaded.mesh);
     options.edge_length = sites_.edge_length(loaded.mesh);
     options.faces = sites_.faces();
     const pipeline::RemeshPipelineResult run = pipeline::run_remesh_pipeline(std::move(loaded), options);
@@ -612,7 +616,8 @@ class RemeshCommand final : public Command {
             (result.sites_added > 0 ? ", " + with_thousands(result.sites_added) + " added by repair" : "") +
             (result.sites_left_out > 0 ? ", " + with_thousands(result.sites_left_out) + " left out by repair" : ""));
     if (!run.features.empty()) {
-      const std::string angle = options_.sharp_angle > 0 ? significant(options_.sharp_angle, 3) + " deg" : "";
+      const std::string angle =
+          features_.sampling.sharp_angle > 0 ? significant(features_.sampling.sharp_angle, 3) + " deg" : "";
       const std::string file = feature_file_.empty() ? "" : "the feature file's";
       table.add(
           "features",
@@ -718,16 +723,16 @@ class RemeshCommand final : public Command {
     options["warm_start_iterations"] = options_.lloyd.warm_start_iterations;
     options["warm_start_momentum"] = options_.lloyd.warm_start_momentum;
     options["newton"] = options_.lloyd.newton;
-    options["curvature_adaptation"] = options_.curvature_adaptation;
+    options["curvature_adaptation"] = curvature_adaptation_;
     options["max_repair_rounds"] = options_.max_repair_rounds;
     options["max_error"] =
         max_error_pct_ > 0 ? nlohmann::ordered_json(max_error_pct_) : nlohmann::ordered_json(nullptr);
     options["max_sites"] = max_sites_ > 0 ? nlohmann::ordered_json(max_sites_) : nlohmann::ordered_json(nullptr);
-    options["sharp_angle"] = options_.sharp_angle;
-    options["continuation_angle"] = options_.continuation_angle;
-    options["pin_creases"] = options_.pin_short_creases;
-    options["smoothing_angle"] = options_.smoothing_angle;
-    options["fit_deviations"] = options_.fit_deviations;
+    options["sharp_angle"] = features_.sampling.sharp_angle;
+    options["continuation_angle"] = features_.sampling.continuation_angle;
+    options["pin_creases"] = features_.pin_short_creases;
+    options["smoothing_angle"] = smoothing_.smoothing_angle;
+    options["fit_deviations"] = smoothing_.fit_deviations;
     options["feature_file"] =
         feature_file_.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(feature_file_);
     options["remove_redundant_windows"] = geodesic_.remove_redundant_windows();
@@ -764,6 +769,9 @@ class RemeshCommand final : public Command {
   SiteSource sites_;  // blue noise (the library's default): Lloyd converges from it in fewer steps
   std::string preview_path_;
   remesh::RemeshOptions options_;
+  double curvature_adaptation_ = 0;  // --curvature-adaptation: options_.curvature's strength where > 0
+  remesh::FeatureRemeshOptions features_;
+  remesh::RemeshSmoothingOptions smoothing_;
   GeodesicFlags geodesic_;
   std::int64_t samples_ = 1'000'000;
   double max_error_pct_ = 0;

@@ -75,42 +75,6 @@ void require_error_bound_options(const RemeshPipelineOptions& options) {
   if (!options.statistics) throw UsageError("an error bound is checked by the statistics: they cannot be off");
 }
 
-/// \throw UsageError for a feature or repair option out of range.
-void require_feature_and_repair_options(const remesh::RemeshOptions& options) {
-  if (!std::isfinite(options.sharp_angle) || options.sharp_angle < 0 || options.sharp_angle > 180) {
-    throw UsageError("sharp angle " + std::to_string(options.sharp_angle) +
-                     ": must be in [0, 180] degrees (0: no features)");
-  }
-  if (!std::isfinite(options.continuation_angle) || options.continuation_angle < 0 ||
-      options.continuation_angle > 180) {
-    throw UsageError("continuation angle " + std::to_string(options.continuation_angle) +
-                     ": must be in [0, 180] degrees (0: off)");
-  }
-  if (!std::isfinite(options.min_feature_length) || options.min_feature_length < 0) {
-    throw UsageError("min feature length " + std::to_string(options.min_feature_length) +
-                     ": must be a finite number >= 0 (in spacings)");
-  }
-  if (options.max_repair_rounds < 0) {
-    throw UsageError("max repair rounds " + std::to_string(options.max_repair_rounds) + ": must be >= 0");
-  }
-  if (!std::isfinite(options.max_feature_sites_added) || options.max_feature_sites_added < 0) {
-    throw UsageError("max feature sites added " + std::to_string(options.max_feature_sites_added) +
-                     ": must be a finite fraction >= 0 of the sites");
-  }
-  if (!std::isfinite(options.feature_retry_radius) || options.feature_retry_radius < 0) {
-    throw UsageError("feature retry radius " + std::to_string(options.feature_retry_radius) +
-                     ": must be a finite number >= 0 (in spacings)");
-  }
-  if (!std::isfinite(options.smoothing_angle) || options.smoothing_angle < 0 || options.smoothing_angle > 60) {
-    throw UsageError("smoothing angle " + std::to_string(options.smoothing_angle) +
-                     ": must be in [0, 60] degrees (0: no smoothing)");
-  }
-  if (options.max_feature_repair_rounds < 0) {
-    throw UsageError("max feature repair rounds " + std::to_string(options.max_feature_repair_rounds) +
-                     ": must be >= 0");
-  }
-}
-
 void report(const ProgressCallback& progress, Stage stage, double fraction) {
   if (progress && !progress(stage, fraction)) {
     throw Cancelled(std::string(stage_name(stage)) + " cancelled");
@@ -270,12 +234,14 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     // Sharp features: cut open and lined with sites, short creases pinned,
     // the rest sampled around them.
     remesh::FeatureSamplingOptions feature_options =
-        remesh::feature_sampling_options(options.remesh, result.input.mesh, result.surface);
-    feature_options.excluded_edges.assign(excluded_edges.begin(), excluded_edges.end());
-    feature_options.max_chord_error = 5e-4 * result.input_report.bbox_diagonal;
+        remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
+    feature_options.excluded_edges.insert(feature_options.excluded_edges.end(), excluded_edges.begin(),
+                                          excluded_edges.end());
+    if (feature_options.max_chord_error == 0)
+      feature_options.max_chord_error = 5e-4 * result.input_report.bbox_diagonal;
     remesh::FeatureSampling creases = remesh::sample_features(*prepared, sites, feature_options);
     remesh::ShortCreasePins pins;
-    if (options.remesh.pin_short_creases) {
+    if (options.features.pin_short_creases) {
       pins = remesh::pin_short_creases(*prepared, sites, creases, feature_options.max_chord_error);
     }
     report(options.progress, Stage::sample, 0.5);
@@ -346,8 +312,10 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   report(options.progress, Stage::relax, 1.0);
 
   // Dual with repair; each repair round's diagram reports its progress.
-  remesh::RepairOptions repair =
-      remesh::repair_options(options.remesh, features, static_cast<std::int64_t>(result.initial_sites.size()));
+  remesh::RepairOptions repair = features
+                                     ? remesh::repair_options(options.remesh, options.features,
+                                                              static_cast<std::int64_t>(result.initial_sites.size()))
+                                     : remesh::repair_options(options.remesh);
   if (options.progress) {
     repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
   }
@@ -378,19 +346,20 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   result.smoothing = {};
   result.fitting = {};
   // Without a relaxation the remesh is the dual of the sites as they are: no smoothing either.
-  if ((options.remesh.smoothing_angle > 0 || options.remesh.fit_deviations) && options.remesh.lloyd.iterations > 0 &&
-      result.remesh.mesh.num_faces() > 0) {
+  if ((options.smoothing.smoothing_angle > 0 || options.smoothing.fit_deviations) &&
+      options.remesh.lloyd.iterations > 0 && result.remesh.mesh.num_faces() > 0) {
     // Where creases are pinned, what follows them within the feature recall's
     // tolerance stays.
     const std::span<const remesh::FeatureChain> pinned_creases =
         result.crease_pins > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
                                : std::span<const remesh::FeatureChain>();
-    const remesh::RemeshSmoothing smoothed = remesh::smooth_remesh(
-        result.remesh, surface, *geodesic_surface->topology(),
-        {.smoothing_angle = options.remesh.smoothing_angle,
-         .fit_deviations = options.remesh.fit_deviations,
-         .crease_tolerance = options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal},
-        pin_vertex, pinned_creases, &manifold_surface);
+    remesh::RemeshSmoothingOptions smoothing = options.smoothing;
+    if (smoothing.crease_tolerance == 0) {
+      smoothing.crease_tolerance = options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal;
+    }
+    const remesh::RemeshSmoothing smoothed =
+        remesh::smooth_remesh(result.remesh, surface, *geodesic_surface->topology(), smoothing, pin_vertex,
+                              pinned_creases, &manifold_surface);
     result.smoothing = smoothed.smoothing;
     result.fitting = smoothed.fitting;
   }
@@ -537,8 +506,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   // has creases finer than the spacing all over.
   constexpr int kMaxCreaseDrops = 6, kMaxPatientDrops = 2;
   RemeshPipelineOptions patient = options;
-  patient.remesh.max_feature_repair_rounds =
-      std::max(options.remesh.max_feature_repair_rounds, options.remesh.max_repair_rounds);
+  patient.features.max_repair_rounds = std::max(options.features.max_repair_rounds, options.remesh.max_repair_rounds);
   bool patient_now = false;  // the tries with patient's repair rounds have begun
   int drops_left = kMaxCreaseDrops;
   for (int round = 0;; ++round) {
@@ -561,8 +529,8 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
         if (patient_now) {
           result.remesh.repair_problems.insert(
               result.remesh.repair_problems.begin(),
-              "the creases kept with up to " + std::to_string(patient.remesh.max_feature_repair_rounds) +
-                  " repair rounds, as " + std::to_string(options.remesh.max_feature_repair_rounds) +
+              "the creases kept with up to " + std::to_string(patient.features.max_repair_rounds) +
+                  " repair rounds, as " + std::to_string(options.features.max_repair_rounds) +
                   " were not enough: " + reason);
         }
         if (!excluded.empty()) {
@@ -584,7 +552,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     // The surface the features are on (its copy is held back during the stages where it is the input).
     const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
     std::vector<std::array<Index, 2>> near;
-    if (const double spacings = options.remesh.feature_retry_radius; spacings > 0 && !places.empty()) {
+    if (const double spacings = options.features.retry_radius; spacings > 0 && !places.empty()) {
       const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
       near = sharp_edges_near(surface, result.features, places, radius);
     }
@@ -593,7 +561,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
       excluded.insert(excluded.end(), near.begin(), near.end());
       dropped_near.insert(dropped_near.end(), places.begin(), places.end());
       if (dropped_reason.empty()) dropped_reason = reason;
-    } else if (!patient_now && patient.remesh.max_feature_repair_rounds > options.remesh.max_feature_repair_rounds) {
+    } else if (!patient_now && patient.features.max_repair_rounds > options.features.max_repair_rounds) {
       patient_now = true;
       drops_left = kMaxPatientDrops;
     } else {
@@ -613,8 +581,8 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   result.feature_sites = result.site_twins = result.sites_added_near_features = 0;
   result.timings.clear();
   RemeshPipelineOptions without = options;
-  without.remesh.sharp_angle = 0;
-  without.remesh.feature_edges.clear();
+  without.features.sampling.sharp_angle = 0;
+  without.features.sampling.given_edges.clear();
   run_stages(result, without, input_density, nullptr);
 }
 
@@ -681,8 +649,11 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
   require_one_site_source(options);
   require_error_bound_options(options);
-  require_feature_and_repair_options(options.remesh);
-  require_edges_of(input.mesh, options.remesh.feature_edges, "feature edge");
+  remesh::check_options(options.remesh);
+  remesh::check_options(options.features);
+  remesh::check_options(options.smoothing);
+  require_edges_of(input.mesh, options.features.sampling.given_edges, "feature edge");
+  require_edges_of(input.mesh, options.features.sampling.excluded_edges, "excluded feature edge");
   RemeshPipelineResult result;
   result.input = std::move(input);
   result.input_report = analyze_mesh(result.input.mesh);

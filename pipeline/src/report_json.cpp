@@ -149,8 +149,8 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
   figures["faces_target"] = options.faces > 0 ? nlohmann::ordered_json(options.faces) : nlohmann::ordered_json(nullptr);
   figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
   figures["sites_added_for_topology"] = run.sites_added_for_topology;
-  figures["sharp_angle_deg"] = options.remesh.sharp_angle;
-  figures["continuation_angle_deg"] = options.remesh.continuation_angle;
+  figures["sharp_angle_deg"] = options.features.sampling.sharp_angle;
+  figures["continuation_angle_deg"] = options.features.sampling.continuation_angle;
   figures["feature_chains"] = run.features.sharp_chains;
   figures["feature_corners"] = run.features.corners.size();
   figures["feature_length"] = run.features.sharp_length;
@@ -195,9 +195,9 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
   figures["sites_left_out"] = run.remesh.sites_left_out;
   figures["repair_rounds"] = run.remesh.repair_rounds;
   figures["repair_problems"] = run.remesh.repair_problems;
-  figures["smoothing_angle_deg"] = options.remesh.smoothing_angle;
+  figures["smoothing_angle_deg"] = options.smoothing.smoothing_angle;
   figures["vertices_smoothed"] = run.smoothing.vertices_moved;
-  figures["fit_deviations"] = options.remesh.fit_deviations;
+  figures["fit_deviations"] = options.smoothing.fit_deviations;
   figures["vertices_fitted"] = run.fitting.vertices_moved;
   figures["vertices"] = run.remesh.mesh.num_vertices();
   figures["faces"] = run.remesh.mesh.num_faces();

@@ -111,26 +111,15 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   if (!face_count.is_none()) options.faces = positive_count(face_count, "faces");
   if (lloyd < 0) throw py::value_error("lloyd must be >= 0 (iterations), got " + std::to_string(lloyd));
   if (seed < 0) throw py::value_error("seed must be >= 0, got " + std::to_string(seed));
-  if (!(sharp_angle >= 0 && sharp_angle <= 180)) {
-    throw py::value_error("sharp_angle must be in [0, 180] degrees (0: no features), got " +
-                          std::to_string(sharp_angle));
-  }
-  if (!(continuation_angle >= 0 && continuation_angle <= 180)) {
-    throw py::value_error("continuation_angle must be in [0, 180] degrees (0: off), got " +
-                          std::to_string(continuation_angle));
-  }
-  if (!(smoothing_angle >= 0 && smoothing_angle <= 60)) {
-    throw py::value_error("smoothing_angle must be in [0, 60] degrees (0: no smoothing), got " +
-                          std::to_string(smoothing_angle));
-  }
+  // The feature and smoothing options are checked by the pipeline (geodual.UsageError, a ValueError).
   options.remesh.lloyd.iterations = lloyd;
   options.sampling.seed = static_cast<std::uint64_t>(seed);
-  options.remesh.sharp_angle = sharp_angle;
-  options.remesh.continuation_angle = continuation_angle;
-  options.remesh.pin_short_creases = pin_creases;
-  options.remesh.smoothing_angle = smoothing_angle;
-  options.remesh.fit_deviations = fit_deviations;
-  if (!feature_edges.is_none()) options.remesh.feature_edges = edges_from_object(feature_edges);
+  options.features.sampling.sharp_angle = sharp_angle;
+  options.features.sampling.continuation_angle = continuation_angle;
+  options.features.pin_short_creases = pin_creases;
+  options.smoothing.smoothing_angle = smoothing_angle;
+  options.smoothing.fit_deviations = fit_deviations;
+  if (!feature_edges.is_none()) options.features.sampling.given_edges = edges_from_object(feature_edges);
   options.statistics = statistics;
   if (!max_error.is_none()) {
     options.max_error_pct = max_error.cast<double>();
@@ -262,16 +251,16 @@ void add_remesh(py::module_& module) {
                std::to_string(py::len(result.faces)) + " faces>";
       });
 
-  module.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(),
-             py::arg("edge_length") = py::none(), py::arg("faces") = py::none(), py::arg("lloyd") = 10,
-             py::arg("seed") = 1, py::arg("colors") = py::none(),
-             py::arg("sharp_angle") = remesh::RemeshOptions{}.sharp_angle,
-             py::arg("continuation_angle") = remesh::RemeshOptions{}.continuation_angle,
-             py::arg("pin_creases") = remesh::RemeshOptions{}.pin_short_creases, py::arg("feature_edges") = py::none(),
-             py::arg("smoothing_angle") = remesh::RemeshOptions{}.smoothing_angle,
-             py::arg("fit_deviations") = remesh::RemeshOptions{}.fit_deviations, py::arg("progress") = py::none(),
-             py::arg("statistics") = true, py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
-             R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
+  module.def(
+      "remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("sites") = py::none(), py::arg("edge_length") = py::none(),
+      py::arg("faces") = py::none(), py::arg("lloyd") = 10, py::arg("seed") = 1, py::arg("colors") = py::none(),
+      py::arg("sharp_angle") = remesh::FeatureSamplingOptions{}.sharp_angle,
+      py::arg("continuation_angle") = remesh::FeatureSamplingOptions{}.continuation_angle,
+      py::arg("pin_creases") = remesh::FeatureRemeshOptions{}.pin_short_creases, py::arg("feature_edges") = py::none(),
+      py::arg("smoothing_angle") = remesh::RemeshSmoothingOptions{}.smoothing_angle,
+      py::arg("fit_deviations") = remesh::RemeshSmoothingOptions{}.fit_deviations, py::arg("progress") = py::none(),
+      py::arg("statistics") = true, py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
+      R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
 are sampled (blue noise), relaxed towards a geodesic centroidal Voronoi

@@ -15,22 +15,47 @@
 
 namespace geodual::remesh {
 
+void check_options(const RemeshOptions& options) {
+  check_options(options.lloyd);
+  if (options.curvature) {
+    CurvatureDensityOptions curvature = *options.curvature;
+    if (curvature.spacing == 0) curvature.spacing = 1;  // the remesh's, known once the sites are
+    check_options(curvature);
+  }
+  if (options.max_repair_rounds < 0) {
+    throw UsageError("max repair rounds " + std::to_string(options.max_repair_rounds) + ": must be >= 0");
+  }
+}
+
+void check_options(const FeatureRemeshOptions& options) {
+  check_options(options.sampling);
+  const auto require = [](bool holds, const std::string& what, double value, const std::string& range) {
+    if (!holds) throw UsageError(what + " " + std::to_string(value) + ": must be " + range);
+  };
+  require(options.max_repair_rounds >= 0, "max feature repair rounds", options.max_repair_rounds, ">= 0");
+  require(std::isfinite(options.max_sites_added) && options.max_sites_added >= 0, "max feature sites added",
+          options.max_sites_added, "a finite fraction >= 0 of the sites");
+  require(std::isfinite(options.retry_radius) && options.retry_radius >= 0, "feature retry radius",
+          options.retry_radius, "a finite number >= 0 (in spacings)");
+}
+
 LloydOptions relaxation_options(const TriangleMesh& surface, std::int64_t site_count, const RemeshOptions& options) {
   LloydOptions lloyd = options.lloyd;
-  if (options.curvature_adaptation > 0 && lloyd.density.empty() && lloyd.iterations > 0 && site_count > 0) {
-    lloyd.density = curvature_density(surface, {.strength = options.curvature_adaptation,
-                                                .spacing = uniform_spacing(surface, site_count),
-                                                .max_ratio = options.curvature_max_ratio});
+  if (options.curvature && options.curvature->strength > 0 && lloyd.density.empty() && lloyd.iterations > 0 &&
+      site_count > 0) {
+    CurvatureDensityOptions curvature = *options.curvature;
+    if (curvature.spacing == 0) curvature.spacing = uniform_spacing(surface, site_count);
+    lloyd.density = curvature_density(surface, curvature);
   }
   return lloyd;
 }
 
-FeatureSamplingOptions feature_sampling_options(const RemeshOptions& options, const TriangleMesh& input,
+FeatureSamplingOptions feature_sampling_options(const FeatureRemeshOptions& options, const TriangleMesh& input,
                                                 const ManifoldCut& cut) {
-  return {.sharp_angle = options.sharp_angle,
-          .min_feature_length = options.min_feature_length,
-          .continuation_angle = options.continuation_angle,
-          .given_edges = edges_on_cut(cut, input.num_vertices(), options.feature_edges)};
+  FeatureSamplingOptions sampling = options.sampling;
+  sampling.given_edges = edges_on_cut(cut, input.num_vertices(), options.sampling.given_edges);
+  sampling.excluded_edges = edges_on_cut(cut, input.num_vertices(), options.sampling.excluded_edges);
+  return sampling;
 }
 
 LloydOptions relaxation_options(const TriangleMesh& sites_surface, const RemeshSites& sites,
@@ -50,15 +75,19 @@ LloydOptions relaxation_options(const TriangleMesh& sites_surface, const RemeshS
   return lloyd;
 }
 
-RepairOptions repair_options(const RemeshOptions& options, bool keeps_features, std::int64_t site_count) {
-  RepairOptions repair{.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi, .dual = {}};
-  if (!keeps_features) return repair;
-  repair.dual.close_boundary_stretches = options.close_crease_stretches;
-  repair.max_rounds = std::min(repair.max_rounds, options.max_feature_repair_rounds);
+RepairOptions repair_options(const RemeshOptions& options) {
+  return {.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi, .dual = {}};
+}
+
+RepairOptions repair_options(const RemeshOptions& options, const FeatureRemeshOptions& features,
+                             std::int64_t site_count) {
+  RepairOptions repair = repair_options(options);
+  repair.dual.close_boundary_stretches = features.close_crease_stretches;
+  repair.max_rounds = std::min(repair.max_rounds, features.max_repair_rounds);
   repair.extend_while_converging = false;
-  if (options.max_feature_sites_added > 0) {
+  if (features.max_sites_added > 0) {
     repair.max_sites_added =
-        std::max<std::int64_t>(1, std::llround(options.max_feature_sites_added * static_cast<double>(site_count)));
+        std::max<std::int64_t>(1, std::llround(features.max_sites_added * static_cast<double>(site_count)));
   }
   return repair;
 }
@@ -83,6 +112,7 @@ std::vector<SurfacePoint> remesh_points_on_input(const RepairedDual& remesh, con
 
 RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoint> sites,
                                const RemeshOptions& options) {
+  check_options(options);
   RemeshResult result;
   // The surface to remesh: cut apart at non-manifold edges and vertices.
   ManifoldCut cut = cut_to_manifold(mesh);
@@ -101,9 +131,8 @@ RemeshResult remesh_from_sites(const TriangleMesh& mesh, std::vector<SurfacePoin
   if (release_memory) trim_heap();  // the preparation's scratch
   result.relaxation = lloyd_relax(geodesic_surface, std::move(sites), lloyd);
   // The relaxed diagram moves on to the dual (its first round's diagram).
-  result.dual =
-      dual_with_repair(geodesic_surface, result.relaxation.sites, std::move(result.relaxation.diagram),
-                       {.max_rounds = options.max_repair_rounds, .voronoi = options.lloyd.voronoi, .dual = {}});
+  result.dual = dual_with_repair(geodesic_surface, result.relaxation.sites, std::move(result.relaxation.diagram),
+                                 repair_options(options));
   return result;
 }
 

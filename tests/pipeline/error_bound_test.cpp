@@ -80,7 +80,7 @@ TEST(ErrorBound, WhereARemeshKeptNoFeaturesTheNextStartsFromItsSites) {
   // add sites at the input's vertices where it strayed most, rather than
   // sampling afresh, which would lose the sites the last round put there.
   const pipeline::RemeshPipelineOptions options = bounded(0.5);
-  ASSERT_GT(options.remesh.sharp_angle, 0);
+  ASSERT_GT(options.features.sampling.sharp_angle, 0);
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(sphere_with_bump(), options);
   ASSERT_GE(result.error_rounds.size(), 2u);
   EXPECT_TRUE(result.features.empty());

@@ -51,11 +51,11 @@ pipeline::RemeshPipelineResult remesh_without_statistics(io::LoadedMesh loaded, 
 
 /// The pipeline's options with the remesh that keeps the creases repairing
 /// its dual alone, without closing it along the chains' sides
-/// (RemeshOptions::close_crease_stretches): how it ran before, where the
+/// (FeatureRemeshOptions::close_crease_stretches): how it ran before, where the
 /// cases below make the repair fail and the retries run.
 pipeline::RemeshPipelineOptions repair_alone() {
   pipeline::RemeshPipelineOptions options;
-  options.remesh.close_crease_stretches = false;
+  options.features.close_crease_stretches = false;
   return options;
 }
 
@@ -72,7 +72,7 @@ pipeline::RemeshPipelineOptions warm_start_without_momentum() {
 
 pipeline::RemeshPipelineResult remesh_with_features(TriangleMesh mesh, std::int64_t sites) {
   pipeline::RemeshPipelineOptions options;
-  options.remesh.sharp_angle = 60;
+  options.features.sampling.sharp_angle = 60;
   options.remesh.lloyd.iterations = 3;
   io::LoadedMesh loaded;
   loaded.mesh = std::move(mesh);
@@ -216,7 +216,7 @@ TEST(FeaturePipeline, PinnedShortCreasesAreFollowedByEdgesAndTheirPinsStay) {
   // them unless they are pinned.
   const io::LoadedMesh loaded = io::read_mesh("tests/data/rocker_arm.ply");
   pipeline::RemeshPipelineOptions pinned;
-  pinned.remesh.pin_short_creases = true;
+  pinned.features.pin_short_creases = true;
   const pipeline::RemeshPipelineResult without = remesh_without_statistics(loaded, 2000);
   const pipeline::RemeshPipelineResult with = remesh_without_statistics(loaded, 2000, pinned);
   EXPECT_EQ(without.crease_pins, 0);
@@ -264,7 +264,7 @@ TEST(FeaturePipeline, ShortCreasesThatWouldAskForMoreThanHalfTheSitesAreNotPinne
   // horse's 60-degree edges are a scan's noise, hundreds of them: pinned,
   // they and the sites round them would be most of 2,000 sites.
   pipeline::RemeshPipelineOptions pinned;
-  pinned.remesh.pin_short_creases = true;
+  pinned.features.pin_short_creases = true;
   const pipeline::RemeshPipelineResult result =
       remesh_without_statistics(io::read_mesh("tests/data/horse.ply"), 2000, pinned);
   EXPECT_EQ(result.crease_pins, 0);
@@ -370,7 +370,7 @@ TEST(FeaturePipeline, CreasesWhoseDualNeedsManyRepairRoundsAreLeftOutWhereItFail
   const TriangleMesh& surface = result.surface.mesh;
   const remesh::FeatureSet all = remesh::detect_features(
       surface, remesh::remesh_feature_options(surface, 500, 60, 0.5,
-                                              pipeline::RemeshPipelineOptions{}.remesh.continuation_angle));
+                                              pipeline::RemeshPipelineOptions{}.features.sampling.continuation_angle));
   const double radius = 2 * remesh::uniform_spacing(surface, static_cast<std::int64_t>(result.initial_sites.size()));
   const auto distance_to_places = [&](const std::vector<std::array<Index, 2>>& edges) {
     double nearest = std::numeric_limits<double>::infinity();
@@ -451,7 +451,7 @@ TEST(FeaturePipeline, TheRetryLeavesOutOnlyTheCreasesNearTheFaultsAndReportsThem
   const auto remesh_with_radius = [&](double radius, int& relaxations) {
     pipeline::Stage last = pipeline::Stage::load;
     pipeline::RemeshPipelineOptions options = repair_alone();
-    options.remesh.feature_retry_radius = radius;
+    options.features.retry_radius = radius;
     options.progress = [&](pipeline::Stage stage, double) {
       if (stage == pipeline::Stage::relax && last != pipeline::Stage::relax) ++relaxations;
       last = stage;
@@ -499,14 +499,14 @@ TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsTh
   // a bound of 0.5 % leaves out the creases where it would add them.
   const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
   pipeline::RemeshPipelineOptions options;
-  options.remesh.max_feature_sites_added = 0;
+  options.features.max_sites_added = 0;
   const pipeline::RemeshPipelineResult kept = remesh_without_statistics(scan, 2000, options);
   ASSERT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
   EXPECT_TRUE(kept.features_dropped_near.empty());
   EXPECT_GT(kept.features.sharp_chains, 0);
   EXPECT_GT(static_cast<double>(kept.remesh.sites_added), 0.005 * static_cast<double>(kept.initial_sites.size()));
   pipeline::RemeshPipelineOptions bounded;
-  bounded.remesh.max_feature_sites_added = 0.005;
+  bounded.features.max_sites_added = 0.005;
   const pipeline::RemeshPipelineResult partly = remesh_without_statistics(scan, 2000, bounded);
   ASSERT_TRUE(partly.features_dropped_reason.empty()) << partly.features_dropped_reason;
   EXPECT_NE(partly.features_partly_dropped_reason.find("allowed"), std::string::npos)
@@ -554,7 +554,7 @@ TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceT
   pipeline::RemeshPipelineOptions plain;
   plain.sites = 100;
   plain.remesh.lloyd.iterations = 1;
-  plain.remesh.sharp_angle = 0;
+  plain.features.sampling.sharp_angle = 0;
   plain.statistics = false;
   io::LoadedMesh loaded;
   loaded.mesh = box;
@@ -580,9 +580,10 @@ TEST(FeaturePipeline, GivenFeatureEdgesAreKeptWithoutAnAngle) {
   options.statistics = false;
   for (const auto& [a, b] : input.edge_vertices) {
     const int common = on_faces(a) & on_faces(b);
-    if (common == 3 || common == 5 || common == 6 || common == 7) options.remesh.feature_edges.push_back({a, b});
+    if (common == 3 || common == 5 || common == 6 || common == 7)
+      options.features.sampling.given_edges.push_back({a, b});
   }
-  ASSERT_EQ(options.remesh.feature_edges.size(), 12u * 8u);
+  ASSERT_EQ(options.features.sampling.given_edges.size(), 12u * 8u);
   io::LoadedMesh loaded;
   loaded.mesh = box;
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(loaded, options);
@@ -593,7 +594,36 @@ TEST(FeaturePipeline, GivenFeatureEdgesAreKeptWithoutAnAngle) {
   EXPECT_EQ(topology.num_components(), 1);
   EXPECT_EQ(topology.num_boundary_loops, 0);
   // A pair of vertices that is no edge of the input is refused before any work.
-  options.remesh.feature_edges.push_back({0, static_cast<Index>(box.vertices.rows()) - 1});
+  options.features.sampling.given_edges.push_back({0, static_cast<Index>(box.vertices.rows()) - 1});
+  EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
+}
+
+TEST(FeaturePipeline, ExcludedFeatureEdgesAreNeverFeatures) {
+  // The box's four vertical creases excluded (as the input's vertex pairs):
+  // the rims of its top and bottom stay, 8 of its 12 unit-long creases.
+  const TriangleMesh box = unit_box(8);
+  const MeshTopology input = build_mesh_topology(box);
+  const auto at_side = [&](Index v, int d) { return box.vertices(v, d) == 0.0 || box.vertices(v, d) == 1.0; };
+  pipeline::RemeshPipelineOptions options;
+  options.sites = 300;
+  options.remesh.lloyd.iterations = 3;
+  options.statistics = false;
+  for (const auto& [a, b] : input.edge_vertices) {
+    if (at_side(a, 0) && at_side(b, 0) && at_side(a, 1) && at_side(b, 1))
+      options.features.sampling.excluded_edges.push_back({a, b});
+  }
+  ASSERT_EQ(options.features.sampling.excluded_edges.size(), 4u * 8u);
+  io::LoadedMesh loaded;
+  loaded.mesh = box;
+  const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(loaded, options);
+  ASSERT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  EXPECT_NEAR(result.features.sharp_length, 8.0, 1e-9);
+  const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
+  for (const auto& [a, b] : result.features.sharp_edges) {
+    EXPECT_EQ(surface.vertices(a, 2), surface.vertices(b, 2)) << a << " " << b;
+  }
+  // A pair that is no edge of the input is refused, as a given one is.
+  options.features.sampling.excluded_edges.push_back({0, static_cast<Index>(box.vertices.rows()) - 1});
   EXPECT_THROW(pipeline::run_remesh_pipeline(loaded, options), UsageError);
 }
 

@@ -171,7 +171,7 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
   const io::LoadedMesh loaded = io::read_mesh(genus_four);
   const auto message = [&](auto change) {
     pipeline::RemeshPipelineOptions options = small_options();
-    change(options.remesh);
+    change(options);
     try {
       pipeline::run_remesh_pipeline(loaded, options);
     } catch (const UsageError& e) {
@@ -179,27 +179,35 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
     }
     return std::string("no error");
   };
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = -1; }).find("sharp angle"), std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = 200; }).find("sharp angle"), std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.sharp_angle = std::nan(""); }).find("sharp angle"),
+  using Options = pipeline::RemeshPipelineOptions;
+  EXPECT_NE(message([](Options& o) { o.features.sampling.sharp_angle = -1; }).find("sharp angle"), std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.sampling.sharp_angle = 200; }).find("sharp angle"), std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.sampling.sharp_angle = std::nan(""); }).find("sharp angle"),
             std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.continuation_angle = -1; }).find("continuation angle"),
+  EXPECT_NE(message([](Options& o) { o.features.sampling.continuation_angle = -1; }).find("continuation angle"),
             std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.continuation_angle = std::nan(""); }).find("continuation angle"),
+  EXPECT_NE(
+      message([](Options& o) { o.features.sampling.continuation_angle = std::nan(""); }).find("continuation angle"),
+      std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.sampling.min_feature_length = -0.5; }).find("min feature length"),
             std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.min_feature_length = -0.5; }).find("min feature length"),
+  EXPECT_NE(message([](Options& o) { o.remesh.max_repair_rounds = -1; }).find("max repair rounds"), std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.retry_radius = -1; }).find("feature retry radius"), std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.max_repair_rounds = -2; }).find("max feature repair"),
             std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_repair_rounds = -1; }).find("max repair rounds"),
+  EXPECT_NE(message([](Options& o) { o.features.max_sites_added = -0.1; }).find("max feature sites added"),
             std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.feature_retry_radius = -1; }).find("feature retry radius"),
-            std::string::npos);
-  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_feature_repair_rounds = -2; }).find("max feature repair"),
+  EXPECT_NE(message([](Options& o) {
+              o.remesh.curvature = remesh::CurvatureDensityOptions{.max_ratio = 0.5};
+            }).find("max_ratio"),
             std::string::npos);
   for (const double angle : {-1.0, 61.0, std::nan("")}) {
-    EXPECT_NE(message([&](remesh::RemeshOptions& o) { o.smoothing_angle = angle; }).find("smoothing angle"),
+    EXPECT_NE(message([&](Options& o) { o.smoothing.smoothing_angle = angle; }).find("smoothing angle"),
               std::string::npos)
         << angle;
   }
+  // Each is said before any work: an option the last stage reads included.
+  EXPECT_NE(message([](Options& o) { o.smoothing.crease_tolerance = -1; }).find("crease tolerance"), std::string::npos);
 }
 
 /// Every vertex of the remesh is where its site is on the input (to rounding).
@@ -220,9 +228,9 @@ TEST(RemeshPipeline, TheWorstTrianglesAreSmoothedAlongTheSurfaceAndTheConnectivi
   pipeline::RemeshPipelineOptions options;
   options.sites = 500;
   options.statistics = false;
-  options.remesh.smoothing_angle = 0;
+  options.smoothing.smoothing_angle = 0;
   const pipeline::RemeshPipelineResult plain = pipeline::run_remesh_pipeline(loaded, options);
-  options.remesh.smoothing_angle = 30;
+  options.smoothing.smoothing_angle = 30;
   const pipeline::RemeshPipelineResult smoothed = pipeline::run_remesh_pipeline(loaded, options);
   const quality::TriangleQuality before = quality::triangle_quality(plain.remesh.mesh);
   const quality::TriangleQuality after = quality::triangle_quality(smoothed.remesh.mesh);
@@ -254,9 +262,9 @@ TEST(RemeshPipeline, TheFittingBringsTheRemeshCloserToTheInputWithinTheQualityFl
   const io::LoadedMesh loaded = io::read_mesh("tests/data/homer.ply");
   pipeline::RemeshPipelineOptions options;
   options.sites = 500;
-  options.remesh.fit_deviations = false;
+  options.smoothing.fit_deviations = false;
   const pipeline::RemeshPipelineResult plain = pipeline::run_remesh_pipeline(loaded, options);
-  options.remesh.fit_deviations = true;
+  options.smoothing.fit_deviations = true;
   const pipeline::RemeshPipelineResult fitted = pipeline::run_remesh_pipeline(loaded, options);
   EXPECT_EQ(plain.fitting.vertices_moved, 0);
   EXPECT_GT(fitted.fitting.vertices_moved, 0);
@@ -287,7 +295,7 @@ void expect_linear_colors_carried(io::LoadedMesh loaded, double sharp_angle) {
     loaded.attributes.colors.row(v) = field(mesh.vertices.row(v)).cast<float>();
   pipeline::RemeshPipelineOptions options = small_options();
   options.statistics = false;
-  options.remesh.sharp_angle = sharp_angle;
+  options.features.sampling.sharp_angle = sharp_angle;
   options.remesh.lloyd.iterations = 3;
   const pipeline::RemeshPipelineResult result = pipeline::run_remesh_pipeline(std::move(loaded), options);
   EXPECT_EQ(result.features.empty(), sharp_angle == 0) << result.features_dropped_reason;

@@ -281,9 +281,9 @@ def test_remesh_argument_errors(woody):
         geodual.remesh(V, F, edge_length=-1.0)
     with pytest.raises(ValueError, match="lloyd must be >= 0"):
         geodual.remesh(V, F, lloyd=-1)
-    with pytest.raises(ValueError, match=r"continuation_angle must be in \[0, 180\]"):
+    with pytest.raises(ValueError, match=r"continuation angle -1\.0+: must be in \[0, 180\]"):
         geodual.remesh(V, F, continuation_angle=-1.0)
-    with pytest.raises(ValueError, match=r"smoothing_angle must be in \[0, 60\]"):
+    with pytest.raises(ValueError, match=r"smoothing angle 61\.0+: must be in \[0, 60\]"):
         geodual.remesh(V, F, smoothing_angle=61.0)
     with pytest.raises(ValueError, match="colors has 3 rows for 694 vertices"):
         geodual.remesh(V, F, colors=np.zeros((3, 3)))

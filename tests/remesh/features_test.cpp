@@ -347,7 +347,7 @@ TriangleMesh split_at_random(const TriangleMesh& mesh, Index faces, std::uint32_
 /// The features detected on `mesh` with the remesh pipeline's options for
 /// `sites` sites (remesh_feature_options at RemeshOptions' defaults).
 remesh::FeatureSet pipeline_features(const TriangleMesh& mesh, std::int64_t sites) {
-  const remesh::RemeshOptions defaults;
+  const remesh::FeatureSamplingOptions defaults;
   return remesh::detect_features(
       mesh, remesh::remesh_feature_options(mesh, sites, defaults.sharp_angle, defaults.min_feature_length,
                                            defaults.continuation_angle));
@@ -661,7 +661,7 @@ TEST(FeatureCut, AtACornerWhereOneChainEndsAloneTheFirstStretchTakesTheTightSpac
   // tight stretch is as tight (its points, the corner's included, are dense
   // points): the sites round the corner are as close as the chain's there.
   const TriangleMesh rocker = io::read_mesh("tests/data/rocker_arm.ply").mesh;
-  const remesh::RemeshOptions defaults;
+  const remesh::FeatureSamplingOptions defaults;
   const remesh::FeatureSet features = remesh::detect_features(
       rocker,
       remesh::remesh_feature_options(rocker, 10000, 60, defaults.min_feature_length, defaults.continuation_angle));

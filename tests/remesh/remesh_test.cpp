@@ -254,6 +254,39 @@ TriangleMesh bowtie(int n) {
   return test::mesh_from_lists(points, triangles);
 }
 
+TEST(RemeshFromSites, EveryOptionItHoldsIsCheckedBeforeAnyWork) {
+  const TriangleMesh torus = test::torus(1.0, 0.4, 32, 16);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(torus, 50);
+  const auto message = [&](auto change) {
+    remesh::RemeshOptions options;
+    change(options);
+    try {
+      (void)remesh::remesh_from_sites(torus, sites, options);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.lloyd.iterations = -1; }).find("iterations"), std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) { o.max_repair_rounds = -1; }).find("max repair rounds"),
+            std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) {
+              o.curvature = remesh::CurvatureDensityOptions{.strength = -1};
+            }).find("strength"),
+            std::string::npos);
+  EXPECT_NE(message([](remesh::RemeshOptions& o) {
+              o.curvature = remesh::CurvatureDensityOptions{.max_ratio = 0};
+            }).find("max_ratio"),
+            std::string::npos);
+  // Given spacing honoured: a curvature density at another spacing is another relaxation.
+  remesh::RemeshOptions own, given;
+  own.lloyd.iterations = given.lloyd.iterations = 2;
+  own.curvature = remesh::CurvatureDensityOptions{};
+  given.curvature = remesh::CurvatureDensityOptions{.spacing = 0.05};
+  EXPECT_NE(remesh::relaxation_options(torus, 50, own).density, remesh::relaxation_options(torus, 50, given).density);
+  EXPECT_TRUE(remesh::relaxation_options(torus, 50, remesh::RemeshOptions{}).density.empty());
+}
+
 TEST(DualDelaunay, RepairGoesOnPastItsRoundsOnlyWhileItConverges) {
   // Five sites on a torus need several rounds. With one round fewer allowed,
   // the last round still runs where it asks for fewer sites than the one

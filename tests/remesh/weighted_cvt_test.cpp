@@ -156,7 +156,7 @@ TEST(WeightedLloyd, CurvatureAdaptedRemeshKeepsCountTopologyAndShrinksEdgesWhere
       remesh::sample_sites(mesh, count, {.strategy = remesh::SamplingStrategy::poisson});
   remesh::RemeshOptions options;
   options.lloyd.iterations = 8;
-  options.curvature_adaptation = 1;
+  options.curvature = remesh::CurvatureDensityOptions{.strength = 1};
   const remesh::RemeshResult result = remesh::remesh_from_sites(mesh, sites, options);
   EXPECT_EQ(result.dual.mesh.num_vertices(), count + result.dual.sites_added);
   for (std::size_t i = 1; i < result.relaxation.energy.size(); ++i)

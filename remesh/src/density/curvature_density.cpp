@@ -59,7 +59,7 @@ double uniform_spacing(const TriangleMesh& mesh, std::int64_t sites) {
   return sites > 0 ? std::sqrt(2 * area / (std::sqrt(3.0) * static_cast<double>(sites))) : 0.0;
 }
 
-std::vector<double> curvature_density(const TriangleMesh& mesh, const CurvatureDensityOptions& options) {
+void check_options(const CurvatureDensityOptions& options) {
   auto require = [](bool holds, const std::string& what) {
     if (!holds) throw UsageError("curvature_density: " + what);
   };
@@ -69,6 +69,10 @@ std::vector<double> curvature_density(const TriangleMesh& mesh, const CurvatureD
           "spacing must be a finite number > 0, got " + std::to_string(options.spacing));
   require(options.max_ratio >= 1 && std::isfinite(options.max_ratio),
           "max_ratio must be a finite number >= 1, got " + std::to_string(options.max_ratio));
+}
+
+std::vector<double> curvature_density(const TriangleMesh& mesh, const CurvatureDensityOptions& options) {
+  check_options(options);
   std::vector<double> density(static_cast<std::size_t>(mesh.num_vertices()), 1.0);
   if (options.strength == 0 || options.max_ratio == 1) return density;
 

@@ -15,7 +15,13 @@
 namespace geodual::remesh {
 namespace {
 
-/// \throw UsageError for an option out of range.
+/// 5e-4 of the surface's bounding-box diagonal where `given` is 0.
+double chord_error(const TriangleMesh& surface, double given) {
+  return given > 0 ? given : 5e-4 * referenced_bounding_box(surface).diagonal();
+}
+
+}  // namespace
+
 void check_options(const FeatureSamplingOptions& options) {
   const auto require = [](bool holds, const std::string& what, double value, const std::string& range) {
     if (!holds) throw UsageError(what + " " + std::to_string(value) + ": must be " + range);
@@ -33,13 +39,6 @@ void check_options(const FeatureSamplingOptions& options) {
   require(std::isfinite(options.max_share_near_features) && options.max_share_near_features >= 0,
           "max share near features", options.max_share_near_features, "a finite fraction >= 0 of the sites");
 }
-
-/// 5e-4 of the surface's bounding-box diagonal where `given` is 0.
-double chord_error(const TriangleMesh& surface, double given) {
-  return given > 0 ? given : 5e-4 * referenced_bounding_box(surface).diagonal();
-}
-
-}  // namespace
 
 FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t sites,
                                 const FeatureSamplingOptions& options) {

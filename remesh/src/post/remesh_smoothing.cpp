@@ -1,17 +1,31 @@
 #include "geodual/remesh/remesh_smoothing.hpp"
 
+#include "geodual/mesh/error.hpp"
 #include "geodual/mesh/triangle_distance.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace geodual::remesh {
+
+void check_options(const RemeshSmoothingOptions& options) {
+  if (!(options.smoothing_angle >= 0 && options.smoothing_angle <= 60)) {
+    throw UsageError("smoothing angle " + std::to_string(options.smoothing_angle) +
+                     ": must be in [0, 60] degrees (0: no smoothing)");
+  }
+  if (!(options.crease_tolerance >= 0 && std::isfinite(options.crease_tolerance))) {
+    throw UsageError("crease tolerance " + std::to_string(options.crease_tolerance) +
+                     ": must be a finite distance >= 0");
+  }
+}
 
 RemeshSmoothing smooth_remesh(RepairedDual& remesh, const TriangleMesh& surface,
                               const voronoi::SurfaceTopology& topology, const RemeshSmoothingOptions& options,
                               std::span<const Index> fixed_vertices, std::span<const FeatureChain> creases,
                               const TriangleMesh* crease_mesh) {
+  check_options(options);
   const auto num_vertices = static_cast<std::size_t>(remesh.mesh.num_vertices());
   std::vector<SurfacePoint> points(num_vertices);
   std::vector<std::uint8_t> sites_at(num_vertices, 0);  // up to 2: one, or more than one

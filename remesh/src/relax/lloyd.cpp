@@ -245,7 +245,8 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
   return sites;
 }
 
-/// geodual::UsageError naming the first option out of range.
+}  // namespace
+
 void check_options(const LloydOptions& options) {
   auto require = [](bool holds, const std::string& what) {
     if (!holds) throw UsageError("lloyd_relax: " + what);
@@ -270,8 +271,6 @@ void check_options(const LloydOptions& options) {
                                                                              " at vertex " + std::to_string(v));
   }
 }
-
-}  // namespace
 
 LloydResult lloyd_relax(const TriangleMesh& mesh, std::vector<SurfacePoint> sites, const LloydOptions& options) {
   check_options(options);

@@ -28,6 +28,7 @@
 #include "geodual/remesh/follow_segments.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
+#include "geodual/remesh/remesh_smoothing.hpp"
 #include "geodual/remesh/sample_sites.hpp"
 
 #include <cstdint>
@@ -66,6 +67,13 @@ struct RemeshPipelineOptions {
   /// converges from evenly spread sites in fewer steps than from random ones.
   remesh::SamplingOptions sampling;
   remesh::RemeshOptions remesh;  ///< 10 Lloyd iterations, up to 10 repair rounds
+  /// Sharp features kept (creases at 60 degrees, continued at 30); none with
+  /// given_sites. sampling.given_edges are edges of the input.
+  remesh::FeatureRemeshOptions features;
+  /// The last stage (with a relaxation): deviation fitting, then angle
+  /// smoothing at 30 degrees. crease_tolerance 0: the feature recall's
+  /// tolerance (quality.feature_tolerance_pct of the bounding-box diagonal).
+  remesh::RemeshSmoothingOptions smoothing;
   /// Fail (geodual::Error, before the relaxation) when more than
   /// `max_dropped_area_pct` of the input's area is left out; false: report it only.
   bool strict = false;
@@ -137,7 +145,7 @@ struct RemeshPipelineResult {
   /// The surface remeshed: the input cut apart at non-manifold vertices.
   remesh::ManifoldCut surface;
   DroppedSurface dropped;  ///< what the cut left out
-  /// The sharp features kept (options.remesh.sharp_angle; none with given
+  /// The sharp features kept (options.features; none with given
   /// sites), and the surface cut open along them, which the relaxation and
   /// the dual work on (empty when there are none).
   remesh::FeatureSet features;
@@ -151,11 +159,11 @@ struct RemeshPipelineResult {
   std::int64_t crease_pins = 0;
   std::int64_t first_crease_pin = 0;  ///< the pins are initial_sites[first_crease_pin, + crease_pins)
   remesh::FollowedSegments crease_segments;
-  /// The smoothing of the remesh's worst triangles (RemeshOptions::smoothing_angle):
+  /// The smoothing of the remesh's worst triangles (RemeshPipelineOptions::smoothing):
   /// the vertices it moved (with their sites) and the smallest angle before and after.
   remesh::AngleSmoothingResult smoothing;
   /// The fitting of the vertices that answer for the surface's points
-  /// farthest from the remesh (RemeshOptions::fit_deviations), before the
+  /// farthest from the remesh (RemeshSmoothingOptions::fit_deviations), before the
   /// smoothing: the vertices it moved and the largest distance before and after.
   remesh::DeviationFittingResult fitting;
   /// Why the short creases were not pinned, where they were asked for (empty otherwise).

@@ -45,6 +45,9 @@ struct CurvatureDensityOptions {
   double max_ratio = 16.0;
 };
 
+/// \throw geodual::UsageError naming the first option out of range.
+void check_options(const CurvatureDensityOptions& options);
+
 /// One density per mesh vertex (1 for vertices no face uses). Faces with a
 /// repeated vertex index are ignored; edges of more than two faces count as
 /// flat. Throws geodual::UsageError for options out of range.

@@ -50,6 +50,9 @@ struct FeatureSamplingOptions {
   double max_share_near_features = 0.1;
 };
 
+/// \throw geodual::UsageError naming the first option out of range.
+void check_options(const FeatureSamplingOptions& options);
+
 /// What sample_features gives: on a surface without features only `features`
 /// (its short creases, perhaps) is filled in.
 struct FeatureSampling {

@@ -104,6 +104,9 @@ struct LloydResult {
   double move_seconds = 0;  ///< centroid steps
 };
 
+/// \throw geodual::UsageError naming the first option out of range.
+void check_options(const LloydOptions& options);
+
 /// Relaxes sites on `surface`'s mesh; every diagram reuses the prepared
 /// surface. \throw geodual::UsageError for options out of range, and as
 /// compute_voronoi does.

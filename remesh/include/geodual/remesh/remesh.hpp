@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -32,77 +33,65 @@ struct RemeshOptions {
   /// Lloyd relaxation of the given sites first (iterations = 0: none). Its
   /// `voronoi` options are used for every diagram, repair rounds included.
   LloydOptions lloyd;
-  /// Curvature-adapted sizing (> 0, with lloyd.density empty): Lloyd relaxes
-  /// towards the weighted CVT of curvature_density with this strength, at the
-  /// remesh's spacing. 0: the uniform geodesic CVT.
-  double curvature_adaptation = 0;
-  double curvature_max_ratio = CurvatureDensityOptions{}.max_ratio;
+  /// Curvature-adapted sizing (with lloyd.density empty and a relaxation):
+  /// Lloyd relaxes towards the weighted CVT of curvature_density with these
+  /// options, spacing 0 meaning the remesh's (uniform_spacing). None: the
+  /// uniform geodesic CVT.
+  std::optional<CurvatureDensityOptions> curvature;
   /// Rounds of "add sites where the dual fails, recompute" (RepairOptions::max_rounds;
   /// up to twice as many while the repair converges).
   int max_repair_rounds = 10;
-  /// The same for the remesh that keeps the sharp features, at most (never
-  /// extended): where its dual needs more, the creases are finer than the
-  /// spacing there, and the remesh pipeline leaves out those near the faults.
-  int max_feature_repair_rounds = 4;
+};
+
+/// \throw geodual::UsageError naming the first option out of range.
+void check_options(const RemeshOptions& options);
+
+/// The remesh that keeps sharp features, as the remesh pipeline makes it
+/// with the stages below (sample_features, pin_short_creases,
+/// welded_dual_with_repair). See docs/algorithms.md#sharp-features.
+struct FeatureRemeshOptions {
+  /// The features and the chains' sites (sample_features): creases where the
+  /// normals turn by at least sampling.sharp_angle degrees at half the
+  /// remesh's spacing, in chains at least sampling.min_feature_length
+  /// spacings long, and sampling.given_edges; its given and excluded edges
+  /// are here edges of the input (feature_sampling_options puts them on the
+  /// cut). sharp_angle 0 and no given edges: none.
+  FeatureSamplingOptions sampling;
+  /// Creases at sharp_angle too short or too weak at the remesh's scale to
+  /// cut along (a fillet's coarse edges, a crease that fades within a
+  /// spacing) get sites pinned at their vertices, the sites round them as
+  /// close, and edges flipped onto them (pin_short_creases): they add sites
+  /// beyond the count, up to twice as many on parts with many such creases.
+  bool pin_short_creases = false;
+  /// The dual's repair rounds, at most (never extended): where it needs
+  /// more, the creases are finer than the spacing there, and the remesh
+  /// pipeline leaves out those near the faults ...
+  int max_repair_rounds = 4;
   /// ... and where its repair would add more than this fraction of the
   /// sites (twins included), as creases finer than the spacing make it, it
   /// gives up too (0: no bound). Half: a coarse CAD part's creases may need
   /// that many more than the count asked; each added site is reported.
-  double max_feature_sites_added = 0.5;
+  double max_sites_added = 0.5;
   /// Where that remesh fails at places (DualRepairError::places), the remesh
   /// pipeline tries again without the creases within this many spacings of
   /// them (up to six times, each leaving out more where the last failed)
   /// before it drops them all (0: no such try).
-  double feature_retry_radius = 2;
-  /// That remesh closes its dual along the chains' sides
+  double retry_radius = 2;
+  /// The dual closed along the chains' sides
   /// (DualOptions::close_boundary_stretches): the stretch between two
   /// consecutive chain sites is an edge by construction where another cell
   /// reaches the chain between them, or a strip narrower than the spacing
   /// lies between two chains, instead of a repair that adds sites there.
   /// false: the repair alone.
   bool close_crease_stretches = true;
-  /// Sharp features kept (features.hpp, feature_cut.hpp) by the remesh
-  /// pipeline when it samples the sites: creases where the normals turn by at
-  /// least this many degrees at half the remesh's spacing, in chains at least
-  /// min_feature_length spacings long, are cut open, lined with sites and
-  /// welded in the dual. 0: none. See docs/algorithms.md#sharp-features.
-  /// (The pipeline rejects a sharp angle outside [0, 180], a negative length
-  /// or round count with geodual::UsageError.)
-  double sharp_angle = 60;
-  double min_feature_length = 0.5;
-  /// A sharp crease continues through edges whose normals turn by at least
-  /// this many degrees, where both sides are smooth at the scale (a machined
-  /// crease whose angle fades; a scan's noisy sides keep none). 0, or not
-  /// below sharp_angle: off.
-  double continuation_angle = 30;
-  /// Creases at sharp_angle too short or too weak at the remesh's scale to
-  /// cut along (a fillet's coarse edges, a crease that fades within a
-  /// spacing) get sites pinned at their vertices, the sites round them as
-  /// close, and edges flipped onto them (crease_pins.hpp): they add sites
-  /// beyond the count, up to twice as many on parts with many such creases.
-  bool pin_short_creases = false;
-  /// Edges of the input (vertex index pairs) kept as features too, whatever
-  /// their angle (a feature file's), sharp_angle 0 included.
-  std::vector<std::array<Index, 2>> feature_edges = {};
-  /// The remesh pipeline's last step: the corners of triangles with an
-  /// angle below this many degrees move along the surface to where the
-  /// smallest angle round them is largest (angle_smoothing.hpp); chain,
-  /// corner, boundary and pinned vertices stay. 0, or no relaxation
-  /// (lloyd.iterations 0): none, every vertex at its site. (The pipeline
-  /// rejects a value outside [0, 60].)
-  double smoothing_angle = 30;
-  /// Before that, the vertices that answer for the surface's points farthest
-  /// from the remesh (a crease or a scan's rim that the dual cuts off) move
-  /// along the surface to where that distance is least, without lowering
-  /// the smallest angle below 30 degrees or the remesh's own, nor the worst
-  /// Q (fit_deviations in deviation_fitting.hpp); the same vertices
-  /// stay. None without a relaxation.
-  bool fit_deviations = true;
 };
+
+/// \throw geodual::UsageError naming the first option out of range.
+void check_options(const FeatureRemeshOptions& options);
 
 /// The Lloyd options remesh_from_sites relaxes `site_count` sites on
 /// `surface` with: options.lloyd, with the curvature density filled in when
-/// options.curvature_adaptation asks for it.
+/// options.curvature asks for it.
 LloydOptions relaxation_options(const TriangleMesh& surface, std::int64_t site_count, const RemeshOptions& options);
 
 // The remesh's stages one by one, as the remesh pipeline (and `geodual
@@ -110,9 +99,9 @@ LloydOptions relaxation_options(const TriangleMesh& surface, std::int64_t site_c
 // cut_to_manifold, sample_features, pin_short_creases, sample_remesh_sites,
 // lloyd_relax, dual_with_repair or welded_dual_with_repair, smooth_remesh.
 
-/// The feature stage's options in `options`, with its feature_edges (of
-/// `input`) on `cut`, the input cut to a manifold.
-FeatureSamplingOptions feature_sampling_options(const RemeshOptions& options, const TriangleMesh& input,
+/// The feature stage's options: options.sampling, with its given and
+/// excluded edges (of `input`) on `cut`, the input cut to a manifold.
+FeatureSamplingOptions feature_sampling_options(const FeatureRemeshOptions& options, const TriangleMesh& input,
                                                 const ManifoldCut& cut);
 
 /// The Lloyd options `sites` (on FeatureSampling::sites_surface) relax
@@ -122,11 +111,15 @@ FeatureSamplingOptions feature_sampling_options(const RemeshOptions& options, co
 LloydOptions relaxation_options(const TriangleMesh& sites_surface, const RemeshSites& sites,
                                 std::span<const double> feature_density, const RemeshOptions& options);
 
-/// The dual-with-repair options for `site_count` relaxed sites: with
-/// features, the rounds and sites added the remesh that keeps them allows
-/// (max_feature_repair_rounds, max_feature_sites_added, never extended) and
-/// the dual closed along the chains (close_crease_stretches).
-RepairOptions repair_options(const RemeshOptions& options, bool keeps_features, std::int64_t site_count);
+/// The dual-with-repair options: the rounds of options.max_repair_rounds and
+/// the diagrams of options.lloyd.voronoi ...
+RepairOptions repair_options(const RemeshOptions& options);
+/// ... and for `site_count` relaxed sites with features, the rounds and
+/// sites added the remesh that keeps them allows (features.max_repair_rounds at most, features.max_sites_added,
+/// never extended) and the dual closed along the chains
+/// (features.close_crease_stretches).
+RepairOptions repair_options(const RemeshOptions& options, const FeatureRemeshOptions& features,
+                             std::int64_t site_count);
 
 /// Per vertex of `remesh`, the point of the input it is: its site through
 /// `features_cut` (FeatureSampling::cut; none where it has no vertices) and
@@ -144,7 +137,10 @@ struct RemeshResult {
 };
 
 /// The three stages in a row: cut_to_manifold(input), lloyd_relax with
-/// relaxation_options, dual_with_repair (both on one GeodesicSurface). \throw geodual::Error as
+/// relaxation_options, dual_with_repair with repair_options (both on one
+/// GeodesicSurface). Every vertex of the result is at its site: the remesh
+/// pipeline's smoothing (smooth_remesh) and features are stages of their
+/// own. \throw geodual::UsageError as check_options; geodual::Error as
 /// dual_with_repair, and for bad sites as compute_geodesic_field.
 RemeshResult remesh_from_sites(const TriangleMesh& input, std::vector<SurfacePoint> sites,
                                const RemeshOptions& options = {});

@@ -27,6 +27,9 @@ struct RemeshSmoothingOptions {
   double crease_tolerance = 0;
 };
 
+/// \throw geodual::UsageError naming the first option out of range.
+void check_options(const RemeshSmoothingOptions& options);
+
 struct RemeshSmoothing {
   DeviationFittingResult fitting;
   AngleSmoothingResult smoothing;
