@@ -151,6 +151,199 @@ struct SiteRefinement {
   std::int64_t added = 0;
 };
 
+/// Where the cut to a manifold made loops the input does not have (at its
+/// non-manifold edges), a note for messages about `surface_loops` loops.
+std::string loops_made_by_cut(const RemeshPipelineResult& result, std::int64_t surface_loops) {
+  if (surface_loops <= result.input_report.boundary_loops) return "";
+  const std::int64_t input_loops = result.input_report.boundary_loops, made = surface_loops - input_loops;
+  return " (the input has " + std::to_string(input_loops) +
+         (input_loops == 1 ? " boundary loop; " : " boundary loops; ") + std::to_string(made) +
+         (made == 1 ? " was" : " were") + " made by the cut to a manifold at its non-manifold edges and vertices)";
+}
+
+/// \throw Error with options.strict where the cut leaves out more of the input's area than allowed.
+void require_dropped_area_allowed(const RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
+  if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
+    throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
+                std::to_string(result.dropped.area_pct) +
+                " % of the area (scraps and flaps cut off as "
+                "non-manifold pieces); more than the " +
+                std::to_string(options.max_dropped_area_pct) + " % allowed with strict");
+  }
+}
+
+/// What the sample stage hands on to the others, besides `result`.
+struct SampledSites {
+  remesh::RemeshSites initial;                            ///< the sites and where the pins are among them
+  std::vector<double> feature_density;                    ///< per vertex of result.feature_cut.mesh; empty: 1
+  std::vector<std::array<std::size_t, 2>> pin_segments;   ///< pairs of pins a remesh edge should join
+  std::optional<remesh::ChainSlider> slide_along_chains;  ///< with features
+};
+
+/// Sharp features cut open and lined with sites, short creases pinned, the
+/// rest sampled around them (`sites` in all) on `prepared`, the surface cut
+/// to a manifold; the features, their cut and the sites' figures go into `result`.
+SampledSites sample_around_features(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                                    const remesh::RemeshSurface& prepared, std::int64_t sites,
+                                    remesh::GivenSiteShare given_share,
+                                    std::span<const std::array<Index, 2>> excluded_edges) {
+  SampledSites sampled;
+  remesh::FeatureSamplingOptions feature_options =
+      remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
+  feature_options.excluded_edges.insert(feature_options.excluded_edges.end(), excluded_edges.begin(),
+                                        excluded_edges.end());
+  if (feature_options.max_chord_error == 0) feature_options.max_chord_error = 5e-4 * result.input_report.bbox_diagonal;
+  remesh::FeatureSampling creases = remesh::sample_features(prepared, sites, feature_options);
+  remesh::ShortCreasePins pins;
+  if (options.features.pin_short_creases) {
+    pins = remesh::pin_short_creases(prepared, sites, creases, feature_options.max_chord_error);
+  }
+  report(options.progress, Stage::sample, 0.5);
+  sampled.initial = remesh::sample_remesh_sites(prepared, sites, creases, pins, options.sampling, given_share);
+  result.crease_pins_reason = std::move(pins.reason);
+  sampled.pin_segments = std::move(pins.segments);
+  result.feature_sites = creases.sites.points;
+  result.site_twins = static_cast<std::int64_t>(creases.sites.sites.size()) - creases.sites.points;
+  result.features = std::move(creases.features);
+  result.feature_cut = std::move(creases.cut);
+  sampled.feature_density = std::move(creases.density);
+  // The sites on chains slide along them in the relaxation; corners stay.
+  if (!result.features.empty()) sampled.slide_along_chains.emplace(prepared, result.features, result.feature_cut);
+  result.sites_added_near_features = sampled.initial.sites_added_near_features;
+  result.sites_added_for_topology = sampled.initial.sites_added_for_topology;
+  result.sites_added_reason = sampled.initial.topology_reason;
+  if (sampled.initial.sites_added_for_topology > 0) {
+    // The loops of the surface cut to a manifold (those of the features' cut are the chains' sides).
+    result.sites_added_reason += loops_made_by_cut(
+        result, result.features.empty() ? sampled.initial.boundary_loops : result.surface_boundary_loops);
+  }
+  return sampled;
+}
+
+/// The relaxation's options for the sites sampled on `surface` (the cut along
+/// the features, or the surface cut to a manifold: `cut_is_input` where that
+/// is the input itself), with Lloyd's density multiplied by `input_density`
+/// (per input vertex; empty: 1).
+remesh::LloydOptions relaxation_stage_options(const RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                                              const TriangleMesh& surface, const SampledSites& sampled,
+                                              std::span<const double> input_density, bool cut_is_input) {
+  remesh::LloydOptions lloyd =
+      remesh::relaxation_options(surface, sampled.initial, sampled.feature_density, options.remesh);
+  if (!input_density.empty() && lloyd.iterations > 0) {
+    // Each vertex of the surface copies one of the input's (through the cuts).
+    std::vector<double> density(static_cast<std::size_t>(surface.num_vertices()));
+    for (std::size_t v = 0; v < density.size(); ++v) {
+      Index original = static_cast<Index>(v);
+      if (!result.features.empty()) original = result.feature_cut.original_vertex[static_cast<std::size_t>(original)];
+      if (!cut_is_input) original = result.surface.original_vertex[static_cast<std::size_t>(original)];
+      density[v] = input_density[static_cast<std::size_t>(original)] * (lloyd.density.empty() ? 1.0 : lloyd.density[v]);
+    }
+    lloyd.density = std::move(density);
+  }
+  if (sampled.slide_along_chains) lloyd.slide_boundary_sites = std::cref(*sampled.slide_along_chains);
+  return lloyd;
+}
+
+/// lloyd_relax, reporting its progress: the geodesic engine reports the
+/// fraction of faces reached in each diagram; Lloyd's accepted iterations
+/// split the stage.
+remesh::LloydResult relax_with_progress(const voronoi::GeodesicSurface& surface, std::vector<SurfacePoint> sites,
+                                        remesh::LloydOptions lloyd, const ProgressCallback& progress) {
+  // From the warm start the iterations mostly stop after one or two
+  // (LloydOptions::geodesic_tolerance); without that stop, all of them run.
+  const int diagrams = (lloyd.geodesic_tolerance > 0 ? std::min(lloyd.iterations, 2) : lloyd.iterations) + 1;
+  int diagrams_done = 0;  // the first diagram, then one per accepted iteration
+  double relaxed = 0;     // the fraction reported last
+  if (progress) {
+    lloyd.on_iteration = [&](int iterations_done, bool) { diagrams_done = iterations_done + 1; };
+    lloyd.voronoi.geodesic.progress = [&](double fraction) {
+      // Never backwards: a rejected step's diagram holds the fraction where it is.
+      relaxed = std::max(relaxed, std::min(1.0, (diagrams_done + std::min(fraction, 1.0)) / diagrams));
+      return progress(Stage::relax, relaxed);
+    };
+  }
+  return remesh::lloyd_relax(surface, std::move(sites), lloyd);
+}
+
+/// The dual of result.relaxation with repair, welded along the features
+/// where there are any (on `manifold_surface`, the surface cut to a manifold).
+remesh::RepairedDual dual_stage(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                                const voronoi::GeodesicSurface& surface, const TriangleMesh& manifold_surface) {
+  const bool features = !result.features.empty();
+  remesh::RepairOptions repair = features
+                                     ? remesh::repair_options(options.remesh, options.features,
+                                                              static_cast<std::int64_t>(result.initial_sites.size()))
+                                     : remesh::repair_options(options.remesh);
+  if (options.progress) {
+    // Each repair round's diagram reports its progress.
+    repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
+  }
+  // The relaxed diagram moves on to the dual (its first round's diagram).
+  try {
+    return features
+               ? remesh::welded_dual_with_repair(surface, manifold_surface, result.features, result.feature_cut,
+                                                 result.relaxation.sites, std::move(result.relaxation.diagram), repair)
+               : remesh::dual_with_repair(surface, result.relaxation.sites, std::move(result.relaxation.diagram),
+                                          repair);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const remesh::DualRepairError& e) {
+    // The message names the surface's pieces and loops: say where loops the
+    // input does not have come from.
+    const std::string note = loops_made_by_cut(result, result.surface_boundary_loops);
+    if (note.empty()) throw;
+    throw remesh::DualRepairError(e.what() + note, e.places());
+  }
+}
+
+/// After the dual: the pins' vertices joined along the short creases, then
+/// (with a relaxation: without one the remesh is the dual of the sites as
+/// they are) the deviation fitting and the angle smoothing, on `surface`,
+/// the surface the sites lie on (`manifold_surface` cut along the features).
+void after_dual_stage(RemeshPipelineResult& result, const RemeshPipelineOptions& options, const TriangleMesh& surface,
+                      const voronoi::SurfaceTopology& topology, const TriangleMesh& manifold_surface,
+                      std::span<const std::array<std::size_t, 2>> pin_segments) {
+  std::vector<Index> pin_vertex;
+  if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
+    // Onto the short creases: the pins' vertices joined by edges where flips can do it.
+    pin_vertex = crease_pin_vertices(result);
+    result.crease_segments = remesh::follow_pin_segments(result.remesh.mesh, pin_vertex, pin_segments);
+  }
+  result.smoothing = {};
+  result.fitting = {};
+  if (!(options.smoothing.smoothing_angle > 0 || options.smoothing.fit_deviations) ||
+      options.remesh.lloyd.iterations <= 0 || result.remesh.mesh.num_faces() == 0) {
+    return;
+  }
+  // Where creases are pinned, what follows them within the feature recall's
+  // tolerance stays.
+  const std::span<const remesh::FeatureChain> pinned_creases =
+      result.crease_pins > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
+                             : std::span<const remesh::FeatureChain>();
+  remesh::RemeshSmoothingOptions smoothing = options.smoothing;
+  if (smoothing.crease_tolerance == 0) {
+    smoothing.crease_tolerance = options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal;
+  }
+  const remesh::RemeshSmoothing smoothed =
+      remesh::smooth_remesh(result.remesh, surface, topology, smoothing, pin_vertex, pinned_creases, &manifold_surface);
+  result.smoothing = smoothed.smoothing;
+  result.fitting = smoothed.fitting;
+}
+
+/// The remesh compared with the input (quality, distances, feature recall).
+quality::QualityReport statistics_stage(const RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
+  quality::QualityOptions quality_options = options.quality;
+  if (quality_options.long_crease_length == 0) {
+    // The creases a remesh of this many vertices can keep: those at least its spacing long.
+    quality_options.long_crease_length =
+        remesh::uniform_spacing(result.input.mesh, std::max<Index>(4, result.remesh.mesh.num_vertices()));
+  }
+  if (options.progress) {
+    quality_options.progress = [&](double fraction) { return options.progress(Stage::statistics, fraction); };
+  }
+  return quality::compare_meshes(result.input.mesh, result.remesh.mesh, quality_options);
+}
+
 /// The stages after `load` on result.input, filling in `result`; Lloyd's
 /// density is multiplied by `input_density` (per input vertex; empty: 1).
 /// With `refinement` the sites are its, not sampled; otherwise, with sharp
@@ -187,22 +380,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     result.surface_euler_characteristic += piece.euler_characteristic();
   }
   result.surface_boundary_loops = prepared->topology().num_boundary_loops;
-  if (options.strict && result.dropped.area_pct > options.max_dropped_area_pct) {
-    throw Error("the remesh would leave out " + std::to_string(result.dropped.faces) + " faces, " +
-                std::to_string(result.dropped.area_pct) +
-                " % of the area (scraps and flaps cut off as "
-                "non-manifold pieces); more than the " +
-                std::to_string(options.max_dropped_area_pct) + " % allowed with strict");
-  }
-  // Loops the input does not have were opened by the cut (at non-manifold
-  // edges): messages about loops say so.
-  const auto loops_from_cut = [&](std::int64_t surface_loops) -> std::string {
-    if (surface_loops <= result.input_report.boundary_loops) return "";
-    const std::int64_t input_loops = result.input_report.boundary_loops, made = surface_loops - input_loops;
-    return " (the input has " + std::to_string(input_loops) +
-           (input_loops == 1 ? " boundary loop; " : " boundary loops; ") + std::to_string(made) +
-           (made == 1 ? " was" : " were") + " made by the cut to a manifold at its non-manifold edges and vertices)";
-  };
+  require_dropped_area_allowed(result, options);
   // Sizing: the site count for the edge length or face count asked, on the surface remeshed.
   std::int64_t sites = options.sites;
   if (options.edge_length > 0) {
@@ -210,159 +388,48 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   } else if (options.faces > 0) {
     sites = result.sites_for_sizing = remesh::sites_for_faces(*prepared, options.faces);
   }
-  std::optional<remesh::ChainSlider> slide_along_chains;  // with features
-  remesh::RemeshSites initial;                            // the sites and where the pins are among them
-  std::vector<double> feature_density;                    // per vertex of result.feature_cut.mesh; empty: 1
-  std::vector<std::array<std::size_t, 2>> pin_segments;   // pairs of pins a remesh edge should join
+  SampledSites sampled;
   result.sites_added_near_features = 0;
   if (options.given_sites) {
-    initial.sites = std::move(given_sites);
-    remesh::require_a_site_on_every_piece(manifold_surface, initial.sites);
+    sampled.initial.sites = std::move(given_sites);
+    remesh::require_a_site_on_every_piece(manifold_surface, sampled.initial.sites);
   } else if (refinement) {
-    const TriangleMesh& manifold = manifold_surface;
     auto on_surface = [&](std::span<const double> field) {  // per input vertex -> per surface vertex
       std::vector<double> values;
       if (field.empty()) return values;
-      values.resize(static_cast<std::size_t>(manifold.num_vertices()));
+      values.resize(static_cast<std::size_t>(manifold_surface.num_vertices()));
       for (std::size_t v = 0; v < values.size(); ++v) values[v] = field[result.surface.original_vertex[v]];
       return values;
     };
-    initial.sites = remesh::add_sites_at_deviations(manifold, refinement->sites, on_surface(refinement->deviation),
-                                                    on_surface(input_density), remesh::uniform_spacing(manifold, sites),
-                                                    refinement->added);
+    sampled.initial.sites = remesh::add_sites_at_deviations(
+        manifold_surface, refinement->sites, on_surface(refinement->deviation), on_surface(input_density),
+        remesh::uniform_spacing(manifold_surface, sites), refinement->added);
   } else {
-    // Sharp features: cut open and lined with sites, short creases pinned,
-    // the rest sampled around them.
-    remesh::FeatureSamplingOptions feature_options =
-        remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
-    feature_options.excluded_edges.insert(feature_options.excluded_edges.end(), excluded_edges.begin(),
-                                          excluded_edges.end());
-    if (feature_options.max_chord_error == 0)
-      feature_options.max_chord_error = 5e-4 * result.input_report.bbox_diagonal;
-    remesh::FeatureSampling creases = remesh::sample_features(*prepared, sites, feature_options);
-    remesh::ShortCreasePins pins;
-    if (options.features.pin_short_creases) {
-      pins = remesh::pin_short_creases(*prepared, sites, creases, feature_options.max_chord_error);
-    }
-    report(options.progress, Stage::sample, 0.5);
-    initial = remesh::sample_remesh_sites(*prepared, sites, creases, pins, options.sampling, given_share);
-    result.crease_pins_reason = std::move(pins.reason);
-    pin_segments = std::move(pins.segments);
-    result.feature_sites = creases.sites.points;
-    result.site_twins = static_cast<std::int64_t>(creases.sites.sites.size()) - creases.sites.points;
-    result.features = std::move(creases.features);
-    result.feature_cut = std::move(creases.cut);
-    feature_density = std::move(creases.density);
-    // The sites on chains slide along them in the relaxation; corners stay.
-    if (!result.features.empty()) slide_along_chains.emplace(*prepared, result.features, result.feature_cut);
-    result.sites_added_near_features = initial.sites_added_near_features;
-    result.sites_added_for_topology = initial.sites_added_for_topology;
-    result.sites_added_reason = initial.topology_reason;
-    if (initial.sites_added_for_topology > 0) {
-      // The loops of the surface cut to a manifold (those of the features' cut are the chains' sides).
-      result.sites_added_reason +=
-          loops_from_cut(result.features.empty() ? initial.boundary_loops : result.surface_boundary_loops);
-    }
+    sampled = sample_around_features(result, options, *prepared, sites, given_share, excluded_edges);
   }
-  result.initial_sites = initial.sites;
-  result.crease_pins = initial.pins;
-  result.first_crease_pin = initial.first_pin;
+  result.initial_sites = sampled.initial.sites;
+  result.crease_pins = sampled.initial.pins;
+  result.first_crease_pin = sampled.initial.first_pin;
   sample_clock.stop();
   report(options.progress, Stage::sample, 1.0);
   if (tried_sites && result.initial_sites == *tried_sites) return false;
-
   prepared.reset();
 
-  // Relaxation: the geodesic engine reports the fraction of faces reached in
-  // each diagram; Lloyd's accepted iterations split the stage.
-  const bool features = !result.features.empty();
-  const TriangleMesh& surface = features ? result.feature_cut.mesh : manifold_surface;
-  remesh::LloydOptions lloyd = remesh::relaxation_options(surface, initial, feature_density, options.remesh);
-  if (!input_density.empty() && lloyd.iterations > 0) {
-    // Each vertex of the surface copies one of the input's (through the cuts).
-    std::vector<double> density(static_cast<std::size_t>(surface.num_vertices()));
-    for (std::size_t v = 0; v < density.size(); ++v) {
-      Index original = static_cast<Index>(v);
-      if (features) original = result.feature_cut.original_vertex[static_cast<std::size_t>(original)];
-      if (!cut_is_input) original = result.surface.original_vertex[static_cast<std::size_t>(original)];
-      density[v] = input_density[static_cast<std::size_t>(original)] * (lloyd.density.empty() ? 1.0 : lloyd.density[v]);
-    }
-    lloyd.density = std::move(density);
-  }
-  // From the warm start the iterations mostly stop after one or two
-  // (LloydOptions::geodesic_tolerance); without that stop, all of them run.
-  const int diagrams = (lloyd.geodesic_tolerance > 0 ? std::min(lloyd.iterations, 2) : lloyd.iterations) + 1;
-  int diagrams_done = 0;  // the first diagram, then one per accepted iteration
-  double relaxed = 0;     // the fraction reported last
-  if (options.progress) {
-    lloyd.on_iteration = [&](int iterations_done, bool) { diagrams_done = iterations_done + 1; };
-    lloyd.voronoi.geodesic.progress = [&](double fraction) {
-      // Never backwards: a rejected step's diagram holds the fraction where it is.
-      relaxed = std::max(relaxed, std::min(1.0, (diagrams_done + std::min(fraction, 1.0)) / diagrams));
-      return options.progress(Stage::relax, relaxed);
-    };
-  }
+  // The surface the sites lie on, prepared once for every diagram of the
+  // relax and dual stages; gone before the statistics.
+  const TriangleMesh& surface = result.features.empty() ? manifold_surface : result.feature_cut.mesh;
+  remesh::LloydOptions lloyd = relaxation_stage_options(result, options, surface, sampled, input_density, cut_is_input);
   report(options.progress, Stage::relax, 0.0);
   StageClock relax_clock(result.timings, Stage::relax);
-  if (slide_along_chains) lloyd.slide_boundary_sites = std::cref(*slide_along_chains);
-  // Prepared once for every diagram of the relax and dual stages; gone before the statistics.
   std::optional<voronoi::GeodesicSurface> geodesic_surface(std::in_place, surface);
-  result.relaxation = remesh::lloyd_relax(*geodesic_surface, result.initial_sites, lloyd);
+  result.relaxation = relax_with_progress(*geodesic_surface, result.initial_sites, std::move(lloyd), options.progress);
   relax_clock.stop();
   report(options.progress, Stage::relax, 1.0);
 
-  // Dual with repair; each repair round's diagram reports its progress.
-  remesh::RepairOptions repair = features
-                                     ? remesh::repair_options(options.remesh, options.features,
-                                                              static_cast<std::int64_t>(result.initial_sites.size()))
-                                     : remesh::repair_options(options.remesh);
-  if (options.progress) {
-    repair.voronoi.geodesic.progress = [&](double) { return options.progress(Stage::dual, 0.5); };
-  }
   report(options.progress, Stage::dual, 0.0);
   StageClock dual_clock(result.timings, Stage::dual);
-  // The relaxed diagram moves on to the dual (its first round's diagram).
-  try {
-    result.remesh = features ? remesh::welded_dual_with_repair(*geodesic_surface, manifold_surface, result.features,
-                                                               result.feature_cut, result.relaxation.sites,
-                                                               std::move(result.relaxation.diagram), repair)
-                             : remesh::dual_with_repair(*geodesic_surface, result.relaxation.sites,
-                                                        std::move(result.relaxation.diagram), repair);
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const remesh::DualRepairError& e) {
-    // The message names the surface's pieces and loops: say where loops the
-    // input does not have come from.
-    const std::string note = loops_from_cut(result.surface_boundary_loops);
-    if (note.empty()) throw;
-    throw remesh::DualRepairError(e.what() + note, e.places());
-  }
-  std::vector<Index> pin_vertex;
-  if (!pin_segments.empty() && result.remesh.mesh.num_faces() > 0) {
-    // Onto the short creases: the pins' vertices joined by edges where flips can do it.
-    pin_vertex = crease_pin_vertices(result);
-    result.crease_segments = remesh::follow_pin_segments(result.remesh.mesh, pin_vertex, pin_segments);
-  }
-  result.smoothing = {};
-  result.fitting = {};
-  // Without a relaxation the remesh is the dual of the sites as they are: no smoothing either.
-  if ((options.smoothing.smoothing_angle > 0 || options.smoothing.fit_deviations) &&
-      options.remesh.lloyd.iterations > 0 && result.remesh.mesh.num_faces() > 0) {
-    // Where creases are pinned, what follows them within the feature recall's
-    // tolerance stays.
-    const std::span<const remesh::FeatureChain> pinned_creases =
-        result.crease_pins > 0 ? std::span<const remesh::FeatureChain>(result.features.short_creases)
-                               : std::span<const remesh::FeatureChain>();
-    remesh::RemeshSmoothingOptions smoothing = options.smoothing;
-    if (smoothing.crease_tolerance == 0) {
-      smoothing.crease_tolerance = options.quality.feature_tolerance_pct / 100 * result.input_report.bbox_diagonal;
-    }
-    const remesh::RemeshSmoothing smoothed =
-        remesh::smooth_remesh(result.remesh, surface, *geodesic_surface->topology(), smoothing, pin_vertex,
-                              pinned_creases, &manifold_surface);
-    result.smoothing = smoothed.smoothing;
-    result.fitting = smoothed.fitting;
-  }
+  result.remesh = dual_stage(result, options, *geodesic_surface, manifold_surface);
+  after_dual_stage(result, options, surface, *geodesic_surface->topology(), manifold_surface, sampled.pin_segments);
   geodesic_surface.reset();
   // The prepared surface was the largest thing held: handed back before the
   // copies and outputs that follow, which would otherwise come on top.
@@ -377,16 +444,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   if (options.statistics) {
     report(options.progress, Stage::statistics, 0.0);
     StageClock statistics_clock(result.timings, Stage::statistics);
-    quality::QualityOptions quality_options = options.quality;
-    if (quality_options.long_crease_length == 0) {
-      // The creases a remesh of this many vertices can keep: those at least its spacing long.
-      quality_options.long_crease_length =
-          remesh::uniform_spacing(result.input.mesh, std::max<Index>(4, result.remesh.mesh.num_vertices()));
-    }
-    if (options.progress) {
-      quality_options.progress = [&](double fraction) { return options.progress(Stage::statistics, fraction); };
-    }
-    result.statistics = quality::compare_meshes(result.input.mesh, result.remesh.mesh, quality_options);
+    result.statistics = statistics_stage(result, options);
     statistics_clock.stop();
     report(options.progress, Stage::statistics, 1.0);
   }
