@@ -118,7 +118,7 @@ class InfoCommand final : public Command {
     json["feature_corners"] = features.corners.size();
     json["feature_length"] = features.sharp_length;
     json["feature_narrowest_corner_deg"] =
-        features.corners.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(narrowest_corner);
+        narrowest_corner < 360 ? nlohmann::ordered_json(narrowest_corner) : nlohmann::ordered_json(nullptr);
     json["short_creases"] = features.short_creases.size();
     json["short_crease_length"] = short_crease_length(features);
     // Paths and notes need not be UTF-8: replace what is not rather than fail.
@@ -161,7 +161,7 @@ class InfoCommand final : public Command {
                                       " corners, length " + significant(features.sharp_length) + " (" +
                                       significant(sharp_angle_, 3) + " deg at the scale of " + with_thousands(sites_) +
                                       " sites)");
-      if (!features.corners.empty()) {
+      if (narrowest_corner < 360) {
         table.add("narrowest corner",
                   significant(narrowest_corner, 3) +
                       " deg between features (a remesh that keeps them has an angle about this small there)");

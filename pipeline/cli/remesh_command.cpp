@@ -619,19 +619,17 @@ class RemeshCommand final : public Command {
       const std::string angle =
           features_.sampling.sharp_angle > 0 ? significant(features_.sampling.sharp_angle, 3) + " deg" : "";
       const std::string file = feature_file_.empty() ? "" : "the feature file's";
-      table.add(
-          "features",
-          with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
-              (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
-              with_thousands(static_cast<std::int64_t>(run.features.corners.size())) + " corners" +
-              (run.features.corners.empty()
-                   ? std::string()
-                   : " (the narrowest " +
-                         significant(remesh::narrowest_corner_angle(run.surface.mesh, run.features), 3) + " deg)") +
-              ", lined with " + with_thousands(run.feature_sites) + " of the sites" +
-              (run.sites_added_near_features > 0 ? ", " + with_thousands(run.sites_added_near_features) +
-                                                       " more beside them where they are closer than the spacing"
-                                                 : ""));
+      const double narrowest_corner = remesh::narrowest_corner_angle(run.surface.mesh, run.features);
+      table.add("features",
+                with_thousands(run.features.sharp_chains) + " sharp chains (" + angle +
+                    (angle.empty() || file.empty() ? "" : " and ") + file + "), " +
+                    with_thousands(static_cast<std::int64_t>(run.features.corners.size())) + " corners" +
+                    (narrowest_corner < 360 ? " (the narrowest " + significant(narrowest_corner, 3) + " deg)"
+                                            : std::string()) +
+                    ", lined with " + with_thousands(run.feature_sites) + " of the sites" +
+                    (run.sites_added_near_features > 0 ? ", " + with_thousands(run.sites_added_near_features) +
+                                                             " more beside them where they are closer than the spacing"
+                                                       : ""));
     }
     if (run.crease_pins > 0) {
       table.add("short creases", with_thousands(run.crease_pins) + " sites pinned on them, " +

@@ -154,10 +154,10 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
   figures["feature_chains"] = run.features.sharp_chains;
   figures["feature_corners"] = run.features.corners.size();
   figures["feature_length"] = run.features.sharp_length;
+  // None where no corner joins two features.
+  const double narrowest_corner = remesh::narrowest_corner_angle(run.surface.mesh, run.features);
   figures["feature_narrowest_corner_deg"] =
-      run.features.corners.empty()
-          ? nlohmann::ordered_json(nullptr)
-          : nlohmann::ordered_json(remesh::narrowest_corner_angle(run.surface.mesh, run.features));
+      narrowest_corner < 360 ? nlohmann::ordered_json(narrowest_corner) : nlohmann::ordered_json(nullptr);
   figures["feature_sites"] = run.feature_sites;
   figures["sites_added_near_features"] = run.sites_added_near_features;
   figures["crease_pins"] = run.crease_pins;

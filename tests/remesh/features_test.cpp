@@ -174,6 +174,9 @@ TEST(Features, ACreaseIsJudgedWithTheFacesRoundItsEndsEvenWhereItsEdgesOutreachT
       remesh::detect_features(mesh, {.continuation_angle = 0, .scale = 0.1, .min_chain_length = 0.5});
   EXPECT_EQ(at_scale.sharp_chains, 1);
   EXPECT_NEAR(at_scale.sharp_length, 4.0, 1e-12);
+  // Its two ends are corners, but no corner joins two features: no narrowest angle.
+  EXPECT_EQ(at_scale.corners.size(), 2u);
+  EXPECT_EQ(remesh::narrowest_corner_angle(mesh, at_scale), 360.0);
   for (const auto& [a, b] : at_scale.sharp_edges) {
     EXPECT_EQ(mesh.vertices(a, 2), 1.0);
     EXPECT_EQ(mesh.vertices(b, 2), 1.0);

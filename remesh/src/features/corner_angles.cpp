@@ -30,6 +30,7 @@ double face_angle(const TriangleMesh& mesh, Index f, int k) {
 }  // namespace
 
 double narrowest_corner_angle(const TriangleMesh& surface, const FeatureSet& features) {
+  if (features.corners.empty()) return 360;
   double narrowest = 2 * std::numbers::pi;
   std::vector<FanFace> fan;
   for (Index f = 0; f < surface.num_faces(); ++f) {
