@@ -14,6 +14,8 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
+#include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -78,12 +80,14 @@ std::int64_t remove_folded_pairs(TriangleMesh& mesh) {
 
 }  // namespace
 
-WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
-                               const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
-  WeldedDual welded;
-  const std::size_t n = sites.size();
-  std::vector<SiteKey> keys(n);
-  for (std::size_t i = 0; i < n; ++i) keys[i] = site_key(surface, cut, sites[i]);
+namespace {
+
+/// The weld's mesh in `welded`: the dual's vertices of twins (sites with one
+/// key) merged into one, numbered in the order of their first site, without
+/// the triangles that lose a corner and the folded pairs. Returns, per
+/// vertex of welded.mesh, its first site.
+std::vector<std::size_t> merge_twins(const TriangleMesh& dual, std::span<const SiteKey> keys, WeldedDual& welded) {
+  const std::size_t n = keys.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
@@ -123,6 +127,51 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
       if (!used[static_cast<std::size_t>(welded.vertex_of_site[i])]) welded.unused_sites.push_back(i);
     }
   }
+  return site_of_vertex;
+}
+
+/// The point of the cut surface's boundary (its `boundary_edges`) in
+/// `piece` nearest x, as a point of the surface's edge, lattice-rounded like
+/// every edge site; within the lattice's margin of an end, that end (the key
+/// of a site there). None where the piece has no boundary.
+std::optional<SurfacePoint> nearest_boundary_point(const TriangleMesh& surface, const FeatureCut& cut,
+                                                   const MeshTopology& cut_topology,
+                                                   std::span<const Index> boundary_edges, Index piece,
+                                                   const Eigen::Vector3d& x) {
+  double best = std::numeric_limits<double>::infinity();
+  std::optional<SurfacePoint> nearest;
+  for (const Index e : boundary_edges) {
+    const Index f = cut_topology.edge_faces(e)[0];
+    if (cut_topology.face_component[static_cast<std::size_t>(f)] != piece) continue;
+    const auto [p, q] = cut_topology.edge_vertices[static_cast<std::size_t>(e)];
+    const Eigen::Vector3d a = cut.mesh.vertices.row(p), b = cut.mesh.vertices.row(q);
+    const Eigen::Vector3d d = b - a;
+    const double t = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double distance = (a + t * d - x).norm();
+    if (distance < best) {
+      best = distance;
+      Index lo = cut.original_vertex[p], hi = cut.original_vertex[q];
+      double along = t;
+      if (lo > hi) std::swap(lo, hi), along = 1 - t;
+      if (t < detail::kLatticeMargin || t > 1 - detail::kLatticeMargin) {
+        nearest = SurfacePoint::at_vertex(t < detail::kLatticeMargin ? p : q);
+      } else {
+        nearest = point_on_edge(surface, f, lo, hi, detail::lattice_parameter(along));
+      }
+    }
+  }
+  return nearest;
+}
+
+}  // namespace
+
+WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
+                               const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
+  WeldedDual welded;
+  const std::size_t n = sites.size();
+  std::vector<SiteKey> keys(n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = site_key(surface, cut, sites[i]);
+  const std::vector<std::size_t> site_of_vertex = merge_twins(dual, keys, welded);
 
   // Cracks: boundary edges of the weld with an end off the surface's boundary.
   const MeshTopology surface_topology = build_mesh_topology(surface);
@@ -201,42 +250,19 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
                                                                sites[(first + 1)->second].position(cut.mesh)))
                                       : sites[s].position(cut.mesh);
     first = last;
-    double best = std::numeric_limits<double>::infinity();
-    SurfacePoint nearest;
-    for (const Index e : boundary_edges) {
-      const Index f = cut_topology.edge_faces(e)[0];
-      if (cut_topology.face_component[static_cast<std::size_t>(f)] != piece) continue;
-      const auto [p, q] = cut_topology.edge_vertices[static_cast<std::size_t>(e)];
-      const Eigen::Vector3d a = cut.mesh.vertices.row(p), b = cut.mesh.vertices.row(q);
-      const Eigen::Vector3d d = b - a;
-      const double t = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      const double distance = (a + t * d - x).norm();
-      if (distance < best) {
-        best = distance;
-        // As a point of the surface's edge, lattice-rounded like every edge
-        // site; within the lattice's margin of an end, that end (the key of
-        // a site there, which `held` may have).
-        Index lo = cut.original_vertex[p], hi = cut.original_vertex[q];
-        double along = t;
-        if (lo > hi) std::swap(lo, hi), along = 1 - t;
-        if (t < detail::kLatticeMargin || t > 1 - detail::kLatticeMargin) {
-          nearest = SurfacePoint::at_vertex(t < detail::kLatticeMargin ? p : q);
-        } else {
-          nearest = point_on_edge(surface, f, lo, hi, detail::lattice_parameter(along));
-        }
-      }
-    }
-    if (!(best < std::numeric_limits<double>::infinity())) continue;
-    const SiteKey key = site_key(surface, cut, nearest);
+    const std::optional<SurfacePoint> nearest =
+        nearest_boundary_point(surface, cut, cut_topology, boundary_edges, piece, x);
+    if (!nearest) continue;
+    const SiteKey key = site_key(surface, cut, *nearest);
     if (std::binary_search(held.begin(), held.end(), key)) continue;
-    const Eigen::Vector3d target = nearest.position(cut.mesh);
+    const Eigen::Vector3d target = nearest->position(cut.mesh);
     if (site_grid.any_within(target, too_close, [&](std::size_t other) { return other != s; })) {
       welded.doubling_sites.push_back(s);
       continue;
     }
     held.insert(std::upper_bound(held.begin(), held.end(), key), key);
     site_grid.insert(target, s);
-    welded.site_moves.emplace_back(s, nearest);
+    welded.site_moves.emplace_back(s, *nearest);
   }
   return welded;
 }
