@@ -189,125 +189,204 @@ DualRepairError weld_error(const std::string& what, std::span<const Eigen::Vecto
   return DualRepairError(message, std::move(places));
 }
 
+/// The figures welded_dual_with_repair adds up over its rounds.
+struct WeldRounds {
+  std::int64_t sites_added = 0, sites_left_out = 0;
+  int repair_rounds = 0;  ///< of the rounds before the last
+  int leave_out_rounds = 0;
+  std::vector<std::string> repair_problems;
+  double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
+
+  /// A round's dual with repair.
+  void add(const RepairedDual& round) {
+    sites_added += round.sites_added;
+    sites_left_out += round.sites_left_out;
+    repair_problems.insert(repair_problems.end(), round.repair_problems.begin(), round.repair_problems.end());
+    geodesic_seconds += round.geodesic_seconds;
+    diagram_seconds += round.diagram_seconds;
+    dual_seconds += round.dual_seconds;
+  }
+
+  /// The sums into the last round's result.
+  void finish(RepairedDual& result) {
+    result.sites_added = sites_added;
+    result.sites_left_out = sites_left_out;
+    result.repair_rounds += repair_rounds;
+    result.repair_problems = std::move(repair_problems);
+    result.geodesic_seconds = geodesic_seconds;
+    result.diagram_seconds = diagram_seconds;
+    result.dual_seconds = dual_seconds;
+  }
+};
+
+constexpr const char* kRemedy = "; try more sites, or a larger sharp angle";
+
+/// Where the repair doubled points on a chain (doubled_chain_points): the
+/// sites of round `round`'s `result` without the doubles, and with the twins
+/// of the points they doubled, which serve both sheets; none where nothing
+/// is doubled. \throw DualRepairError where it is after options' max_rounds.
+std::optional<std::vector<SurfacePoint>> sites_without_doubles(const TriangleMesh& surface, const FeatureSet& features,
+                                                               const FeatureCut& cut, const RepairedDual& result,
+                                                               double spacing, int round, int max_rounds,
+                                                               WeldRounds& rounds) {
+  const std::vector<std::uint8_t> doubled =
+      doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
+  const auto count = std::count(doubled.begin(), doubled.end(), 1);
+  if (count == 0) return std::nullopt;
+  if (round >= max_rounds) {
+    std::vector<std::size_t> doubles;
+    for (std::size_t i = 0; i < doubled.size(); ++i) {
+      if (doubled[i]) doubles.push_back(i);
+    }
+    throw weld_error("welded along the sharp features doubles " + std::to_string(count) +
+                         " points on its creases after " + std::to_string(round) + " rounds",
+                     positions(cut.mesh, result.sites, doubles), spacing);
+  }
+  std::vector<SurfacePoint> sites = sites_not_marked(result.sites, doubled);
+  const std::vector<SurfacePoint> twins = missing_twins(surface, features, cut, sites);
+  sites.insert(sites.end(), twins.begin(), twins.end());
+  rounds.sites_added += static_cast<std::int64_t>(twins.size());
+  rounds.sites_left_out += count;
+  rounds.repair_rounds += result.repair_rounds + 1;
+  rounds.repair_problems.push_back(std::to_string(count) +
+                                   " repair sites doubling points on the sharp features (left out)");
+  return sites;
+}
+
+/// \throw DualRepairError where the weld has edges of three or more triangles.
+void require_manifold_weld(const WeldedDual& welded, double spacing) {
+  if (welded.nonmanifold_edges == 0) return;
+  const MeshTopology topology = build_mesh_topology(welded.mesh);
+  std::vector<Eigen::Vector3d> ends;
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    if (!topology.is_manifold_edge(e)) ends.push_back(welded.mesh.vertices.row(topology.edge_vertices[e][0]));
+  }
+  throw weld_error("welded along the sharp features has " + std::to_string(welded.nonmanifold_edges) +
+                       " edges with three or more triangles",
+                   ends, spacing);
+}
+
+/// The sites of round `round`'s `result` without those whose triangles all
+/// folded away in `welded`, or that would close a crack all but on another
+/// site; none where there are none. Twice at most: where folds keep coming,
+/// the weld will not close. \throw DualRepairError after that, or after
+/// options' max_rounds.
+std::optional<std::vector<SurfacePoint>> sites_without_unusable(const TriangleMesh& cut_mesh,
+                                                                const RepairedDual& result, const WeldedDual& welded,
+                                                                double spacing, int round, int max_rounds,
+                                                                WeldRounds& rounds) {
+  if (welded.unused_sites.empty() && welded.doubling_sites.empty()) return std::nullopt;
+  const std::size_t left_out = welded.unused_sites.size() + welded.doubling_sites.size();
+  if (round >= max_rounds || ++rounds.leave_out_rounds > 2) {
+    std::vector<Eigen::Vector3d> points = positions(cut_mesh, result.sites, welded.unused_sites);
+    const std::vector<Eigen::Vector3d> doubling = positions(cut_mesh, result.sites, welded.doubling_sites);
+    points.insert(points.end(), doubling.begin(), doubling.end());
+    throw weld_error("welded along the sharp features leaves " + std::to_string(left_out) +
+                         " sites in no triangle or on another after " + std::to_string(round) + " rounds",
+                     points, spacing);
+  }
+  std::vector<std::uint8_t> unused(result.sites.size(), 0);
+  for (const std::size_t site : welded.unused_sites) unused[site] = 1;
+  for (const std::size_t site : welded.doubling_sites) unused[site] = 1;
+  rounds.sites_left_out += static_cast<std::int64_t>(left_out);
+  rounds.repair_rounds += result.repair_rounds + 1;
+  if (!welded.unused_sites.empty()) {
+    rounds.repair_problems.push_back(std::to_string(welded.unused_sites.size()) +
+                                     " sites in no triangle once welded (left out)");
+  }
+  if (!welded.doubling_sites.empty()) {
+    rounds.repair_problems.push_back(std::to_string(welded.doubling_sites.size()) +
+                                     " sites that would close a crack all but on another site (left out)");
+  }
+  return sites_not_marked(result.sites, unused);
+}
+
+/// The weld as the remesh, in `result`: every triangle of positive area
+/// (each piece's dual has only such; welded, three sites on one straight
+/// stretch of a chain could still make one flat) and every piece of the
+/// surface kept. \throw DualRepairError where either fails.
+void take_weld(RepairedDual& result, WeldedDual& welded, const TriangleMesh& surface, const FeatureCut& cut,
+               double spacing) {
+  for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
+    if (has_positive_area(welded.mesh, f)) continue;
+    const Eigen::Vector3d corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
+    throw DualRepairError(
+        "the remesh welded along the sharp features has a triangle of zero area, at " + point_text(corner), {corner});
+  }
+  if (const PieceNotKept lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.what.empty()) {
+    throw weld_error("welded along the sharp features does not keep " + lost.what,
+                     positions(cut.mesh, std::span<const SurfacePoint>(result.sites), lost.sites), spacing, kRemedy);
+  }
+  result.mesh = std::move(welded.mesh);
+  result.vertex_of_site = std::move(welded.vertex_of_site);
+}
+
+/// The last resort, after round `round`: the weld's cracks are holes of a
+/// few edges on the sites as they are; closed with triangles on their
+/// vertices, the weld is a remesh of the surface, the connectivity there not
+/// the dual's. \throw DualRepairError where they do not close.
+void close_cracks_or_fail(RepairedDual& result, WeldedDual& welded, const TriangleMesh& surface, const FeatureCut& cut,
+                          double spacing, int round, WeldRounds& rounds) {
+  if (const std::optional<CrackFill> fill = close_cracks(welded.mesh, welded.crack_vertices)) {
+    take_weld(result, welded, surface, cut, spacing);
+    result.cracks_closed = fill->holes;
+    result.crack_triangles = fill->triangles;
+    rounds.repair_problems.push_back(std::to_string(welded.cracked_edges) +
+                                     " edges of the welded remesh leaving the sharp features after " +
+                                     std::to_string(round) + " rounds, closed with " + std::to_string(fill->triangles) +
+                                     " triangles on their vertices");
+    return;
+  }
+  std::vector<Eigen::Vector3d> ends;
+  for (const Index v : welded.crack_vertices) ends.push_back(welded.mesh.vertices.row(v));
+  throw weld_error("does not close along the sharp features after " + std::to_string(round) +
+                       " rounds: " + std::to_string(welded.cracked_edges) +
+                       " edges of its boundary leave the surface's creases and boundary",
+                   ends, spacing, kRemedy);
+}
+
 }  // namespace
 
 RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface, const TriangleMesh& surface,
                                      const FeatureSet& features, const FeatureCut& cut, std::vector<SurfacePoint> sites,
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
   RepairedDual result;
-  std::int64_t sites_added = 0, sites_left_out = 0;
-  int repair_rounds = 0;  // of the rounds before the last
-  int leave_out_rounds = 0;
-  std::vector<std::string> repair_problems;
-  double geodesic_seconds = 0, diagram_seconds = 0, dual_seconds = 0;
-  constexpr const char* kRemedy = "; try more sites, or a larger sharp angle";
+  WeldRounds rounds;
   // The next round's diagram, of `sites`.
   const auto recompute = [&] {
     diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
-    geodesic_seconds += diagram.stats.geodesic_seconds;
-    diagram_seconds += diagram.stats.extraction_seconds;
+    rounds.geodesic_seconds += diagram.stats.geodesic_seconds;
+    rounds.diagram_seconds += diagram.stats.extraction_seconds;
   };
   for (int round = 0;; ++round) {
     RepairOptions within = options;  // with the sites still allowed
     if (options.max_sites_added > 0) {
-      within.max_sites_added = std::max<std::int64_t>(1, options.max_sites_added - sites_added);
+      within.max_sites_added = std::max<std::int64_t>(1, options.max_sites_added - rounds.sites_added);
     }
     result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), within);
-    sites_added += result.sites_added;
-    sites_left_out += result.sites_left_out;
-    repair_problems.insert(repair_problems.end(), result.repair_problems.begin(), result.repair_problems.end());
-    geodesic_seconds += result.geodesic_seconds;
-    diagram_seconds += result.diagram_seconds;
-    dual_seconds += result.dual_seconds;
+    rounds.add(result);
     // Points the repair doubled on a chain go, the points they doubled get
     // their twins, and the diagram is computed again.
     const double spacing = result.diagram.mean_spacing();
-    const std::vector<std::uint8_t> doubled =
-        doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
-    if (const auto count = std::count(doubled.begin(), doubled.end(), 1); count > 0) {
-      if (round >= options.max_rounds) {
-        std::vector<std::size_t> doubles;
-        for (std::size_t i = 0; i < doubled.size(); ++i) {
-          if (doubled[i]) doubles.push_back(i);
-        }
-        throw weld_error("welded along the sharp features doubles " + std::to_string(count) +
-                             " points on its creases after " + std::to_string(round) + " rounds",
-                         positions(cut.mesh, result.sites, doubles), spacing);
-      }
-      sites = sites_not_marked(result.sites, doubled);
-      // The points they doubled serve both sheets: their twins come now.
-      const std::vector<SurfacePoint> twins = missing_twins(surface, features, cut, sites);
-      sites.insert(sites.end(), twins.begin(), twins.end());
-      sites_added += static_cast<std::int64_t>(twins.size());
-      sites_left_out += count;
-      repair_rounds += result.repair_rounds + 1;
-      repair_problems.push_back(std::to_string(count) +
-                                " repair sites doubling points on the sharp features (left out)");
+    if (std::optional<std::vector<SurfacePoint>> next =
+            sites_without_doubles(surface, features, cut, result, spacing, round, options.max_rounds, rounds)) {
+      sites = std::move(*next);
       recompute();
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
     WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
-    if (welded.nonmanifold_edges > 0) {
-      const MeshTopology topology = build_mesh_topology(welded.mesh);
-      std::vector<Eigen::Vector3d> ends;
-      for (Index e = 0; e < topology.num_edges(); ++e) {
-        if (!topology.is_manifold_edge(e)) ends.push_back(welded.mesh.vertices.row(topology.edge_vertices[e][0]));
-      }
-      throw weld_error("welded along the sharp features has " + std::to_string(welded.nonmanifold_edges) +
-                           " edges with three or more triangles",
-                       ends, spacing);
-    }
-    if (!welded.unused_sites.empty() || !welded.doubling_sites.empty()) {
-      // Sites whose triangles all folded away, or that would close a crack
-      // all but on another site: left out, the diagram computed again, twice
-      // at most (where folds keep coming, the weld will not close).
-      const std::size_t left_out = welded.unused_sites.size() + welded.doubling_sites.size();
-      if (round >= options.max_rounds || ++leave_out_rounds > 2) {
-        std::vector<Eigen::Vector3d> points = positions(cut.mesh, result.sites, welded.unused_sites);
-        const std::vector<Eigen::Vector3d> doubling = positions(cut.mesh, result.sites, welded.doubling_sites);
-        points.insert(points.end(), doubling.begin(), doubling.end());
-        throw weld_error("welded along the sharp features leaves " + std::to_string(left_out) +
-                             " sites in no triangle or on another after " + std::to_string(round) + " rounds",
-                         points, spacing);
-      }
-      std::vector<std::uint8_t> unused(result.sites.size(), 0);
-      for (const std::size_t site : welded.unused_sites) unused[site] = 1;
-      for (const std::size_t site : welded.doubling_sites) unused[site] = 1;
-      sites = sites_not_marked(result.sites, unused);
-      sites_left_out += static_cast<std::int64_t>(left_out);
-      repair_rounds += result.repair_rounds + 1;
-      if (!welded.unused_sites.empty()) {
-        repair_problems.push_back(std::to_string(welded.unused_sites.size()) +
-                                  " sites in no triangle once welded (left out)");
-      }
-      if (!welded.doubling_sites.empty()) {
-        repair_problems.push_back(std::to_string(welded.doubling_sites.size()) +
-                                  " sites that would close a crack all but on another site (left out)");
-      }
-      dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    require_manifold_weld(welded, spacing);
+    if (std::optional<std::vector<SurfacePoint>> next =
+            sites_without_unusable(cut.mesh, result, welded, spacing, round, options.max_rounds, rounds)) {
+      sites = std::move(*next);
+      rounds.dual_seconds += seconds();
       recompute();
       continue;
     }
-    // The weld as the remesh: every triangle of positive area (each piece's
-    // dual has only such; welded, three sites on one straight stretch of a
-    // chain could still make one flat) and every piece of the surface kept.
-    const auto accept = [&] {
-      for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
-        if (has_positive_area(welded.mesh, f)) continue;
-        const Eigen::Vector3d corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
-        throw DualRepairError(
-            "the remesh welded along the sharp features has a triangle of zero area, at " + point_text(corner),
-            {corner});
-      }
-      if (const PieceNotKept lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.what.empty()) {
-        throw weld_error("welded along the sharp features does not keep " + lost.what,
-                         positions(cut.mesh, std::span<const SurfacePoint>(result.sites), lost.sites), spacing,
-                         kRemedy);
-      }
-      result.mesh = std::move(welded.mesh);
-      result.vertex_of_site = std::move(welded.vertex_of_site);
-    };
     std::vector<std::pair<std::size_t, SurfacePoint>> moved_from;  // to undo the moves
     for (const auto& [site, point] : welded.site_moves) {
       moved_from.emplace_back(site, result.sites[site]);
@@ -315,60 +394,40 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     }
     const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
     if (welded.cracked_edges == 0 && more.empty()) {
-      accept();
+      take_weld(result, welded, surface, cut, spacing);
       break;
     }
-    dual_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    rounds.dual_seconds += seconds();
     if (round >= options.max_rounds || (more.empty() && welded.site_moves.empty())) {
-      // The last resort: the cracks are holes of a few edges on the sites as
-      // they are; closed with triangles on their vertices, the weld is a
-      // remesh of the surface, the connectivity there not the dual's.
       for (const auto& [site, point] : moved_from) result.sites[site] = point;
-      if (const std::optional<CrackFill> fill = close_cracks(welded.mesh, welded.crack_vertices)) {
-        accept();
-        result.cracks_closed = fill->holes;
-        result.crack_triangles = fill->triangles;
-        repair_problems.push_back(std::to_string(welded.cracked_edges) +
-                                  " edges of the welded remesh leaving the sharp features after " +
-                                  std::to_string(round) + " rounds, closed with " + std::to_string(fill->triangles) +
-                                  " triangles on their vertices");
-        break;
-      }
-      std::vector<Eigen::Vector3d> ends;
-      for (const Index v : welded.crack_vertices) ends.push_back(welded.mesh.vertices.row(v));
-      throw weld_error("does not close along the sharp features after " + std::to_string(round) +
-                           " rounds: " + std::to_string(welded.cracked_edges) +
-                           " edges of its boundary leave the surface's creases and boundary",
-                       ends, spacing, kRemedy);
+      close_cracks_or_fail(result, welded, surface, cut, spacing, round, rounds);
+      break;
     }
+    // The sites inside that reached a boundary moved onto it, the twins of
+    // the sites on chains added, and the diagram computed again.
     sites = std::move(result.sites);
-    sites_added += static_cast<std::int64_t>(more.size());
-    repair_rounds += result.repair_rounds + 1;
-    if (options.max_sites_added > 0 && sites_added > options.max_sites_added) {
+    rounds.sites_added += static_cast<std::int64_t>(more.size());
+    rounds.repair_rounds += result.repair_rounds + 1;
+    if (options.max_sites_added > 0 && rounds.sites_added > options.max_sites_added) {
       std::vector<Eigen::Vector3d> twins;
       for (const SurfacePoint& twin : more) twins.push_back(twin.position(cut.mesh));
-      throw weld_error("welded along the sharp features would add " + std::to_string(sites_added) + " sites in " +
-                           std::to_string(round + 1) + " rounds, more than the " +
+      throw weld_error("welded along the sharp features would add " + std::to_string(rounds.sites_added) +
+                           " sites in " + std::to_string(round + 1) + " rounds, more than the " +
                            std::to_string(options.max_sites_added) + " allowed: its creases are finer than the spacing",
                        twins, spacing, kRemedy);
     }
     if (!more.empty()) {
-      repair_problems.push_back(std::to_string(more.size()) + " points of the sharp features without their twin sites");
+      rounds.repair_problems.push_back(std::to_string(more.size()) +
+                                       " points of the sharp features without their twin sites");
     }
     if (welded.cracked_edges > 0) {
-      repair_problems.push_back(std::to_string(welded.cracked_edges) +
-                                " edges of the welded remesh leaving the sharp features");
+      rounds.repair_problems.push_back(std::to_string(welded.cracked_edges) +
+                                       " edges of the welded remesh leaving the sharp features");
     }
     sites.insert(sites.end(), more.begin(), more.end());
     recompute();
   }
-  result.sites_added = sites_added;
-  result.sites_left_out = sites_left_out;
-  result.repair_rounds += repair_rounds;
-  result.repair_problems = std::move(repair_problems);
-  result.geodesic_seconds = geodesic_seconds;
-  result.diagram_seconds = diagram_seconds;
-  result.dual_seconds = dual_seconds;
+  rounds.finish(result);
   return result;
 }
 
