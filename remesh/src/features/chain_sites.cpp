@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -48,6 +49,117 @@ VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
   return group_vertex_copies(cut.original_vertex, num_vertices, used);
 }
 
+/// A stretch of a chain between two arc lengths, split into `parts`.
+struct Stretch {
+  double from, to;
+  int parts = 1;
+  bool tight = false;  ///< its parts are shorter than min_spacing
+};
+
+/// The most parts of at least `spacing` a stretch of `length` splits into (16 at most).
+int most_parts(double length, double spacing) {
+  return spacing > 0 ? static_cast<int>(std::min(16.0, std::floor(length / spacing))) : 16;
+}
+
+/// Whether the chords of [from, to] split evenly into `parts` stay within `error` of the chain.
+bool fits(const ChainWalk& walk, double from, double to, int parts, double error) {
+  for (int k = 0; k < parts; ++k) {
+    if (!walk.within(from + (to - from) * k / parts, from + (to - from) * (k + 1) / parts, error)) return false;
+  }
+  return true;
+}
+
+/// The stretch [from, to] of `walk`'s chain: where its chord leaves the
+/// chain by more than the chord error, split evenly into the fewest parts
+/// that keep to it (at most 16, no shorter than min_spacing), so that the
+/// chain gets denser where it bends, there only. Where the shortest parts
+/// still leave it by more than twice the error, parts down to tight_spacing,
+/// if some number of them keeps to twice the error.
+Stretch split_stretch(const ChainWalk& walk, double from, double to, const FeatureSiteOptions& options) {
+  Stretch stretch{from, to};
+  if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return stretch;
+  const int most = most_parts(to - from, options.min_spacing);
+  const int most_tight =
+      std::max(most, most_parts(to - from, options.tight_spacing > 0 ? options.tight_spacing : options.min_spacing));
+  int parts = std::min(most, 2);
+  while (parts < most && !fits(walk, from, to, parts, options.max_chord_error)) ++parts;
+  parts = std::max(parts, 1);
+  if (!fits(walk, from, to, parts, 2 * options.max_chord_error)) {
+    // Closer parts only where some number of them keeps to twice the error
+    // (a smooth bend): a chain that wiggles at the input's scale (a scan's
+    // noise) would not keep to it at any spacing the tight one allows.
+    int tight = parts + 1;
+    while (tight <= most_tight && !fits(walk, from, to, tight, 2 * options.max_chord_error)) ++tight;
+    if (tight <= most_tight) parts = tight;
+  }
+  stretch.parts = parts;
+  stretch.tight = parts > most;
+  return stretch;
+}
+
+/// Round a corner, the first site of every chain at one distance d: the
+/// smallest of their spacings (a chain's length over its `segments`) and half
+/// their lengths. In a wedge of angle theta between two chains, the corner's
+/// cell meets the cells of the first sites at distances d1 <= d2 at a Voronoi
+/// vertex only if d1 >= d2 cos(theta) (the bisectors must cross inside the
+/// wedge); equal distances meet in any wedge. Half the length leaves room for
+/// the chain's other end.
+std::map<Index, double> corner_distances(const FeatureSet& features, std::span<const ChainWalk> walks,
+                                         std::span<const std::int64_t> segments) {
+  std::map<Index, double> corner_distance;
+  for (std::size_t c = 0; c < walks.size(); ++c) {
+    const FeatureChain& chain = features.chains[c];
+    if (chain.closed) continue;
+    const double own = std::min(walks[c].length() / static_cast<double>(segments[c]), 0.5 * walks[c].length());
+    for (const Index end : {chain.vertices.front(), chain.vertices.back()}) {
+      const auto [it, inserted] = corner_distance.try_emplace(end, own);
+      if (!inserted) it->second = std::min(it->second, own);
+    }
+  }
+  return corner_distance;
+}
+
+/// The stretch ends of `chain` (of `length`, in `segments` of `own`):
+/// evenly round a closed chain; on an open one, from the corners' first
+/// sites, evenly about `own` apart in between.
+std::vector<double> stretch_ends(const FeatureChain& chain, double length, std::int64_t segments, double own,
+                                 const std::map<Index, double>& corner_distance) {
+  std::vector<double> ends;
+  if (chain.closed) {
+    for (std::int64_t k = 0; k <= segments; ++k) ends.push_back(own * static_cast<double>(k));
+    return ends;
+  }
+  const double first = corner_distance.at(chain.vertices.front());
+  const double last = length - corner_distance.at(chain.vertices.back());
+  ends.push_back(0);
+  if (last - first < 0.25 * std::min(first, length - last)) {
+    ends.push_back(0.5 * (first + last));
+  } else {
+    const auto gaps = std::max<std::int64_t>(1, std::llround((last - first) / own));
+    for (std::int64_t k = 0; k <= gaps; ++k) {
+      ends.push_back(first + (last - first) * static_cast<double>(k) / static_cast<double>(gaps));
+    }
+  }
+  ends.push_back(length);
+  return ends;
+}
+
+/// At a corner where an open `chain` ends alone (`ends_at` it: one chain
+/// end), the stretch from it takes the spacing of a tight stretch after it:
+/// the sites round the corner are as close as the chain's there.
+void match_tight_stretches_at_lone_ends(const FeatureChain& chain, const std::map<Index, int>& ends_at,
+                                        std::vector<Stretch>& stretches) {
+  if (chain.closed || stretches.size() < 2) return;
+  for (const bool front : {true, false}) {
+    Stretch& end = front ? stretches.front() : stretches.back();
+    const Stretch& next = front ? stretches[1] : stretches[stretches.size() - 2];
+    if (end.tight || !next.tight || ends_at.at(front ? chain.vertices.front() : chain.vertices.back()) > 1) continue;
+    const double spacing = (next.to - next.from) / next.parts;
+    const auto parts = static_cast<int>(std::llround((end.to - end.from) / spacing));
+    if (parts > end.parts) end.parts = parts, end.tight = true;
+  }
+}
+
 }  // namespace
 
 FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
@@ -76,63 +188,7 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     const ChainWalk& walk = walks.emplace_back(surface, chain);
     segments.push_back(std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(walk.length() / options.spacing)));
   }
-  // Round a corner, the first site of every chain at one distance d: the
-  // smallest of their spacings and half their lengths. In a wedge of angle
-  // theta between two chains, the corner's cell meets the cells of the first
-  // sites at distances d1 <= d2 at a Voronoi vertex only if d1 >= d2 cos(theta)
-  // (the bisectors must cross inside the wedge); equal distances meet in any
-  // wedge. Half the length leaves room for the chain's other end.
-  std::map<Index, double> corner_distance;
-  for (std::size_t c = 0; c < walks.size(); ++c) {
-    const FeatureChain& chain = features.chains[c];
-    if (chain.closed) continue;
-    const double own = std::min(walks[c].length() / static_cast<double>(segments[c]), 0.5 * walks[c].length());
-    for (const Index end : {chain.vertices.front(), chain.vertices.back()}) {
-      const auto [it, inserted] = corner_distance.try_emplace(end, own);
-      if (!inserted) it->second = std::min(it->second, own);
-    }
-  }
-  // A stretch whose chord leaves the chain by more than the chord error is
-  // split evenly into the fewest parts that keep to it (at most 16, no
-  // shorter than min_spacing): the chain gets denser where it bends, there
-  // only. Where the shortest parts still leave it by more than twice the
-  // error, parts down to tight_spacing, if some number of them keeps to
-  // twice the error.
-  struct Stretch {
-    double from, to;
-    int parts = 1;
-    bool tight = false;  ///< its parts are shorter than min_spacing
-  };
-  const auto most_parts = [](double length, double spacing) {
-    return spacing > 0 ? static_cast<int>(std::min(16.0, std::floor(length / spacing))) : 16;
-  };
-  const auto fits = [](const ChainWalk& walk, double from, double to, int parts, double error) {
-    for (int k = 0; k < parts; ++k) {
-      if (!walk.within(from + (to - from) * k / parts, from + (to - from) * (k + 1) / parts, error)) return false;
-    }
-    return true;
-  };
-  const auto split = [&](const ChainWalk& walk, double from, double to) {
-    Stretch stretch{from, to};
-    if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return stretch;
-    const int most = most_parts(to - from, options.min_spacing);
-    const int most_tight =
-        std::max(most, most_parts(to - from, options.tight_spacing > 0 ? options.tight_spacing : options.min_spacing));
-    int parts = std::min(most, 2);
-    while (parts < most && !fits(walk, from, to, parts, options.max_chord_error)) ++parts;
-    parts = std::max(parts, 1);
-    if (!fits(walk, from, to, parts, 2 * options.max_chord_error)) {
-      // Closer parts only where some number of them keeps to twice the error
-      // (a smooth bend): a chain that wiggles at the input's scale (a scan's
-      // noise) would not keep to it at any spacing the tight one allows.
-      int tight = parts + 1;
-      while (tight <= most_tight && !fits(walk, from, to, tight, 2 * options.max_chord_error)) ++tight;
-      if (tight <= most_tight) parts = tight;
-    }
-    stretch.parts = parts;
-    stretch.tight = parts > most;
-    return stretch;
-  };
+  const std::map<Index, double> corner_distance = corner_distances(features, walks, segments);
   // Chain ends per vertex: a corner where one chain ends alone has no wedge
   // to keep the first sites' distances equal in.
   std::map<Index, int> ends_at;
@@ -147,40 +203,12 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     const FeatureChain& chain = features.chains[c];
     const double length = walks[c].length(), own = length / static_cast<double>(segments[c]);
     if (!(length > 0)) continue;
-    // The stretch ends: evenly round a closed chain; on an open one, from the
-    // corners' first sites, evenly about `own` apart in between.
-    std::vector<double> ends;
-    if (chain.closed) {
-      for (std::int64_t k = 0; k <= segments[c]; ++k) ends.push_back(own * static_cast<double>(k));
-    } else {
-      const double first = corner_distance.at(chain.vertices.front());
-      const double last = length - corner_distance.at(chain.vertices.back());
-      ends.push_back(0);
-      if (last - first < 0.25 * std::min(first, length - last)) {
-        ends.push_back(0.5 * (first + last));
-      } else {
-        const auto gaps = std::max<std::int64_t>(1, std::llround((last - first) / own));
-        for (std::int64_t k = 0; k <= gaps; ++k) {
-          ends.push_back(first + (last - first) * static_cast<double>(k) / static_cast<double>(gaps));
-        }
-      }
-      ends.push_back(length);
-    }
+    const std::vector<double> ends = stretch_ends(chain, length, segments[c], own, corner_distance);
     stretches.clear();
-    for (std::size_t k = 0; k + 1 < ends.size(); ++k) stretches.push_back(split(walks[c], ends[k], ends[k + 1]));
-    // At a corner where this chain ends alone, the stretch from it takes the
-    // spacing of a tight stretch after it: the sites round the corner are as
-    // close as the chain's there.
-    if (!chain.closed && stretches.size() >= 2) {
-      for (const bool front : {true, false}) {
-        Stretch& end = front ? stretches.front() : stretches.back();
-        const Stretch& next = front ? stretches[1] : stretches[stretches.size() - 2];
-        if (end.tight || !next.tight || ends_at[front ? chain.vertices.front() : chain.vertices.back()] > 1) continue;
-        const double spacing = (next.to - next.from) / next.parts;
-        const auto parts = static_cast<int>(std::llround((end.to - end.from) / spacing));
-        if (parts > end.parts) end.parts = parts, end.tight = true;
-      }
+    for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+      stretches.push_back(split_stretch(walks[c], ends[k], ends[k + 1], options));
     }
+    match_tight_stretches_at_lone_ends(chain, ends_at, stretches);
     at.clear();
     for (std::size_t k = 0; k < stretches.size(); ++k) {
       const auto [from, to, parts, tight] = stretches[k];
