@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -205,28 +206,38 @@ struct Faults {
   std::map<Index, std::vector<Index>> sites_of_component;
 };
 
-/// Points where new sites restore the closed-ball property, for the faults
-/// of the dual of `diagram` on `input` (`components`: the input's, by smallest vertex).
-std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
-                                       const Faults& faults, UnionFind& components) {
-  const voronoi::GeodesicField& field = diagram.field;
-  const Index num_sites = static_cast<Index>(field.sites.size());
+/// Candidate points for new sites, in the order found.
+struct RepairPoints {
   std::vector<SurfacePoint> points;
-  // Each point keeps other repair points at most this far away (see the
-  // filter below); infinity: a quarter of the sites' mean spacing.
+  /// Per point, how far it keeps other repair points at most
+  /// (points_kept_apart); infinity: a quarter of the sites' mean spacing.
   std::vector<double> apart_at_most;
-  auto repair_at = [&](const SurfacePoint& p, double apart) {
+
+  void add(const SurfacePoint& p, double apart) {
     points.push_back(p);
     apart_at_most.push_back(apart);
-  };
-  constexpr double infinity = std::numeric_limits<double>::infinity();
-  auto distance_at = [&](Index point) { return voronoi::query(field, input, diagram.point_locations[point]).distance; };
-  // Points this close are one point here (the engine rejects two sites at one point).
+  }
+};
+
+/// The distance of the diagram's point `point` from its nearest site.
+double point_distance(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram, Index point) {
+  return voronoi::query(diagram.field, input, diagram.point_locations[point]).distance;
+}
+
+/// Points this close are one point here (the engine rejects two sites at one point).
+double same_point_distance(const TriangleMesh& input) {
   const double diagonal = input.vertices.rows() > 0
                               ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
                               : 0.0;
-  const double same_point = std::max(1e-9 * diagonal, 1e-300);
+  return std::max(1e-9 * diagonal, 1e-300);
+}
 
+/// Repair points between cells (split pairs and closed arcs of `faults`)
+/// into `out`; returns per site whether it was repaired so.
+std::vector<std::uint8_t> repair_between_cells(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                                               const Faults& faults, double same_point, RepairPoints& out) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const auto num_sites = static_cast<Index>(field.sites.size());
   // Between cells. Two cells meeting along several arcs wrap a tube or a
   // spire thinner than the spacing: a site halfway along each arc. A closed
   // boundary (a cell enclosed by another) girdles one: one site on it would
@@ -246,7 +257,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
         continue;
       }
       const SurfacePoint& halfway = diagram.point_locations[(arc.point_begin + arc.point_end) / 2];
-      repair_at(halfway, 0.5 * (halfway.position(input) - field.sites[arc.left_site].position(input)).norm());
+      out.add(halfway, 0.5 * (halfway.position(input) - field.sites[arc.left_site].position(input)).norm());
     }
     repaired_between[pair.site_a] = repaired_between[pair.site_b] = 1;
   }
@@ -261,18 +272,28 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
     int placed = 0;
     for (std::size_t i = 0; i < line.size() && placed < 3; ++i) {
       if (walked >= placed * length / 3) {
-        repair_at(diagram.point_locations[arc.point_begin + static_cast<Index>(i)], length / 6);
+        out.add(diagram.point_locations[arc.point_begin + static_cast<Index>(i)], length / 6);
         ++placed;
       }
       walked += (line[(i + 1) % line.size()] - line[i]).norm();
     }
   }
+  return repaired_between;
+}
 
-  const std::vector<std::uint8_t> sharp = sharp_boundary_corners(input, field);
-  std::vector<std::uint8_t> holds_sharp_corner(static_cast<std::size_t>(num_sites), 0);
-  for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
-    if (sharp[v] && field.nearest_site[v] >= 0) holds_sharp_corner[field.nearest_site[v]] = 1;
-  }
+/// Where a piece's topology differs without a local fault to explain it.
+struct TopologyRepairs {
+  std::vector<std::pair<SurfacePoint, double>> crossings;  ///< points across strips, each with how far apart it keeps
+  std::vector<Index> largest_cells;                        ///< sites to refine at their farthest points
+};
+
+/// The repairs of the pieces whose topology differs (faults.mismatched);
+/// `holds_sharp_corner` and `repaired_between` per site.
+TopologyRepairs topology_repairs(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                                 const Faults& faults, std::span<const std::uint8_t> holds_sharp_corner,
+                                 std::span<const std::uint8_t> repaired_between) {
+  const voronoi::GeodesicField& field = diagram.field;
+  auto distance_at = [&](Index point) { return point_distance(input, diagram, point); };
   // Pieces whose topology differs. Local faults explain most (a faulty
   // site, cells meeting along several arcs or enclosed, a site left out):
   // they are repaired where they are. Besides them,
@@ -336,28 +357,45 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
     const std::size_t count = std::max<std::size_t>(1, sites.size() / 20);
     for (std::size_t k = 0; k < count && k < by_area.size(); ++k) largest_cells.push_back(by_area[k].second);
   }
-  std::vector<std::uint8_t> refined(static_cast<std::size_t>(num_sites), 0);
-  for (Index s = 0; s < num_sites; ++s) refined[s] = faults.site[s] != SiteRepair::none;
-  for (const Index s : largest_cells) refined[s] = 1;
+  return {std::move(crossings), std::move(largest_cells)};
+}
 
-  // At sites, but for those repaired between cells (their split or enclosed
-  // cell is the cause, and a point beside those repairs would crowd them):
-  // farthest-point refinement, each new site at the point of the cell
-  // farthest from its site, so at least that far from every site. That
-  // point is the cell's farthest mesh vertex, or where the cell holds none
-  // beyond the site (sites denser than the mesh's vertices) the farthest of
-  // its Voronoi vertices and of the ends of its arcs on the mesh boundary.
-  // A boundary corner sharper than a right angle is no place for a site:
-  // its cell is cut off by a single arc (no Voronoi vertex) unless the
-  // sites on either side are almost equally far, and each repair there would
-  // only put the next site closer to the tip.
-  std::vector<Index> farthest_vertex(static_cast<std::size_t>(num_sites), -1);
+/// Per site, where farthest-point refinement may put a new site.
+struct FarthestPoints {
+  std::vector<Index> vertex;          ///< its cell's farthest mesh vertex (-1: none)
+  std::vector<Index> voronoi_vertex;  ///< its cell's farthest Voronoi vertex (-1: none)
+  /// Per refined site, the ends of its arcs on the mesh boundary (indices
+  /// into the diagram's points), with their distances.
+  std::vector<std::vector<std::pair<double, Index>>> boundary_ends;
+};
+
+// At sites, but for those repaired between cells (their split or enclosed
+// cell is the cause, and a point beside those repairs would crowd them):
+// farthest-point refinement, each new site at the point of the cell
+// farthest from its site, so at least that far from every site. That
+// point is the cell's farthest mesh vertex, or where the cell holds none
+// beyond the site (sites denser than the mesh's vertices) the farthest of
+// its Voronoi vertices and of the ends of its arcs on the mesh boundary.
+// A boundary corner sharper than a right angle is no place for a site:
+// its cell is cut off by a single arc (no Voronoi vertex) unless the
+// sites on either side are almost equally far, and each repair there would
+// only put the next site closer to the tip.
+FarthestPoints farthest_points(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                               std::span<const std::uint8_t> refined, std::span<const std::uint8_t> sharp) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const auto num_sites = static_cast<Index>(field.sites.size());
+  FarthestPoints result;
+  std::vector<Index>& farthest_vertex = result.vertex;
+  std::vector<Index>& farthest_voronoi_vertex = result.voronoi_vertex;
+  std::vector<std::vector<std::pair<double, Index>>>& boundary_ends = result.boundary_ends;
+  auto distance_at = [&](Index point) { return point_distance(input, diagram, point); };
+  farthest_vertex.assign(static_cast<std::size_t>(num_sites), -1);
   for (Index v = 0; v < static_cast<Index>(field.distance.size()); ++v) {
     const Index s = field.nearest_site[v];
     if (s < 0 || sharp[v] || !refined[s]) continue;
     if (farthest_vertex[s] < 0 || field.distance[v] > field.distance[farthest_vertex[s]]) farthest_vertex[s] = v;
   }
-  std::vector<Index> farthest_voronoi_vertex(static_cast<std::size_t>(num_sites), -1);
+  farthest_voronoi_vertex.assign(static_cast<std::size_t>(num_sites), -1);
   for (std::size_t v = 0; v < diagram.vertices.size(); ++v) {
     const double distance = diagram.vertices[v].distance;
     for (const Index s : diagram.sites_of(diagram.vertices[v])) {
@@ -365,9 +403,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
       if (farthest < 0 || distance > diagram.vertices[farthest].distance) farthest = static_cast<Index>(v);
     }
   }
-  // Per faulty site: the ends of its arcs on the mesh boundary (indices into
-  // the diagram's points), with their distances.
-  std::vector<std::vector<std::pair<double, Index>>> boundary_ends(static_cast<std::size_t>(num_sites));
+  boundary_ends.resize(static_cast<std::size_t>(num_sites));
   for (const voronoi::VoronoiArc& arc : diagram.arcs) {
     if (arc.closed || arc.point_end <= arc.point_begin) continue;
     const bool left = refined[arc.left_site] != 0;
@@ -381,56 +417,42 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
       if (right) boundary_ends[arc.right_site].emplace_back(distance, point);
     }
   }
-  auto repair_far_from = [&](Index site) {
-    if (farthest_vertex[site] >= 0 && field.distance[farthest_vertex[site]] > 0) {
-      repair_at(SurfacePoint::at_vertex(farthest_vertex[site]), infinity);
-      return;
-    }
-    const Index voronoi_vertex = farthest_voronoi_vertex[site];
-    const auto& ends = boundary_ends[site];
-    const auto end = std::max_element(ends.begin(), ends.end());
-    if (end != ends.end() && (voronoi_vertex < 0 || end->first > diagram.vertices[voronoi_vertex].distance)) {
-      repair_at(diagram.point_locations[end->second], infinity);
-    } else if (voronoi_vertex >= 0) {
-      repair_at(diagram.vertices[voronoi_vertex].location, infinity);
-    }
-  };
-  // Several fans: the cell has several boundary cycles (a band round a tube
-  // or a spire) or reaches the mesh boundary in several places; like a
-  // closed boundary, each fan gets a site, at its farthest Voronoi vertex. A
-  // cell with no Voronoi vertex meets its neighbours only along arcs from
-  // the mesh boundary to the mesh boundary (across a strip or a flap
-  // narrower than the spacing, or cutting off a corner): a site at every end
-  // of them, so that the strip gets sites on both sides. Both keep apart by
-  // half their distance to the sites.
-  for (Index s = 0; s < num_sites; ++s) {
-    if (faults.site[s] == SiteRepair::none || repaired_between[s]) continue;
-    if (faults.site[s] == SiteRepair::each_fan) {
-      auto tip = std::lower_bound(faults.fan_tips.begin(), faults.fan_tips.end(), s,
-                                  [](const std::array<Index, 2>& t, Index site) { return t[0] < site; });
-      for (; tip != faults.fan_tips.end() && (*tip)[0] == s; ++tip) {
-        const voronoi::VoronoiVertex& vertex = diagram.vertices[(*tip)[1]];
-        repair_at(vertex.location, 0.5 * vertex.distance);
-      }
-    } else if (faults.site[s] == SiteRepair::boundary_corners && !boundary_ends[s].empty()) {
-      for (const auto& [distance, point] : boundary_ends[s]) repair_at(diagram.point_locations[point], 0.5 * distance);
-    } else {
-      repair_far_from(s);
-    }
-  }
-  for (const auto& [point, apart] : crossings) repair_at(point, apart);
-  for (const Index s : largest_cells) repair_far_from(s);
+  return result;
+}
 
-  // The points kept: apart from the sites (the engine rejects two sites at
-  // one point; points 1e-9 of the diagonal apart are one point here), and
-  // from each other by a quarter of the sites' mean spacing (two arcs of one
-  // problem often end side by side, and two sites there would make a
-  // sliver) or the smaller of their own separations. Only points on one
-  // piece keep apart; a point where a site already is on another sheet
-  // (vertices cut apart, the two sides of a cut, pieces that touch) moves a
-  // step into its face instead. "Where a site is" reaches 1e-4 of that
-  // quarter spacing: a boundary site sits 2^-20 of its edge off a mesh
-  // vertex, and a point at the vertex would make an edge of that length.
+/// The point of `site`'s cell farthest from it, into `out`: its farthest
+/// mesh vertex, else the farther of its farthest Voronoi vertex and of the
+/// ends of its arcs on the mesh boundary.
+void add_farthest_point(const voronoi::VoronoiDiagram& diagram, const FarthestPoints& farthest, Index site,
+                        RepairPoints& out) {
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  if (farthest.vertex[site] >= 0 && diagram.field.distance[farthest.vertex[site]] > 0) {
+    out.add(SurfacePoint::at_vertex(farthest.vertex[site]), infinity);
+    return;
+  }
+  const Index voronoi_vertex = farthest.voronoi_vertex[site];
+  const auto& ends = farthest.boundary_ends[site];
+  const auto end = std::max_element(ends.begin(), ends.end());
+  if (end != ends.end() && (voronoi_vertex < 0 || end->first > diagram.vertices[voronoi_vertex].distance)) {
+    out.add(diagram.point_locations[end->second], infinity);
+  } else if (voronoi_vertex >= 0) {
+    out.add(diagram.vertices[voronoi_vertex].location, infinity);
+  }
+}
+
+// The points kept: apart from the sites (the engine rejects two sites at
+// one point; points 1e-9 of the diagonal apart are one point here), and
+// from each other by a quarter of the sites' mean spacing (two arcs of one
+// problem often end side by side, and two sites there would make a
+// sliver) or the smaller of their own separations. Only points on one
+// piece keep apart; a point where a site already is on another sheet
+// (vertices cut apart, the two sides of a cut, pieces that touch) moves a
+// step into its face instead. "Where a site is" reaches 1e-4 of that
+// quarter spacing: a boundary site sits 2^-20 of its edge off a mesh
+// vertex, and a point at the vertex would make an edge of that length.
+std::vector<SurfacePoint> points_kept_apart(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                                            const RepairPoints& candidates, UnionFind& components, double same_point) {
+  const voronoi::GeodesicField& field = diagram.field;
   const double apart = 0.25 * diagram.mean_spacing();
   const double crowded = std::max(same_point, 1e-4 * apart);
   PointHash<char> grid(crowded);  // the sites and the points kept
@@ -464,8 +486,8 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   };
   std::vector<Kept> kept;
   std::vector<SurfacePoint> result;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    SurfacePoint p = points[i];
+  for (std::size_t i = 0; i < candidates.points.size(); ++i) {
+    SurfacePoint p = candidates.points[i];
     if (p.kind == SurfacePoint::Kind::face && !has_positive_area(input, p.element)) {
       // Arcs cross faces without area, which take no site: their nearest corner.
       int corner = 0;
@@ -478,7 +500,7 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
       x = p.position(input);
     }
     const Index component = components.find(vertex_of(input, p));
-    const double own = std::min(apart, apart_at_most[i]);
+    const double own = std::min(apart, candidates.apart_at_most[i]);
     auto near = [&](const Kept& y) {
       return y.component == component && (x - y.position).norm() <= std::min(own, y.apart);
     };
@@ -488,6 +510,55 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
     result.push_back(p);
   }
   return result;
+}
+
+/// Points where new sites restore the closed-ball property, for the faults
+/// of the dual of `diagram` on `input` (`components`: the input's, by smallest vertex).
+std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                                       const Faults& faults, UnionFind& components) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const Index num_sites = static_cast<Index>(field.sites.size());
+  const double same_point = same_point_distance(input);
+  RepairPoints candidates;
+  const std::vector<std::uint8_t> repaired_between =
+      repair_between_cells(input, diagram, faults, same_point, candidates);
+  const std::vector<std::uint8_t> sharp = sharp_boundary_corners(input, field);
+  std::vector<std::uint8_t> holds_sharp_corner(static_cast<std::size_t>(num_sites), 0);
+  for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
+    if (sharp[v] && field.nearest_site[v] >= 0) holds_sharp_corner[field.nearest_site[v]] = 1;
+  }
+  const TopologyRepairs topology = topology_repairs(input, diagram, faults, holds_sharp_corner, repaired_between);
+  std::vector<std::uint8_t> refined(static_cast<std::size_t>(num_sites), 0);
+  for (Index s = 0; s < num_sites; ++s) refined[s] = faults.site[s] != SiteRepair::none;
+  for (const Index s : topology.largest_cells) refined[s] = 1;
+  const FarthestPoints farthest = farthest_points(input, diagram, refined, sharp);
+  // Several fans: the cell has several boundary cycles (a band round a tube
+  // or a spire) or reaches the mesh boundary in several places; like a
+  // closed boundary, each fan gets a site, at its farthest Voronoi vertex. A
+  // cell with no Voronoi vertex meets its neighbours only along arcs from
+  // the mesh boundary to the mesh boundary (across a strip or a flap
+  // narrower than the spacing, or cutting off a corner): a site at every end
+  // of them, so that the strip gets sites on both sides. Both keep apart by
+  // half their distance to the sites.
+  for (Index s = 0; s < num_sites; ++s) {
+    if (faults.site[s] == SiteRepair::none || repaired_between[s]) continue;
+    if (faults.site[s] == SiteRepair::each_fan) {
+      auto tip = std::lower_bound(faults.fan_tips.begin(), faults.fan_tips.end(), s,
+                                  [](const std::array<Index, 2>& t, Index site) { return t[0] < site; });
+      for (; tip != faults.fan_tips.end() && (*tip)[0] == s; ++tip) {
+        const voronoi::VoronoiVertex& vertex = diagram.vertices[(*tip)[1]];
+        candidates.add(vertex.location, 0.5 * vertex.distance);
+      }
+    } else if (faults.site[s] == SiteRepair::boundary_corners && !farthest.boundary_ends[s].empty()) {
+      for (const auto& [distance, point] : farthest.boundary_ends[s])
+        candidates.add(diagram.point_locations[point], 0.5 * distance);
+    } else {
+      add_farthest_point(diagram, farthest, s, candidates);
+    }
+  }
+  for (const auto& [point, apart] : topology.crossings) candidates.add(point, apart);
+  for (const Index s : topology.largest_cells) add_farthest_point(diagram, farthest, s, candidates);
+  return points_kept_apart(input, diagram, candidates, components, same_point);
 }
 
 }  // namespace
