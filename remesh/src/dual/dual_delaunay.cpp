@@ -204,6 +204,11 @@ struct Faults {
   std::vector<std::uint8_t> left_out;          ///< per site, 1 if dropped (redundant_sites)
   std::vector<Index> component_of_site;        ///< per site, its input component
   std::map<Index, std::vector<Index>> sites_of_component;
+
+  /// `repair` for site `s` (-1: none), where it is stronger than the one it has.
+  void mark(Index s, SiteRepair repair) {
+    if (s >= 0) site[s] = std::max(site[s], repair);
+  }
 };
 
 /// Candidate points for new sites, in the order found.
@@ -561,25 +566,25 @@ std::vector<SurfacePoint> repair_sites(const TriangleMesh& input, const voronoi:
   return points_kept_apart(input, diagram, candidates, components, same_point);
 }
 
-}  // namespace
-
-DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram, const DualOptions& options) {
-  const voronoi::GeodesicField& field = diagram.field;
-  const Index num_sites = static_cast<Index>(field.sites.size());
-  DualMesh dual;
-  DualCheck& check = dual.check;
-
-  // Vertices and triangles.
-  dual.mesh.vertices.resize(num_sites, 3);
-  for (Index s = 0; s < num_sites; ++s) dual.mesh.vertices.row(s) = field.sites[s].position(input).transpose();
+/// The dual's triangles: per Voronoi vertex, a fan over its sites, and
+/// with options.close_boundary_stretches those along the boundary; each with
+/// its Voronoi vertex (-1: along the boundary).
+struct DualTriangles {
   std::vector<std::array<Index, 3>> triangles;
+  std::vector<Index> voronoi_vertex_of;
+};
+
+DualTriangles dual_triangles(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                             const DualOptions& options, const VertexMatrix& vertices) {
+  DualTriangles dual;
+  std::vector<std::array<Index, 3>>& triangles = dual.triangles;
+  std::vector<Index>& voronoi_vertex_of = dual.voronoi_vertex_of;
   triangles.reserve(diagram.vertices.size());
-  std::vector<Index> voronoi_vertex_of;  // per triangle
   voronoi_vertex_of.reserve(diagram.vertices.size());
   // Each Voronoi vertex orders its sites as its face is oriented; faces at
   // odds with their neighbours (an input not oriented consistently) would
   // give triangles at odds with theirs.
-  const std::vector<std::uint8_t> reverse = faces_to_reverse(input, field);
+  const std::vector<std::uint8_t> reverse = faces_to_reverse(input, diagram.field);
   std::vector<Index> corners;
   for (std::size_t v = 0; v < diagram.vertices.size(); ++v) {
     const voronoi::VoronoiVertex& vertex = diagram.vertices[v];
@@ -597,44 +602,35 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     }
   }
   if (options.close_boundary_stretches) {
-    for (const auto& t : detail::boundary_triangles(input, diagram, triangles, dual.mesh.vertices)) {
+    for (const auto& t : detail::boundary_triangles(input, diagram, triangles, vertices)) {
       triangles.push_back(t);
       voronoi_vertex_of.push_back(-1);
     }
   }
-  dual.mesh.faces.resize(static_cast<Index>(triangles.size()), 3);
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (int c = 0; c < 3; ++c) dual.mesh.faces(static_cast<Index>(t), c) = triangles[t][c];
-  }
+  return dual;
+}
 
-  Faults faults;
-  faults.site.assign(static_cast<std::size_t>(num_sites), SiteRepair::none);
-  auto fault_at = [&](Index site, SiteRepair repair) {
-    if (site >= 0) faults.site[site] = std::max(faults.site[site], repair);
-  };
-
-  // Triangles: degenerate, duplicated; edges: at most two triangles, opposite.
-  const double diagonal = input.vertices.rows() > 0
-                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
-                              : 0.0;
-  std::vector<std::array<Index, 3>> sorted = triangles;
+/// Triangles degenerate or duplicated, and edges of more than two triangles
+/// or used twice the same way, into `check` and `faults`.
+void check_triangles_and_edges(std::span<const std::array<Index, 3>> triangles, const VertexMatrix& vertices,
+                               double diagonal, DualCheck& check, Faults& faults) {
+  std::vector<std::array<Index, 3>> sorted(triangles.begin(), triangles.end());
   for (auto& t : sorted) std::sort(t.begin(), t.end());
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i = 1; i < sorted.size(); ++i) {
     if (sorted[i] == sorted[i - 1]) {
       ++check.duplicate_triangles;
-      fault_at(sorted[i][0], SiteRepair::farthest_point);
+      faults.mark(sorted[i][0], SiteRepair::farthest_point);
     }
   }
   // Each undirected edge with its uses along (u < v) and against.
   std::vector<std::array<Index, 3>> edges;  // {min, max, 1 if used min -> max}
   edges.reserve(3 * triangles.size());
   for (const auto& t : triangles) {
-    const Eigen::Vector3d a = dual.mesh.vertices.row(t[0]), b = dual.mesh.vertices.row(t[1]),
-                          c = dual.mesh.vertices.row(t[2]);
+    const Eigen::Vector3d a = vertices.row(t[0]), b = vertices.row(t[1]), c = vertices.row(t[2]);
     if (!((b - a).cross(c - a).norm() > 1e-14 * diagonal * diagonal)) {
       ++check.degenerate_triangles;
-      fault_at(t[0], SiteRepair::farthest_point);
+      faults.mark(t[0], SiteRepair::farthest_point);
     }
     for (int k = 0; k < 3; ++k) {
       const Index u = t[k], v = t[(k + 1) % 3];
@@ -649,50 +645,61 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     const int uses = static_cast<int>(j - i);
     if (uses > 2 || along > 1 || uses - along > 1) {
       ++check.nonmanifold_edges;
-      fault_at(edges[i][0], SiteRepair::farthest_point);
-      fault_at(edges[i][1], SiteRepair::farthest_point);
+      faults.mark(edges[i][0], SiteRepair::farthest_point);
+      faults.mark(edges[i][1], SiteRepair::farthest_point);
     }
     i = j;
   }
+}
 
-  // Vertices: each site a corner, its triangles one fan. The manifold cut
-  // gives every fan (triangles joined through two-triangle edges) its own
-  // copy of the vertex: a site with copies is not a disk's centre.
-  std::vector<std::uint8_t> used(static_cast<std::size_t>(num_sites), 0);
-  for (const auto& t : triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+/// Sites in no triangle (`used` per site: in some), into `check` and
+/// `faults`; those that cut a sharp boundary corner off their one
+/// neighbour's cell are check.redundant_sites.
+void check_unused_sites(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram,
+                        std::span<const std::uint8_t> used, DualCheck& check, Faults& faults) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const auto num_sites = static_cast<Index>(field.sites.size());
   for (Index s = 0; s < num_sites; ++s) {
     if (!used[s]) {
       ++check.unused_sites;
-      fault_at(s, SiteRepair::boundary_corners);
+      faults.mark(s, SiteRepair::boundary_corners);
     }
   }
-  if (check.unused_sites > 0) {
-    // A cell whose whole boundary is one arc from the mesh boundary to the
-    // mesh boundary, holding a boundary corner sharper than a right angle,
-    // cuts the corner off its one neighbour's cell. No site added near it
-    // gives it a Voronoi vertex (its neighbours would have to be almost
-    // equally far on both sides of the corner), and each try puts the next
-    // site closer to the tip; without its site, the neighbour's cell takes
-    // the corner in.
-    std::vector<int> arcs_of(static_cast<std::size_t>(num_sites), 0);
-    std::vector<std::uint8_t> cut_off(static_cast<std::size_t>(num_sites), 0);
-    for (const voronoi::VoronoiArc& arc : diagram.arcs) {
-      for (const Index s : {arc.left_site, arc.right_site}) {
-        if (used[s]) continue;
-        ++arcs_of[s];
-        cut_off[s] = !arc.closed && arc.start_vertex < 0 && arc.end_vertex < 0;
-      }
-    }
-    const std::vector<std::uint8_t> sharp = sharp_boundary_corners(input, field);
-    std::vector<std::uint8_t> at_sharp_corner(static_cast<std::size_t>(num_sites), 0);
-    for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
-      if (sharp[v] && field.nearest_site[v] >= 0) at_sharp_corner[field.nearest_site[v]] = 1;
-    }
-    for (Index s = 0; s < num_sites; ++s) {
-      if (!used[s] && arcs_of[s] == 1 && cut_off[s] && at_sharp_corner[s]) check.redundant_sites.push_back(s);
+  if (check.unused_sites == 0) return;
+  // A cell whose whole boundary is one arc from the mesh boundary to the
+  // mesh boundary, holding a boundary corner sharper than a right angle,
+  // cuts the corner off its one neighbour's cell. No site added near it
+  // gives it a Voronoi vertex (its neighbours would have to be almost
+  // equally far on both sides of the corner), and each try puts the next
+  // site closer to the tip; without its site, the neighbour's cell takes
+  // the corner in.
+  std::vector<int> arcs_of(static_cast<std::size_t>(num_sites), 0);
+  std::vector<std::uint8_t> cut_off(static_cast<std::size_t>(num_sites), 0);
+  for (const voronoi::VoronoiArc& arc : diagram.arcs) {
+    for (const Index s : {arc.left_site, arc.right_site}) {
+      if (used[s]) continue;
+      ++arcs_of[s];
+      cut_off[s] = !arc.closed && arc.start_vertex < 0 && arc.end_vertex < 0;
     }
   }
-  const ManifoldCut fans = cut_to_manifold(dual.mesh, {.disable_duplicate_faces = false, .min_component_faces = 0});
+  const std::vector<std::uint8_t> sharp = sharp_boundary_corners(input, field);
+  std::vector<std::uint8_t> at_sharp_corner(static_cast<std::size_t>(num_sites), 0);
+  for (Index v = 0; v < static_cast<Index>(field.nearest_site.size()); ++v) {
+    if (sharp[v] && field.nearest_site[v] >= 0) at_sharp_corner[field.nearest_site[v]] = 1;
+  }
+  for (Index s = 0; s < num_sites; ++s) {
+    if (!used[s] && arcs_of[s] == 1 && cut_off[s] && at_sharp_corner[s]) check.redundant_sites.push_back(s);
+  }
+}
+
+/// Sites whose triangles form several fans (the manifold cut gives every
+/// fan its own copy of the vertex: a site with copies is not a disk's
+/// centre), into `check` and `faults`, with each fan's farthest Voronoi
+/// vertex (faults.fan_tips).
+void check_fans(const voronoi::VoronoiDiagram& diagram, const TriangleMesh& dual,
+                std::span<const Index> voronoi_vertex_of, DualCheck& check, Faults& faults) {
+  const auto num_sites = static_cast<Index>(diagram.field.sites.size());
+  const ManifoldCut fans = cut_to_manifold(dual, {.disable_duplicate_faces = false, .min_component_faces = 0});
   std::vector<std::uint8_t> several_fans(static_cast<std::size_t>(num_sites), 0);
   for (std::size_t copy = static_cast<std::size_t>(num_sites); copy < fans.original_vertex.size(); ++copy) {
     several_fans[fans.original_vertex[copy]] = 1;
@@ -700,46 +707,70 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   for (Index s = 0; s < num_sites; ++s) {
     if (!several_fans[s]) continue;
     ++check.nonmanifold_vertices;
-    fault_at(s, SiteRepair::each_fan);
+    faults.mark(s, SiteRepair::each_fan);
   }
-  if (check.nonmanifold_vertices > 0) {
-    // Per fan (a vertex of the cut dual) of such a site: its farthest Voronoi vertex.
-    std::vector<Index> farthest(fans.original_vertex.size(), -1);
-    for (Index t = 0; t < fans.mesh.num_faces(); ++t) {
-      const Index v = voronoi_vertex_of[t];
-      if (v < 0) continue;  // a triangle along the boundary
-      for (int c = 0; c < 3; ++c) {
-        Index& tip = farthest[fans.mesh.faces(t, c)];
-        if (several_fans[fans.original_vertex[fans.mesh.faces(t, c)]] &&
-            (tip < 0 || diagram.vertices[v].distance > diagram.vertices[tip].distance)) {
-          tip = v;
-        }
+  if (check.nonmanifold_vertices == 0) return;
+  // Per fan (a vertex of the cut dual) of such a site: its farthest Voronoi vertex.
+  std::vector<Index> farthest(fans.original_vertex.size(), -1);
+  for (Index t = 0; t < fans.mesh.num_faces(); ++t) {
+    const Index v = voronoi_vertex_of[t];
+    if (v < 0) continue;  // a triangle along the boundary
+    for (int c = 0; c < 3; ++c) {
+      Index& tip = farthest[fans.mesh.faces(t, c)];
+      if (several_fans[fans.original_vertex[fans.mesh.faces(t, c)]] &&
+          (tip < 0 || diagram.vertices[v].distance > diagram.vertices[tip].distance)) {
+        tip = v;
       }
     }
-    for (std::size_t copy = 0; copy < farthest.size(); ++copy) {
-      if (farthest[copy] >= 0) faults.fan_tips.push_back({fans.original_vertex[copy], farthest[copy]});
-    }
-    std::stable_sort(faults.fan_tips.begin(), faults.fan_tips.end(),
-                     [](const auto& a, const auto& b) { return a[0] < b[0]; });
   }
+  for (std::size_t copy = 0; copy < farthest.size(); ++copy) {
+    if (farthest[copy] >= 0) faults.fan_tips.push_back({fans.original_vertex[copy], farthest[copy]});
+  }
+  std::stable_sort(faults.fan_tips.begin(), faults.fan_tips.end(),
+                   [](const auto& a, const auto& b) { return a[0] < b[0]; });
+}
 
-  // Arcs: two cells along one arc, every boundary ending at vertices.
-  for (std::size_t p = 0; p < diagram.adjacency.size(); ++p) {
-    if (diagram.adjacency[p].arc_count <= 1) continue;
-    ++check.split_arcs;
-    faults.split_pairs.push_back(static_cast<Index>(p));
+/// What a piece of the input (`component`: its smallest vertex; `expected`
+/// its counts) holding `sites` became in the dual, for the message: where to
+/// look (a scrap far below the sites' spacing may need to go; a large piece
+/// needs more sites), what the piece is and what the remesh made of it.
+std::string mismatch_text(Index component, const ComponentCounts& expected, std::span<const Index> sites,
+                          const MeshTopology& dual_topology) {
+  auto loops = [](std::int64_t n) { return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops"); };
+  std::vector<Index> pieces;  // of the remesh, holding the piece's sites
+  for (const Index s : sites) {
+    if (dual_topology.vertex_component[s] >= 0) pieces.push_back(dual_topology.vertex_component[s]);
   }
-  for (std::size_t a = 0; a < diagram.arcs.size(); ++a) {
-    if (!diagram.arcs[a].closed) continue;
-    ++check.closed_arcs;
-    faults.closed_arcs.push_back(static_cast<Index>(a));
+  std::sort(pieces.begin(), pieces.end());
+  pieces.erase(std::unique(pieces.begin(), pieces.end()), pieces.end());
+  ComponentCounts made;
+  for (const Index p : pieces) {
+    made.vertices += dual_topology.components[p].vertices;
+    made.edges += dual_topology.components[p].edges;
+    made.faces += dual_topology.components[p].faces;
+    made.boundary_loops += dual_topology.components[p].boundary_loops;
   }
+  const std::string remeshed =
+      pieces.empty() ? "no triangle"
+                     : (pieces.size() > 1 ? std::to_string(pieces.size()) + " pieces, together " : std::string()) +
+                           "Euler characteristic " + std::to_string(made.euler_characteristic()) + ", " +
+                           loops(made.boundary_loops);
+  return " (the first: the piece with input vertex " + std::to_string(component) + ", " +
+         std::to_string(expected.faces) + " faces, " + std::to_string(sites.size()) + " sites, Euler characteristic " +
+         std::to_string(expected.euler_characteristic()) + ", " + loops(expected.boundary_loops) +
+         "; in the remesh: " + remeshed + ")";
+}
 
-  // Topology per component: the input's (faces with a repeated index aside)
-  // against the dual's, matched through the sites.
-  UnionFind input_components(static_cast<std::size_t>(input.num_vertices()));
+/// Topology per component: the input's (faces with a repeated index aside,
+/// its components into `input_components`) against the dual's, matched
+/// through the sites, into `check` and `faults`. Returns the first
+/// mismatch's mismatch_text ("" where none).
+std::string check_topology(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram, const TriangleMesh& dual,
+                           UnionFind& input_components, DualCheck& check, Faults& faults) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const auto num_sites = static_cast<Index>(field.sites.size());
   const auto input_topology = field_topology(input, field, input_components);
-  const MeshTopology dual_topology = build_mesh_topology(dual.mesh);
+  const MeshTopology dual_topology = build_mesh_topology(dual);
   std::string first_mismatch;
   faults.component_of_site.resize(static_cast<std::size_t>(num_sites));
   for (Index s = 0; s < num_sites; ++s) {
@@ -755,36 +786,54 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
     same = same && dual_topology.components[dual_component].euler_characteristic() == expected.euler_characteristic() &&
            dual_topology.components[dual_component].boundary_loops == expected.boundary_loops;
     if (same) continue;
-    if (check.topology_mismatches++ == 0) {
-      // Named in the message: where to look (a scrap far below the sites'
-      // spacing may need to go; a large piece needs more sites), what the
-      // piece is and what the remesh made of it.
-      auto loops = [](std::int64_t n) { return std::to_string(n) + (n == 1 ? " boundary loop" : " boundary loops"); };
-      std::vector<Index> pieces;  // of the remesh, holding the piece's sites
-      for (const Index s : sites) {
-        if (dual_topology.vertex_component[s] >= 0) pieces.push_back(dual_topology.vertex_component[s]);
-      }
-      std::sort(pieces.begin(), pieces.end());
-      pieces.erase(std::unique(pieces.begin(), pieces.end()), pieces.end());
-      ComponentCounts made;
-      for (const Index p : pieces) {
-        made.vertices += dual_topology.components[p].vertices;
-        made.edges += dual_topology.components[p].edges;
-        made.faces += dual_topology.components[p].faces;
-        made.boundary_loops += dual_topology.components[p].boundary_loops;
-      }
-      const std::string remeshed =
-          pieces.empty() ? "no triangle"
-                         : (pieces.size() > 1 ? std::to_string(pieces.size()) + " pieces, together " : std::string()) +
-                               "Euler characteristic " + std::to_string(made.euler_characteristic()) + ", " +
-                               loops(made.boundary_loops);
-      first_mismatch = " (the first: the piece with input vertex " + std::to_string(component) + ", " +
-                       std::to_string(expected.faces) + " faces, " + std::to_string(sites.size()) +
-                       " sites, Euler characteristic " + std::to_string(expected.euler_characteristic()) + ", " +
-                       loops(expected.boundary_loops) + "; in the remesh: " + remeshed + ")";
-    }
+    if (check.topology_mismatches++ == 0) first_mismatch = mismatch_text(component, expected, sites, dual_topology);
     faults.mismatched.push_back(component);
   }
+  return first_mismatch;
+}
+
+}  // namespace
+
+DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram& diagram, const DualOptions& options) {
+  const voronoi::GeodesicField& field = diagram.field;
+  const Index num_sites = static_cast<Index>(field.sites.size());
+  DualMesh dual;
+  DualCheck& check = dual.check;
+
+  // Vertices and triangles.
+  dual.mesh.vertices.resize(num_sites, 3);
+  for (Index s = 0; s < num_sites; ++s) dual.mesh.vertices.row(s) = field.sites[s].position(input).transpose();
+  const DualTriangles triangles = dual_triangles(input, diagram, options, dual.mesh.vertices);
+  dual.mesh.faces.resize(static_cast<Index>(triangles.triangles.size()), 3);
+  for (std::size_t t = 0; t < triangles.triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) dual.mesh.faces(static_cast<Index>(t), c) = triangles.triangles[t][c];
+  }
+
+  Faults faults;
+  faults.site.assign(static_cast<std::size_t>(num_sites), SiteRepair::none);
+  // Triangles: degenerate, duplicated; edges: at most two triangles, opposite.
+  const double diagonal = input.vertices.rows() > 0
+                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
+                              : 0.0;
+  check_triangles_and_edges(triangles.triangles, dual.mesh.vertices, diagonal, check, faults);
+  // Vertices: each site a corner, its triangles one fan.
+  std::vector<std::uint8_t> used(static_cast<std::size_t>(num_sites), 0);
+  for (const auto& t : triangles.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  check_unused_sites(input, diagram, used, check, faults);
+  check_fans(diagram, dual.mesh, triangles.voronoi_vertex_of, check, faults);
+  // Arcs: two cells along one arc, every boundary ending at vertices.
+  for (std::size_t p = 0; p < diagram.adjacency.size(); ++p) {
+    if (diagram.adjacency[p].arc_count <= 1) continue;
+    ++check.split_arcs;
+    faults.split_pairs.push_back(static_cast<Index>(p));
+  }
+  for (std::size_t a = 0; a < diagram.arcs.size(); ++a) {
+    if (!diagram.arcs[a].closed) continue;
+    ++check.closed_arcs;
+    faults.closed_arcs.push_back(static_cast<Index>(a));
+  }
+  UnionFind input_components(static_cast<std::size_t>(input.num_vertices()));
+  const std::string first_mismatch = check_topology(input, diagram, dual.mesh, input_components, check, faults);
 
   auto note = [&](std::int64_t count, const std::string& what) {
     if (count > 0) check.problems.push_back(std::to_string(count) + " " + what);
