@@ -37,6 +37,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -580,52 +581,43 @@ SharpChains sharp_chains(const TriangleMesh& mesh, const MeshTopology& topology,
   return chains;
 }
 
-/// The feature recall of checked meshes and options, within the progress
-/// phase [from, from + share). `diagonal`: the reference's (referenced
-/// vertices).
-FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh& candidate,
-                               const QualityOptions& options, double diagonal, double from, double share,
-                               ProgressCheck& progress) {
-  FeatureRecall recall;
-  recall.sharp_angle_deg = options.sharp_angle_deg;
-  recall.tolerance = options.feature_tolerance_pct / 100.0 * diagonal;
-  progress.phase(from, 0.3 * share);
-  progress.check(0.0);
-  // The sharp edges' end points, and whether each lies on a long crease;
-  // the topology is freed before the tree is built.
-  std::vector<std::array<Eigen::Vector3d, 2>> sharp;
+/// The reference's sharp edges at options.sharp_angle_deg (their end
+/// points), and per edge whether it lies on a crease at least
+/// options.long_crease_length long; the chain counts go into `recall`.
+struct ReferenceSharpEdges {
+  std::vector<std::array<Eigen::Vector3d, 2>> ends;
   std::vector<char> on_long_crease;
-  {
-    const MeshTopology topology = build_mesh_topology(reference);
-    progress.check(0.7);
-    const std::vector<Index> edges = sharp_edges(reference, topology, options.sharp_angle_deg);
-    for (const Index e : edges) {
-      const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
-      sharp.push_back({reference.vertices.row(a).transpose(), reference.vertices.row(b).transpose()});
-    }
-    const SharpChains chains = sharp_chains(reference, topology, edges);
-    recall.chains = static_cast<std::int64_t>(chains.length.size());
-    on_long_crease.assign(edges.size(), 0);
-    if (options.long_crease_length > 0.0) {
-      recall.long_crease_length = options.long_crease_length;
-      for (const double length : chains.length) recall.long_chains += length >= options.long_crease_length;
-      for (std::size_t i = 0; i < edges.size(); ++i) {
-        on_long_crease[i] = chains.length[chains.chain_of_edge[i]] >= options.long_crease_length;
-        recall.long_edges += on_long_crease[i];
-      }
-    }
-  }
-  recall.edges = static_cast<std::int64_t>(sharp.size());
-  progress.check(1.0);
-  if (sharp.empty()) {
-    progress.phase(from, share);
-    progress.check(1.0);
-    return recall;
-  }
+};
 
-  // Samples: both ends of each sharp edge and points at most a tenth of the
-  // tolerance apart between them.
-  const double spacing = recall.tolerance / 10.0;
+ReferenceSharpEdges reference_sharp_edges(const TriangleMesh& reference, const QualityOptions& options,
+                                          FeatureRecall& recall, ProgressCheck& progress) {
+  ReferenceSharpEdges sharp;
+  const MeshTopology topology = build_mesh_topology(reference);
+  progress.check(0.7);
+  const std::vector<Index> edges = sharp_edges(reference, topology, options.sharp_angle_deg);
+  for (const Index e : edges) {
+    const auto [a, b] = topology.edge_vertices[static_cast<std::size_t>(e)];
+    sharp.ends.push_back({reference.vertices.row(a).transpose(), reference.vertices.row(b).transpose()});
+  }
+  const SharpChains chains = sharp_chains(reference, topology, edges);
+  recall.chains = static_cast<std::int64_t>(chains.length.size());
+  sharp.on_long_crease.assign(edges.size(), 0);
+  if (options.long_crease_length > 0.0) {
+    recall.long_crease_length = options.long_crease_length;
+    for (const double length : chains.length) recall.long_chains += length >= options.long_crease_length;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      sharp.on_long_crease[i] = chains.length[chains.chain_of_edge[i]] >= options.long_crease_length;
+      recall.long_edges += sharp.on_long_crease[i];
+    }
+  }
+  return sharp;
+}
+
+/// Samples along the sharp edges: both ends of each and points at most
+/// `spacing` apart between them. Returns the pieces per edge, with the
+/// samples in all in `samples`. \throw Error beyond max_feature_samples.
+std::vector<std::int64_t> sample_pieces(std::span<const std::array<Eigen::Vector3d, 2>> sharp, double spacing,
+                                        const QualityOptions& options, std::int64_t& samples) {
   std::vector<std::int64_t> pieces(sharp.size());
   double total_pieces = 0.0;
   for (std::size_t i = 0; i < sharp.size(); ++i) {
@@ -639,7 +631,32 @@ FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh
     }
     pieces[i] = std::max<std::int64_t>(static_cast<std::int64_t>(wanted), 1);
   }
-  recall.samples = static_cast<std::int64_t>(total_pieces);
+  samples = static_cast<std::int64_t>(total_pieces);
+  return pieces;
+}
+
+/// The feature recall of checked meshes and options, within the progress
+/// phase [from, from + share). `diagonal`: the reference's (referenced
+/// vertices).
+FeatureRecall measure_features(const TriangleMesh& reference, const TriangleMesh& candidate,
+                               const QualityOptions& options, double diagonal, double from, double share,
+                               ProgressCheck& progress) {
+  FeatureRecall recall;
+  recall.sharp_angle_deg = options.sharp_angle_deg;
+  recall.tolerance = options.feature_tolerance_pct / 100.0 * diagonal;
+  progress.phase(from, 0.3 * share);
+  progress.check(0.0);
+  // The topology is freed before the tree is built.
+  const auto [sharp, on_long_crease] = reference_sharp_edges(reference, options, recall, progress);
+  recall.edges = static_cast<std::int64_t>(sharp.size());
+  progress.check(1.0);
+  if (sharp.empty()) {
+    progress.phase(from, share);
+    progress.check(1.0);
+    return recall;
+  }
+
+  const std::vector<std::int64_t> pieces = sample_pieces(sharp, recall.tolerance / 10.0, options, recall.samples);
 
   progress.phase(from + 0.3 * share, 0.2 * share);
   progress.check(0.0);
