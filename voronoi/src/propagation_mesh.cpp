@@ -48,12 +48,14 @@ void PropagationMesh::faces_around(Index v, std::vector<Index>& faces) const {
   }
 }
 
-PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
-  PropagationMesh pm;
+namespace {
+
+/// The edges of `mesh`'s included faces into `pm` (edge_faces, the faces'
+/// edge records, num_included_faces): its half-edges sorted by their
+/// undirected vertex pair, two of a pair one edge. Returns their lengths.
+std::vector<double> build_edges(const TriangleMesh& mesh, PropagationMesh& pm) {
   const Index num_vertices = mesh.num_vertices();
   const Index num_faces = mesh.num_faces();
-
-  // Half-edges of the included faces, sorted by their undirected vertex pair.
   struct HalfEdge {
     std::uint64_t key;
     Index face;
@@ -122,84 +124,85 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     }
     i = j;
   }
-  half_edges.clear();
-  half_edges.shrink_to_fit();
+  return lengths;
+}
 
-  // Edges renumbered in the order the faces first use them: the faces are in
-  // locality order, and propagation reads the edges of nearby faces together
-  // (their windows, lengths and faces), so their data shares cache lines.
-  {
-    constexpr Index kUnnumbered = -1;
-    std::vector<Index> new_edge(pm.edge_faces.size(), kUnnumbered);
-    Index next = 0;
-    for (FaceRecord& record : pm.face_records) {
-      if (!record.included()) continue;
-      for (int k = 0; k < 3; ++k) {
-        Index& id = new_edge[record.edge(k)];
-        if (id == kUnnumbered) id = next++;
-        record.edge_bits[k] = static_cast<std::uint32_t>(id) | (record.edge_bits[k] & ~FaceRecord::kEdgeMask);
-      }
+/// Edges renumbered in the order the faces first use them: the faces are in
+/// locality order, and propagation reads the edges of nearby faces together
+/// (their windows, lengths and faces), so their data shares cache lines.
+void renumber_edges_by_first_use(PropagationMesh& pm, const std::vector<double>& lengths) {
+  constexpr Index kUnnumbered = -1;
+  std::vector<Index> new_edge(pm.edge_faces.size(), kUnnumbered);
+  Index next = 0;
+  for (FaceRecord& record : pm.face_records) {
+    if (!record.included()) continue;
+    for (int k = 0; k < 3; ++k) {
+      Index& id = new_edge[record.edge(k)];
+      if (id == kUnnumbered) id = next++;
+      record.edge_bits[k] = static_cast<std::uint32_t>(id) | (record.edge_bits[k] & ~FaceRecord::kEdgeMask);
     }
-    std::vector<std::array<Index, 2>> edge_faces(pm.edge_faces.size());
-    std::vector<double> edge_lengths(lengths.size());
-    for (std::size_t e = 0; e < new_edge.size(); ++e) {
-      edge_faces[new_edge[e]] = pm.edge_faces[e];
-      edge_lengths[new_edge[e]] = lengths[e];
-    }
-    pm.edge_faces = std::move(edge_faces);
-    pm.edge_length_storage = std::move(edge_lengths);
-    pm.edge_lengths = pm.edge_length_storage;
   }
+  std::vector<std::array<Index, 2>> edge_faces(pm.edge_faces.size());
+  std::vector<double> edge_lengths(lengths.size());
+  for (std::size_t e = 0; e < new_edge.size(); ++e) {
+    edge_faces[new_edge[e]] = pm.edge_faces[e];
+    edge_lengths[new_edge[e]] = lengths[e];
+  }
+  pm.edge_faces = std::move(edge_faces);
+  pm.edge_length_storage = std::move(edge_lengths);
+  pm.edge_lengths = pm.edge_length_storage;
+}
 
+/// One face per vertex (its first), and a start for each further fan of a
+/// vertex where several fans meet, found with a vertex -> faces table that
+/// goes again once they are known.
+void build_vertex_fans(const TriangleMesh& mesh, PropagationMesh& pm) {
+  const Index num_vertices = mesh.num_vertices();
+  const Index num_faces = mesh.num_faces();
+  std::vector<Index> begin(static_cast<std::size_t>(num_vertices) + 1, 0);
   for (Index f = 0; f < num_faces; ++f) {
     if (!pm.included(f)) continue;
-    for (int k = 0; k < 3; ++k) pm.face_records[f].vertex[k] = mesh.faces(f, k);
+    for (int k = 0; k < 3; ++k) ++begin[mesh.faces(f, k) + 1];
   }
-
-  // One face per vertex (its first), and a start for each further fan of a
-  // vertex where several fans meet, found with a vertex -> faces table that
-  // goes again once they are known.
+  for (Index v = 0; v < num_vertices; ++v) begin[v + 1] += begin[v];
+  std::vector<Index> faces(static_cast<std::size_t>(begin.back()));
   {
-    std::vector<Index> begin(static_cast<std::size_t>(num_vertices) + 1, 0);
+    std::vector<Index> fill(begin.begin(), begin.end() - 1);
     for (Index f = 0; f < num_faces; ++f) {
       if (!pm.included(f)) continue;
-      for (int k = 0; k < 3; ++k) ++begin[mesh.faces(f, k) + 1];
-    }
-    for (Index v = 0; v < num_vertices; ++v) begin[v + 1] += begin[v];
-    std::vector<Index> faces(static_cast<std::size_t>(begin.back()));
-    {
-      std::vector<Index> fill(begin.begin(), begin.end() - 1);
-      for (Index f = 0; f < num_faces; ++f) {
-        if (!pm.included(f)) continue;
-        for (int k = 0; k < 3; ++k) faces[fill[mesh.faces(f, k)]++] = f;
-      }
-    }
-    pm.vertex_face.assign(static_cast<std::size_t>(num_vertices), -1);
-    pm.fan_offsets.assign(static_cast<std::size_t>(num_vertices), {});
-    for (Index v = 0; v < num_vertices; ++v) {
-      const Index count = begin[v + 1] - begin[v];
-      if (count == 0) continue;
-      std::array<std::uint8_t, PropagationMesh::kFanOffsets>& offsets = pm.fan_offsets[v];
-      const Index base = faces[begin[v]];
-      if (count - 1 > PropagationMesh::kFanOffsets || faces[begin[v + 1] - 1] - base > PropagationMesh::kFanMaxOffset) {
-        offsets[0] = PropagationMesh::kFanWalked;
-        continue;
-      }
-      for (Index i = 1; i < count; ++i) offsets[i - 1] = static_cast<std::uint8_t>(faces[begin[v] + i] - base);
-    }
-    std::vector<Index> reached_from(static_cast<std::size_t>(num_faces), -1);  // the vertex whose fans reached the face
-    for (Index v = 0; v < num_vertices; ++v) {
-      if (begin[v] == begin[v + 1]) continue;
-      pm.vertex_face[v] = faces[begin[v]];
-      for (Index i = begin[v]; i < begin[v + 1]; ++i) {
-        const Index start = faces[i];
-        if (reached_from[start] == v) continue;
-        if (i > begin[v]) pm.extra_fans.push_back({v, start});
-        pm.walk_fan(v, start, [&](Index f) { reached_from[f] = v; });
-      }
+      for (int k = 0; k < 3; ++k) faces[fill[mesh.faces(f, k)]++] = f;
     }
   }
+  pm.vertex_face.assign(static_cast<std::size_t>(num_vertices), -1);
+  pm.fan_offsets.assign(static_cast<std::size_t>(num_vertices), {});
+  for (Index v = 0; v < num_vertices; ++v) {
+    const Index count = begin[v + 1] - begin[v];
+    if (count == 0) continue;
+    std::array<std::uint8_t, PropagationMesh::kFanOffsets>& offsets = pm.fan_offsets[v];
+    const Index base = faces[begin[v]];
+    if (count - 1 > PropagationMesh::kFanOffsets || faces[begin[v + 1] - 1] - base > PropagationMesh::kFanMaxOffset) {
+      offsets[0] = PropagationMesh::kFanWalked;
+      continue;
+    }
+    for (Index i = 1; i < count; ++i) offsets[i - 1] = static_cast<std::uint8_t>(faces[begin[v] + i] - base);
+  }
+  std::vector<Index> reached_from(static_cast<std::size_t>(num_faces), -1);  // the vertex whose fans reached the face
+  for (Index v = 0; v < num_vertices; ++v) {
+    if (begin[v] == begin[v + 1]) continue;
+    pm.vertex_face[v] = faces[begin[v]];
+    for (Index i = begin[v]; i < begin[v + 1]; ++i) {
+      const Index start = faces[i];
+      if (reached_from[start] == v) continue;
+      if (i > begin[v]) pm.extra_fans.push_back({v, start});
+      pm.walk_fan(v, start, [&](Index f) { reached_from[f] = v; });
+    }
+  }
+}
 
+/// The pseudo-sources of `pm`: vertices where shortest paths may bend.
+void mark_pseudo_sources(const TriangleMesh& mesh, PropagationMesh& pm) {
+  const Index num_vertices = mesh.num_vertices();
+  const Index num_faces = mesh.num_faces();
   // Longest edge per face; angle sums; boundary vertices.
   std::vector<double> angle_sum(num_vertices, 0.0);
   std::vector<std::uint8_t> on_boundary(num_vertices, 0);
@@ -227,6 +230,20 @@ PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
     const bool saddle = angle_sum[v] > 2 * std::numbers::pi - kSaddleTolerance;
     pm.is_pseudo_source[v] |= static_cast<std::uint8_t>(saddle || on_boundary[v]);
   }
+}
+
+}  // namespace
+
+PropagationMesh build_propagation_mesh(const TriangleMesh& mesh) {
+  PropagationMesh pm;
+  const std::vector<double> lengths = build_edges(mesh, pm);
+  renumber_edges_by_first_use(pm, lengths);
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (!pm.included(f)) continue;
+    for (int k = 0; k < 3; ++k) pm.face_records[f].vertex[k] = mesh.faces(f, k);
+  }
+  build_vertex_fans(mesh, pm);
+  mark_pseudo_sources(mesh, pm);
   return pm;
 }
 
