@@ -458,7 +458,12 @@ void FaceBoundaryTracer::trace(const SubTriangle& triangle, int depth) {
       {owner, std::max(triangle_area(triangle.corner), 0.0), moments_.polygon(owner, triangle.corner, envelope_)});
 }
 
-bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
+std::span<const Eigen::Vector2d> FaceBoundaryTracer::piece_span(std::size_t piece) const {
+  return {piece_points_.data() + piece_offsets_[piece],
+          static_cast<std::size_t>(piece_offsets_[piece + 1] - piece_offsets_[piece])};
+}
+
+void FaceBoundaryTracer::peel_caps() {
   // 1. Caps: a crossing into site X followed by one back out of it, where X
   //    owns no other stretch of the boundary, are joined by one bisector arc
   //    that cuts X's part off (peeled repeatedly, so nested caps work too).
@@ -483,6 +488,9 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
       peeled = true;
     }
   }
+}
+
+bool FaceBoundaryTracer::at_most_one_vertex(bool at_limit) const {
   // 2. What is left must be empty or one Voronoi vertex: every stretch a
   //    different site (more than three only at the refinement limit).
   const std::size_t m = remaining_.size();
@@ -492,8 +500,12 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
       if (cycle_[remaining_[r]].crossing.to == cycle_[remaining_[q]].crossing.to) return false;
     }
   }
-  if (m > 3 && !at_limit) return false;
+  return m <= 3 || at_limit;
+}
 
+bool FaceBoundaryTracer::trace_pieces(const SubTriangle& triangle, bool at_limit, Eigen::Vector2d& vertex,
+                                      double& spread) {
+  const std::size_t m = remaining_.size();
   // 3. Trace everything into scratch space, checking that no third site is
   //    nearer along the way; nothing is added to the graph before all passes.
   trace_valid_ = true;
@@ -504,8 +516,6 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
     trace_bisector(into.point, cycle_[j].crossing.point, into.from, into.to, triangle, 0);
     piece_offsets_.push_back(static_cast<Index>(piece_points_.size()));
   }
-  Eigen::Vector2d vertex = Eigen::Vector2d::Zero();
-  double spread = 0;
   if (m > 0) {
     star_sites_.clear();
     Eigen::Vector2d start = Eigen::Vector2d::Zero();
@@ -529,14 +539,12 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
       piece_offsets_.push_back(static_cast<Index>(piece_points_.size()));
     }
   }
-  if (!trace_valid_ && !at_limit) return false;
+  return trace_valid_ || at_limit;
+}
 
+void FaceBoundaryTracer::commit_pieces(const Eigen::Vector2d& vertex, double spread) {
+  const std::size_t m = remaining_.size();
   // 4. Commit: the vertex and the pieces.
-  auto piece_span = [&](std::size_t piece) {
-    return std::span<const Eigen::Vector2d>(
-        piece_points_.data() + piece_offsets_[piece],
-        static_cast<std::size_t>(piece_offsets_[piece + 1] - piece_offsets_[piece]));
-  };
   for (std::size_t c = 0; c < caps_.size(); ++c) {
     const Crossing& into = cycle_[caps_[c][0]].crossing;
     const Crossing& out_of = cycle_[caps_[c][1]].crossing;
@@ -554,15 +562,18 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
       commit_piece(c.node, node, c.from, c.to, c.point, vertex, piece_span(caps_.size() + r));
     }
   }
+}
 
+void FaceBoundaryTracer::add_parts(const SubTriangle& triangle, const Eigen::Vector2d& vertex) {
   // 5. Every site's part of the triangle, walked as a polygon with the part
   //    on the left: along the triangle's boundary to the crossing where the
   //    part ends, then through the inside along the piece that starts there
   //    (a cap's arc, or a star piece to the vertex and the previous star
   //    piece back out) to the crossing where the boundary is the part's again.
+  const std::size_t n = cycle_.size(), m = remaining_.size();
   if (n == 0) {
     add_part(triangle.site[0], triangle.corner);
-    return true;
+    return;
   }
   // Where the inside path from crossing k leads: its far crossing, and how.
   std::vector<std::array<Index, 3>>& jump = jump_;  // {to crossing, piece, forward (1) / reverse (0) / star (2)}
@@ -610,6 +621,16 @@ bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
     }
     add_part(site, polygon_);
   }
+}
+
+bool FaceBoundaryTracer::resolve(const SubTriangle& triangle, bool at_limit) {
+  peel_caps();
+  if (!at_most_one_vertex(at_limit)) return false;
+  Eigen::Vector2d vertex = Eigen::Vector2d::Zero();
+  double spread = 0;
+  if (!trace_pieces(triangle, at_limit, vertex, spread)) return false;
+  commit_pieces(vertex, spread);
+  add_parts(triangle, vertex);
   return true;
 }
 

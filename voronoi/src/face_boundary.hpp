@@ -222,6 +222,21 @@ class FaceBoundaryTracer {
   /// entered and left again, cut off by one arc) and at most one Voronoi
   /// vertex. False, with nothing added, if it needs refining.
   bool resolve(const SubTriangle& triangle, bool at_limit);
+  // resolve's steps, on the crossings of the sub-triangle's boundary (cycle_):
+  /// 1. Caps peeled off (caps_), the rest in remaining_.
+  void peel_caps();
+  /// 2. Whether the rest is empty or one Voronoi vertex (more than three
+  /// sites there only at the refinement limit).
+  bool at_most_one_vertex(bool at_limit) const;
+  /// 3. The pieces traced into scratch space (piece_points_), and the
+  /// vertex solved for; false where the sub-triangle needs refining.
+  bool trace_pieces(const SubTriangle& triangle, bool at_limit, Eigen::Vector2d& vertex, double& spread);
+  /// 4. The vertex and the pieces added to the graph.
+  void commit_pieces(const Eigen::Vector2d& vertex, double spread);
+  /// 5. Every site's part of the sub-triangle given to its cell.
+  void add_parts(const SubTriangle& triangle, const Eigen::Vector2d& vertex);
+  /// Piece `piece` of piece_points_.
+  std::span<const Eigen::Vector2d> piece_span(std::size_t piece) const;
   bool inside(const SubTriangle& triangle, const Eigen::Vector2d& p) const;
   /// Gives a site's part of a sub-triangle (a polygon) to its cell.
   void add_part(Index site, std::span<const Eigen::Vector2d> polygon);
