@@ -68,163 +68,51 @@ struct Scratch {
   std::vector<Eigen::Vector3d> segment_ends;
 };
 
-}  // namespace
-
-double RestrictedCells::total_energy() const { return std::accumulate(energy.begin(), energy.end(), 0.0); }
-
-RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
-                                             std::span<const double> density, bool vertex_sites) {
-  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_sites ? vertex_fans(mesh, topology) : VertexFans{},
-                            {}};
-  surface.across.resize(static_cast<std::size_t>(mesh.num_faces()));
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    if (topology.face_edges[f][0] >= 0) surface.area += face_area(mesh, f);
-    for (int k = 0; k < 3; ++k) {
-      const Index edge = topology.face_edges[f][k];
-      if (edge < 0) {
-        surface.across[f][k] = -1;
-        continue;
-      }
-      const auto& faces = topology.edge_faces[edge];
-      surface.across[f][k] = faces[0] == f ? faces[1] : faces[0];
-    }
-  }
-  return surface;
+/// The largest squared distance of a corner of `polygon` from `site`.
+double reach_squared(const ClipPolygon& polygon, const Eigen::Vector3d& site) {
+  double r = 0;
+  for (std::size_t k = 0; k < polygon.size; ++k) r = std::max(r, (polygon.corner[k].head<3>() - site).squaredNorm());
+  return r;
 }
 
-RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites) {
-  const TriangleMesh& mesh = surface.mesh;
-  const std::span<const double> density = surface.density;
-  const VertexFans& fans = surface.fans;
-  const std::size_t site_count = sites.size();
-  if (fans.begin.empty() && any_at_vertex(sites)) {
-    throw Error("restricted_voronoi: a site at a vertex, on a surface prepared without vertex sites");
-  }
-  std::vector<Eigen::Vector3d> position(site_count);
-  for (std::size_t s = 0; s < site_count; ++s) position[s] = sites[s].position(mesh);
-  auto corner = [&](Index face, int c) {
-    const Index v = mesh.faces(face, c);
-    Corner p;
-    p.head<3>() = mesh.vertices.row(v).transpose();
-    p[3] = density.empty() ? 1.0 : density[v];
-    return p;
-  };
-  // Grid cells twice as wide as the sites' spacing: the first search (twice
-  // the spacing) looks at 27 of them. (The cells found do not depend on the
-  // spacing: a search that falls short is widened.)
-  const double spacing =
-      surface.area > 0 ? std::sqrt(surface.area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
-  const PointGrid grid(position, 2 * spacing);
+/// The integrals of one cell at a time (restricted_voronoi): a flood fill
+/// over the faces the cell reaches from its site, each face clipped by the
+/// bisector planes of the sites near it.
+class CellIntegrator {
+ public:
+  /// `position` per site; `grid` holds them, in cells twice `spacing`
+  /// wide. Each cell's integrals go into `cells`.
+  CellIntegrator(const RestrictedSurface& surface, std::span<const SurfacePoint> sites,
+                 std::span<const Eigen::Vector3d> position, const PointGrid& grid, double spacing,
+                 RestrictedCells& cells)
+      : surface_(surface), sites_(sites), position_(position), grid_(grid), spacing_(spacing), cells_(cells) {}
 
-  RestrictedCells cells;
-  cells.area.assign(site_count, 0.0);
-  cells.mass.assign(site_count, 0.0);
-  cells.moment.assign(site_count, Eigen::Vector3d::Zero());
-  cells.energy.assign(site_count, 0.0);
-  tbb::enumerable_thread_specific<Scratch> scratches;
-
-  // One cell, of the site in the grid's `slot`: a flood fill over the faces
-  // it reaches from the site, each face clipped by the bisector planes of the
-  // sites near it.
-  auto cell = [&](Index slot, Scratch& scratch) {
-    const Index s = grid.original(slot);
-    const Eigen::Vector3d& site = position[s];
-    // The sites within `searched` of this one, nearest first, and their
-    // bisector planes. A face's polygon within `reach` of the site can only
-    // be cut by sites within 2 reach: the search widens when that is beyond it.
-    double searched = 2 * spacing;
-    auto search = [&] {
-      // Nearest first, ties by index.
-      auto& found = scratch.near;
-      found.clear();
-      auto take = [&](Index other_slot, double squared_distance) {
-        const Index other = grid.original(other_slot);
-        if (other != s) found.emplace_back(squared_distance, other);
-      };
-      if (searched == 2 * spacing) {
-        // The first search, as wide as the grid's radius: the cells around
-        // the site's own, listed in the grid, without looking them up.
-        grid.for_each_around(slot, [&](Index other_slot, double squared_distance) {
-          if (squared_distance <= searched * searched) take(other_slot, squared_distance);
-        });
-      } else {
-        grid.for_each_within(site, searched, take);
-      }
-      std::sort(found.begin(), found.end());
-      scratch.planes.clear();
-      for (const auto& [squared_distance, other] : found) {
-        const Eigen::Vector3d normal = position[other] - site;
-        scratch.planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.squaredNorm() / 2);
-      }
-      const std::size_t most_corners = 3 + found.size();
-      scratch.polygon.reserve(most_corners);
-      scratch.clipped.reserve(most_corners);
-      if (scratch.side.size() < most_corners) scratch.side.resize(most_corners);
-    };
-    search();
+  /// The cell of the site in the grid's `slot`: its integrals into the
+  /// cells, its boundaries appended to scratch.boundaries (their segment
+  /// ends to scratch.segment_ends).
+  void integrate(Index slot, Scratch& scratch) const {
+    const TriangleMesh& mesh = surface_.mesh;
+    const std::span<const double> density = surface_.density;
+    const Index s = grid_.original(slot);
+    const Eigen::Vector3d& site = position_[s];
+    // A face's polygon within `reach` of the site can only be cut by sites
+    // within 2 reach: the search widens when that is beyond it.
+    double searched = 2 * spacing_;
+    search(slot, searched, scratch);
     // Of two sites at one place, the first takes the cell.
     if (!scratch.near.empty() && scratch.near.front().first == 0 && scratch.near.front().second < s) return;
     auto& queue = scratch.queue;
     queue.clear();
-    if (sites[s].kind == SurfacePoint::Kind::face) {
-      queue.push_back(sites[s].element);
+    if (sites_[s].kind == SurfacePoint::Kind::face) {
+      queue.push_back(sites_[s].element);
     } else {
-      const std::span<const Index> around = fans.around(sites[s].element);
+      const std::span<const Index> around = surface_.fans.around(sites_[s].element);
       queue.insert(queue.end(), around.begin(), around.end());
     }
     scratch.reached.clear();
     for (const Index f : queue) scratch.reached.insert(f);
     scratch.segments.clear();
-    ClipPolygon& polygon = scratch.polygon;
-    auto reach_squared = [&] {  // of the polygon from the site
-      double r = 0;
-      for (std::size_t k = 0; k < polygon.size; ++k)
-        r = std::max(r, (polygon.corner[k].head<3>() - site).squaredNorm());
-      return r;
-    };
-    // Clips the face to the cell; false when a site beyond the search might cut it.
-    auto clip = [&](Index face) {
-      // label[k] names the side from polygon[k - 1] to polygon[k]; face side
-      // k joins corners k and k + 1.
-      polygon.size = 0;
-      polygon.add(corner(face, 0), -3);
-      polygon.add(corner(face, 1), -1);
-      polygon.add(corner(face, 2), -2);
-      double reach2 = reach_squared();
-      for (std::size_t n = 0; n < scratch.near.size(); ++n) {
-        // Nearest first: once a bisector lies beyond the polygon's reach
-        // (at half the sites' distance), so do all the others'.
-        const Eigen::Vector4d& plane = scratch.planes[n];
-        if (2 * plane[3] >= 4 * reach2) return true;
-        // Each corner's signed offset from the plane, positive beyond it.
-        double* side = scratch.side.data();
-        bool cut = false;
-        for (std::size_t k = 0; k < polygon.size; ++k) {
-          side[k] = plane.head<3>().dot(polygon.corner[k].head<3>() - site) - plane[3];
-          cut = cut || side[k] > 0;
-        }
-        if (!cut) continue;
-        ClipPolygon& clipped = scratch.clipped;
-        clipped.size = 0;
-        for (std::size_t k = 0, previous = polygon.size - 1; k < polygon.size; previous = k++) {
-          const Corner& from = polygon.corner[previous];
-          const Corner& to = polygon.corner[k];
-          const double a = side[previous], b = side[k];
-          if (a <= 0 && b <= 0) {
-            clipped.add(to, polygon.label[k]);
-          } else if (a <= 0) {
-            clipped.add(from + (a / (a - b)) * (to - from), polygon.label[k]);
-          } else if (b <= 0) {
-            clipped.add(from + (a / (a - b)) * (to - from), scratch.near[n].second);
-            clipped.add(to, polygon.label[k]);
-          }
-        }
-        std::swap(polygon, clipped);
-        if (polygon.size < 3) return true;
-        reach2 = reach_squared();
-      }
-      return 4 * reach2 <= searched * searched;
-    };
+    const ClipPolygon& polygon = scratch.polygon;
     // The cell's integrals, summed here and stored once.
     double area = 0, mass = 0, energy = 0;
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
@@ -239,9 +127,9 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
           if (!density.empty()) __builtin_prefetch(&density[v]);
         }
       }
-      while (!clip(face)) {
-        searched = 2 * std::sqrt(reach_squared()) * (1 + 1e-9);
-        search();
+      while (!clip(face, site, searched, scratch)) {
+        searched = 2 * std::sqrt(reach_squared(polygon, site)) * (1 + 1e-9);
+        search(slot, searched, scratch);
       }
       if (polygon.size < 3) continue;
       // The three-edge-midpoint rule on the fan from polygon[0].
@@ -269,20 +157,113 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
           continue;
         }
         // A side on the face's side -1 - label: the cell goes on across it.
-        const Index across = surface.across[face][-1 - label];
+        const Index across = surface_.across[face][-1 - label];
         if (across >= 0 && scratch.reached.insert(across)) {
           queue.push_back(across);
           // Its corners and neighbours are read when its turn comes: start
           // loading them now (a face's first visit is mostly cache misses).
           __builtin_prefetch(&mesh.faces(across, 0));
-          __builtin_prefetch(&surface.across[across]);
+          __builtin_prefetch(&surface_.across[across]);
         }
       }
     }
-    cells.area[s] = area;
-    cells.mass[s] = mass;
-    cells.moment[s] = moment;
-    cells.energy[s] = energy;
+    cells_.area[s] = area;
+    cells_.mass[s] = mass;
+    cells_.moment[s] = moment;
+    cells_.energy[s] = energy;
+    gather_boundaries(s, scratch);
+  }
+
+ private:
+  Corner corner(Index face, int c) const {
+    const Index v = surface_.mesh.faces(face, c);
+    Corner p;
+    p.head<3>() = surface_.mesh.vertices.row(v).transpose();
+    p[3] = surface_.density.empty() ? 1.0 : surface_.density[v];
+    return p;
+  }
+
+  /// The sites within `searched` of the one in `slot`, nearest first (ties
+  /// by index), and their bisector planes, into scratch.near and
+  /// scratch.planes; the polygon buffers sized for them.
+  void search(Index slot, double searched, Scratch& scratch) const {
+    const Index s = grid_.original(slot);
+    const Eigen::Vector3d& site = position_[s];
+    auto& found = scratch.near;
+    found.clear();
+    auto take = [&](Index other_slot, double squared_distance) {
+      const Index other = grid_.original(other_slot);
+      if (other != s) found.emplace_back(squared_distance, other);
+    };
+    if (searched == 2 * spacing_) {
+      // The first search, as wide as the grid's radius: the cells around
+      // the site's own, listed in the grid, without looking them up.
+      grid_.for_each_around(slot, [&](Index other_slot, double squared_distance) {
+        if (squared_distance <= searched * searched) take(other_slot, squared_distance);
+      });
+    } else {
+      grid_.for_each_within(site, searched, take);
+    }
+    std::sort(found.begin(), found.end());
+    scratch.planes.clear();
+    for (const auto& [squared_distance, other] : found) {
+      const Eigen::Vector3d normal = position_[other] - site;
+      scratch.planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.squaredNorm() / 2);
+    }
+    const std::size_t most_corners = 3 + found.size();
+    scratch.polygon.reserve(most_corners);
+    scratch.clipped.reserve(most_corners);
+    if (scratch.side.size() < most_corners) scratch.side.resize(most_corners);
+  }
+
+  /// Clips `face` to the cell of the site at `site` into scratch.polygon;
+  /// false when a site beyond `searched` might cut it.
+  bool clip(Index face, const Eigen::Vector3d& site, double searched, Scratch& scratch) const {
+    // label[k] names the side from polygon[k - 1] to polygon[k]; face side
+    // k joins corners k and k + 1.
+    ClipPolygon& polygon = scratch.polygon;
+    polygon.size = 0;
+    polygon.add(corner(face, 0), -3);
+    polygon.add(corner(face, 1), -1);
+    polygon.add(corner(face, 2), -2);
+    double reach2 = reach_squared(polygon, site);
+    for (std::size_t n = 0; n < scratch.near.size(); ++n) {
+      // Nearest first: once a bisector lies beyond the polygon's reach
+      // (at half the sites' distance), so do all the others'.
+      const Eigen::Vector4d& plane = scratch.planes[n];
+      if (2 * plane[3] >= 4 * reach2) return true;
+      // Each corner's signed offset from the plane, positive beyond it.
+      double* side = scratch.side.data();
+      bool cut = false;
+      for (std::size_t k = 0; k < polygon.size; ++k) {
+        side[k] = plane.head<3>().dot(polygon.corner[k].head<3>() - site) - plane[3];
+        cut = cut || side[k] > 0;
+      }
+      if (!cut) continue;
+      ClipPolygon& clipped = scratch.clipped;
+      clipped.size = 0;
+      for (std::size_t k = 0, previous = polygon.size - 1; k < polygon.size; previous = k++) {
+        const Corner& from = polygon.corner[previous];
+        const Corner& to = polygon.corner[k];
+        const double a = side[previous], b = side[k];
+        if (a <= 0 && b <= 0) {
+          clipped.add(to, polygon.label[k]);
+        } else if (a <= 0) {
+          clipped.add(from + (a / (a - b)) * (to - from), polygon.label[k]);
+        } else if (b <= 0) {
+          clipped.add(from + (a / (a - b)) * (to - from), scratch.near[n].second);
+          clipped.add(to, polygon.label[k]);
+        }
+      }
+      std::swap(polygon, clipped);
+      if (polygon.size < 3) return true;
+      reach2 = reach_squared(polygon, site);
+    }
+    return 4 * reach2 <= searched * searched;
+  }
+
+  /// One boundary per other site of site `s`, from scratch.segments.
+  static void gather_boundaries(Index s, Scratch& scratch) {
     // One boundary per other site, its segments together in the order they
     // were found: an insertion sort, stable and without the buffer that
     // std::stable_sort would allocate per cell (a cell has tens of segments).
@@ -308,7 +289,62 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
                                     begin, static_cast<Index>(scratch.segment_ends.size())});
       first = last;
     }
-  };
+  }
+
+  const RestrictedSurface& surface_;
+  std::span<const SurfacePoint> sites_;
+  std::span<const Eigen::Vector3d> position_;
+  const PointGrid& grid_;
+  double spacing_;
+  RestrictedCells& cells_;
+};
+
+}  // namespace
+
+double RestrictedCells::total_energy() const { return std::accumulate(energy.begin(), energy.end(), 0.0); }
+
+RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
+                                             std::span<const double> density, bool vertex_sites) {
+  RestrictedSurface surface{mesh, topology, density, 0.0, vertex_sites ? vertex_fans(mesh, topology) : VertexFans{},
+                            {}};
+  surface.across.resize(static_cast<std::size_t>(mesh.num_faces()));
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (topology.face_edges[f][0] >= 0) surface.area += face_area(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      const Index edge = topology.face_edges[f][k];
+      if (edge < 0) {
+        surface.across[f][k] = -1;
+        continue;
+      }
+      const auto& faces = topology.edge_faces[edge];
+      surface.across[f][k] = faces[0] == f ? faces[1] : faces[0];
+    }
+  }
+  return surface;
+}
+
+RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites) {
+  const TriangleMesh& mesh = surface.mesh;
+  const std::size_t site_count = sites.size();
+  if (surface.fans.begin.empty() && any_at_vertex(sites)) {
+    throw Error("restricted_voronoi: a site at a vertex, on a surface prepared without vertex sites");
+  }
+  std::vector<Eigen::Vector3d> position(site_count);
+  for (std::size_t s = 0; s < site_count; ++s) position[s] = sites[s].position(mesh);
+  // Grid cells twice as wide as the sites' spacing: the first search (twice
+  // the spacing) looks at 27 of them. (The cells found do not depend on the
+  // spacing: a search that falls short is widened.)
+  const double spacing =
+      surface.area > 0 ? std::sqrt(surface.area / static_cast<double>(std::max<std::size_t>(site_count, 1))) : 1.0;
+  const PointGrid grid(position, 2 * spacing);
+
+  RestrictedCells cells;
+  cells.area.assign(site_count, 0.0);
+  cells.mass.assign(site_count, 0.0);
+  cells.moment.assign(site_count, Eigen::Vector3d::Zero());
+  cells.energy.assign(site_count, 0.0);
+  tbb::enumerable_thread_specific<Scratch> scratches;
+  const CellIntegrator cell(surface, sites, position, grid, spacing, cells);
   // Each cell is integrated by one thread on its own, the cells taken in
   // the grid's Z-order so that neighbouring cells, which share faces, run
   // close together in time (the faces and their corners are then still in
@@ -331,7 +367,7 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
                         scratch.segment_ends.clear();
                         for (std::size_t slot = b * kBlock; slot < std::min(site_count, (b + 1) * kBlock); ++slot) {
                           block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
-                          cell(static_cast<Index>(slot), scratch);
+                          cell.integrate(static_cast<Index>(slot), scratch);
                         }
                         block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
                         block.boundaries = scratch.boundaries;
