@@ -229,7 +229,7 @@ void add_remesh(py::module_& module) {
                     "their own vertices")
       .def_readonly("narrowest_corner", &RemeshResult::narrowest_corner,
                     "the narrowest angle in degrees between two kept features at a corner, which bounds the "
-                    "remesh's smallest angle there; None without corners")
+                    "remesh's smallest angle there; None where no corner joins two")
       .def_readonly("sites_added", &RemeshResult::sites_added,
                     "sites the repair added where the dual was not a valid remesh")
       .def_readonly("sites_left_out", &RemeshResult::sites_left_out,
