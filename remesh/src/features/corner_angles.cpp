@@ -42,6 +42,23 @@ double narrowest_corner_angle(const TriangleMesh& surface, const FeatureSet& fea
   std::stable_sort(fan.begin(), fan.end(), [](const FanFace& a, const FanFace& b) { return a.corner < b.corner; });
   UnionFind sectors;
   std::vector<double> angle;
+  // Whether the fan's faces fan[begin, end) have an edge from the corner that
+  // no other face of the fan has: the corner is on the boundary.
+  std::vector<Index> others;
+  const auto on_boundary = [&](std::size_t begin, std::size_t end) {
+    others.clear();
+    for (std::size_t i = begin; i < end; ++i) {
+      for (const int step : {1, 2}) others.push_back(surface.faces(fan[i].face, (fan[i].k + step) % 3));
+    }
+    std::sort(others.begin(), others.end());
+    for (std::size_t i = 0; i < others.size();) {
+      std::size_t j = i;
+      while (j < others.size() && others[j] == others[i]) ++j;
+      if (j - i == 1) return true;
+      i = j;
+    }
+    return false;
+  };
   for (std::size_t begin = 0, end = 0; begin < fan.size(); begin = end) {
     while (end < fan.size() && fan[end].corner == fan[begin].corner) ++end;
     const std::size_t size = end - begin;
@@ -60,6 +77,11 @@ double narrowest_corner_angle(const TriangleMesh& surface, const FeatureSet& fea
         }
       }
     }
+    // One sector all round (a chain ending inside a face's fan, no boundary
+    // edge there) lies between no two features: no bound.
+    std::size_t sector_count = 0;
+    for (std::size_t i = 0; i < size; ++i) sector_count += sectors.find(static_cast<Index>(i)) == static_cast<Index>(i);
+    if (sector_count == 1 && !on_boundary(begin, end)) continue;
     angle.assign(size, 0.0);
     for (std::size_t i = 0; i < size; ++i) {
       angle[sectors.find(static_cast<Index>(i))] += face_angle(surface, fan[begin + i].face, fan[begin + i].k);

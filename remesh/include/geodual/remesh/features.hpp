@@ -111,8 +111,9 @@ FeatureSet detect_features(const RemeshSurface& surface, const FeatureOptions& o
 /// sector's angle is the sum of its faces' angles at the corner. A remesh
 /// that keeps the features, with a vertex at each corner, has a triangle
 /// angle about this small or smaller there, so it bounds the smallest angle
-/// any such remesh reaches. In degrees; 360 where no corner joins two
-/// features (none at all, or only chains that end in the open).
+/// any such remesh reaches. A corner where one chain ends inside the
+/// surface has one sector all round, between no two features, and bounds
+/// nothing. In degrees; 360 where no corner joins two features.
 double narrowest_corner_angle(const TriangleMesh& surface, const FeatureSet& features);
 
 }  // namespace geodual::remesh
