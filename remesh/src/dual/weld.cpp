@@ -167,13 +167,6 @@ std::optional<SurfacePoint> nearest_boundary_point(const TriangleMesh& surface, 
 
 WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
-  return weld_along_features(RemeshSurface(surface), features, cut, RemeshSurface(cut.mesh), dual, sites);
-}
-
-WeldedDual weld_along_features(const RemeshSurface& prepared, const FeatureSet& features, const FeatureCut& cut,
-                               const RemeshSurface& prepared_cut, const TriangleMesh& dual,
-                               std::span<const SurfacePoint> sites) {
-  const TriangleMesh& surface = prepared.mesh();
   WeldedDual welded;
   const std::size_t n = sites.size();
   std::vector<SiteKey> keys(n);
@@ -181,7 +174,7 @@ WeldedDual weld_along_features(const RemeshSurface& prepared, const FeatureSet& 
   const std::vector<std::size_t> site_of_vertex = merge_twins(dual, keys, welded);
 
   // Cracks: boundary edges of the weld with an end off the surface's boundary.
-  const MeshTopology& surface_topology = prepared.topology();
+  const MeshTopology surface_topology = build_mesh_topology(surface);
   const auto on_surface_boundary = [&](std::size_t site) {
     const SiteKey& key = keys[site];
     if (key.lo < 0) return false;
@@ -236,7 +229,7 @@ WeldedDual weld_along_features(const RemeshSurface& prepared, const FeatureSet& 
   for (std::size_t s = 0; s < sites.size(); ++s) site_grid.insert(sites[s].position(cut.mesh), s);
 
   // The nearest point of the cut surface's boundary in the site's piece.
-  const MeshTopology& cut_topology = prepared_cut.topology();
+  const MeshTopology cut_topology = build_mesh_topology(cut.mesh);
   std::vector<Index> boundary_edges;
   for (Index e = 0; e < cut_topology.num_edges(); ++e) {
     if (cut_topology.is_boundary_edge(e) && has_positive_area(cut.mesh, cut_topology.edge_faces(e)[0])) {
