@@ -167,6 +167,12 @@ std::optional<SurfacePoint> nearest_boundary_point(const TriangleMesh& surface, 
 
 WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
+  return weld_along_features(RemeshSurface(surface), features, cut, dual, sites);
+}
+
+WeldedDual weld_along_features(const RemeshSurface& prepared, const FeatureSet& features, const FeatureCut& cut,
+                               const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
+  const TriangleMesh& surface = prepared.mesh();
   WeldedDual welded;
   const std::size_t n = sites.size();
   std::vector<SiteKey> keys(n);
@@ -174,7 +180,7 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
   const std::vector<std::size_t> site_of_vertex = merge_twins(dual, keys, welded);
 
   // Cracks: boundary edges of the weld with an end off the surface's boundary.
-  const MeshTopology surface_topology = build_mesh_topology(surface);
+  const MeshTopology& surface_topology = prepared.topology();
   const auto on_surface_boundary = [&](std::size_t site) {
     const SiteKey& key = keys[site];
     if (key.lo < 0) return false;

@@ -91,9 +91,10 @@ struct PieceNotKept {
   /// where only the counts differ).
   std::vector<std::size_t> sites;
 };
-PieceNotKept first_piece_not_kept(const TriangleMesh& surface, const FeatureCut& cut,
+PieceNotKept first_piece_not_kept(const RemeshSurface& prepared, const FeatureCut& cut,
                                   std::span<const SurfacePoint> sites, const WeldedDual& welded) {
-  const MeshTopology pieces = build_mesh_topology(surface);
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& pieces = prepared.topology();
   const MeshTopology remeshed = build_mesh_topology(welded.mesh);
   std::vector<std::uint8_t> has_area(pieces.components.size(), 0);
   for (Index f = 0; f < surface.num_faces(); ++f) {
@@ -225,12 +226,12 @@ constexpr const char* kRemedy = "; try more sites, or a larger sharp angle";
 /// sites of round `round`'s `result` without the doubles, and with the twins
 /// of the points they doubled, which serve both sheets; none where nothing
 /// is doubled. \throw DualRepairError where it is after options' max_rounds.
-std::optional<std::vector<SurfacePoint>> sites_without_doubles(const TriangleMesh& surface, const FeatureSet& features,
+std::optional<std::vector<SurfacePoint>> sites_without_doubles(const RemeshSurface& surface, const FeatureSet& features,
                                                                const FeatureCut& cut, const RepairedDual& result,
                                                                double spacing, int round, int max_rounds,
                                                                WeldRounds& rounds) {
   const std::vector<std::uint8_t> doubled =
-      doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
+      doubled_chain_points(surface.mesh(), features, cut, result.sites, kDoubledPoint * spacing);
   const auto count = std::count(doubled.begin(), doubled.end(), 1);
   if (count == 0) return std::nullopt;
   if (round >= max_rounds) {
@@ -305,7 +306,7 @@ std::optional<std::vector<SurfacePoint>> sites_without_unusable(const TriangleMe
 /// (each piece's dual has only such; welded, three sites on one straight
 /// stretch of a chain could still make one flat) and every piece of the
 /// surface kept. \throw DualRepairError where either fails.
-void take_weld(RepairedDual& result, WeldedDual& welded, const TriangleMesh& surface, const FeatureCut& cut,
+void take_weld(RepairedDual& result, WeldedDual& welded, const RemeshSurface& surface, const FeatureCut& cut,
                double spacing) {
   for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
     if (has_positive_area(welded.mesh, f)) continue;
@@ -325,7 +326,7 @@ void take_weld(RepairedDual& result, WeldedDual& welded, const TriangleMesh& sur
 /// few edges on the sites as they are; closed with triangles on their
 /// vertices, the weld is a remesh of the surface, the connectivity there not
 /// the dual's. \throw DualRepairError where they do not close.
-void close_cracks_or_fail(RepairedDual& result, WeldedDual& welded, const TriangleMesh& surface, const FeatureCut& cut,
+void close_cracks_or_fail(RepairedDual& result, WeldedDual& welded, const RemeshSurface& surface, const FeatureCut& cut,
                           double spacing, int round, WeldRounds& rounds) {
   if (const std::optional<CrackFill> fill = close_cracks(welded.mesh, welded.crack_vertices)) {
     take_weld(result, welded, surface, cut, spacing);
@@ -352,8 +353,12 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
   RepairedDual result;
   WeldRounds rounds;
+  // The surface prepared once a round, for the weld, the twins and the
+  // pieces; gone before the next round's diagram (its memory peaks there).
+  std::optional<RemeshSurface> prepared;
   // The next round's diagram, of `sites`.
   const auto recompute = [&] {
+    prepared.reset();
     diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
     rounds.geodesic_seconds += diagram.stats.geodesic_seconds;
     rounds.diagram_seconds += diagram.stats.extraction_seconds;
@@ -365,11 +370,12 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     }
     result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), within);
     rounds.add(result);
+    prepared.emplace(surface);
     // Points the repair doubled on a chain go, the points they doubled get
     // their twins, and the diagram is computed again.
     const double spacing = result.diagram.mean_spacing();
     if (std::optional<std::vector<SurfacePoint>> next =
-            sites_without_doubles(surface, features, cut, result, spacing, round, options.max_rounds, rounds)) {
+            sites_without_doubles(*prepared, features, cut, result, spacing, round, options.max_rounds, rounds)) {
       sites = std::move(*next);
       recompute();
       continue;
@@ -378,7 +384,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     const auto seconds = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
-    WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
+    WeldedDual welded = weld_along_features(*prepared, features, cut, result.mesh, result.sites);
     require_manifold_weld(welded, spacing);
     if (std::optional<std::vector<SurfacePoint>> next =
             sites_without_unusable(cut.mesh, result, welded, spacing, round, options.max_rounds, rounds)) {
@@ -392,15 +398,15 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       moved_from.emplace_back(site, result.sites[site]);
       result.sites[site] = point;
     }
-    const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
+    const std::vector<SurfacePoint> more = missing_twins(*prepared, features, cut, result.sites);
     if (welded.cracked_edges == 0 && more.empty()) {
-      take_weld(result, welded, surface, cut, spacing);
+      take_weld(result, welded, *prepared, cut, spacing);
       break;
     }
     rounds.dual_seconds += seconds();
     if (round >= options.max_rounds || (more.empty() && welded.site_moves.empty())) {
       for (const auto& [site, point] : moved_from) result.sites[site] = point;
-      close_cracks_or_fail(result, welded, surface, cut, spacing, round, rounds);
+      close_cracks_or_fail(result, welded, *prepared, cut, spacing, round, rounds);
       break;
     }
     // The sites inside that reached a boundary moved onto it, the twins of

@@ -228,9 +228,16 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
 
 std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                         std::span<const SurfacePoint> sites) {
+  if (features.empty()) return {};
+  return missing_twins(RemeshSurface(surface), features, cut, sites);
+}
+
+std::vector<SurfacePoint> missing_twins(const RemeshSurface& prepared, const FeatureSet& features,
+                                        const FeatureCut& cut, std::span<const SurfacePoint> sites) {
+  const TriangleMesh& surface = prepared.mesh();
   std::vector<SurfacePoint> missing;
   if (features.empty()) return missing;
-  const MeshTopology topology = build_mesh_topology(surface);
+  const MeshTopology& topology = prepared.topology();
   // Sites at a vertex the cut split: every copy needs one.
   const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
   std::vector<Index> at_vertex_held;    // cut vertices holding a site

@@ -73,5 +73,7 @@ FeatureSites feature_sites(const RemeshSurface& surface, const FeatureSet& featu
 /// split, a site at its other copies, where no site holds them.
 std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                         std::span<const SurfacePoint> sites);
+std::vector<SurfacePoint> missing_twins(const RemeshSurface& surface, const FeatureSet& features, const FeatureCut& cut,
+                                        std::span<const SurfacePoint> sites);
 
 }  // namespace geodual::remesh
