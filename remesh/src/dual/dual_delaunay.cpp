@@ -229,13 +229,14 @@ double point_distance(const TriangleMesh& input, const voronoi::VoronoiDiagram& 
   return voronoi::query(diagram.field, input, diagram.point_locations[point]).distance;
 }
 
-/// Points this close are one point here (the engine rejects two sites at one point).
-double same_point_distance(const TriangleMesh& input) {
-  const double diagonal = input.vertices.rows() > 0
-                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
-                              : 0.0;
-  return std::max(1e-9 * diagonal, 1e-300);
+/// The diagonal of the box round all of `input`'s vertices (0 without any).
+double vertex_box_diagonal(const TriangleMesh& input) {
+  return input.vertices.rows() > 0 ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
+                                   : 0.0;
 }
+
+/// Points this close are one point here (the engine rejects two sites at one point).
+double same_point_distance(const TriangleMesh& input) { return std::max(1e-9 * vertex_box_diagonal(input), 1e-300); }
 
 /// Repair points between cells (split pairs and closed arcs of `faults`)
 /// into `out`; returns per site whether it was repaired so.
@@ -812,9 +813,7 @@ DualMesh dual_delaunay(const TriangleMesh& input, const voronoi::VoronoiDiagram&
   Faults faults;
   faults.site.assign(static_cast<std::size_t>(num_sites), SiteRepair::none);
   // Triangles: degenerate, duplicated; edges: at most two triangles, opposite.
-  const double diagonal = input.vertices.rows() > 0
-                              ? (input.vertices.colwise().maxCoeff() - input.vertices.colwise().minCoeff()).norm()
-                              : 0.0;
+  const double diagonal = vertex_box_diagonal(input);
   check_triangles_and_edges(triangles.triangles, dual.mesh.vertices, diagonal, check, faults);
   // Vertices: each site a corner, its triangles one fan.
   std::vector<std::uint8_t> used(static_cast<std::size_t>(num_sites), 0);
