@@ -40,9 +40,11 @@ int main(int argc, char** argv) {
     const remesh::RemeshSmoothingOptions smoothing;  // deviation fitting, angle smoothing at 30 degrees
 
     // The surface: the input cut apart at non-manifold edges and vertices.
-    const remesh::ManifoldCut surface = remesh::cut_to_manifold(input.mesh);
-    // Its topology, built once for the features and the sampling (remesh/remesh_surface.hpp).
-    std::optional<remesh::RemeshSurface> prepared(std::in_place, surface.mesh);
+    // Its topology, built once (by the cut) for the features and the sampling
+    // (remesh/remesh_surface.hpp).
+    geodual::MeshTopology topology;
+    const remesh::ManifoldCut surface = remesh::cut_to_manifold(input.mesh, {}, topology);
+    std::optional<remesh::RemeshSurface> prepared(std::in_place, surface.mesh, std::move(topology));
 
     // Features: creases at the remesh's scale, cut open and lined with sites.
     remesh::FeatureSamplingOptions feature_options = remesh::feature_sampling_options(features, input.mesh, surface);

@@ -359,7 +359,8 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
                 std::span<const std::array<Index, 2>> excluded_edges = {}) {
   report(options.progress, Stage::sample, 0.0);
   StageClock sample_clock(result.timings, Stage::sample);
-  result.surface = remesh::cut_to_manifold(result.input.mesh);
+  MeshTopology surface_topology;  // of the surface cut to a manifold, built once
+  result.surface = remesh::cut_to_manifold(result.input.mesh, {}, surface_topology);
   report(options.progress, Stage::sample, 0.25);  // each step below takes a while on a large mesh: a chance to cancel
   result.dropped = dropped_surface(result.input.mesh, result.surface);
   std::vector<SurfacePoint> given_sites;
@@ -374,7 +375,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   if (cut_is_input) result.surface.mesh = TriangleMesh{};
   const TriangleMesh& manifold_surface = cut_is_input ? result.input.mesh : result.surface.mesh;
   // Its topology, built once for the sizing, the features and the sampling; gone before the relaxation.
-  std::optional<remesh::RemeshSurface> prepared(std::in_place, manifold_surface);
+  std::optional<remesh::RemeshSurface> prepared(std::in_place, manifold_surface, std::move(surface_topology));
   result.surface_euler_characteristic = 0;
   for (const ComponentCounts& piece : prepared->topology().components) {
     result.surface_euler_characteristic += piece.euler_characteristic();
@@ -392,7 +393,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   result.sites_added_near_features = 0;
   if (options.given_sites) {
     sampled.initial.sites = std::move(given_sites);
-    remesh::require_a_site_on_every_piece(manifold_surface, sampled.initial.sites);
+    remesh::require_a_site_on_every_piece(*prepared, sampled.initial.sites);
   } else if (refinement) {
     auto on_surface = [&](std::span<const double> field) {  // per input vertex -> per surface vertex
       std::vector<double> values;

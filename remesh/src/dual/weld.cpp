@@ -167,12 +167,6 @@ std::optional<SurfacePoint> nearest_boundary_point(const TriangleMesh& surface, 
 
 WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
-  return weld_along_features(RemeshSurface(surface), features, cut, dual, sites);
-}
-
-WeldedDual weld_along_features(const RemeshSurface& prepared, const FeatureSet& features, const FeatureCut& cut,
-                               const TriangleMesh& dual, std::span<const SurfacePoint> sites) {
-  const TriangleMesh& surface = prepared.mesh();
   WeldedDual welded;
   const std::size_t n = sites.size();
   std::vector<SiteKey> keys(n);
@@ -180,13 +174,11 @@ WeldedDual weld_along_features(const RemeshSurface& prepared, const FeatureSet& 
   const std::vector<std::size_t> site_of_vertex = merge_twins(dual, keys, welded);
 
   // Cracks: boundary edges of the weld with an end off the surface's boundary.
-  const MeshTopology& surface_topology = prepared.topology();
   const auto on_surface_boundary = [&](std::size_t site) {
     const SiteKey& key = keys[site];
     if (key.lo < 0) return false;
-    if (key.lo == key.hi) return surface_topology.vertex_on_boundary[key.lo] != 0;
-    const Index edge = surface_topology.find_edge(key.lo, key.hi);
-    return edge >= 0 && surface_topology.is_boundary_edge(edge);
+    if (key.lo == key.hi) return cut.surface.vertex_on_boundary[key.lo] != 0;
+    return cut.surface.is_boundary_edge(key.lo, key.hi);
   };
   // Surface vertices on a chain: the cut split them, or a chain ends there
   // in the open (the tip of a slit, one copy).

@@ -91,10 +91,10 @@ struct PieceNotKept {
   /// where only the counts differ).
   std::vector<std::size_t> sites;
 };
-PieceNotKept first_piece_not_kept(const RemeshSurface& prepared, const FeatureCut& cut,
-                                  std::span<const SurfacePoint> sites, const WeldedDual& welded) {
-  const TriangleMesh& surface = prepared.mesh();
-  const MeshTopology& pieces = prepared.topology();
+PieceNotKept first_piece_not_kept(const FeatureCut& cut, std::span<const SurfacePoint> sites,
+                                  const WeldedDual& welded) {
+  const TriangleMesh& surface = cut.mesh;  // the surface's faces, in order
+  const SurfaceOutline& pieces = cut.surface;
   const MeshTopology remeshed = build_mesh_topology(welded.mesh);
   std::vector<std::uint8_t> has_area(pieces.components.size(), 0);
   for (Index f = 0; f < surface.num_faces(); ++f) {
@@ -129,7 +129,7 @@ PieceNotKept first_piece_not_kept(const RemeshSurface& prepared, const FeatureCu
   }
   for (Index f = 0; f < surface.num_faces(); ++f) {
     const Index piece = pieces.face_component[f];
-    if (piece >= 0 && first_vertex[piece] < 0) first_vertex[piece] = surface.faces(f, 0);
+    if (piece >= 0 && first_vertex[piece] < 0) first_vertex[piece] = cut.original_vertex[surface.faces(f, 0)];
   }
   auto counts = [](const ComponentCounts& c) {
     return "Euler characteristic " + std::to_string(c.euler_characteristic()) + ", " +
@@ -226,12 +226,12 @@ constexpr const char* kRemedy = "; try more sites, or a larger sharp angle";
 /// sites of round `round`'s `result` without the doubles, and with the twins
 /// of the points they doubled, which serve both sheets; none where nothing
 /// is doubled. \throw DualRepairError where it is after options' max_rounds.
-std::optional<std::vector<SurfacePoint>> sites_without_doubles(const RemeshSurface& surface, const FeatureSet& features,
+std::optional<std::vector<SurfacePoint>> sites_without_doubles(const TriangleMesh& surface, const FeatureSet& features,
                                                                const FeatureCut& cut, const RepairedDual& result,
                                                                double spacing, int round, int max_rounds,
                                                                WeldRounds& rounds) {
   const std::vector<std::uint8_t> doubled =
-      doubled_chain_points(surface.mesh(), features, cut, result.sites, kDoubledPoint * spacing);
+      doubled_chain_points(surface, features, cut, result.sites, kDoubledPoint * spacing);
   const auto count = std::count(doubled.begin(), doubled.end(), 1);
   if (count == 0) return std::nullopt;
   if (round >= max_rounds) {
@@ -306,15 +306,14 @@ std::optional<std::vector<SurfacePoint>> sites_without_unusable(const TriangleMe
 /// (each piece's dual has only such; welded, three sites on one straight
 /// stretch of a chain could still make one flat) and every piece of the
 /// surface kept. \throw DualRepairError where either fails.
-void take_weld(RepairedDual& result, WeldedDual& welded, const RemeshSurface& surface, const FeatureCut& cut,
-               double spacing) {
+void take_weld(RepairedDual& result, WeldedDual& welded, const FeatureCut& cut, double spacing) {
   for (Index f = 0; f < welded.mesh.num_faces(); ++f) {
     if (has_positive_area(welded.mesh, f)) continue;
     const Eigen::Vector3d corner = welded.mesh.vertices.row(welded.mesh.faces(f, 0));
     throw DualRepairError(
         "the remesh welded along the sharp features has a triangle of zero area, at " + point_text(corner), {corner});
   }
-  if (const PieceNotKept lost = first_piece_not_kept(surface, cut, result.sites, welded); !lost.what.empty()) {
+  if (const PieceNotKept lost = first_piece_not_kept(cut, result.sites, welded); !lost.what.empty()) {
     throw weld_error("welded along the sharp features does not keep " + lost.what,
                      positions(cut.mesh, std::span<const SurfacePoint>(result.sites), lost.sites), spacing, kRemedy);
   }
@@ -326,10 +325,10 @@ void take_weld(RepairedDual& result, WeldedDual& welded, const RemeshSurface& su
 /// few edges on the sites as they are; closed with triangles on their
 /// vertices, the weld is a remesh of the surface, the connectivity there not
 /// the dual's. \throw DualRepairError where they do not close.
-void close_cracks_or_fail(RepairedDual& result, WeldedDual& welded, const RemeshSurface& surface, const FeatureCut& cut,
-                          double spacing, int round, WeldRounds& rounds) {
+void close_cracks_or_fail(RepairedDual& result, WeldedDual& welded, const FeatureCut& cut, double spacing, int round,
+                          WeldRounds& rounds) {
   if (const std::optional<CrackFill> fill = close_cracks(welded.mesh, welded.crack_vertices)) {
-    take_weld(result, welded, surface, cut, spacing);
+    take_weld(result, welded, cut, spacing);
     result.cracks_closed = fill->holes;
     result.crack_triangles = fill->triangles;
     rounds.repair_problems.push_back(std::to_string(welded.cracked_edges) +
@@ -353,12 +352,8 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
                                      voronoi::VoronoiDiagram diagram, const RepairOptions& options) {
   RepairedDual result;
   WeldRounds rounds;
-  // The surface prepared once a round, for the weld, the twins and the
-  // pieces; gone before the next round's diagram (its memory peaks there).
-  std::optional<RemeshSurface> prepared;
   // The next round's diagram, of `sites`.
   const auto recompute = [&] {
-    prepared.reset();
     diagram = voronoi::compute_voronoi(cut_surface, sites, options.voronoi);
     rounds.geodesic_seconds += diagram.stats.geodesic_seconds;
     rounds.diagram_seconds += diagram.stats.extraction_seconds;
@@ -370,12 +365,11 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     }
     result = dual_with_repair(cut_surface, std::move(sites), std::move(diagram), within);
     rounds.add(result);
-    prepared.emplace(surface);
     // Points the repair doubled on a chain go, the points they doubled get
     // their twins, and the diagram is computed again.
     const double spacing = result.diagram.mean_spacing();
     if (std::optional<std::vector<SurfacePoint>> next =
-            sites_without_doubles(*prepared, features, cut, result, spacing, round, options.max_rounds, rounds)) {
+            sites_without_doubles(surface, features, cut, result, spacing, round, options.max_rounds, rounds)) {
       sites = std::move(*next);
       recompute();
       continue;
@@ -384,7 +378,7 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
     const auto seconds = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
-    WeldedDual welded = weld_along_features(*prepared, features, cut, result.mesh, result.sites);
+    WeldedDual welded = weld_along_features(surface, features, cut, result.mesh, result.sites);
     require_manifold_weld(welded, spacing);
     if (std::optional<std::vector<SurfacePoint>> next =
             sites_without_unusable(cut.mesh, result, welded, spacing, round, options.max_rounds, rounds)) {
@@ -398,15 +392,15 @@ RepairedDual welded_dual_with_repair(const voronoi::GeodesicSurface& cut_surface
       moved_from.emplace_back(site, result.sites[site]);
       result.sites[site] = point;
     }
-    const std::vector<SurfacePoint> more = missing_twins(*prepared, features, cut, result.sites);
+    const std::vector<SurfacePoint> more = missing_twins(surface, features, cut, result.sites);
     if (welded.cracked_edges == 0 && more.empty()) {
-      take_weld(result, welded, *prepared, cut, spacing);
+      take_weld(result, welded, cut, spacing);
       break;
     }
     rounds.dual_seconds += seconds();
     if (round >= options.max_rounds || (more.empty() && welded.site_moves.empty())) {
       for (const auto& [site, point] : moved_from) result.sites[site] = point;
-      close_cracks_or_fail(result, welded, *prepared, cut, spacing, round, rounds);
+      close_cracks_or_fail(result, welded, cut, spacing, round, rounds);
       break;
     }
     // The sites inside that reached a boundary moved onto it, the twins of

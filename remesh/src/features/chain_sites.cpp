@@ -228,16 +228,8 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
 
 std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                         std::span<const SurfacePoint> sites) {
-  if (features.empty()) return {};
-  return missing_twins(RemeshSurface(surface), features, cut, sites);
-}
-
-std::vector<SurfacePoint> missing_twins(const RemeshSurface& prepared, const FeatureSet& features,
-                                        const FeatureCut& cut, std::span<const SurfacePoint> sites) {
-  const TriangleMesh& surface = prepared.mesh();
   std::vector<SurfacePoint> missing;
   if (features.empty()) return missing;
-  const MeshTopology& topology = prepared.topology();
   // Sites at a vertex the cut split: every copy needs one.
   const VertexCopies copies = used_vertex_copies(cut, static_cast<Index>(surface.vertices.rows()));
   std::vector<Index> at_vertex_held;    // cut vertices holding a site
@@ -278,7 +270,8 @@ std::vector<SurfacePoint> missing_twins(const RemeshSurface& prepared, const Fea
     std::size_t j = i;
     while (j < held.size() && held[j].first == held[i].first) ++j;
     const SiteKey& key = held[i].first;
-    for (const Index f : topology.edge_faces(topology.find_edge(key.lo, key.hi))) {
+    for (const Index f : cut.surface.sharp_edge_faces[static_cast<std::size_t>(features.find_sharp_edge(key.lo, key.hi))]) {
+      if (f < 0) continue;
       const bool has =
           std::any_of(held.begin() + static_cast<std::ptrdiff_t>(i), held.begin() + static_cast<std::ptrdiff_t>(j),
                       [&](const auto& h) { return h.second == f; });

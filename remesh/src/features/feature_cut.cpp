@@ -4,10 +4,35 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/union_find.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 namespace geodual::remesh {
+namespace {
+
+SurfaceOutline surface_outline(const MeshTopology& topology, const FeatureSet& features) {
+  SurfaceOutline outline;
+  outline.sharp_edge_faces.assign(features.sharp_edges.size(), {-1, -1});
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const std::array<Index, 2>& ends = topology.edge_vertices[static_cast<std::size_t>(e)];
+    if (topology.is_boundary_edge(e)) outline.boundary_edges.push_back(ends);  // sorted, as the edges are
+    const Index sharp = features.find_sharp_edge(ends[0], ends[1]);
+    if (sharp < 0) continue;
+    const auto faces = topology.edge_faces(e);
+    std::array<Index, 2>& kept = outline.sharp_edge_faces[static_cast<std::size_t>(sharp)];
+    for (std::size_t k = 0; k < std::min<std::size_t>(2, faces.size()); ++k) kept[k] = faces[k];
+  }
+  outline.vertex_on_boundary = topology.vertex_on_boundary;
+  outline.face_component = topology.face_component;
+  outline.vertex_component = topology.vertex_component;
+  outline.components = topology.components;
+  return outline;
+}
+
+}  // namespace
 
 FeatureCut cut_along_features(const TriangleMesh& surface, const FeatureSet& features) {
   return cut_along_features(RemeshSurface(surface), features);
@@ -61,6 +86,11 @@ FeatureCut cut_along_features(const RemeshSurface& prepared, const FeatureSet& f
     cut.mesh.vertices.row(num_vertices + static_cast<Index>(i)) = surface.vertices.row(extra[i]);
     cut.original_vertex[static_cast<std::size_t>(num_vertices) + i] = extra[i];
   }
+  cut.surface = surface_outline(topology, features);
   return cut;
+}
+
+bool SurfaceOutline::is_boundary_edge(Index a, Index b) const {
+  return std::binary_search(boundary_edges.begin(), boundary_edges.end(), std::array{std::min(a, b), std::max(a, b)});
 }
 }  // namespace geodual::remesh

@@ -15,10 +15,13 @@
 
 namespace geodual::remesh {
 
-bool FeatureSet::is_sharp(Index a, Index b) const {
-  return std::binary_search(sharp_edges.begin(), sharp_edges.end(),
-                            std::array<Index, 2>{std::min(a, b), std::max(a, b)});
+Index FeatureSet::find_sharp_edge(Index a, Index b) const {
+  const std::array<Index, 2> edge{std::min(a, b), std::max(a, b)};
+  const auto at = std::lower_bound(sharp_edges.begin(), sharp_edges.end(), edge);
+  return at != sharp_edges.end() && *at == edge ? static_cast<Index>(at - sharp_edges.begin()) : -1;
 }
+
+bool FeatureSet::is_sharp(Index a, Index b) const { return find_sharp_edge(a, b) >= 0; }
 namespace {
 
 /// The graph of feature edges: per vertex, its edges (CSR over `edges`).

@@ -276,7 +276,10 @@ std::vector<SurfacePoint> points_on_cut(const ManifoldCut& cut, std::vector<Surf
   return points;
 }
 
-ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options) {
+namespace {
+
+/// cut_to_manifold, with the cut mesh's topology in `*cut_topology` where that is given.
+ManifoldCut cut_with_topology(const TriangleMesh& mesh, const ManifoldCutOptions& options, MeshTopology* cut_topology) {
   const Index num_faces = static_cast<Index>(mesh.faces.rows());
   const Index num_vertices = static_cast<Index>(mesh.vertices.rows());
   ManifoldCut cut;
@@ -288,7 +291,7 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
   // The fans of the input, copies disabled: corners at one vertex whose faces
   // are joined around it across edges (joined_face_pairs).
   cut.mesh.vertices = mesh.vertices;
-  const MeshTopology topology = build_mesh_topology(cut.mesh);
+  MeshTopology topology = build_mesh_topology(cut.mesh);
   std::vector<FacePair> joined = joined_face_pairs(cut.mesh, topology);
   const FaceMatrix faces = cut.mesh.faces;  // the input's corners, copies disabled
   std::vector<std::uint8_t> split;
@@ -366,7 +369,21 @@ ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& 
       ++cut.faces_disabled;
     }
   }
+  if (cut_topology) {
+    const bool unchanged = cut.vertices_split == 0 && cut.faces_disabled == cut.duplicates_disabled;
+    *cut_topology = unchanged ? std::move(topology) : build_mesh_topology(cut.mesh);
+  }
   return cut;
+}
+
+}  // namespace
+
+ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options) {
+  return cut_with_topology(mesh, options, nullptr);
+}
+
+ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options, MeshTopology& topology) {
+  return cut_with_topology(mesh, options, &topology);
 }
 
 std::vector<std::array<Index, 2>> edges_on_cut(const ManifoldCut& cut, Index num_input_vertices,

@@ -11,7 +11,9 @@ namespace geodual::remesh {
 
 RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count, const FeatureSampling& features,
                                 const ShortCreasePins& pins, const SamplingOptions& options, GivenSiteShare share) {
-  const TriangleMesh& sites_surface = features.sites_surface(surface.mesh());
+  // The surface the sites go on: with features, their cut, prepared here once.
+  std::optional<RemeshSurface> cut;
+  const RemeshSurface& sites_surface = features.empty() ? surface : cut.emplace(features.cut.mesh);
   const auto pinned = static_cast<std::int64_t>(pins.pins.size());
   SampledSites sampled =
       features.empty()
@@ -30,14 +32,11 @@ RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count
   // The sites the density asks for beyond the count, where it is densest,
   // off the boundary (the chains' sides, lined with sites already).
   std::vector<double> excess(features.density.size());
-  std::optional<MeshTopology> cut_topology;  // the surface's own without features
-  const MeshTopology& topology =
-      features.empty() ? surface.topology() : cut_topology.emplace(build_mesh_topology(sites_surface));
   for (std::size_t v = 0; v < excess.size(); ++v) {
-    excess[v] = topology.vertex_on_boundary[v] != 0 ? 0.0 : features.density[v] - 1;
+    excess[v] = sites_surface.topology().vertex_on_boundary[v] != 0 ? 0.0 : features.density[v] - 1;
   }
   const std::size_t before = result.sites.size();
-  result.sites = add_sites_at_deviations(sites_surface, result.sites, excess, features.density,
+  result.sites = add_sites_at_deviations(sites_surface.mesh(), result.sites, excess, features.density,
                                          features.density_spacing, features.sites_near_features);
   result.sites_added_near_features = static_cast<std::int64_t>(result.sites.size() - before);
   return result;

@@ -369,6 +369,12 @@ SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
   return sample(mesh, nullptr, count, options, true, boundary_sites, given_share);
 }
 
+SampledSites sample_sites_around(const RemeshSurface& surface, std::int64_t count,
+                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options,
+                                 GivenSiteShare given_share) {
+  return sample(surface.mesh(), &surface.topology(), count, options, true, boundary_sites, given_share);
+}
+
 SamplingStrategy parse_sampling_strategy(std::string_view name) {
   if (name == "random") return SamplingStrategy::random;
   if (name == "poisson") return SamplingStrategy::poisson;
@@ -386,7 +392,12 @@ std::string sampling_strategy_name(SamplingStrategy strategy) {
 }
 
 void require_a_site_on_every_piece(const TriangleMesh& surface, std::span<const SurfacePoint> sites) {
-  const MeshTopology topology = build_mesh_topology(surface);
+  require_a_site_on_every_piece(RemeshSurface(surface), sites);
+}
+
+void require_a_site_on_every_piece(const RemeshSurface& prepared, std::span<const SurfacePoint> sites) {
+  const TriangleMesh& surface = prepared.mesh();
+  const MeshTopology& topology = prepared.topology();
   std::vector<std::uint8_t> has_site(static_cast<std::size_t>(topology.num_components()), 0);
   for (const SurfacePoint& site : sites) {
     const bool face = site.kind == SurfacePoint::Kind::face;

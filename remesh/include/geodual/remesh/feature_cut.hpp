@@ -12,22 +12,41 @@
 //   ... sample the rest on cut.mesh, relax, dual_with_repair on cut.mesh ...
 //   ... weld the dual back along the chains (welded_dual.hpp)
 
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/spacing_density.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace geodual::remesh {
 
+/// The surface a cut came from, as far as the weld checks a remesh against
+/// it: its boundary, the faces of its sharp edges and its pieces. Kept with
+/// the cut (a few bytes per face) so that no later stage builds the
+/// surface's topology again.
+struct SurfaceOutline {
+  std::vector<std::array<Index, 2>> boundary_edges;   ///< vertex pairs (smaller first), sorted
+  std::vector<std::uint8_t> vertex_on_boundary;       ///< per surface vertex
+  std::vector<std::array<Index, 2>> sharp_edge_faces;  ///< per FeatureSet::sharp_edges, its two faces
+  /// The pieces (MeshTopology's components): per face and per vertex (-1: none).
+  std::vector<Index> face_component;
+  std::vector<Index> vertex_component;
+  std::vector<ComponentCounts> components;
+  /// Whether vertices a and b (either order) are the ends of a boundary edge.
+  bool is_boundary_edge(Index a, Index b) const;
+};
+
 struct FeatureCut {
   /// The surface's faces, in the same order, with vertices split along the
   /// sharp chains: one copy of a vertex per sector between chains.
   TriangleMesh mesh;
   std::vector<Index> original_vertex;  ///< per vertex of `mesh`, the surface vertex it copies
+  SurfaceOutline surface;              ///< of the surface cut
 };
 
 /// \pre surface is a 2-manifold and features were detected on it.
@@ -72,8 +91,6 @@ FeatureSites feature_sites(const RemeshSurface& surface, const FeatureSet& featu
 /// same point on the edge's other face, and for each site at a vertex the cut
 /// split, a site at its other copies, where no site holds them.
 std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
-                                        std::span<const SurfacePoint> sites);
-std::vector<SurfacePoint> missing_twins(const RemeshSurface& surface, const FeatureSet& features, const FeatureCut& cut,
                                         std::span<const SurfacePoint> sites);
 
 }  // namespace geodual::remesh

@@ -88,7 +88,9 @@ struct FeatureSet {
   /// their own: where the remesher pins sites instead (crease_pins.hpp).
   std::vector<FeatureChain> short_creases;
   bool empty() const { return sharp_edges.empty(); }
-  /// Whether the edge between vertices a and b (either order) is sharp.
+  /// The index in sharp_edges of the edge between vertices a and b (either
+  /// order), or -1 where it is not sharp.
+  Index find_sharp_edge(Index a, Index b) const;
   bool is_sharp(Index a, Index b) const;
 };
 

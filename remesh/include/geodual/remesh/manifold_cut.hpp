@@ -12,6 +12,7 @@
 // Before the cut, duplicate faces (a CAD soup's second copy of a triangle)
 // are disabled, so that they neither cut the surface apart nor count twice.
 
+#include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/surface_point.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
@@ -56,6 +57,10 @@ struct ManifoldCut {
 
 /// Faces with a repeated vertex index keep their indices and join no fan.
 ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options = {});
+/// The same, and the topology of the cut's mesh in `topology`: the input's,
+/// built for the cut, where the cut changed nothing (no vertex split, no
+/// scrap), so that a remesh builds it once.
+ManifoldCut cut_to_manifold(const TriangleMesh& mesh, const ManifoldCutOptions& options, MeshTopology& topology);
 
 /// Points of the input as points of the cut surface: a vertex becomes the
 /// corner of the first face of `cut.mesh` that takes part and has a copy of

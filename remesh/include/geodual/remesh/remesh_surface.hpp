@@ -13,11 +13,16 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 
+#include <utility>
+
 namespace geodual::remesh {
 
 class RemeshSurface {
  public:
   explicit RemeshSurface(const TriangleMesh& mesh) : mesh_(&mesh), topology_(build_mesh_topology(mesh)) {}
+  /// With the mesh's topology built already (cut_to_manifold gives it).
+  /// \pre topology is build_mesh_topology(mesh).
+  RemeshSurface(const TriangleMesh& mesh, MeshTopology topology) : mesh_(&mesh), topology_(std::move(topology)) {}
 
   const TriangleMesh& mesh() const { return *mesh_; }
   const MeshTopology& topology() const { return topology_; }

@@ -83,6 +83,9 @@ enum class GivenSiteShare {
 SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
                                  std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options = {},
                                  GivenSiteShare given_share = GivenSiteShare::half_cell);
+SampledSites sample_sites_around(const RemeshSurface& surface, std::int64_t count,
+                                 std::span<const SurfacePoint> boundary_sites, const SamplingOptions& options = {},
+                                 GivenSiteShare given_share = GivenSiteShare::half_cell);
 
 /// Checks that every connected piece of `surface` (faces with three distinct
 /// corners, joined through shared vertices) holds one of `sites` at least: a
@@ -90,6 +93,7 @@ SampledSites sample_sites_around(const TriangleMesh& mesh, std::int64_t count,
 /// sites not sampled here (a site file). \throw Error naming how many pieces
 /// have none and the first of them.
 void require_a_site_on_every_piece(const TriangleMesh& surface, std::span<const SurfacePoint> sites);
+void require_a_site_on_every_piece(const RemeshSurface& surface, std::span<const SurfacePoint> sites);
 
 /// "random", "poisson", "fps" -> the strategy; anything else throws
 /// geodual::UsageError naming the accepted values.

@@ -51,8 +51,6 @@ struct WeldedDual {
 /// which site_moves moves onto the boundary.
 WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
                                const TriangleMesh& dual, std::span<const SurfacePoint> sites);
-WeldedDual weld_along_features(const RemeshSurface& surface, const FeatureSet& features, const FeatureCut& cut,
-                               const TriangleMesh& dual, std::span<const SurfacePoint> sites);
 
 /// dual_with_repair on the prepared cut surface, then the weld; while it
 /// cracks, the sites inside that reached a boundary move onto it, the twins
