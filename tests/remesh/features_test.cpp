@@ -569,6 +569,50 @@ TEST(CreasePins, OptionsOutOfRangeAreRefused) {
                UsageError);
 }
 
+TEST(FeatureCut, KeepsTheOutlineOfTheSurfaceItCut) {
+  // A box without its top: a boundary loop, 8 creases, one piece.
+  const TriangleMesh box = cube(6);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<Index, 3>> faces;
+  for (Index v = 0; v < box.num_vertices(); ++v) points.push_back(box.vertices.row(v));
+  for (Index f = 0; f < box.num_faces(); ++f) {
+    const bool top = box.vertices(box.faces(f, 0), 2) == 1.0 && box.vertices(box.faces(f, 1), 2) == 1.0 &&
+                     box.vertices(box.faces(f, 2), 2) == 1.0;
+    if (!top) faces.push_back({box.faces(f, 0), box.faces(f, 1), box.faces(f, 2)});
+  }
+  const TriangleMesh open_box = test::mesh_from_lists(points, faces);
+  const remesh::FeatureSet features = remesh::detect_features(open_box);
+  ASSERT_FALSE(features.empty());
+  const remesh::FeatureCut cut = remesh::cut_along_features(open_box, features);
+  const remesh::SurfaceOutline& outline = cut.surface;
+  const MeshTopology topology = build_mesh_topology(open_box);
+  std::size_t boundary_edges = 0;
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto [a, b] = topology.edge_vertices[e];
+    EXPECT_EQ(outline.is_boundary_edge(a, b), topology.is_boundary_edge(e));
+    EXPECT_EQ(outline.is_boundary_edge(b, a), topology.is_boundary_edge(e));
+    boundary_edges += topology.is_boundary_edge(e) ? 1 : 0;
+  }
+  EXPECT_EQ(outline.boundary_edges.size(), boundary_edges);
+  EXPECT_EQ(boundary_edges, 4u * 6);  // the top's rim
+  EXPECT_EQ(outline.vertex_on_boundary, topology.vertex_on_boundary);
+  ASSERT_EQ(outline.sharp_edge_faces.size(), features.sharp_edges.size());
+  for (std::size_t i = 0; i < features.sharp_edges.size(); ++i) {
+    const auto [a, b] = features.sharp_edges[i];
+    const auto faces_of_edge = topology.edge_faces(topology.find_edge(a, b));
+    ASSERT_EQ(faces_of_edge.size(), 2u);
+    EXPECT_EQ(outline.sharp_edge_faces[i][0], faces_of_edge[0]);
+    EXPECT_EQ(outline.sharp_edge_faces[i][1], faces_of_edge[1]);
+    EXPECT_EQ(features.find_sharp_edge(b, a), static_cast<Index>(i));
+  }
+  EXPECT_EQ(features.find_sharp_edge(topology.edge_vertices[0][0], topology.edge_vertices[0][0]), -1);
+  EXPECT_EQ(outline.face_component, topology.face_component);
+  EXPECT_EQ(outline.vertex_component, topology.vertex_component);
+  ASSERT_EQ(outline.components.size(), 1u);
+  EXPECT_EQ(outline.components[0].euler_characteristic(), 1);  // a disk: the cut's six sides make one piece here
+  EXPECT_EQ(outline.components[0].boundary_loops, 1);
+}
+
 TEST(FeatureCut, BoxFallsIntoSixSidesAndSitesComeInTwins) {
   const TriangleMesh box = cube(6);
   const remesh::FeatureSet features = remesh::detect_features(box);

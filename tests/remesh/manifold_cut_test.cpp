@@ -2,6 +2,7 @@
 
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/mesh/mesh_topology.hpp"
 #include "remesh/analytic_surfaces.hpp"
 
 #include <gtest/gtest.h>
@@ -92,6 +93,55 @@ TEST(ManifoldCut, TwoSheetsCrossingAtEdgesEachStayWhole) {
   const TriangleMesh mesh = builder.mesh();
   ASSERT_EQ(analyze_mesh(mesh).nonmanifold_edges, 8);
   expect_orientable_manifold(remesh::cut_to_manifold(mesh).mesh, 2, 2, 2);
+}
+
+/// Expects `given` to be build_mesh_topology(mesh), field by field.
+void expect_topology_of(const TriangleMesh& mesh, const MeshTopology& given) {
+  const MeshTopology built = build_mesh_topology(mesh);
+  EXPECT_EQ(given.edge_vertices, built.edge_vertices);
+  EXPECT_EQ(given.edge_face_begin, built.edge_face_begin);
+  EXPECT_EQ(given.edge_face_list, built.edge_face_list);
+  EXPECT_EQ(given.face_edges, built.face_edges);
+  EXPECT_EQ(given.vertex_on_boundary, built.vertex_on_boundary);
+  EXPECT_EQ(given.corner_fan, built.corner_fan);
+  EXPECT_EQ(given.face_component, built.face_component);
+  EXPECT_EQ(given.vertex_component, built.vertex_component);
+  EXPECT_EQ(given.edge_boundary_loop, built.edge_boundary_loop);
+  ASSERT_EQ(given.num_components(), built.num_components());
+  for (Index c = 0; c < built.num_components(); ++c) {
+    EXPECT_EQ(given.components[c].euler_characteristic(), built.components[c].euler_characteristic());
+    EXPECT_EQ(given.components[c].boundary_loops, built.components[c].boundary_loops);
+  }
+}
+
+TEST(ManifoldCut, TheTopologyItGivesIsTheCutMeshsWhetherItCutOrNot) {
+  // A plane alone: nothing to cut, the input's topology is handed on.
+  MeshBuilder plane;
+  plane.grid(8, 8, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  MeshTopology topology;
+  const TriangleMesh plane_mesh = plane.mesh();
+  const remesh::ManifoldCut whole = remesh::cut_to_manifold(plane_mesh, {}, topology);
+  EXPECT_EQ(whole.vertices_split, 0);
+  EXPECT_EQ(whole.faces_disabled, 0);
+  expect_topology_of(whole.mesh, topology);
+  // Crossing sheets: split vertices, a topology of its own.
+  MeshBuilder crossing;
+  crossing.grid(16, 8, [](double u, double v) { return Eigen::Vector3d(2 * u, v, 0); });
+  crossing.grid(8, 8, [](double u, double v) { return Eigen::Vector3d(0.5 + u, 0.5, v - 0.5); });
+  const TriangleMesh crossing_mesh = crossing.mesh();
+  const remesh::ManifoldCut cut = remesh::cut_to_manifold(crossing_mesh, {}, topology);
+  EXPECT_GT(cut.vertices_split, 0);
+  expect_topology_of(cut.mesh, topology);
+  EXPECT_EQ(topology.num_components(), 2);
+  // A scrap disabled (a lone triangle far off): a topology without it.
+  MeshBuilder scrap;
+  scrap.grid(8, 8, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  scrap.face(scrap.vertex({5, 5, 5}), scrap.vertex({5.001, 5, 5}), scrap.vertex({5, 5.001, 5}));
+  const TriangleMesh scrap_mesh = scrap.mesh();
+  const remesh::ManifoldCut scrapped = remesh::cut_to_manifold(scrap_mesh, {}, topology);
+  EXPECT_EQ(scrapped.faces_disabled, 1);
+  expect_topology_of(scrapped.mesh, topology);
+  EXPECT_EQ(topology.num_components(), 1);
 }
 
 TEST(ManifoldCut, NoJoinAtANonManifoldEdgeMakesAPieceNonOrientable) {

@@ -270,7 +270,8 @@ std::vector<SurfacePoint> missing_twins(const TriangleMesh& surface, const Featu
     std::size_t j = i;
     while (j < held.size() && held[j].first == held[i].first) ++j;
     const SiteKey& key = held[i].first;
-    for (const Index f : cut.surface.sharp_edge_faces[static_cast<std::size_t>(features.find_sharp_edge(key.lo, key.hi))]) {
+    for (const Index f :
+         cut.surface.sharp_edge_faces[static_cast<std::size_t>(features.find_sharp_edge(key.lo, key.hi))]) {
       if (f < 0) continue;
       const bool has =
           std::any_of(held.begin() + static_cast<std::ptrdiff_t>(i), held.begin() + static_cast<std::ptrdiff_t>(j),

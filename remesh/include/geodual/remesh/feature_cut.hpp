@@ -30,8 +30,8 @@ namespace geodual::remesh {
 /// the cut (a few bytes per face) so that no later stage builds the
 /// surface's topology again.
 struct SurfaceOutline {
-  std::vector<std::array<Index, 2>> boundary_edges;   ///< vertex pairs (smaller first), sorted
-  std::vector<std::uint8_t> vertex_on_boundary;       ///< per surface vertex
+  std::vector<std::array<Index, 2>> boundary_edges;    ///< vertex pairs (smaller first), sorted
+  std::vector<std::uint8_t> vertex_on_boundary;        ///< per surface vertex
   std::vector<std::array<Index, 2>> sharp_edge_faces;  ///< per FeatureSet::sharp_edges, its two faces
   /// The pieces (MeshTopology's components): per face and per vertex (-1: none).
   std::vector<Index> face_component;
