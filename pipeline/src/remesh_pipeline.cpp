@@ -467,25 +467,27 @@ std::vector<SurfacePoint> remesh_vertices_on_input(const RemeshPipelineResult& r
 
 namespace {
 
-/// The sharp edges of `features` (on `surface`) to leave out where a remesh
-/// that kept them failed at `places`: those with an end within `radius` of
-/// a place, and where a boundary loop is a feature there (a sharp chain runs
-/// into it), those with an end on that loop.
+/// The sharp edges of `features` (on `surface`, cut along them as `cut`) to
+/// leave out where a remesh that kept them failed at `places`: those with an
+/// end within `radius` of a place, and where a boundary loop is a feature
+/// there (a sharp chain runs into it), those with an end on that loop.
 std::vector<std::array<Index, 2>> sharp_edges_near(const TriangleMesh& surface, const remesh::FeatureSet& features,
+                                                   const remesh::FeatureCut& cut,
                                                    const std::vector<Eigen::Vector3d>& places, double radius) {
   const auto close = [&](Index v) {
     const Eigen::Vector3d x = surface.vertices.row(v);
     return std::any_of(places.begin(), places.end(),
                        [&](const Eigen::Vector3d& p) { return (p - x).norm() <= radius; });
   };
-  const MeshTopology topology = build_mesh_topology(surface);
+  const remesh::SurfaceOutline& outline = cut.surface;
   std::vector<Index> loop_of_vertex(static_cast<std::size_t>(surface.num_vertices()), -1);
-  for (Index e = 0; e < topology.num_edges(); ++e) {
-    if (const Index loop = topology.edge_boundary_loop[e]; loop >= 0) {
-      for (const Index v : topology.edge_vertices[e]) loop_of_vertex[v] = loop;
-    }
+  Index loops = 0;
+  for (std::size_t e = 0; e < outline.boundary_edges.size(); ++e) {
+    const Index loop = outline.boundary_edge_loop[e];
+    for (const Index v : outline.boundary_edges[e]) loop_of_vertex[v] = loop;
+    loops = std::max(loops, loop + 1);
   }
-  std::vector<std::uint8_t> loop_near(static_cast<std::size_t>(topology.num_boundary_loops), 0);
+  std::vector<std::uint8_t> loop_near(static_cast<std::size_t>(loops), 0);
   for (const remesh::FeatureChain& chain : features.chains) {
     if (chain.on_boundary && std::any_of(chain.vertices.begin(), chain.vertices.end(), close)) {
       loop_near[loop_of_vertex[chain.vertices[1]]] = 1;  // an inner vertex: not a corner on two loops
@@ -613,7 +615,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     std::vector<std::array<Index, 2>> near;
     if (const double spacings = options.features.retry_radius; spacings > 0 && !places.empty()) {
       const double radius = spacings * remesh::uniform_spacing(surface, static_cast<std::int64_t>(first_sites.size()));
-      near = sharp_edges_near(surface, result.features, places, radius);
+      near = sharp_edges_near(surface, result.features, result.feature_cut, places, radius);
     }
     if (drops_left > 0 && !near.empty()) {
       --drops_left;

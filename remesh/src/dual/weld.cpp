@@ -5,10 +5,12 @@
 #include "geodual/mesh/detail/point_hash.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/union_find.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -130,20 +132,59 @@ std::vector<std::size_t> merge_twins(const TriangleMesh& dual, std::span<const S
   return site_of_vertex;
 }
 
-/// The point of the cut surface's boundary (its `boundary_edges`) in
-/// `piece` nearest x, as a point of the surface's edge, lattice-rounded like
-/// every edge site; within the lattice's margin of an end, that end (the key
-/// of a site there). None where the piece has no boundary.
+/// The cut surface's boundary edges and pieces, as build_mesh_topology(cut.mesh)
+/// would give them, read from the outline of the surface it came from: an
+/// edge of the cut is boundary where it copies a boundary or sharp edge of
+/// the surface and no other face has the same two copies.
+struct CutBoundary {
+  struct Edge {
+    Index p = -1, q = -1;  ///< vertices of cut.mesh, p < q
+    Index face = -1;       ///< its one face, of positive area
+  };
+  std::vector<Edge> edges;          ///< sorted by (p, q)
+  std::vector<Index> vertex_piece;  ///< per vertex of cut.mesh: faces joined through shared vertices
+  Index piece_of_face(const TriangleMesh& mesh, Index f) const { return vertex_piece[mesh.faces(f, 0)]; }
+};
+
+CutBoundary cut_boundary(const FeatureSet& features, const FeatureCut& cut) {
+  const TriangleMesh& mesh = cut.mesh;
+  CutBoundary boundary;
+  UnionFind pieces(static_cast<std::size_t>(mesh.num_vertices()));
+  std::vector<std::array<Index, 3>> candidates;  // p, q, face
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    if (has_repeated_corner(mesh, f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index p = mesh.faces(f, k), q = mesh.faces(f, (k + 1) % 3);
+      pieces.unite(p, q);
+      const Index a = cut.original_vertex[p], b = cut.original_vertex[q];
+      if (cut.surface.is_boundary_edge(a, b) || features.is_sharp(a, b)) {
+        candidates.push_back({std::min(p, q), std::max(p, q), f});
+      }
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  for (std::size_t i = 0; i < candidates.size();) {
+    std::size_t j = i + 1;
+    while (j < candidates.size() && candidates[j][0] == candidates[i][0] && candidates[j][1] == candidates[i][1]) ++j;
+    const auto [p, q, face] = candidates[i];
+    if (j == i + 1 && has_positive_area(mesh, face)) boundary.edges.push_back({p, q, face});
+    i = j;
+  }
+  boundary.vertex_piece.resize(static_cast<std::size_t>(mesh.num_vertices()));
+  for (Index v = 0; v < mesh.num_vertices(); ++v) boundary.vertex_piece[v] = pieces.find(v);
+  return boundary;
+}
+
+/// The point of the cut surface's boundary in `piece` nearest x, as a point
+/// of the surface's edge, lattice-rounded like every edge site; within the
+/// lattice's margin of an end, that end (the key of a site there). None
+/// where the piece has no boundary.
 std::optional<SurfacePoint> nearest_boundary_point(const TriangleMesh& surface, const FeatureCut& cut,
-                                                   const MeshTopology& cut_topology,
-                                                   std::span<const Index> boundary_edges, Index piece,
-                                                   const Eigen::Vector3d& x) {
+                                                   const CutBoundary& boundary, Index piece, const Eigen::Vector3d& x) {
   double best = std::numeric_limits<double>::infinity();
   std::optional<SurfacePoint> nearest;
-  for (const Index e : boundary_edges) {
-    const Index f = cut_topology.edge_faces(e)[0];
-    if (cut_topology.face_component[static_cast<std::size_t>(f)] != piece) continue;
-    const auto [p, q] = cut_topology.edge_vertices[static_cast<std::size_t>(e)];
+  for (const auto& [p, q, f] : boundary.edges) {
+    if (boundary.piece_of_face(cut.mesh, f) != piece) continue;
     const Eigen::Vector3d a = cut.mesh.vertices.row(p), b = cut.mesh.vertices.row(q);
     const Eigen::Vector3d d = b - a;
     const double t = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
@@ -227,13 +268,7 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
   for (std::size_t s = 0; s < sites.size(); ++s) site_grid.insert(sites[s].position(cut.mesh), s);
 
   // The nearest point of the cut surface's boundary in the site's piece.
-  const MeshTopology cut_topology = build_mesh_topology(cut.mesh);
-  std::vector<Index> boundary_edges;
-  for (Index e = 0; e < cut_topology.num_edges(); ++e) {
-    if (cut_topology.is_boundary_edge(e) && has_positive_area(cut.mesh, cut_topology.edge_faces(e)[0])) {
-      boundary_edges.push_back(e);
-    }
-  }
+  const CutBoundary boundary = cut_boundary(features, cut);
   for (auto first = crack_neighbours.begin(); first != crack_neighbours.end();) {
     const std::size_t s = first->first;
     const auto last = std::find_if(first, crack_neighbours.end(), [&](const auto& pair) { return pair.first != s; });
@@ -242,14 +277,13 @@ WeldedDual weld_along_features(const TriangleMesh& surface, const FeatureSet& fe
     // them (to its nearest point there, it could land next to one of them).
     const bool between = last - first == 2 && on_cut_boundary(first->second) && on_cut_boundary((first + 1)->second);
     const Index piece = sites[s].kind == SurfacePoint::Kind::vertex
-                            ? cut_topology.vertex_component[static_cast<std::size_t>(sites[s].element)]
-                            : cut_topology.face_component[static_cast<std::size_t>(sites[s].element)];
+                            ? boundary.vertex_piece[static_cast<std::size_t>(sites[s].element)]
+                            : boundary.piece_of_face(cut.mesh, sites[s].element);
     const Eigen::Vector3d x = between ? Eigen::Vector3d(0.5 * (sites[first->second].position(cut.mesh) +
                                                                sites[(first + 1)->second].position(cut.mesh)))
                                       : sites[s].position(cut.mesh);
     first = last;
-    const std::optional<SurfacePoint> nearest =
-        nearest_boundary_point(surface, cut, cut_topology, boundary_edges, piece, x);
+    const std::optional<SurfacePoint> nearest = nearest_boundary_point(surface, cut, boundary, piece, x);
     if (!nearest) continue;
     const SiteKey key = site_key(surface, cut, *nearest);
     if (std::binary_search(held.begin(), held.end(), key)) continue;

@@ -18,7 +18,10 @@ SurfaceOutline surface_outline(const MeshTopology& topology, const FeatureSet& f
   outline.sharp_edge_faces.assign(features.sharp_edges.size(), {-1, -1});
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const std::array<Index, 2>& ends = topology.edge_vertices[static_cast<std::size_t>(e)];
-    if (topology.is_boundary_edge(e)) outline.boundary_edges.push_back(ends);  // sorted, as the edges are
+    if (topology.is_boundary_edge(e)) {
+      outline.boundary_edges.push_back(ends);  // sorted, as the edges are
+      outline.boundary_edge_loop.push_back(topology.edge_boundary_loop[static_cast<std::size_t>(e)]);
+    }
     const Index sharp = features.find_sharp_edge(ends[0], ends[1]);
     if (sharp < 0) continue;
     const auto faces = topology.edge_faces(e);

@@ -31,6 +31,7 @@ namespace geodual::remesh {
 /// surface's topology again.
 struct SurfaceOutline {
   std::vector<std::array<Index, 2>> boundary_edges;    ///< vertex pairs (smaller first), sorted
+  std::vector<Index> boundary_edge_loop;               ///< per boundary edge, its loop (MeshTopology's numbering)
   std::vector<std::uint8_t> vertex_on_boundary;        ///< per surface vertex
   std::vector<std::array<Index, 2>> sharp_edge_faces;  ///< per FeatureSet::sharp_edges, its two faces
   /// The pieces (MeshTopology's components): per face and per vertex (-1: none).
