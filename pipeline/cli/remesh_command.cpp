@@ -563,6 +563,9 @@ class RemeshCommand final : public Command {
     if (run.sites_added_for_topology > 0) {
       err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_reason << "\n";
     }
+    if (run.sites_added_for_creases > 0) {
+      err << "geodual remesh: note: " << mesh_path << ": " << run.sites_added_for_creases_reason << "\n";
+    }
     if (!run.crease_pins_reason.empty()) {
       err << "geodual remesh: note: " << mesh_path << ": " << run.crease_pins_reason << "\n";
     }

@@ -541,20 +541,30 @@ std::vector<FeatureLeftOut> stretches_of(const TriangleMesh& surface, std::span<
   return stretches;
 }
 
-/// One remesh of result.input (run_stages); where the features cannot be
-/// kept with sites as dense beside the creases as elsewhere, they are tried
-/// with the denser sites of the components' shares by area
+/// Where the tries that keep the features all failed: why the last failed,
+/// and the creases the tries had, by stretch.
+struct FeaturesNotKept {
+  std::string reason;
+  std::vector<FeatureLeftOut> left_out;
+};
+
+/// One remesh of result.input (run_stages) that keeps the features: where
+/// they cannot be kept with sites as dense beside the creases as elsewhere,
+/// they are tried with the denser sites of the components' shares by area
 /// (remesh::GivenSiteShare); where they cannot be kept either and the
 /// failure lies at places (remesh::DualRepairError), again without the
 /// creases near those places, a few times, each try leaving out more where
 /// the last failed; where a failure names no place near a crease, or the
 /// tries run out, on with as many repair rounds as the remesh without
 /// features gets (its faults may lie away from the creases: a thin part, a
-/// handle the sites missed), again leaving out creases where it fails; and
-/// only where that fails too, the remesh without any, and why. What is left
-/// out is reported (RemeshPipelineResult::features_left_out).
-void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
-                 std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
+/// handle the sites missed), again leaving out creases where it fails. What
+/// is left out is reported (RemeshPipelineResult::features_left_out).
+/// Returns what the tries could not keep where none succeeded; none where
+/// one did.
+std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& result,
+                                                       const RemeshPipelineOptions& options,
+                                                       std::span<const double> input_density,
+                                                       const SiteRefinement* refinement) {
   // Only a failure of the remesh that keeps the features (not of the statistics after it) tries again.
   const auto features_failed = [&] { return !result.features.empty() && result.remesh.mesh.num_faces() == 0; };
   std::string reason;                          // why the last try failed
@@ -599,7 +609,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
           result.features_partly_dropped_reason = std::move(dropped_reason);
           result.features_left_out = stretches_of(result.surface.mesh, excluded);
         }
-        return;
+        return std::nullopt;
       } catch (const Cancelled&) {
         throw;
       } catch (const Error& e) {
@@ -629,14 +639,42 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
       break;
     }
   }
-  result.features_dropped_reason = reason;
-  {
-    // Every crease the tries kept, and those the last left out.
-    const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
-    std::vector<std::array<Index, 2>> all = result.features.sharp_edges;
-    all.insert(all.end(), excluded.begin(), excluded.end());
-    result.features_left_out = stretches_of(surface, all);
+  // Every crease the tries kept, and those the last left out.
+  const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
+  std::vector<std::array<Index, 2>> all = result.features.sharp_edges;
+  all.insert(all.end(), excluded.begin(), excluded.end());
+  return FeaturesNotKept{std::move(reason), stretches_of(surface, all)};
+}
+
+/// One remesh of result.input (run_stages) that keeps the features
+/// (remesh_keeping_features); where no try keeps them with the sites asked
+/// for, with twice as many, as often as options.features.max_site_doublings
+/// says (the sites added reported, and why); only where that fails too, the
+/// remesh without any, and why.
+void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                 std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
+  std::optional<FeaturesNotKept> not_kept = remesh_keeping_features(result, options, input_density, refinement);
+  if (!not_kept) return;
+  // The count the sites were asked for (sized, or as given).
+  const std::int64_t asked = options.edge_length > 0 || options.faces > 0 ? result.sites_for_sizing : options.sites;
+  if (!refinement && !options.given_sites) {
+    RemeshPipelineOptions more = options;
+    more.edge_length = 0;
+    more.faces = 0;
+    for (int doubling = 1; doubling <= options.features.max_site_doublings; ++doubling) {
+      more.sites = asked << doubling;
+      result.timings.clear();
+      if (!remesh_keeping_features(result, more, input_density, nullptr)) {
+        result.sites_added_for_creases = more.sites - asked;
+        result.sites_added_for_creases_reason =
+            "site count " + std::to_string(asked) + " raised to " + std::to_string(more.sites) +
+            " for the creases: with that count no try kept them (" + not_kept->reason + ")";
+        return;
+      }
+    }
   }
+  result.features_dropped_reason = std::move(not_kept->reason);
+  result.features_left_out = std::move(not_kept->left_out);
   result.features = {};
   result.feature_cut = {};
   result.feature_sites = result.site_twins = result.sites_added_near_features = 0;

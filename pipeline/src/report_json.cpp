@@ -149,6 +149,7 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
   figures["faces_target"] = options.faces > 0 ? nlohmann::ordered_json(options.faces) : nlohmann::ordered_json(nullptr);
   figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
   figures["sites_added_for_topology"] = run.sites_added_for_topology;
+  figures["sites_added_for_creases"] = run.sites_added_for_creases;
   figures["sharp_angle_deg"] = options.features.sampling.sharp_angle;
   figures["continuation_angle_deg"] = options.features.sampling.continuation_angle;
   figures["feature_chains"] = run.features.sharp_chains;

@@ -31,6 +31,7 @@ struct RemeshResult {
   py::object report;
   std::int64_t sites = 0;
   std::int64_t sites_added_for_topology = 0;
+  std::int64_t sites_added_for_creases = 0;
   std::int64_t sites_added_near_features = 0;
   std::int64_t crease_pins = 0;
   std::int64_t feature_chains = 0;
@@ -154,6 +155,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.report = json_to_python(report);
   result.sites = report["sites"].get<std::int64_t>();
   result.sites_added_for_topology = report["sites_added_for_topology"].get<std::int64_t>();
+  result.sites_added_for_creases = report["sites_added_for_creases"].get<std::int64_t>();
   result.sites_added_near_features = report["sites_added_near_features"].get<std::int64_t>();
   result.crease_pins = report["crease_pins"].get<std::int64_t>();
   result.feature_chains = report["feature_chains"].get<std::int64_t>();
@@ -209,6 +211,9 @@ void add_remesh(py::module_& module) {
       .def_readonly("sites_added_for_topology", &RemeshResult::sites_added_for_topology,
                     "sites sampled beyond the count asked because the surface's pieces and boundary loops need "
                     "them (included in `sites`)")
+      .def_readonly("sites_added_for_creases", &RemeshResult::sites_added_for_creases,
+                    "sites beyond the count asked because no try kept the creases with it and one with twice or "
+                    "four times as many did (included in `sites`)")
       .def_readonly("sites_added_near_features", &RemeshResult::sites_added_near_features,
                     "sites added beside the stretches of a sharp chain whose sites are closer than the spacing "
                     "(included in `sites`)")

@@ -37,6 +37,8 @@ void check_options(const FeatureRemeshOptions& options) {
           options.max_sites_added, "a finite fraction >= 0 of the sites");
   require(std::isfinite(options.retry_radius) && options.retry_radius >= 0, "feature retry radius",
           options.retry_radius, "a finite number >= 0 (in spacings)");
+  require(options.max_site_doublings >= 0 && options.max_site_doublings <= 10, "max feature site doublings",
+          options.max_site_doublings, "in [0, 10]");
 }
 
 LloydOptions relaxation_options(const TriangleMesh& surface, std::int64_t site_count, const RemeshOptions& options) {

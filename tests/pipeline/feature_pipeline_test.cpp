@@ -10,6 +10,7 @@
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
+#include "geodual/pipeline/report_json.hpp"
 #include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
@@ -17,6 +18,7 @@
 #include "geodual/remesh/sizing.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
 
@@ -56,6 +58,7 @@ pipeline::RemeshPipelineResult remesh_without_statistics(io::LoadedMesh loaded, 
 pipeline::RemeshPipelineOptions repair_alone() {
   pipeline::RemeshPipelineOptions options;
   options.features.close_crease_stretches = false;
+  options.features.max_site_doublings = 0;  // the tries at the count asked for only
   return options;
 }
 
@@ -686,6 +689,38 @@ TEST(FeaturePipeline, WhereCreasesCannotBeKeptTheRemeshFallsBackWithoutThemAndSa
   ASSERT_EQ(topology.num_components(), input.num_components());
   EXPECT_EQ(topology.components[0].euler_characteristic(), input.components[0].euler_characteristic());
   EXPECT_EQ(topology.num_boundary_loops, input.num_boundary_loops);
+}
+
+TEST(FeaturePipeline, WhereTheCountCannotCarryTheCreasesMoreSitesKeepThem) {
+  // OpenSCAD's functions example at 500 sites: its creases, 1,230 chain
+  // sites at 2,000 sites, are more than 500 sites carry, and no try keeps
+  // them. Without more sites the part is remeshed without them; with
+  // twice or four times as many, they are kept, and the sites added are said.
+  const io::LoadedMesh part = io::read_mesh("tests/data/cad/functions.stl");
+  pipeline::RemeshPipelineOptions asked_only;
+  asked_only.features.max_site_doublings = 0;
+  const pipeline::RemeshPipelineResult without = remesh_without_statistics(part, 500, asked_only);
+  ASSERT_FALSE(without.features_dropped_reason.empty());
+  EXPECT_TRUE(without.features.empty());
+  EXPECT_EQ(without.sites_added_for_creases, 0);
+
+  const pipeline::RemeshPipelineResult raised = remesh_without_statistics(part, 500);
+  EXPECT_TRUE(raised.features_dropped_reason.empty()) << raised.features_dropped_reason;
+  EXPECT_FALSE(raised.features.empty());
+  EXPECT_TRUE(raised.sites_added_for_creases == 500 || raised.sites_added_for_creases == 1500)
+      << raised.sites_added_for_creases;
+  EXPECT_NE(raised.sites_added_for_creases_reason.find("site count 500 raised to"), std::string::npos)
+      << raised.sites_added_for_creases_reason;
+  const std::int64_t sites = static_cast<std::int64_t>(raised.initial_sites.size()) - raised.site_twins;
+  EXPECT_GE(sites, 500 + raised.sites_added_for_creases);
+  EXPECT_EQ(pipeline::remesh_report_json(raised, {})["sites_added_for_creases"], raised.sites_added_for_creases);
+  // The creases are on the remesh's edges, not rounded off.
+  quality::QualityOptions long_creases;
+  long_creases.long_crease_length = remesh::uniform_spacing(part.mesh, raised.remesh.mesh.num_vertices());
+  const quality::FeatureRecall kept = quality::feature_recall(part.mesh, raised.remesh.mesh, long_creases);
+  const quality::FeatureRecall rounded = quality::feature_recall(part.mesh, without.remesh.mesh, long_creases);
+  EXPECT_GT(kept.long_recall_pct, 95.0);
+  EXPECT_GT(kept.long_recall_pct, rounded.long_recall_pct + 30);
 }
 
 }  // namespace

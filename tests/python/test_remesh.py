@@ -201,6 +201,19 @@ def test_says_which_features_were_kept_and_where_creases_were_left_out(data_dir)
     assert none.features_left_out == []
 
 
+def test_says_the_sites_added_where_the_count_cannot_carry_the_creases(data_dir):
+    # OpenSCAD's functions example at 500 sites: no try keeps its creases;
+    # with more sites they are kept, and the sites added are said.
+    V, F = geodual.read_mesh(data_dir / "cad" / "functions.stl")
+    raised = geodual.remesh(V, F, sites=500, statistics=False)
+    assert raised.features_dropped_reason is None and raised.feature_chains > 0
+    assert raised.sites_added_for_creases in (500, 1500)
+    assert raised.sites_added_for_creases == raised.report["sites_added_for_creases"]
+    assert raised.sites >= 500 + raised.sites_added_for_creases
+    V, F = geodual.read_mesh(data_dir / "fandisk.ply")
+    assert geodual.remesh(V, F, sites=2000, statistics=False).sites_added_for_creases == 0
+
+
 def test_pin_creases_puts_sites_on_the_short_creases_and_keeps_them(data_dir):
     # rocker_arm's creases are too short to cut along at 2,000 sites: without
     # pins no site is on them; with pins the pinned sites are remesh vertices

@@ -194,6 +194,11 @@ struct RemeshPipelineResult {
   /// boundary loops need them (remesh::sample_sites_for_topology), and why.
   std::int64_t sites_added_for_topology = 0;
   std::string sites_added_reason;
+  /// Sites added because the count asked for could not carry the creases:
+  /// no try kept them with it, one with more sites did
+  /// (remesh::FeatureRemeshOptions::max_site_doublings), and why.
+  std::int64_t sites_added_for_creases = 0;
+  std::string sites_added_for_creases_reason;
   /// The relax stage: relaxed sites, energy history (its diagram moved on to `remesh`).
   remesh::LloydResult relaxation;
   remesh::RepairedDual remesh;  ///< the dual stage: the remeshed mesh, final sites and diagram

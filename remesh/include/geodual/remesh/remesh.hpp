@@ -75,8 +75,13 @@ struct FeatureRemeshOptions {
   /// Where that remesh fails at places (DualRepairError::places), the remesh
   /// pipeline tries again without the creases within this many spacings of
   /// them (up to six times, each leaving out more where the last failed)
-  /// before it drops them all (0: no such try).
+  /// before it drops them all (0: no such try) ...
   double retry_radius = 2;
+  /// ... and where no try keeps the creases with the sites asked for, they
+  /// cannot carry them: the tries run again with twice as many sites, and
+  /// again with twice as many, this many times at most, before the remesh
+  /// without features (0: never); the sites added are reported.
+  int max_site_doublings = 2;
   /// The dual closed along the chains' sides
   /// (DualOptions::close_boundary_stretches): the stretch between two
   /// consecutive chain sites is an edge by construction where another cell
