@@ -585,6 +585,7 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
     for (int attempt = 0; attempt < attempts; ++attempt) {
       try {
         if (round > 0 || attempt > 0) result.timings.clear();
+        result.remesh = {};  // a remesh below is this try's (features_failed)
         // Where the denser sites come out the same (few sites beside short
         // creases), the second try would only repeat the first.
         if (!run_stages(result, patient_now ? patient : options, input_density, refinement,
@@ -603,6 +604,13 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
               "the creases kept with up to " + std::to_string(patient.features.max_repair_rounds) +
                   " repair rounds, as " + std::to_string(options.features.max_repair_rounds) +
                   " were not enough: " + reason);
+        }
+        // A try that left out every crease kept none: no better than the
+        // remesh without features, and not taken as keeping them.
+        if (!excluded.empty() && result.features.empty()) {
+          const TriangleMesh& surface = result.surface.mesh;
+          return FeaturesNotKept{"every crease left out near the faults: " + dropped_reason,
+                                 stretches_of(surface, excluded)};
         }
         if (!excluded.empty()) {
           result.features_dropped_near = std::move(dropped_near);

@@ -723,5 +723,20 @@ TEST(FeaturePipeline, WhereTheCountCannotCarryTheCreasesMoreSitesKeepThem) {
   EXPECT_GT(kept.long_recall_pct, rounded.long_recall_pct + 30);
 }
 
+TEST(FeaturePipeline, ATryThatLeavesOutEveryCreaseIsNotTakenAsKeepingThem) {
+  // OpenSCAD's example021 at 2,000 sites: the tries leave out its creases
+  // near the faults until none is left. That remesh is the one without
+  // features, and says so: why, and every crease left out.
+  pipeline::RemeshPipelineOptions asked_only;
+  asked_only.features.max_site_doublings = 0;
+  const pipeline::RemeshPipelineResult result =
+      remesh_without_statistics(io::read_mesh("tests/data/cad/example021.stl"), 2000, asked_only);
+  EXPECT_NE(result.features_dropped_reason.find("every crease left out"), std::string::npos)
+      << result.features_dropped_reason;
+  EXPECT_TRUE(result.features.empty());
+  EXPECT_FALSE(result.features_left_out.empty());
+  EXPECT_EQ(result.sites_added_for_creases, 0);
+}
+
 }  // namespace
 }  // namespace geodual
