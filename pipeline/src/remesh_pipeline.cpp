@@ -672,7 +672,9 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
     for (int doubling = 1; doubling <= options.features.max_site_doublings; ++doubling) {
       more.sites = asked << doubling;
       result.timings.clear();
-      if (!remesh_keeping_features(result, more, input_density, nullptr)) {
+      // Kept, and there were creases to keep at that spacing (the scale they
+      // are judged at shrinks with it).
+      if (!remesh_keeping_features(result, more, input_density, nullptr) && !result.features.empty()) {
         result.sites_added_for_creases = more.sites - asked;
         result.sites_added_for_creases_reason =
             "site count " + std::to_string(asked) + " raised to " + std::to_string(more.sites) +
