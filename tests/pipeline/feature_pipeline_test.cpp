@@ -636,13 +636,14 @@ TEST(FeaturePipeline, AWeldThatLosesAPieceOfTheCutIsNotTakenForARemesh) {
   // of the cut holding sites had a valid dual, so the remesh came out in two
   // pieces (Euler characteristic 2 instead of 0) and was taken. Now the weld
   // is checked against the surface's pieces, and the remesh leaves out the
-  // creases where the stray sites are, or falls back.
+  // creases where the stray sites are, tries more sites, or falls back.
   io::LoadedMesh loaded;
   loaded.mesh = bench::letter_wall();
   int caught = 0;
   for (const std::int64_t sites : {6, 12, 23, 30}) {
     const pipeline::RemeshPipelineResult result = remesh_without_statistics(loaded, sites);
     const std::string reasons = result.features_dropped_reason + " " + result.features_partly_dropped_reason + " " +
+                                result.sites_added_for_creases_reason + " " +
                                 remesh::problems_line(result.remesh.repair_problems);
     caught += reasons.find("does not keep the piece with input vertex") != std::string::npos;
     const MeshTopology topology = build_mesh_topology(result.remesh.mesh);
