@@ -1,6 +1,7 @@
 #include "geodual/pipeline/feature_file.hpp"
 
 #include "geodual/mesh/error.hpp"
+#include "geodual/mesh/sorted_edges.hpp"
 #include "parse_token.hpp"
 
 #include <algorithm>
@@ -26,7 +27,7 @@ std::vector<std::array<Index, 2>> mesh_edges(const TriangleMesh& mesh) {
 }
 
 bool is_edge(const std::vector<std::array<Index, 2>>& edges, Index a, Index b) {
-  return std::binary_search(edges.begin(), edges.end(), std::array<Index, 2>{std::min(a, b), std::max(a, b)});
+  return find_sorted_edge(edges, a, b) >= 0;
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "geodual/pipeline/feature_output.hpp"
 
+#include "geodual/mesh/sorted_edges.hpp"
+
 #include <algorithm>
 #include <array>
 
@@ -43,8 +45,7 @@ ColorMatrix feature_colors(const RemeshPipelineResult& result) {
         if (site.barycentric[zero] != 0) continue;
         const Index a = original(cut.mesh.faces(site.element, (zero + 1) % 3));
         const Index b = original(cut.mesh.faces(site.element, (zero + 2) % 3));
-        on = std::binary_search(chain_edges.begin(), chain_edges.end(),
-                                std::array<Index, 2>{std::min(a, b), std::max(a, b)});
+        on = find_sorted_edge(chain_edges, a, b) >= 0;
       }
     }
     const Index vertex = vertex_of(s);

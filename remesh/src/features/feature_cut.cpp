@@ -2,6 +2,7 @@
 
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/sorted_edges.hpp"
 #include "geodual/mesh/union_find.hpp"
 
 #include <algorithm>
@@ -93,7 +94,5 @@ FeatureCut cut_along_features(const RemeshSurface& prepared, const FeatureSet& f
   return cut;
 }
 
-bool SurfaceOutline::is_boundary_edge(Index a, Index b) const {
-  return std::binary_search(boundary_edges.begin(), boundary_edges.end(), std::array{std::min(a, b), std::max(a, b)});
-}
+bool SurfaceOutline::is_boundary_edge(Index a, Index b) const { return find_sorted_edge(boundary_edges, a, b) >= 0; }
 }  // namespace geodual::remesh

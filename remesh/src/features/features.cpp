@@ -4,6 +4,7 @@
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
 #include "geodual/mesh/sharp_edges.hpp"
+#include "geodual/mesh/sorted_edges.hpp"
 #include "geodual/mesh/union_find.hpp"
 #include "geodual/remesh/curvature_density.hpp"
 
@@ -15,11 +16,7 @@
 
 namespace geodual::remesh {
 
-Index FeatureSet::find_sharp_edge(Index a, Index b) const {
-  const std::array<Index, 2> edge{std::min(a, b), std::max(a, b)};
-  const auto at = std::lower_bound(sharp_edges.begin(), sharp_edges.end(), edge);
-  return at != sharp_edges.end() && *at == edge ? static_cast<Index>(at - sharp_edges.begin()) : -1;
-}
+Index FeatureSet::find_sharp_edge(Index a, Index b) const { return find_sorted_edge(sharp_edges, a, b); }
 
 bool FeatureSet::is_sharp(Index a, Index b) const { return find_sharp_edge(a, b) >= 0; }
 namespace {
