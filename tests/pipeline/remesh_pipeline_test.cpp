@@ -197,6 +197,10 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
             std::string::npos);
   EXPECT_NE(message([](Options& o) { o.features.max_sites_added = -0.1; }).find("max feature sites added"),
             std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.max_site_doublings = -1; }).find("max feature site doublings"),
+            std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.max_site_doublings = 11; }).find("max feature site doublings"),
+            std::string::npos);
   EXPECT_NE(message([](Options& o) {
               o.remesh.curvature = remesh::CurvatureDensityOptions{.max_ratio = 0.5};
             }).find("max_ratio"),
