@@ -52,8 +52,12 @@ class RingJudge {
 
   /// Points of the surface whose distance from the remesh the judge
   /// watches: from these triangles, or from the `others` (which stay where
-  /// they are) where those are nearer.
-  void watch(std::span<const Eigen::Vector3d> samples, std::span<const Index> others = {}) {
+  /// they are) where those are nearer; with `first` (the remesh's vertices
+  /// before a smoothing's first move), at most `allowance` farther than from
+  /// these triangles as they were then, so that moves one after the other
+  /// cannot each take a point a little farther away.
+  void watch(std::span<const Eigen::Vector3d> samples, std::span<const Index> others = {},
+             const VertexMatrix* first = nullptr, double allowance = 0) {
     samples_ = samples;
     distance_.resize(samples.size());
     beyond_.assign(samples.size(), std::numeric_limits<double>::infinity());
@@ -67,6 +71,7 @@ class RingJudge {
       }
       beyond_[i] = std::sqrt(beyond_[i]);
       distance_[i] = std::min(distance(samples[i], x), beyond_[i]);
+      if (first) distance_[i] = std::min(distance_[i], first_distance(samples[i], *first) + allowance);
     }
   }
 
@@ -133,6 +138,16 @@ class RingJudge {
     }
     return std::sqrt(squared);
   }
+  /// From point q to the triangles with their corners at `first`.
+  double first_distance(const Eigen::Vector3d& q, const VertexMatrix& first) const {
+    double squared = std::numeric_limits<double>::infinity();
+    for (const Index f : faces_) {
+      squared =
+          std::min(squared, squared_distance_to_triangle(q, first.row(mesh_.faces(f, 0)), first.row(mesh_.faces(f, 1)),
+                                                         first.row(mesh_.faces(f, 2))));
+    }
+    return std::sqrt(squared);
+  }
   Corners corners(Index f, const Eigen::Vector3d& x) const {
     Corners c;
     for (int k = 0; k < 3; ++k) {
@@ -184,6 +199,7 @@ class VertexSearch {
       : surface_(surface),
         topology_(topology),
         remesh_(remesh),
+        first_(remesh.vertices),
         around_(around),
         points_(points),
         bound_(bound),
@@ -195,15 +211,17 @@ class VertexSearch {
     Move move{origin, remesh_.vertices.row(v), 0, 0};
     // The surface's corners and face centres under the triangles round the
     // vertex, wherever it moves within reach: no move may take the remesh
-    // farther from any of them than 3 % of an edge (a vertex that
-    // slides off a crease or a rim, within the surface, would cut it off).
+    // farther from any of them than 3 % of an edge, nor all the moves
+    // together than 6 % (a vertex that slides off a crease or a rim, within
+    // the surface, would cut it off; so would the corners round a hollow's
+    // bottom, moving out of it a little at a time).
     if (!prepare(v, -1)) return move;
     RingJudge judge(remesh_, around_.around(v), v, bound_);
-    judge.watch(samples_);
+    const double slack = 0.03 * edge_;
+    judge.watch(samples_, {}, &first_, slack);
     const Ring start = judge.at(start_);
     move.min_angle_before = move.min_angle = start.min_angle;
     if (start.folded) return move;
-    const double slack = 0.03 * edge_;
     // Whether the vertex walked by `trial` (in the frame) does better than
     // the best so far, which it then becomes.
     const auto improves = [&](const Eigen::Vector2d& trial) {
@@ -434,6 +452,7 @@ class VertexSearch {
   const TriangleMesh& surface_;
   const voronoi::SurfaceTopology& topology_;
   const TriangleMesh& remesh_;
+  const VertexMatrix first_;  // remesh_.vertices before the first move (best_move's judge)
   const VertexFans& around_;
   const std::vector<SurfacePoint>& points_;
   double bound_;

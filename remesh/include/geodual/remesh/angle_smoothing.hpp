@@ -46,8 +46,9 @@ struct AngleSmoothingResult {
 /// triangle over, leaves none of them with a lower quality Q than the worst
 /// they had and no more of their angles below the bound, and takes them no
 /// farther from any point of the surface under them than 3 % of an edge
-/// more than they were (the Hausdorff distance stays). Stay where they are: the vertices with fixed[v] != 0
-/// (`fixed` may be empty or shorter), those at a vertex of the surface and
+/// more than they were, nor 6 % more than before the first move (the
+/// Hausdorff distance stays). Stay where they are: the vertices with
+/// fixed[v] != 0 (`fixed` may be empty or shorter), those at a vertex of the surface and
 /// those on its boundary (boundary loops, the sides of a cut), and those on
 /// the remesh's boundary. Deterministic (one vertex after the other, in
 /// index order).
