@@ -203,6 +203,7 @@ SampledSites sample_around_features(RemeshPipelineResult& result, const RemeshPi
   result.crease_pins_reason = std::move(pins.reason);
   sampled.pin_segments = std::move(pins.segments);
   result.feature_sites = creases.sites.points;
+  result.feature_sites_tightened = creases.points_tightened;
   result.site_twins = static_cast<std::int64_t>(creases.sites.sites.size()) - creases.sites.points;
   result.features = std::move(creases.features);
   result.feature_cut = std::move(creases.cut);
@@ -661,7 +662,23 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
 /// remesh without any, and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
-  std::optional<FeaturesNotKept> not_kept = remesh_keeping_features(result, options, input_density, refinement);
+  // Where the tries fail with chain sites closer along curved creases, once
+  // more with them no closer than min_spacing: fewer chain sites weld where
+  // more did not (a part whose creases bend at every spacing).
+  const auto keep_features = [&](const RemeshPipelineOptions& with) {
+    std::optional<FeaturesNotKept> not_kept = remesh_keeping_features(result, with, input_density, refinement);
+    if (!not_kept || result.feature_sites_tightened == 0 || !with.features.loosen_chain_sites) return not_kept;
+    RemeshPipelineOptions loose = with;
+    loose.features.sampling.tight_spacing = 0;
+    result.timings.clear();
+    if (remesh_keeping_features(result, loose, input_density, refinement) || result.features.empty()) return not_kept;
+    result.remesh.repair_problems.insert(
+        result.remesh.repair_problems.begin(),
+        "chain sites no closer along curved creases than elsewhere on them, as the weld with closer ones failed: " +
+            not_kept->reason);
+    return std::optional<FeaturesNotKept>{};
+  };
+  std::optional<FeaturesNotKept> not_kept = keep_features(options);
   if (!not_kept) return;
   // The count the sites were asked for (sized, or as given).
   const std::int64_t asked = options.edge_length > 0 || options.faces > 0 ? result.sites_for_sizing : options.sites;
@@ -674,7 +691,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
       result.timings.clear();
       // Kept, and there were creases to keep at that spacing (the scale they
       // are judged at shrinks with it).
-      if (!remesh_keeping_features(result, more, input_density, nullptr) && !result.features.empty()) {
+      if (!keep_features(more) && !result.features.empty()) {
         result.sites_added_for_creases = more.sites - asked;
         result.sites_added_for_creases_reason =
             "site count " + std::to_string(asked) + " raised to " + std::to_string(more.sites) +

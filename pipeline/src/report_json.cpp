@@ -160,6 +160,7 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
   figures["feature_narrowest_corner_deg"] =
       narrowest_corner < 360 ? nlohmann::ordered_json(narrowest_corner) : nlohmann::ordered_json(nullptr);
   figures["feature_sites"] = run.feature_sites;
+  figures["feature_sites_tightened"] = run.feature_sites_tightened;
   figures["sites_added_near_features"] = run.sites_added_near_features;
   figures["crease_pins"] = run.crease_pins;
   figures["crease_segments"] = run.crease_segments.segments;

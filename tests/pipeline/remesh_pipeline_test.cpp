@@ -191,6 +191,8 @@ TEST(RemeshPipeline, FeatureAndRepairOptionsOutOfRangeAreUsageErrorsNamingThem) 
       std::string::npos);
   EXPECT_NE(message([](Options& o) { o.features.sampling.min_feature_length = -0.5; }).find("min feature length"),
             std::string::npos);
+  EXPECT_NE(message([](Options& o) { o.features.sampling.max_share_tightened = -0.1; }).find("max share tightened"),
+            std::string::npos);
   EXPECT_NE(message([](Options& o) { o.remesh.max_repair_rounds = -1; }).find("max repair rounds"), std::string::npos);
   EXPECT_NE(message([](Options& o) { o.features.retry_radius = -1; }).find("feature retry radius"), std::string::npos);
   EXPECT_NE(message([](Options& o) { o.features.max_repair_rounds = -2; }).find("max feature repair"),

@@ -14,6 +14,7 @@
 #include "geodual/remesh/curvature_density.hpp"
 #include "geodual/remesh/dual_delaunay.hpp"
 #include "geodual/remesh/feature_cut.hpp"
+#include "geodual/remesh/feature_sampling.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/welded_dual.hpp"
@@ -733,6 +734,29 @@ TEST(FeatureCut, AtACornerWhereOneChainEndsAloneTheFirstStretchTakesTheTightSpac
     EXPECT_LT(point.spacing, 0.75 * h);
     EXPECT_GE(point.spacing, 0.4 * h * (1 - 1e-9));
   }
+}
+
+TEST(FeatureSampling, CloserChainSitesStayWithoutTheSitesBesideThemUnlessTheyAreTooMany) {
+  // fandisk at 500 sites: its round creases' chain sites are closer than
+  // 3/4 of a spacing; the sites beside them would be half as many again as
+  // the count, so there are none (no density), but the chain keeps its
+  // closer sites. Where those may add none (max_share_tightened 0), the
+  // chains are sampled no closer than 3/4 of a spacing.
+  const TriangleMesh fandisk = io::read_mesh("tests/data/fandisk.ply").mesh;
+  const remesh::RemeshSurface prepared(fandisk);
+  const remesh::FeatureSampling tight = remesh::sample_features(prepared, 500);
+  EXPECT_GT(tight.points_tightened, 0);
+  EXPECT_FALSE(tight.sites.dense_points.empty());
+  EXPECT_TRUE(tight.density.empty());
+  EXPECT_EQ(tight.sites_near_features, 0);
+  remesh::FeatureSamplingOptions none_added;
+  none_added.max_share_tightened = 0;
+  const remesh::FeatureSampling loose = remesh::sample_features(prepared, 500, none_added);
+  EXPECT_EQ(loose.points_tightened, 0);
+  EXPECT_EQ(tight.sites.points - loose.sites.points, tight.points_tightened);
+  remesh::FeatureSamplingOptions never;
+  never.tight_spacing = 0;
+  EXPECT_EQ(remesh::sample_features(prepared, 500, never).sites.sites.size(), loose.sites.sites.size());
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {

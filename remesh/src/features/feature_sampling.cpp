@@ -38,6 +38,8 @@ void check_options(const FeatureSamplingOptions& options) {
   require(in(options.tight_spacing, 0, 1), "tight spacing", options.tight_spacing, "in [0, 1] spacings");
   require(std::isfinite(options.max_share_near_features) && options.max_share_near_features >= 0,
           "max share near features", options.max_share_near_features, "a finite fraction >= 0 of the sites");
+  require(std::isfinite(options.max_share_tightened) && options.max_share_tightened >= 0, "max share tightened",
+          options.max_share_tightened, "a finite fraction >= 0 of the sites");
 }
 
 FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t sites,
@@ -61,17 +63,26 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
                                   .tight_spacing = options.tight_spacing * spacing};
   sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
   if (sampling.sites.dense_points.empty()) return sampling;
+  site_options.tight_spacing = 0;
+  FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, site_options);
+  sampling.points_tightened = sampling.sites.points - loose.points;
+  if (static_cast<double>(sampling.points_tightened) > options.max_share_tightened * static_cast<double>(sites)) {
+    sampling.sites = std::move(loose);
+    sampling.points_tightened = 0;
+    return sampling;
+  }
   sampling.density = spacing_density(cut, sampling.sites.dense_points, {.spacing = spacing});
   sampling.density_spacing = spacing;
   sampling.sites_near_features = sites_for_density(cut, sites, {}, sampling.density) - sites;
   if (static_cast<double>(sampling.sites_near_features) >
           options.max_share_near_features * static_cast<double>(sites) ||
       !carries_density(cut, sampling.density, spacing)) {
+    // The chains keep their dense sites; the sites beside them are spaced
+    // as elsewhere (a crease followed within the chord error outweighs the
+    // narrower triangles against it).
     sampling.density.clear();
     sampling.density_spacing = 0;
     sampling.sites_near_features = 0;
-    site_options.tight_spacing = 0;
-    sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
   }
   return sampling;
 }

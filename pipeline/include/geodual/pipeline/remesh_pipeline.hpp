@@ -151,6 +151,9 @@ struct RemeshPipelineResult {
   remesh::FeatureSet features;
   remesh::FeatureCut feature_cut;
   std::int64_t feature_sites = 0;  ///< distinct points of the remesh placed on the features
+  /// Of those, the points added where a crease bends too much for chords
+  /// 3/4 of a spacing long (FeatureSampling::points_tightened).
+  std::int64_t feature_sites_tightened = 0;
   /// Sites added beside the features where their sites are closer than the
   /// spacing (FeatureSites::dense_points), so that the triangles there keep their shape.
   std::int64_t sites_added_near_features = 0;

@@ -42,12 +42,16 @@ struct FeatureSamplingOptions {
   /// than beside it make slivers against it) ...
   double min_spacing = 0.75;
   /// ... except where a chord would still leave the chain: there down to this
-  /// many spacings, with the sites beside them as close (FeatureSampling::density),
+  /// many spacings, with the sites beside them as close (FeatureSampling::density)
   /// unless those would be more than max_share_near_features of the count or
   /// the surface's faces are too wide to carry that density (carries_density):
-  /// then min_spacing throughout.
+  /// then spaced as elsewhere beside the chain (narrower triangles against it).
+  /// Where the chain sites this spacing adds would be more than
+  /// max_share_tightened of the count (creases that bend at every spacing),
+  /// min_spacing throughout.
   double tight_spacing = 0.4;
   double max_share_near_features = 0.1;
+  double max_share_tightened = 0.25;
 };
 
 /// \throw geodual::UsageError naming the first option out of range.
@@ -59,6 +63,9 @@ struct FeatureSampling {
   FeatureSet features;
   FeatureCut cut;      ///< the surface cut open along the features
   FeatureSites sites;  ///< on cut.mesh, twins included
+  /// The points tight_spacing added along the chains (0: none, or the
+  /// options' tight_spacing 0).
+  std::int64_t points_tightened = 0;
   /// Per vertex of the surface the sites go on (sites_surface), the density
   /// the relaxation should give the sites round dense chain sites or pins;
   /// empty: 1 (uniform).

@@ -77,6 +77,10 @@ struct FeatureRemeshOptions {
   /// them (up to six times, each leaving out more where the last failed)
   /// before it drops them all (0: no such try) ...
   double retry_radius = 2;
+  /// ... and where no try keeps the creases with chain sites closer along
+  /// curved creases (sampling.tight_spacing), the tries run again with them
+  /// no closer than sampling.min_spacing (false: not) ...
+  bool loosen_chain_sites = true;
   /// ... and where no try keeps the creases with the sites asked for, they
   /// cannot carry them: the tries run again with twice as many sites, and
   /// again with twice as many, this many times at most, before the remesh
