@@ -630,6 +630,9 @@ class RemeshCommand final : public Command {
                     (narrowest_corner < 360 ? " (the narrowest " + significant(narrowest_corner, 3) + " deg)"
                                             : std::string()) +
                     ", lined with " + with_thousands(run.feature_sites) + " of the sites" +
+                    (run.feature_sites_tightened > 0
+                         ? " (" + with_thousands(run.feature_sites_tightened) + " of them where a crease bends)"
+                         : "") +
                     (run.sites_added_near_features > 0 ? ", " + with_thousands(run.sites_added_near_features) +
                                                              " more beside them where they are closer than the spacing"
                                                        : ""));

@@ -618,6 +618,8 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   // between two creases is 19.4 degrees).
   EXPECT_GT(by_default["feature_recall_pct"].get<double>(), 99.0);
   EXPECT_GT(by_default["sites_added_near_features"].get<double>(), 0);
+  EXPECT_GT(by_default["feature_sites_tightened"].get<double>(), 0);
+  EXPECT_LT(by_default["feature_sites_tightened"].get<double>(), by_default["feature_sites"].get<double>());
   EXPECT_GT(by_default["q_min"].get<double>(), 0.4);
   // That corner is reported: the remesh's smallest angle can be no wider.
   EXPECT_NEAR(by_default["feature_narrowest_corner_deg"].get<double>(), 19.4, 0.05);
@@ -631,6 +633,13 @@ TEST(RemeshCommand, KeepsTheCreasesOfAMachinedPartByDefault) {
   EXPECT_EQ(off["feature_chains"].get<double>(), 0);
   EXPECT_TRUE(off["feature_narrowest_corner_deg"].is_null());
   EXPECT_LT(off["feature_recall_pct"].get<double>(), 50.0);
+  // The summary says how many of the sites on the creases are there because they bend.
+  const CliRun table =
+      run_cli({"remesh", "tests/data/fandisk.ply", "--sites", "2000", "--no-statistics", "-q", "-o", out.string()});
+  ASSERT_EQ(table.exit_status, 0) << table.err;
+  const std::string tightened = std::to_string(by_default["feature_sites_tightened"].get<std::int64_t>());  // < 1,000
+  EXPECT_NE((table.out + table.err).find("(" + tightened + " of them where a crease bends)"), std::string::npos)
+      << table.out << table.err;
 }
 
 TEST(RemeshCommand, PinCreasesFollowsTheCreasesTooShortToCutAlong) {
