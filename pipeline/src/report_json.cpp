@@ -150,6 +150,9 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
   figures["sites"] = static_cast<std::int64_t>(run.initial_sites.size()) - run.site_twins;
   figures["sites_added_for_topology"] = run.sites_added_for_topology;
   figures["sites_added_for_creases"] = run.sites_added_for_creases;
+  figures["sites_added_for_creases_reason"] = run.sites_added_for_creases_reason.empty()
+                                                  ? nlohmann::ordered_json(nullptr)
+                                                  : nlohmann::ordered_json(run.sites_added_for_creases_reason);
   figures["sharp_angle_deg"] = options.features.sampling.sharp_angle;
   figures["continuation_angle_deg"] = options.features.sampling.continuation_angle;
   figures["feature_chains"] = run.features.sharp_chains;

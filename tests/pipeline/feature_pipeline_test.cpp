@@ -725,7 +725,10 @@ TEST(FeaturePipeline, WhereTheCountCannotCarryTheCreasesMoreSitesKeepThem) {
       << raised.sites_added_for_creases_reason;
   const std::int64_t sites = static_cast<std::int64_t>(raised.initial_sites.size()) - raised.site_twins;
   EXPECT_GE(sites, 500 + raised.sites_added_for_creases);
-  EXPECT_EQ(pipeline::remesh_report_json(raised, {})["sites_added_for_creases"], raised.sites_added_for_creases);
+  const nlohmann::ordered_json report = pipeline::remesh_report_json(raised, {});
+  EXPECT_EQ(report["sites_added_for_creases"], raised.sites_added_for_creases);
+  EXPECT_EQ(report["sites_added_for_creases_reason"], raised.sites_added_for_creases_reason);
+  EXPECT_TRUE(pipeline::remesh_report_json(without, {})["sites_added_for_creases_reason"].is_null());
   // The creases are on the remesh's edges, not rounded off.
   quality::QualityOptions long_creases;
   long_creases.long_crease_length = remesh::uniform_spacing(part.mesh, raised.remesh.mesh.num_vertices());

@@ -209,9 +209,12 @@ def test_says_the_sites_added_where_the_count_cannot_carry_the_creases(data_dir)
     assert raised.features_dropped_reason is None and raised.feature_chains > 0
     assert raised.sites_added_for_creases in (500, 1500)
     assert raised.sites_added_for_creases == raised.report["sites_added_for_creases"]
+    assert "site count 500 raised to" in raised.report["sites_added_for_creases_reason"]
     assert raised.sites >= 500 + raised.sites_added_for_creases
     V, F = geodual.read_mesh(data_dir / "fandisk.ply")
-    assert geodual.remesh(V, F, sites=2000, statistics=False).sites_added_for_creases == 0
+    kept = geodual.remesh(V, F, sites=2000, statistics=False)
+    assert kept.sites_added_for_creases == 0
+    assert kept.report["sites_added_for_creases_reason"] is None
 
 
 def test_pin_creases_puts_sites_on_the_short_creases_and_keeps_them(data_dir):
