@@ -62,16 +62,14 @@ class RingJudge {
     distance_.resize(samples.size());
     beyond_.assign(samples.size(), std::numeric_limits<double>::infinity());
     const Eigen::Vector3d x = mesh_.vertices.row(vertex_);
+    const auto now = [&](Index v) -> Eigen::Vector3d { return mesh_.vertices.row(v); };
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      for (const Index f : others) {
-        beyond_[i] =
-            std::min(beyond_[i], squared_distance_to_triangle(samples[i], mesh_.vertices.row(mesh_.faces(f, 0)),
-                                                              mesh_.vertices.row(mesh_.faces(f, 1)),
-                                                              mesh_.vertices.row(mesh_.faces(f, 2))));
-      }
-      beyond_[i] = std::sqrt(beyond_[i]);
+      beyond_[i] = distance_to_faces(samples[i], others, now);
       distance_[i] = std::min(distance(samples[i], x), beyond_[i]);
-      if (first) distance_[i] = std::min(distance_[i], first_distance(samples[i], *first) + allowance);
+      if (first) {
+        const auto then = [&](Index v) -> Eigen::Vector3d { return first->row(v); };
+        distance_[i] = std::min(distance_[i], distance_to_faces(samples[i], faces_, then) + allowance);
+      }
     }
   }
 
@@ -131,20 +129,18 @@ class RingJudge {
   };
   /// From point q to the triangles with the vertex at x.
   double distance(const Eigen::Vector3d& q, const Eigen::Vector3d& x) const {
-    double squared = std::numeric_limits<double>::infinity();
-    for (const Index f : faces_) {
-      const Corners c = corners(f, x);
-      squared = std::min(squared, squared_distance_to_triangle(q, c.p[0], c.p[1], c.p[2]));
-    }
-    return std::sqrt(squared);
+    return distance_to_faces(q, faces_, [&](Index v) -> Eigen::Vector3d {
+      return v == vertex_ ? x : Eigen::Vector3d(mesh_.vertices.row(v));
+    });
   }
-  /// From point q to the triangles with their corners at `first`.
-  double first_distance(const Eigen::Vector3d& q, const VertexMatrix& first) const {
+  /// From point q to `faces` of the mesh, each vertex v at position(v) (infinite where there are none).
+  template <class Position>
+  double distance_to_faces(const Eigen::Vector3d& q, std::span<const Index> faces, const Position& position) const {
     double squared = std::numeric_limits<double>::infinity();
-    for (const Index f : faces_) {
+    for (const Index f : faces) {
       squared =
-          std::min(squared, squared_distance_to_triangle(q, first.row(mesh_.faces(f, 0)), first.row(mesh_.faces(f, 1)),
-                                                         first.row(mesh_.faces(f, 2))));
+          std::min(squared, squared_distance_to_triangle(q, position(mesh_.faces(f, 0)), position(mesh_.faces(f, 1)),
+                                                         position(mesh_.faces(f, 2))));
     }
     return std::sqrt(squared);
   }
