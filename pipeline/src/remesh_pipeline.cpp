@@ -213,6 +213,8 @@ SampledSites sample_around_features(RemeshPipelineResult& result, const RemeshPi
   result.sites_added_near_features = sampled.initial.sites_added_near_features;
   result.sites_added_for_topology = sampled.initial.sites_added_for_topology;
   result.sites_added_reason = sampled.initial.topology_reason;
+  result.sites_added_for_creases = sampled.initial.sites_added_for_crowding;
+  result.sites_added_for_creases_reason = sampled.initial.crowding_reason;
   if (sampled.initial.sites_added_for_topology > 0) {
     // The loops of the surface cut to a manifold (those of the features' cut are the chains' sides).
     result.sites_added_reason += loops_made_by_cut(
@@ -692,10 +694,12 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
       // Kept, and there were creases to keep at that spacing (the scale they
       // are judged at shrinks with it).
       if (!keep_features(more) && !result.features.empty()) {
-        result.sites_added_for_creases = more.sites - asked;
+        // Beside the doublings, what the try's sampling added where chains crowd narrow pieces.
+        result.sites_added_for_creases += more.sites - asked;
         result.sites_added_for_creases_reason =
             "site count " + std::to_string(asked) + " raised to " + std::to_string(more.sites) +
-            " for the creases: with that count no try kept them (" + not_kept->reason + ")";
+            " for the creases: with that count no try kept them (" + not_kept->reason + ")" +
+            (result.sites_added_for_creases_reason.empty() ? "" : "; " + result.sites_added_for_creases_reason);
         return;
       }
     }
@@ -704,7 +708,8 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   result.features_left_out = std::move(not_kept->left_out);
   result.features = {};
   result.feature_cut = {};
-  result.feature_sites = result.site_twins = result.sites_added_near_features = 0;
+  result.feature_sites = result.site_twins = result.sites_added_near_features = result.sites_added_for_creases = 0;
+  result.sites_added_for_creases_reason.clear();
   result.timings.clear();
   RemeshPipelineOptions without = options;
   without.features.sampling.sharp_angle = 0;

@@ -207,7 +207,8 @@ def test_says_the_sites_added_where_the_count_cannot_carry_the_creases(data_dir)
     V, F = geodual.read_mesh(data_dir / "cad" / "functions.stl")
     raised = geodual.remesh(V, F, sites=500, statistics=False)
     assert raised.features_dropped_reason is None and raised.feature_chains > 0
-    assert raised.sites_added_for_creases in (500, 1500)
+    # doubled or quadrupled, and more where its chains crowd narrow pieces at that count
+    assert raised.sites_added_for_creases >= 500
     assert raised.sites_added_for_creases == raised.report["sites_added_for_creases"]
     assert "site count 500 raised to" in raised.report["sites_added_for_creases_reason"]
     assert raised.sites >= 500 + raised.sites_added_for_creases

@@ -106,9 +106,58 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   // A box's sides are 1 wide (a square's width: twice 1 over 4): kept at a width under a half.
   EXPECT_EQ(remesh::detect_features(cube(4), {.min_region_width = 0.49}).sharp_chains, 12);
   EXPECT_TRUE(remesh::detect_features(cube(4), {.min_region_width = 0.51}).empty());
-  // The remesh's detection asks for half the spacing.
+  // The band is rough (its corners' vertical edges turn by 90 degrees):
+  // judged at the rough width.
+  narrow = {.min_chain_length = 0.5, .min_region_width = 0.04, .min_rough_region_width = 0.06};
+  EXPECT_TRUE(remesh::detect_features(slab, narrow).empty());
+  // The remesh's detection asks for a tenth of the spacing, half where rough.
   const remesh::FeatureOptions remesh_options = remesh::remesh_feature_options(slab, 100, 60, 0.5);
-  EXPECT_DOUBLE_EQ(remesh_options.min_region_width, remesh_options.scale);
+  EXPECT_DOUBLE_EQ(remesh_options.min_region_width, 0.2 * remesh_options.scale);
+  EXPECT_DOUBLE_EQ(remesh_options.min_rough_region_width, remesh_options.scale);
+}
+
+/// An open step: the floor y in [0, 1/2] at z = 0, a wall `height` high at
+/// y = 1/2 (its middle line pushed out by `bulge` along y) and the tread
+/// y in [1/2, 1] at z = height, each `n` quads along x in [0, 1]; the wall's
+/// fold lines are creases of 90 degrees (flat wall) 1 long.
+TriangleMesh step(double height, int n, double bulge = 0) {
+  constexpr int kRows = 5;
+  const std::array<Eigen::Vector2d, kRows> profile = {Eigen::Vector2d(0, 0), Eigen::Vector2d(0.5, 0),
+                                                      Eigen::Vector2d(0.5 + bulge, height / 2),
+                                                      Eigen::Vector2d(0.5, height), Eigen::Vector2d(1, height)};
+  TriangleMesh mesh;
+  mesh.vertices.resize(kRows * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    for (int r = 0; r < kRows; ++r) {
+      mesh.vertices.row(kRows * i + r) << static_cast<double>(i) / n, profile[r].x(), profile[r].y();
+    }
+  }
+  mesh.faces.resize(2 * (kRows - 1) * n, 3);
+  Index f = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int r = 0; r + 1 < kRows; ++r) {
+      const Index a = kRows * i + r, b = a + kRows;  // the quad a, b, b + 1, a + 1
+      mesh.faces.row(f++) << a, b, b + 1;
+      mesh.faces.row(f++) << a, b + 1, a + 1;
+    }
+  }
+  return mesh;
+}
+
+TEST(Features, ASmoothNarrowRegionKeepsItsCreasesDownToTheSmallerWidth) {
+  // The wall between the step's two creases is flat, 0.05 high: width
+  // 2 (0.05) / 2.1 = 0.048 (its border: the two creases and two boundary edges).
+  const remesh::FeatureOptions options{.min_region_width = 0.04, .min_rough_region_width = 0.5};
+  const remesh::FeatureSet wall = remesh::detect_features(step(0.05, 4), options);
+  EXPECT_EQ(wall.sharp_chains, 2);
+  EXPECT_NEAR(wall.sharp_length, 2.0, 1e-12);
+  EXPECT_TRUE(
+      remesh::detect_features(step(0.05, 4), {.min_region_width = 0.05, .min_rough_region_width = 0.5}).empty());
+  // Folded by 40 degrees along its middle line (each half tilted by 20), the
+  // wall is rough, though the fold is no crease: the rough width applies.
+  const double bulge = 0.025 * std::tan(20 * std::numbers::pi / 180);
+  EXPECT_TRUE(remesh::detect_features(step(0.05, 4, bulge), options).empty());
+  EXPECT_EQ(remesh::detect_features(step(0.05, 4, bulge), {.min_region_width = 0.04}).sharp_chains, 2);
 }
 
 TEST(Features, NarrowestCornerAngleIsTheSmallestSectorBetweenFeatures) {

@@ -204,14 +204,17 @@ Chains walk_chains(const TriangleMesh& surface, const FeatureGraph& graph, doubl
 }
 
 /// The sharp edges (indices into topology's edges, `sharp`) that border a
-/// region narrower than `min_width`: the regions are the faces joined across
-/// edges with two faces that are not sharp, and a region's width is twice its
-/// area over the length of its border (sharp and boundary edges), the width
-/// of a strip or the radius of a disc. Such a region (a sliver boxed in by
-/// noisy creases, a chamfer far narrower than the spacing) has no room for a
-/// cell of its own.
+/// narrow region: the regions are the faces joined across edges with two
+/// faces that are not sharp, and a region's width is twice its area over the
+/// length of its border (sharp and boundary edges), the width of a strip or
+/// the radius of a disc. A region is narrow below `min_width`, and below
+/// `min_rough_width` where some edge inside it turns by `smooth_angle` degrees
+/// or more: a sliver boxed in by a scan's noisy creases has no room for a cell
+/// of its own, where a machined part's thin wall or engraved stroke, smooth
+/// between its creases, is kept down to a fraction of the spacing.
 std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, const MeshTopology& topology,
-                                                    const std::vector<std::uint8_t>& is_sharp, double min_width) {
+                                                    const std::vector<std::uint8_t>& is_sharp,
+                                                    const FeatureOptions& options) {
   const Index num_faces = mesh.num_faces();
   UnionFind regions(static_cast<std::size_t>(num_faces));
   for (Index e = 0; e < topology.num_edges(); ++e) {
@@ -219,10 +222,15 @@ std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, co
     if (faces.size() == 2 && !is_sharp[e]) regions.unite(faces[0], faces[1]);
   }
   std::vector<double> area(static_cast<std::size_t>(num_faces), 0.0), border(static_cast<std::size_t>(num_faces), 0.0);
+  std::vector<std::uint8_t> rough(static_cast<std::size_t>(num_faces), 0);
   for (Index f = 0; f < num_faces; ++f) area[regions.find(f)] += face_area(mesh, f);
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const auto faces = topology.edge_faces(e);
-    if (!is_sharp[e] && faces.size() != 1) continue;
+    if (!is_sharp[e] && faces.size() == 2) {
+      // NaN (a face without area) counts as rough.
+      if (!(normal_turn_degrees(mesh, topology, e) < options.smooth_region_angle)) rough[regions.find(faces[0])] = 1;
+      continue;
+    }
     const double length = edge_length(mesh, topology.edge_vertices[e][0], topology.edge_vertices[e][1]);
     for (const Index f : faces) border[regions.find(f)] += length;
   }
@@ -231,6 +239,8 @@ std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, co
     if (!is_sharp[e]) continue;
     for (const Index f : topology.edge_faces(e)) {
       const Index region = regions.find(f);
+      const double min_width =
+          rough[region] ? std::max(options.min_region_width, options.min_rough_region_width) : options.min_region_width;
       if (2 * area[region] < min_width * border[region]) drop[e] = 1;
     }
   }
@@ -291,7 +301,8 @@ FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t 
           .scale = 0.5 * spacing,
           .min_chain_length = min_length * spacing,
           .min_dangling_chain_length = 2 * spacing,
-          .min_region_width = 0.5 * spacing};
+          .min_region_width = 0.1 * spacing,
+          .min_rough_region_width = 0.5 * spacing};
 }
 
 FeatureSet detect_features(const TriangleMesh& surface, const FeatureOptions& options) {
@@ -363,9 +374,8 @@ FeatureSet detect_features(const RemeshSurface& prepared, const FeatureOptions& 
         dropped = true;
       }
     }
-    if (!dropped && options.min_region_width > 0) {
-      const std::vector<std::uint8_t> narrow =
-          borders_of_narrow_regions(surface, topology, is_sharp, options.min_region_width);
+    if (!dropped && std::max(options.min_region_width, options.min_rough_region_width) > 0) {
+      const std::vector<std::uint8_t> narrow = borders_of_narrow_regions(surface, topology, is_sharp, options);
       for (std::size_t i = 0; i < sharp.size(); ++i) {
         if (!narrow[sharp[i]] || given[sharp[i]]) continue;
         drop[i] = 1;

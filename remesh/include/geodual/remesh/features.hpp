@@ -45,11 +45,16 @@ struct FeatureOptions {
   /// shorter than this is dropped too: a crease that fades out within a
   /// couple of spacings holds too few sites to be kept as one.
   double min_dangling_chain_length = 0;
-  /// The chains round a region narrower than this are dropped too: the
-  /// region's width is twice its area over its border's length (the width of
-  /// a strip, the radius of a disc), its faces joined across edges that are
-  /// not sharp. A sliver boxed in by noisy creases has no room for a cell.
+  /// The chains round a region narrower than min_region_width are dropped
+  /// too, and round one narrower than min_rough_region_width where an edge
+  /// inside it turns by smooth_region_angle degrees or more: the region's
+  /// width is twice its area over its border's length (the width of a strip,
+  /// the radius of a disc), its faces joined across edges that are not sharp.
+  /// A sliver boxed in by a scan's noisy creases has no room for a cell; a
+  /// machined part's thin wall, smooth between its creases, keeps them.
   double min_region_width = 0;
+  double min_rough_region_width = 0;
+  double smooth_region_angle = 20;
   /// A chain that turns by at least this many degrees at a vertex has a corner there.
   double corner_angle = 60;
   /// Edges kept as features whatever their angle, length or neighbours
@@ -97,8 +102,8 @@ struct FeatureSet {
 /// The options the remesh pipeline detects features with for `sites` sites
 /// on `surface`: sharpness judged at half the remesh's spacing, chains at
 /// least min_length spacings long (two, where one end is free), regions
-/// between them at least half a spacing wide, creases continued at
-/// continuation_angle between smooth sides.
+/// between them at least a tenth of a spacing wide (half, where rough),
+/// creases continued at continuation_angle between smooth sides.
 FeatureOptions remesh_feature_options(const TriangleMesh& surface, std::int64_t sites, double sharp_angle,
                                       double min_length, double continuation_angle = 30);
 

@@ -27,16 +27,22 @@ struct RemeshSites {
   /// Sites beyond the count that the surface's topology needs, and why (SampledSites).
   std::int64_t sites_added_for_topology = 0;
   std::string topology_reason;
+  /// Sites beyond the count so that the pieces of the features' cut keep the
+  /// density asked where chain sites crowd narrow pieces, and why.
+  std::int64_t sites_added_for_crowding = 0;
+  std::string crowding_reason;
   std::int64_t boundary_loops = 0;  ///< of the surface sampled, with sites on them
 };
 
 /// `count` sites for a remesh of `surface` (a 2-manifold, such as
 /// cut_to_manifold's mesh), the features' sites and the pins within the
 /// count: sample_sites_around the features' sites on their cut as `share`
-/// says, or sample_sites_for_topology without features; then the pins; then
-/// the sites_near_features that features.density asks for, where it is
-/// densest, off the boundary, half a local spacing apart
-/// (add_sites_at_deviations). Deterministic. \throw as sample_sites.
+/// says (with half_cell, more where chain sites crowd pieces too narrow for
+/// them: sites_added_for_crowding), or sample_sites_for_topology without
+/// features; then the pins; then the sites_near_features that
+/// features.density asks for, where it is densest, off the boundary, half a
+/// local spacing apart (add_sites_at_deviations). Deterministic.
+/// \throw as sample_sites.
 RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count, const FeatureSampling& features,
                                 const ShortCreasePins& pins = {}, const SamplingOptions& options = {},
                                 GivenSiteShare share = GivenSiteShare::half_cell);
