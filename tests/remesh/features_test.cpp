@@ -16,6 +16,7 @@
 #include "geodual/remesh/feature_cut.hpp"
 #include "geodual/remesh/feature_sampling.hpp"
 #include "geodual/remesh/features.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/welded_dual.hpp"
 
@@ -806,6 +807,29 @@ TEST(FeatureSampling, CloserChainSitesStayWithoutTheSitesBesideThemUnlessTheyAre
   remesh::FeatureSamplingOptions never;
   never.tight_spacing = 0;
   EXPECT_EQ(remesh::sample_features(prepared, 500, never).sites.sites.size(), loose.sites.sites.size());
+}
+
+TEST(FeatureSampling, CreasesRoundNarrowSmoothRegionsGoWhereTheChainsWouldTakeTheWholeCount) {
+  // OpenSCAD's candleStand at 500 sites (cut to a manifold as the pipeline
+  // does): with the creases round its narrow smooth faces the chains hold
+  // more points than the count, and the remesh had no site left inside its
+  // large faces (H 22 % of the diagonal); judged at the rough width
+  // everywhere they hold fewer. At 2,000 sites they fit, and stay.
+  const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/candleStand.stl").mesh).mesh;
+  const remesh::RemeshSurface prepared(part);
+  remesh::FeatureSamplingOptions all_kept;
+  all_kept.max_share_narrow_regions = std::numeric_limits<double>::max();
+  const remesh::FeatureSampling crowded = remesh::sample_features(prepared, 500, all_kept);
+  EXPECT_GT(crowded.sites.points, 500);
+  const remesh::FeatureSampling fewer = remesh::sample_features(prepared, 500);
+  EXPECT_LT(fewer.sites.points, crowded.sites.points);
+  EXPECT_LT(fewer.features.sharp_length, crowded.features.sharp_length);
+  const remesh::FeatureSampling fitting = remesh::sample_features(prepared, 2000);
+  EXPECT_LE(fitting.sites.points, 2000);
+  EXPECT_DOUBLE_EQ(fitting.features.sharp_length,
+                   remesh::sample_features(prepared, 2000, all_kept).features.sharp_length);
+  all_kept.max_share_narrow_regions = -0.1;
+  EXPECT_THROW(remesh::sample_features(prepared, 500, all_kept), UsageError);
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {

@@ -40,6 +40,8 @@ void check_options(const FeatureSamplingOptions& options) {
           "max share near features", options.max_share_near_features, "a finite fraction >= 0 of the sites");
   require(std::isfinite(options.max_share_tightened) && options.max_share_tightened >= 0, "max share tightened",
           options.max_share_tightened, "a finite fraction >= 0 of the sites");
+  require(std::isfinite(options.max_share_narrow_regions) && options.max_share_narrow_regions >= 0,
+          "max share narrow regions", options.max_share_narrow_regions, "a finite fraction >= 0 of the sites");
 }
 
 FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t sites,
@@ -56,12 +58,25 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   sampling.features = detect_features(prepared, feature_options);
   if (sampling.features.empty()) return sampling;
   sampling.cut = cut_along_features(prepared, sampling.features);
-  const TriangleMesh& cut = sampling.cut.mesh;
   FeatureSiteOptions site_options{.spacing = spacing,
                                   .max_chord_error = chord_error(surface, options.max_chord_error),
                                   .min_spacing = options.min_spacing * spacing,
                                   .tight_spacing = options.tight_spacing * spacing};
   sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
+  if (static_cast<double>(sampling.sites.points) > options.max_share_narrow_regions * static_cast<double>(sites) &&
+      feature_options.min_region_width < feature_options.min_rough_region_width) {
+    // The creases are more than the count carries: those round narrow
+    // regions go, smooth or not.
+    feature_options.min_region_width = feature_options.min_rough_region_width;
+    FeatureSet fewer = detect_features(prepared, feature_options);
+    if (fewer.sharp_edges.size() < sampling.features.sharp_edges.size()) {
+      sampling.features = std::move(fewer);
+      if (sampling.features.empty()) return sampling;
+      sampling.cut = cut_along_features(prepared, sampling.features);
+      sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
+    }
+  }
+  const TriangleMesh& cut = sampling.cut.mesh;
   if (sampling.sites.dense_points.empty()) return sampling;
   site_options.tight_spacing = 0;
   FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, site_options);

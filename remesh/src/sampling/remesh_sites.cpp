@@ -56,7 +56,7 @@ RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count
   const auto pinned = static_cast<std::int64_t>(pins.pins.size());
   RemeshSites result;
   std::int64_t beside_chains = std::max<std::int64_t>(0, count - features.sites.points - pinned);
-  if (!features.empty() && share == GivenSiteShare::half_cell) {
+  if (!features.empty()) {
     // Where chains crowd narrow pieces, the others would get fewer than their
     // share: the count grows so that they keep it, where that is more than a
     // tenth of the count (below, their density thins a little).

@@ -52,6 +52,11 @@ struct FeatureSamplingOptions {
   double tight_spacing = 0.4;
   double max_share_near_features = 0.1;
   double max_share_tightened = 0.25;
+  /// Where the chain points would be more than this share of the count with
+  /// the creases round narrow smooth regions kept (FeatureOptions::
+  /// min_region_width), those go too, as round narrow rough ones: the count
+  /// cannot carry them.
+  double max_share_narrow_regions = 1.0;
 };
 
 /// \throw geodual::UsageError naming the first option out of range.

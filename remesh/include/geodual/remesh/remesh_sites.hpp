@@ -37,7 +37,7 @@ struct RemeshSites {
 /// `count` sites for a remesh of `surface` (a 2-manifold, such as
 /// cut_to_manifold's mesh), the features' sites and the pins within the
 /// count: sample_sites_around the features' sites on their cut as `share`
-/// says (with half_cell, more where chain sites crowd pieces too narrow for
+/// says (more where chain sites crowd pieces too narrow for
 /// them: sites_added_for_crowding), or sample_sites_for_topology without
 /// features; then the pins; then the sites_near_features that
 /// features.density asks for, where it is densest, off the boundary, half a
