@@ -55,25 +55,27 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
                                                           options.min_feature_length, options.continuation_angle);
   feature_options.given_edges = options.given_edges;
   feature_options.excluded_edges = options.excluded_edges;
-  sampling.features = detect_features(prepared, feature_options);
-  if (sampling.features.empty()) return sampling;
-  sampling.cut = cut_along_features(prepared, sampling.features);
   FeatureSiteOptions site_options{.spacing = spacing,
                                   .max_chord_error = chord_error(surface, options.max_chord_error),
                                   .min_spacing = options.min_spacing * spacing,
                                   .tight_spacing = options.tight_spacing * spacing};
-  sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
+  // These creases, the cut along them and their chain sites; false where there are none.
+  const auto line_creases = [&](FeatureSet features) {
+    sampling.features = std::move(features);
+    if (sampling.features.empty()) return false;
+    sampling.cut = cut_along_features(prepared, sampling.features);
+    sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
+    return true;
+  };
+  if (!line_creases(detect_features(prepared, feature_options))) return sampling;
   if (static_cast<double>(sampling.sites.points) > options.max_share_narrow_regions * static_cast<double>(sites) &&
       feature_options.min_region_width < feature_options.min_rough_region_width) {
     // The creases are more than the count carries: those round narrow
     // regions go, smooth or not.
     feature_options.min_region_width = feature_options.min_rough_region_width;
     FeatureSet fewer = detect_features(prepared, feature_options);
-    if (fewer.sharp_edges.size() < sampling.features.sharp_edges.size()) {
-      sampling.features = std::move(fewer);
-      if (sampling.features.empty()) return sampling;
-      sampling.cut = cut_along_features(prepared, sampling.features);
-      sampling.sites = feature_sites(prepared, sampling.features, sampling.cut, site_options);
+    if (fewer.sharp_edges.size() < sampling.features.sharp_edges.size() && !line_creases(std::move(fewer))) {
+      return sampling;
     }
   }
   const TriangleMesh& cut = sampling.cut.mesh;
