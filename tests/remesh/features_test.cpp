@@ -107,9 +107,12 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   // A box's sides are 1 wide (a square's width: twice 1 over 4): kept at a width under a half.
   EXPECT_EQ(remesh::detect_features(cube(4), {.min_region_width = 0.49}).sharp_chains, 12);
   EXPECT_TRUE(remesh::detect_features(cube(4), {.min_region_width = 0.51}).empty());
-  // The band is rough (its corners' vertical edges turn by 90 degrees):
-  // judged at the rough width.
+  // The band's corners' vertical edges turn by 90 degrees, but they are
+  // parallel, a prism's side: smooth, judged at the smaller width. Where
+  // folds must not be parallel to be smooth, it is rough: judged at the rough width.
   narrow = {.min_chain_length = 0.5, .min_region_width = 0.04, .min_rough_region_width = 0.06};
+  EXPECT_EQ(remesh::detect_features(slab, narrow).sharp_chains, 8);
+  narrow.parallel_fold_angle = 0;
   EXPECT_TRUE(remesh::detect_features(slab, narrow).empty());
   // The remesh's detection asks for a tenth of the spacing, half where rough.
   const remesh::FeatureOptions remesh_options = remesh::remesh_feature_options(slab, 100, 60, 0.5);
@@ -118,10 +121,11 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
 }
 
 /// An open step: the floor y in [0, 1/2] at z = 0, a wall `height` high at
-/// y = 1/2 (its middle line pushed out by `bulge` along y) and the tread
-/// y in [1/2, 1] at z = height, each `n` quads along x in [0, 1]; the wall's
-/// fold lines are creases of 90 degrees (flat wall) 1 long.
-TriangleMesh step(double height, int n, double bulge = 0) {
+/// y = 1/2 (its middle line pushed out by `bulge` along y, at every other
+/// vertex only where `bumps`) and the tread y in [1/2, 1] at z = height, each
+/// `n` quads along x in [0, 1]; the wall's fold lines are creases of 90
+/// degrees (flat wall) 1 long.
+TriangleMesh step(double height, int n, double bulge = 0, bool bumps = false) {
   constexpr int kRows = 5;
   const std::array<Eigen::Vector2d, kRows> profile = {Eigen::Vector2d(0, 0), Eigen::Vector2d(0.5, 0),
                                                       Eigen::Vector2d(0.5 + bulge, height / 2),
@@ -130,7 +134,8 @@ TriangleMesh step(double height, int n, double bulge = 0) {
   mesh.vertices.resize(kRows * (n + 1), 3);
   for (int i = 0; i <= n; ++i) {
     for (int r = 0; r < kRows; ++r) {
-      mesh.vertices.row(kRows * i + r) << static_cast<double>(i) / n, profile[r].x(), profile[r].y();
+      const double y = bumps && i % 2 == 0 && r == 2 ? 0.5 : profile[r].x();  // the middle line
+      mesh.vertices.row(kRows * i + r) << static_cast<double>(i) / n, y, profile[r].y();
     }
   }
   mesh.faces.resize(2 * (kRows - 1) * n, 3);
@@ -155,10 +160,31 @@ TEST(Features, ASmoothNarrowRegionKeepsItsCreasesDownToTheSmallerWidth) {
   EXPECT_TRUE(
       remesh::detect_features(step(0.05, 4), {.min_region_width = 0.05, .min_rough_region_width = 0.5}).empty());
   // Folded by 40 degrees along its middle line (each half tilted by 20), the
-  // wall is rough, though the fold is no crease: the rough width applies.
+  // fold no crease, the wall is ruled (its folds parallel): still smooth.
   const double bulge = 0.025 * std::tan(20 * std::numbers::pi / 180);
-  EXPECT_TRUE(remesh::detect_features(step(0.05, 4, bulge), options).empty());
-  EXPECT_EQ(remesh::detect_features(step(0.05, 4, bulge), {.min_region_width = 0.04}).sharp_chains, 2);
+  EXPECT_EQ(remesh::detect_features(step(0.05, 4, bulge), options).sharp_chains, 2);
+  // Bumped out at every other vertex of that line, its folds cross: rough,
+  // the rough width applies.
+  const TriangleMesh bumpy = step(0.05, 4, bulge, true);
+  EXPECT_TRUE(remesh::detect_features(bumpy, options).empty());
+  EXPECT_EQ(remesh::detect_features(bumpy, {.min_region_width = 0.04}).sharp_chains, 2);
+}
+
+TEST(Features, AThinPlatesFacetedRimKeepsItsCreasesAtTheSmallerWidth) {
+  // A coin: a 16-gon of radius 1, 0.05 thick. Its two rims are creases of 90
+  // degrees; its side, 0.05 wide, folds by 22.5 degrees at each of its 16
+  // vertical edges, steep but parallel: a faceted cylinder's side, as
+  // CAD exports a thin plate's round rim.
+  const TriangleMesh coin = bench::revolved_profile({{{0, 0}, {1, 0}, {1, 0.05}, {0, 0.05}}}, 16);
+  const remesh::FeatureOptions options{.min_region_width = 0.04, .min_rough_region_width = 0.5};
+  const remesh::FeatureSet rims = remesh::detect_features(coin, options);
+  EXPECT_EQ(rims.sharp_chains, 2);
+  EXPECT_NEAR(rims.sharp_length, 2 * 16 * 2 * std::sin(std::numbers::pi / 16), 1e-9);
+  // Its side bulging out at mid-height folds along a ring as well, across
+  // the vertical edges: rough, the rims go at the rough width.
+  const TriangleMesh bulging = bench::revolved_profile({{{0, 0}, {1, 0}, {1.01, 0.025}, {1, 0.05}, {0, 0.05}}}, 16);
+  EXPECT_TRUE(remesh::detect_features(bulging, options).empty());
+  EXPECT_EQ(remesh::detect_features(bulging, {.min_region_width = 0.04}).sharp_chains, 2);
 }
 
 TEST(Features, NarrowestCornerAngleIsTheSmallestSectorBetweenFeatures) {

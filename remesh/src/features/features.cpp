@@ -203,15 +203,19 @@ Chains walk_chains(const TriangleMesh& surface, const FeatureGraph& graph, doubl
   return result;
 }
 
+/// An edge whose faces turn by less than this many degrees is no fold (a
+/// planar quad's diagonal, rounding).
+constexpr double kFoldAngle = 1;
+
 /// The sharp edges (indices into topology's edges, `sharp`) that border a
 /// narrow region: the regions are the faces joined across edges with two
 /// faces that are not sharp, and a region's width is twice its area over the
 /// length of its border (sharp and boundary edges), the width of a strip or
 /// the radius of a disc. A region is narrow below `min_width`, and below
-/// `min_rough_width` where some edge inside it turns by `smooth_angle` degrees
-/// or more: a sliver boxed in by a scan's noisy creases has no room for a cell
-/// of its own, where a machined part's thin wall or engraved stroke, smooth
-/// between its creases, is kept down to a fraction of the spacing.
+/// `min_rough_width` where it is rough (FeatureOptions::smooth_region_angle):
+/// a sliver boxed in by a scan's noisy creases has no room for a cell of its
+/// own, where a machined part's thin wall or engraved stroke, smooth or
+/// faceted between its creases, is kept down to a fraction of the spacing.
 std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, const MeshTopology& topology,
                                                     const std::vector<std::uint8_t>& is_sharp,
                                                     const FeatureOptions& options) {
@@ -221,26 +225,47 @@ std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, co
     const auto faces = topology.edge_faces(e);
     if (faces.size() == 2 && !is_sharp[e]) regions.unite(faces[0], faces[1]);
   }
-  std::vector<double> area(static_cast<std::size_t>(num_faces), 0.0), border(static_cast<std::size_t>(num_faces), 0.0);
-  std::vector<std::uint8_t> rough(static_cast<std::size_t>(num_faces), 0);
+  const auto size = static_cast<std::size_t>(num_faces);
+  std::vector<double> area(size, 0.0), border(size, 0.0);
+  // Per region (at its root face): whether an edge turns by smooth_angle or
+  // more; its folds (edges that turn by kFoldAngle or more), counted up to
+  // two, the first one's direction, and whether the others are parallel to it.
+  std::vector<std::uint8_t> steep(size, 0), folds(size, 0), parallel(size, 1);
+  std::vector<Eigen::Vector3d> fold_direction(size);
+  const double parallel_cosine = std::cos(options.parallel_fold_angle * std::numbers::pi / 180);
   for (Index f = 0; f < num_faces; ++f) area[regions.find(f)] += face_area(mesh, f);
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const auto faces = topology.edge_faces(e);
+    const auto [a, b] = topology.edge_vertices[e];
     if (!is_sharp[e] && faces.size() == 2) {
-      // NaN (a face without area) counts as rough.
-      if (!(normal_turn_degrees(mesh, topology, e) < options.smooth_region_angle)) rough[regions.find(faces[0])] = 1;
+      const Index region = regions.find(faces[0]);
+      const double turn = normal_turn_degrees(mesh, topology, e);
+      if (turn < kFoldAngle) continue;
+      // NaN (a face without area) counts as steep, and as a fold parallel to none.
+      if (!(turn < options.smooth_region_angle)) steep[region] = 1;
+      const Eigen::Vector3d direction = (mesh.vertices.row(b) - mesh.vertices.row(a)).transpose().normalized();
+      if (folds[region] == 0) fold_direction[region] = direction;
+      if (!(std::abs(direction.dot(fold_direction[region])) >= parallel_cosine) || std::isnan(turn)) {
+        parallel[region] = 0;
+      }
+      folds[region] = static_cast<std::uint8_t>(std::min(folds[region] + 1, 2));
       continue;
     }
-    const double length = edge_length(mesh, topology.edge_vertices[e][0], topology.edge_vertices[e][1]);
+    const double length = edge_length(mesh, a, b);
     for (const Index f : faces) border[regions.find(f)] += length;
   }
+  // Rough: steep somewhere, unless its folds are two or more parallel lines
+  // (a faceted prism's or cylinder's side: ruled, developable).
+  const auto rough = [&](Index region) {
+    return steep[region] && !(options.parallel_fold_angle > 0 && folds[region] >= 2 && parallel[region]);
+  };
   std::vector<std::uint8_t> drop(is_sharp.size(), 0);
   for (Index e = 0; e < topology.num_edges(); ++e) {
     if (!is_sharp[e]) continue;
     for (const Index f : topology.edge_faces(e)) {
       const Index region = regions.find(f);
       const double min_width =
-          rough[region] ? std::max(options.min_region_width, options.min_rough_region_width) : options.min_region_width;
+          rough(region) ? std::max(options.min_region_width, options.min_rough_region_width) : options.min_region_width;
       if (2 * area[region] < min_width * border[region]) drop[e] = 1;
     }
   }

@@ -46,15 +46,19 @@ struct FeatureOptions {
   /// couple of spacings holds too few sites to be kept as one.
   double min_dangling_chain_length = 0;
   /// The chains round a region narrower than min_region_width are dropped
-  /// too, and round one narrower than min_rough_region_width where an edge
-  /// inside it turns by smooth_region_angle degrees or more: the region's
-  /// width is twice its area over its border's length (the width of a strip,
-  /// the radius of a disc), its faces joined across edges that are not sharp.
-  /// A sliver boxed in by a scan's noisy creases has no room for a cell; a
-  /// machined part's thin wall, smooth between its creases, keeps them.
+  /// too, and round one narrower than min_rough_region_width where it is
+  /// rough: an edge inside it turns by smooth_region_angle degrees or more,
+  /// and its folds (the edges that turn by a degree or more) are not two or
+  /// more lines parallel within parallel_fold_angle degrees (0: never), as on
+  /// a faceted prism's or cylinder's side. The region's width is twice its
+  /// area over its border's length (the width of a strip, the radius of a
+  /// disc), its faces joined across edges that are not sharp. A sliver boxed
+  /// in by a scan's noisy creases has no room for a cell; a machined part's
+  /// thin wall, smooth or faceted between its creases, keeps them.
   double min_region_width = 0;
   double min_rough_region_width = 0;
   double smooth_region_angle = 20;
+  double parallel_fold_angle = 10;
   /// A chain that turns by at least this many degrees at a vertex has a corner there.
   double corner_angle = 60;
   /// Edges kept as features whatever their angle, length or neighbours
