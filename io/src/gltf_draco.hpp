@@ -25,13 +25,13 @@ struct DracoPrimitive {
   std::vector<double> position_min{}, position_max{};  ///< of the decoded positions
 };
 
-/// Positions quantised to 16 bits over the largest bounding-box side, normals to
+/// Positions quantised to 14 bits over the largest bounding-box side, normals to
 /// 10 bits, colours to 16; scalars kept exact. Decodes the result once to
 /// fill in the decoded figures; throws geodual::Error("<where>: ...") if
 /// Draco fails. Same input, same bytes.
 DracoPrimitive encode_draco(const TriangleStreams& mesh, const std::string& where);
 
 /// The quantisation bits used for positions (the decode test's tolerance).
-inline constexpr int draco_position_bits = 16;
+inline constexpr int draco_position_bits = 14;
 
 }  // namespace geodual::io::detail::gltf

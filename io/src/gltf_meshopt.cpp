@@ -11,7 +11,8 @@
 namespace geodual::io::detail::gltf {
 namespace {
 
-constexpr double position_steps = 65535.0;  // uint16 grid
+constexpr double position_steps = (1 << meshopt_position_bits) - 1;  // stored as uint16
+constexpr int normal_bits = 8;                                       // octahedral x and y
 // glTF forbids 65535 in uint16 indices (primitive restart), as the uncompressed writer does.
 constexpr std::size_t max_vertices_for_uint16 = 65535;
 
@@ -62,8 +63,8 @@ std::vector<std::byte> pack(const VertexOrder& order, std::size_t components, st
 }
 
 template <class T>
-T quantize_unit(float value, double steps) {  // [-1, 1] or [0, 1] to a normalised integer
-  return static_cast<T>(std::lround(std::clamp(static_cast<double>(value), -1.0, 1.0) * steps));
+T quantize_unit(float value, double steps) {  // [0, 1] to a normalised integer
+  return static_cast<T>(std::lround(std::clamp(static_cast<double>(value), 0.0, 1.0) * steps));
 }
 
 }  // namespace
@@ -108,18 +109,22 @@ MeshoptPrimitive encode_meshopt(const TriangleStreams& mesh) {
   }
   position.encoded = encode_vertices(pack<std::uint16_t>(order, 3, 8, grid), n, 8);
 
-  // NORMAL: normalised int8 x, y, z and a byte of padding.
+  // NORMAL: normalised int8 x, y, z and a byte of padding, stored through the
+  // octahedral filter (8-bit x, y of the octahedral map), which the codec packs tighter.
   MeshoptStream& normal = out.streams.emplace_back();
   normal.attribute = "NORMAL";
   normal.component_type = ComponentType::byte;
   normal.components = 3;
   normal.normalized = true;
   normal.byte_stride = 4;
-  normal.encoded = encode_vertices(pack<std::int8_t>(order, 3, 4,
-                                                     [&](std::uint32_t v, std::size_t k) {
-                                                       return quantize_unit<std::int8_t>(mesh.normals[3 * v + k], 127);
-                                                     }),
-                                   n, 4);
+  normal.filter = "OCTAHEDRAL";
+  std::vector<float> xyzw(4 * n, 0.0F);
+  for (std::size_t v = 0; v < n; ++v) {
+    std::copy_n(mesh.normals.begin() + static_cast<std::ptrdiff_t>(3 * order.source[v]), 3, xyzw.begin() + 4 * v);
+  }
+  std::vector<std::byte> octahedral(4 * n);
+  meshopt_encodeFilterOct(octahedral.data(), n, 4, normal_bits, xyzw.data());
+  normal.encoded = encode_vertices(octahedral, n, 4);
 
   if (mesh.color_channels > 0) {  // COLOR_0: normalised uint16, RGB padded to 8 bytes
     const auto channels = static_cast<std::size_t>(mesh.color_channels);

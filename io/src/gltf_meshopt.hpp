@@ -25,6 +25,9 @@ struct MeshoptStream {
   int components = 1;  ///< 1 (SCALAR), 3 (VEC3) or 4 (VEC4)
   bool normalized = false;
   std::vector<double> min{}, max{};  ///< POSITION only: the integer grid's bounds
+  /// EXT_meshopt_compression's filter that a decoder applies after the codec: "NONE" or
+  /// "OCTAHEDRAL" (NORMAL: 8-bit octahedral x, y, decoded to normalised int8 x, y, z and a zero).
+  std::string filter = "NONE";
 };
 
 struct MeshoptPrimitive {
@@ -34,9 +37,12 @@ struct MeshoptPrimitive {
   double scale = 1;
 };
 
-/// Positions go on a grid of 65535 steps over the largest side of their
+/// Positions go on a grid of 2^14 - 1 steps over the largest side of their
 /// bounding box, from its low corner (each coordinate off by at most half a
-/// step, plus float rounding). Same input, same bytes.
+/// step, plus float rounding), stored as uint16. Same input, same bytes.
 MeshoptPrimitive encode_meshopt(const TriangleStreams& mesh);
+
+/// The grid's bits (gltfpack's default): a step is 1/16383 of the largest side.
+inline constexpr int meshopt_position_bits = 14;
 
 }  // namespace geodual::io::detail::gltf

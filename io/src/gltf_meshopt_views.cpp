@@ -41,6 +41,7 @@ void add_extensions(Json& root, std::span<const MeshoptView> views) {
                       {"byteStride", entry.byte_stride},
                       {"count", entry.count},
                       {"mode", entry.triangles ? "TRIANGLES" : "ATTRIBUTES"}};
+    if (entry.filter != "NONE") extension["filter"] = entry.filter;
     view["extensions"]["EXT_meshopt_compression"] = std::move(extension);
     view["buffer"] = fallback_buffer;
     view["byteLength"] = entry.byte_stride * entry.count;

@@ -19,6 +19,7 @@ struct MeshoptView {
   std::size_t byte_stride = 0;  ///< decoded bytes per element
   std::size_t count = 0;        ///< decoded elements
   bool triangles = false;       ///< mode TRIANGLES (an index buffer) or ATTRIBUTES
+  std::string filter = "NONE";  ///< "NONE" (left out of the file) or "OCTAHEDRAL"
 };
 
 /// Rewrites `file` (GLB when `glb`, otherwise .gltf JSON, as tinygltf wrote

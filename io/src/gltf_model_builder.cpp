@@ -195,8 +195,11 @@ void ModelBuilder::add_meshopt_triangles(std::string_view name, const TriangleSt
     const int view =
         add_view(stream.encoded, indices ? TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER : TINYGLTF_TARGET_ARRAY_BUFFER);
     if (!indices) model_.bufferViews.back().byteStride = stream.byte_stride;
-    meshopt_views_.push_back(
-        {.view = view, .byte_stride = stream.byte_stride, .count = stream.count, .triangles = indices});
+    meshopt_views_.push_back({.view = view,
+                              .byte_stride = stream.byte_stride,
+                              .count = stream.count,
+                              .triangles = indices,
+                              .filter = stream.filter});
     tinygltf::Accessor accessor;
     accessor.bufferView = view;
     accessor.componentType = static_cast<int>(stream.component_type);

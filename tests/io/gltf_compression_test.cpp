@@ -136,6 +136,11 @@ Decoded decode_meshopt(const Glb& glb) {
     const int rc = triangles ? meshopt_decodeIndexBuffer(data.data(), count, stride, source.data(), source.size())
                              : meshopt_decodeVertexBuffer(data.data(), count, stride, source.data(), source.size());
     EXPECT_EQ(rc, 0) << "accessor " << index;
+    if (extension.value("filter", std::string("NONE")) == "OCTAHEDRAL") {
+      meshopt_decodeFilterOct(data.data(), count, stride);
+    } else {
+      EXPECT_FALSE(extension.contains("filter"));
+    }
     return std::pair{data, stride};
   };
 
@@ -157,6 +162,9 @@ Decoded decode_meshopt(const Glb& glb) {
     out.positions.push_back(p);
   }
   const auto [normals, normal_stride] = decode(primitive["attributes"]["NORMAL"].get<int>(), 3);
+  EXPECT_EQ(doc["bufferViews"][doc["accessors"][primitive["attributes"]["NORMAL"].get<int>()]["bufferView"].get<int>()]
+               ["extensions"]["EXT_meshopt_compression"]["filter"],
+            "OCTAHEDRAL");
   EXPECT_EQ(doc["accessors"][primitive["attributes"]["NORMAL"].get<int>()]["componentType"], 5120);  // BYTE
   for (std::size_t v = 0; v < out.positions.size(); ++v) {
     std::array<std::int8_t, 3> q{};
@@ -270,6 +278,12 @@ Errors compare(const GltfTriangleMesh& input, const Decoded& decoded, double tol
     }
     errors.scalar =
         std::max(errors.scalar, static_cast<double>(std::abs(decoded.scalar[d] - input.scalars[0].values[v])));
+    if (input.normals.rows() > 0) {  // given normals: to the decoded one's unit vector
+      const Eigen::RowVector3d unit = input.normals.row(original[d]).normalized();
+      for (Index k = 0; k < 3; ++k) {
+        errors.normal = std::max(errors.normal, std::abs(static_cast<double>(decoded.normals[d][k]) - unit[k]));
+      }
+    }
   }
   EXPECT_LE(errors.position, tolerance);
   std::multiset<std::array<Index, 3>> expected, got;
@@ -295,6 +309,7 @@ void expect_extensions(const json& doc, const std::vector<std::string>& names) {
 
 TEST(GltfCompression, MeshoptDecodesToThePositionsWithinHalfAStepAndTheSameTriangles) {
   const GltfTriangleMesh input = torus(48, 40);
+  const double step = extent(input.mesh) / ((1 << 14) - 1);  // 14-bit grid
   const Glb glb = split_glb(encode_gltf(scene_of(input, GltfCompression::meshopt), GltfContainer::glb));
   expect_extensions(glb.document, {"EXT_meshopt_compression", "KHR_mesh_quantization"});
   ASSERT_EQ(glb.document["buffers"].size(), 2u);
@@ -302,7 +317,6 @@ TEST(GltfCompression, MeshoptDecodesToThePositionsWithinHalfAStepAndTheSameTrian
   EXPECT_FALSE(glb.document["buffers"][1].contains("uri"));
   EXPECT_EQ(glb.document["asset"]["extras"]["note"], "kept as written");
   const Decoded decoded = decode_meshopt(glb);
-  const double step = extent(input.mesh) / 65535;
   const Errors errors = compare(input, decoded, 0.5 * step + 1e-6);
   EXPECT_LE(errors.color, 0.5 / 65535 + 1e-6);
   EXPECT_EQ(errors.scalar, 0);
@@ -311,24 +325,22 @@ TEST(GltfCompression, MeshoptDecodesToThePositionsWithinHalfAStepAndTheSameTrian
 }
 
 TEST(GltfCompression, NormalsComeBackWithinTheirQuantisation) {
-  GltfTriangleMesh input = torus(24, 16);
-  // Given normals of several lengths, so that the decoded ones can be checked against their unit vector.
-  const Eigen::RowVector3d unit = Eigen::RowVector3d(0.3, -0.4, 0.866).normalized();
+  GltfTriangleMesh input = torus(48, 40);
+  // Given normals, the torus's own (every direction), of several lengths.
   input.normals.resize(input.mesh.num_vertices(), 3);
-  for (Index v = 0; v < input.mesh.num_vertices(); ++v)
-    input.normals.row(v) = unit * (1.0 + static_cast<double>(v % 3));
-  // meshopt: normalised int8, off by at most half of 1/127; Draco: 10-bit octahedral.
+  for (Index v = 0; v < input.mesh.num_vertices(); ++v) {
+    const double x = input.mesh.vertices(v, 0) - 10, y = input.mesh.vertices(v, 1) + 4;
+    const Eigen::RowVector3d centre(10 + 3 * x / std::hypot(x, y), -4 + 3 * y / std::hypot(x, y), 0);
+    input.normals.row(v) = (input.mesh.vertices.row(v) - centre) * (1.0 + static_cast<double>(v % 3));
+  }
+  // meshopt: 8-bit octahedral, decoded to normalised int8; Draco: 10-bit octahedral.
   for (const auto& [compression, tolerance] :
-       {std::pair{GltfCompression::meshopt, 0.5 / 127 + 1e-6}, std::pair{GltfCompression::draco, 0.005}}) {
+       {std::pair{GltfCompression::meshopt, 0.02}, std::pair{GltfCompression::draco, 0.005}}) {
     const Glb glb = split_glb(encode_gltf(scene_of(input, compression), GltfContainer::glb));
     const Decoded decoded = compression == GltfCompression::meshopt ? decode_meshopt(glb) : decode_draco(glb);
-    ASSERT_EQ(decoded.normals.size(), static_cast<std::size_t>(input.mesh.num_vertices()));
-    double worst = 0;
-    for (const auto& normal : decoded.normals) {
-      for (Index k = 0; k < 3; ++k) worst = std::max(worst, std::abs(normal[k] - unit[k]));
-    }
-    EXPECT_LE(worst, tolerance) << gltf_compression_name(compression);
-    std::cout << gltf_compression_name(compression) << ": normal component error " << worst << '\n';
+    const Errors errors = compare(input, decoded, extent(input.mesh) / ((1 << 14) - 1));
+    EXPECT_LE(errors.normal, tolerance) << gltf_compression_name(compression);
+    std::cout << gltf_compression_name(compression) << ": normal component error " << errors.normal << '\n';
   }
 }
 
@@ -338,7 +350,7 @@ TEST(GltfCompression, DracoDecodesToThePositionsWithinAStepAndTheSameTriangles) 
   expect_extensions(glb.document, {"KHR_draco_mesh_compression"});
   ASSERT_EQ(glb.document["buffers"].size(), 1u);
   const Decoded decoded = decode_draco(glb);
-  const double step = extent(input.mesh) / 65535;
+  const double step = extent(input.mesh) / ((1 << 14) - 1);  // 14-bit quantisation
   const Errors errors = compare(input, decoded, step);
   EXPECT_LE(errors.color, 1.0 / 65535);
   EXPECT_EQ(errors.scalar, 0);

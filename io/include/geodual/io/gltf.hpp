@@ -82,15 +82,17 @@ struct GltfPointSet {
 /// mark their extensions required: a viewer without them cannot show the file.
 enum class GltfCompression {
   none,  ///< float32 attributes, uint16/uint32 indices, as above
-  /// EXT_meshopt_compression over KHR_mesh_quantization: vertices and
-  /// triangles reordered for the vertex cache and fetch (meshoptimizer);
-  /// positions as uint16 on a grid of 1/65535 of the largest bounding-box side,
+  /// EXT_meshopt_compression over KHR_mesh_quantization: triangles reordered
+  /// for the vertex cache, then vertices for fetch (meshoptimizer); positions
+  /// as uint16 on a 14-bit grid over the largest bounding-box side,
   /// dequantised by the node's translation and uniform scale; normals as
-  /// normalised int8; colours as normalised uint16; scalars as float32.
+  /// normalised int8 through the 8-bit octahedral filter; colours as
+  /// normalised uint16; scalars as float32.
   meshopt,
   /// KHR_draco_mesh_compression (Draco edgebreaker): positions quantised to
-  /// 16 bits, normals to 10, colours to 16; scalars lossless; Draco orders
-  /// the vertices and triangles.
+  /// 14 bits, normals to 10 (octahedral), colours to 16; scalars exact. Draco
+  /// orders the vertices and triangles, and drops unused vertices and
+  /// triangles with a repeated corner.
   draco,
 };
 
