@@ -10,6 +10,8 @@ find_package(TBB CONFIG REQUIRED)                 # libtbb-dev         -> TBB::t
 find_package(TinyGLTF CONFIG REQUIRED)            # libtinygltf-dev    -> tinygltf
 find_package(nlohmann_json 3.10 CONFIG REQUIRED)  # nlohmann-json3-dev -> nlohmann_json::nlohmann_json
 find_package(CLI11 CONFIG REQUIRED)               # libcli11-dev       -> CLI11::CLI11
+find_package(meshoptimizer 0.18 CONFIG REQUIRED)  # libmeshoptimizer-dev -> meshoptimizer::meshoptimizer
+find_package(draco 1.5 CONFIG REQUIRED)           # libdraco-dev       -> draco::draco
 find_package(CGAL CONFIG REQUIRED)                # libcgal-dev        -> CGAL::CGAL
 if(GEODUAL_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)             # libgtest-dev       -> GTest::gtest_main

@@ -1,10 +1,13 @@
 #include "gltf_model_builder.hpp"
 
 #include "geodual/mesh/error.hpp"
+#include "gltf_draco.hpp"
+#include "gltf_meshopt.hpp"
 #include "gltf_vertex_normals.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -48,9 +51,85 @@ std::span<const std::byte> bytes_of(const std::vector<T>& values) {
   return std::as_bytes(std::span(values));
 }
 
+int accessor_type(int components) {
+  return components == 1 ? TINYGLTF_TYPE_SCALAR : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+}
+
+// x, y, z per vertex as float32; throws where a coordinate is not a finite float32 value.
+std::vector<float> float_positions(const VertexMatrix& points, const std::string& where) {
+  if (points.rows() == 0) fail(where, "has no vertices");
+  if (points.rows() > std::numeric_limits<Index>::max()) fail(where, "has too many vertices");
+  std::vector<float> xyz(static_cast<std::size_t>(points.size()));
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      const double coordinate = points(v, k);
+      // Checked before the cast: converting a double beyond the float range is undefined.
+      if (!std::isfinite(coordinate) || std::abs(coordinate) > std::numeric_limits<float>::max()) {
+        fail(where, "vertex " + std::to_string(v) + " has coordinate " + std::to_string(coordinate) +
+                        ", which is not a finite float32 value");
+      }
+      xyz[static_cast<std::size_t>(3 * v + k)] = static_cast<float>(coordinate);
+    }
+  }
+  return xyz;
+}
+
+// The NORMAL values: `normals` where a row is finite and not zero (normalised), area-weighted otherwise.
+std::vector<float> unit_normals(const TriangleMesh& mesh, const VertexMatrix& normals, const std::string& where) {
+  std::vector<float> unit = area_weighted_vertex_normals(mesh.vertices, mesh.faces);
+  if (normals.rows() == 0) return unit;
+  if (normals.rows() != mesh.vertices.rows()) {
+    fail(where, "has " + std::to_string(normals.rows()) + " normals for " + std::to_string(mesh.vertices.rows()) +
+                    " vertices");
+  }
+  for (Eigen::Index v = 0; v < normals.rows(); ++v) {
+    const double length = normals.row(v).norm();
+    if (!std::isfinite(length) || length == 0) continue;  // the area-weighted one stays
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      unit[static_cast<std::size_t>(3 * v + k)] = static_cast<float>(normals(v, k) / length);
+    }
+  }
+  return unit;
+}
+
+void check_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where) {
+  if (colors.rows() != rows || (colors.cols() != 3 && colors.cols() != 4)) {
+    fail(where, "colours are " + std::to_string(colors.rows()) + " x " + std::to_string(colors.cols()) + "; expected " +
+                    std::to_string(rows) + " x 3 (RGB) or x 4 (RGBA)");
+  }
+  for (Eigen::Index v = 0; v < colors.rows(); ++v) {
+    for (Eigen::Index k = 0; k < colors.cols(); ++k) {
+      const float c = colors(v, k);
+      if (!(c >= 0.0F && c <= 1.0F)) {
+        fail(where,
+             "colour of vertex " + std::to_string(v) + " has component " + std::to_string(c) + ", outside [0, 1]");
+      }
+    }
+  }
+}
+
+void check_scalar(const GltfVertexScalar& scalar, std::set<std::string, std::less<>>& names, Index vertex_count,
+                  const std::string& where) {
+  const std::string scalar_where = where + ": scalar attribute '" + scalar.name + "'";
+  if (scalar.name.size() < 2 || scalar.name[0] != '_') {
+    fail(scalar_where, "name must start with '_' (glTF's rule for application-specific attributes), e.g. '_DISTANCE'");
+  }
+  if (!names.insert(scalar.name).second) fail(scalar_where, "is given twice");
+  if (scalar.values.size() != static_cast<std::size_t>(vertex_count)) {
+    fail(scalar_where,
+         "has " + std::to_string(scalar.values.size()) + " values for " + std::to_string(vertex_count) + " vertices");
+  }
+  for (std::size_t v = 0; v < scalar.values.size(); ++v) {
+    if (!std::isfinite(scalar.values[v])) {
+      fail(scalar_where, "value of vertex " + std::to_string(v) + " is not finite; glTF allows no NaN or infinity");
+    }
+  }
+}
+
 }  // namespace
 
-ModelBuilder::ModelBuilder(std::string where) : where_(std::move(where)) {
+ModelBuilder::ModelBuilder(std::string where, GltfCompression compression)
+    : where_(std::move(where)), compression_(compression) {
   model_.asset.version = "2.0";
   model_.asset.generator = "geodual";
   model_.buffers.emplace_back();
@@ -63,51 +142,128 @@ void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh
   const std::span<const Index> corners(mesh.faces.data(), static_cast<std::size_t>(mesh.faces.size()));
   check_indices(corners, mesh.num_vertices(), "face", 3, where);
 
+  if (compression_ != GltfCompression::none) {
+    TriangleStreams streams;
+    streams.vertex_count = static_cast<std::size_t>(mesh.num_vertices());
+    streams.positions = float_positions(mesh.vertices, where);
+    streams.normals = unit_normals(mesh, normals, where);
+    if (colors.size() > 0) {
+      check_colors(colors, mesh.vertices.rows(), where);
+      streams.color_channels = static_cast<int>(colors.cols());
+      streams.colors.assign(colors.data(), colors.data() + colors.size());
+    }
+    std::set<std::string, std::less<>> names;
+    for (const GltfVertexScalar& scalar : scalars) {
+      check_scalar(scalar, names, mesh.num_vertices(), where);
+      streams.scalars.push_back({valid_utf8(scalar.name), scalar.values});
+    }
+    streams.indices.assign(corners.begin(), corners.end());
+    if (compression_ == GltfCompression::meshopt) {
+      add_meshopt_triangles(name, streams);
+    } else {
+      add_draco_triangles(name, streams, where);
+    }
+    return;
+  }
+
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.attributes["POSITION"] = add_positions(mesh.vertices, where);
-  std::vector<float> unit_normals = area_weighted_vertex_normals(mesh.vertices, mesh.faces);
-  if (normals.rows() > 0) {
-    if (normals.rows() != mesh.vertices.rows()) {
-      fail(where, "has " + std::to_string(normals.rows()) + " normals for " + std::to_string(mesh.vertices.rows()) +
-                      " vertices");
-    }
-    for (Eigen::Index v = 0; v < normals.rows(); ++v) {
-      const double length = normals.row(v).norm();
-      if (!std::isfinite(length) || length == 0) continue;  // the area-weighted one stays
-      for (Eigen::Index k = 0; k < 3; ++k) {
-        unit_normals[static_cast<std::size_t>(3 * v + k)] = static_cast<float>(normals(v, k) / length);
-      }
-    }
-  }
+  const std::vector<float> normal_values = unit_normals(mesh, normals, where);
   primitive.attributes["NORMAL"] =
-      add_accessor(bytes_of(unit_normals), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, unit_normals.size() / 3,
+      add_accessor(bytes_of(normal_values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normal_values.size() / 3,
                    TINYGLTF_TARGET_ARRAY_BUFFER);
   if (const auto color = add_colors(colors, mesh.vertices.rows(), where)) primitive.attributes["COLOR_0"] = *color;
 
   std::set<std::string, std::less<>> names;
   for (const GltfVertexScalar& scalar : scalars) {
-    const std::string scalar_where = where + ": scalar attribute '" + scalar.name + "'";
-    if (scalar.name.size() < 2 || scalar.name[0] != '_') {
-      fail(scalar_where,
-           "name must start with '_' (glTF's rule for application-specific attributes), e.g. '_DISTANCE'");
-    }
-    if (!names.insert(scalar.name).second) fail(scalar_where, "is given twice");
-    if (scalar.values.size() != static_cast<std::size_t>(mesh.num_vertices())) {
-      fail(scalar_where, "has " + std::to_string(scalar.values.size()) + " values for " +
-                             std::to_string(mesh.num_vertices()) + " vertices");
-    }
-    for (std::size_t v = 0; v < scalar.values.size(); ++v) {
-      if (!std::isfinite(scalar.values[v])) {
-        fail(scalar_where, "value of vertex " + std::to_string(v) + " is not finite; glTF allows no NaN or infinity");
-      }
-    }
+    check_scalar(scalar, names, mesh.num_vertices(), where);
     primitive.attributes[valid_utf8(scalar.name)] =
         add_accessor(bytes_of(scalar.values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, scalar.values.size(),
                      TINYGLTF_TARGET_ARRAY_BUFFER);
   }
   primitive.indices = add_indices(corners, mesh.num_vertices());
   add_node(name, std::move(primitive));
+}
+
+void ModelBuilder::add_meshopt_triangles(std::string_view name, const TriangleStreams& streams) {
+  const MeshoptPrimitive encoded = encode_meshopt(streams);
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  for (const MeshoptStream& stream : encoded.streams) {
+    const bool indices = stream.attribute.empty();
+    const int view =
+        add_view(stream.encoded, indices ? TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER : TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (!indices) model_.bufferViews.back().byteStride = stream.byte_stride;
+    meshopt_views_.push_back({.view = view,
+                              .byte_stride = stream.byte_stride,
+                              .count = stream.count,
+                              .triangles = indices,
+                              .filter = stream.filter});
+    tinygltf::Accessor accessor;
+    accessor.bufferView = view;
+    accessor.componentType = static_cast<int>(stream.component_type);
+    accessor.type = accessor_type(stream.components);
+    accessor.count = stream.count;
+    accessor.normalized = stream.normalized;
+    accessor.minValues = stream.min;
+    accessor.maxValues = stream.max;
+    model_.accessors.push_back(std::move(accessor));
+    const int index = static_cast<int>(model_.accessors.size() - 1);
+    if (indices) {
+      primitive.indices = index;
+    } else {
+      primitive.attributes[stream.attribute] = index;
+    }
+  }
+  tinygltf::Node& node = add_node(name, std::move(primitive));
+  node.translation.assign(encoded.translation.begin(), encoded.translation.end());
+  node.scale.assign(3, encoded.scale);
+  use_extension("EXT_meshopt_compression");
+  use_extension("KHR_mesh_quantization");
+}
+
+void ModelBuilder::add_draco_triangles(std::string_view name, const TriangleStreams& streams,
+                                       const std::string& where) {
+  const DracoPrimitive encoded = encode_draco(streams, where);
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Value::Object ids;
+  for (const auto& [attribute, id] : encoded.attribute_ids) {
+    tinygltf::Accessor accessor;  // no bufferView: the data is in the Draco bitstream
+    accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    accessor.type = attribute == "POSITION" || attribute == "NORMAL" ? TINYGLTF_TYPE_VEC3
+                    : attribute == "COLOR_0"                         ? accessor_type(streams.color_channels)
+                                                                     : TINYGLTF_TYPE_SCALAR;
+    accessor.count = encoded.decoded_vertices;
+    if (attribute == "POSITION") {
+      accessor.minValues = encoded.position_min;
+      accessor.maxValues = encoded.position_max;
+    }
+    model_.accessors.push_back(std::move(accessor));
+    primitive.attributes[attribute] = static_cast<int>(model_.accessors.size() - 1);
+    ids.emplace(attribute, tinygltf::Value(static_cast<int>(id)));
+  }
+  tinygltf::Accessor indices;
+  indices.componentType = encoded.decoded_vertices <= static_cast<std::size_t>(max_vertices_for_uint16)
+                              ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                              : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  indices.type = TINYGLTF_TYPE_SCALAR;
+  indices.count = encoded.decoded_indices;
+  model_.accessors.push_back(std::move(indices));
+  primitive.indices = static_cast<int>(model_.accessors.size() - 1);
+  tinygltf::Value::Object extension;
+  extension.emplace("bufferView", tinygltf::Value(add_view(encoded.encoded, /*target=*/0)));
+  extension.emplace("attributes", tinygltf::Value(std::move(ids)));
+  primitive.extensions.emplace("KHR_draco_mesh_compression", tinygltf::Value(std::move(extension)));
+  add_node(name, std::move(primitive));
+  use_extension("KHR_draco_mesh_compression");
+}
+
+void ModelBuilder::use_extension(const std::string& name) {
+  for (std::vector<std::string>* list : {&model_.extensionsUsed, &model_.extensionsRequired}) {
+    if (std::find(list->begin(), list->end(), name) == list->end()) list->push_back(name);
+  }
 }
 
 void ModelBuilder::add_lines(const GltfLineSet& lines) {
@@ -136,24 +292,12 @@ void ModelBuilder::add_points(const GltfPointSet& points) {
 }
 
 int ModelBuilder::add_positions(const VertexMatrix& points, const std::string& where) {
-  if (points.rows() == 0) fail(where, "has no vertices");
-  if (points.rows() > std::numeric_limits<Index>::max()) fail(where, "has too many vertices");
-  std::vector<float> xyz(static_cast<std::size_t>(points.size()));
+  const std::vector<float> xyz = float_positions(points, where);
   std::vector<double> low(3, std::numeric_limits<double>::infinity());
   std::vector<double> high(3, -std::numeric_limits<double>::infinity());
-  for (Eigen::Index v = 0; v < points.rows(); ++v) {
-    for (int k = 0; k < 3; ++k) {
-      const double coordinate = points(v, k);
-      // Checked before the cast: converting a double beyond the float range is undefined.
-      if (!std::isfinite(coordinate) || std::abs(coordinate) > std::numeric_limits<float>::max()) {
-        fail(where, "vertex " + std::to_string(v) + " has coordinate " + std::to_string(coordinate) +
-                        ", which is not a finite float32 value");
-      }
-      const auto value = static_cast<float>(coordinate);
-      xyz[static_cast<std::size_t>(3 * v + k)] = value;
-      low[static_cast<std::size_t>(k)] = std::min(low[static_cast<std::size_t>(k)], static_cast<double>(value));
-      high[static_cast<std::size_t>(k)] = std::max(high[static_cast<std::size_t>(k)], static_cast<double>(value));
-    }
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    low[i % 3] = std::min(low[i % 3], static_cast<double>(xyz[i]));
+    high[i % 3] = std::max(high[i % 3], static_cast<double>(xyz[i]));
   }
   const int accessor = add_accessor(bytes_of(xyz), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
                                     static_cast<std::size_t>(points.rows()), TINYGLTF_TARGET_ARRAY_BUFFER);
@@ -165,19 +309,7 @@ int ModelBuilder::add_positions(const VertexMatrix& points, const std::string& w
 
 std::optional<int> ModelBuilder::add_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where) {
   if (colors.size() == 0) return std::nullopt;
-  if (colors.rows() != rows || (colors.cols() != 3 && colors.cols() != 4)) {
-    fail(where, "colours are " + std::to_string(colors.rows()) + " x " + std::to_string(colors.cols()) + "; expected " +
-                    std::to_string(rows) + " x 3 (RGB) or x 4 (RGBA)");
-  }
-  for (Eigen::Index v = 0; v < colors.rows(); ++v) {
-    for (Eigen::Index k = 0; k < colors.cols(); ++k) {
-      const float c = colors(v, k);
-      if (!(c >= 0.0F && c <= 1.0F)) {
-        fail(where,
-             "colour of vertex " + std::to_string(v) + " has component " + std::to_string(c) + ", outside [0, 1]");
-      }
-    }
-  }
+  check_colors(colors, rows, where);
   const std::span<const float> values(colors.data(), static_cast<std::size_t>(colors.size()));
   return add_accessor(std::as_bytes(values), TINYGLTF_COMPONENT_TYPE_FLOAT,
                       colors.cols() == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, static_cast<std::size_t>(rows),
@@ -195,8 +327,7 @@ int ModelBuilder::add_indices(std::span<const Index> indices, Index vertex_count
                       TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
 }
 
-int ModelBuilder::add_accessor(std::span<const std::byte> data, int component_type, int type, std::size_t count,
-                               int target) {
+int ModelBuilder::add_view(std::span<const std::byte> data, int target) {
   std::vector<unsigned char>& bin = model_.buffers[0].data;
   bin.resize((bin.size() + 3) / 4 * 4, 0);  // every view starts on a 4-byte boundary
   tinygltf::BufferView view;
@@ -207,9 +338,13 @@ int ModelBuilder::add_accessor(std::span<const std::byte> data, int component_ty
   const auto* first = reinterpret_cast<const unsigned char*>(data.data());
   bin.insert(bin.end(), first, first + data.size());
   model_.bufferViews.push_back(std::move(view));
+  return static_cast<int>(model_.bufferViews.size() - 1);
+}
 
+int ModelBuilder::add_accessor(std::span<const std::byte> data, int component_type, int type, std::size_t count,
+                               int target) {
   tinygltf::Accessor accessor;
-  accessor.bufferView = static_cast<int>(model_.bufferViews.size() - 1);
+  accessor.bufferView = add_view(data, target);
   accessor.componentType = component_type;
   accessor.type = type;
   accessor.count = count;
@@ -217,7 +352,7 @@ int ModelBuilder::add_accessor(std::span<const std::byte> data, int component_ty
   return static_cast<int>(model_.accessors.size() - 1);
 }
 
-void ModelBuilder::add_node(std::string_view name, tinygltf::Primitive primitive) {
+tinygltf::Node& ModelBuilder::add_node(std::string_view name, tinygltf::Primitive primitive) {
   tinygltf::Mesh mesh;
   tinygltf::Node node;
   mesh.name = node.name = valid_utf8(name);
@@ -225,6 +360,7 @@ void ModelBuilder::add_node(std::string_view name, tinygltf::Primitive primitive
   model_.meshes.push_back(std::move(mesh));
   node.mesh = static_cast<int>(model_.meshes.size() - 1);
   model_.nodes.push_back(std::move(node));
+  return model_.nodes.back();
 }
 
 tinygltf::Model ModelBuilder::finish() {

@@ -5,6 +5,8 @@
 // on a 4-byte boundary, with ARRAY_BUFFER / ELEMENT_ARRAY_BUFFER targets.
 
 #include "geodual/io/gltf.hpp"
+#include "gltf_meshopt_views.hpp"
+#include "gltf_triangle_streams.hpp"
 
 #include <tiny_gltf.h>
 
@@ -13,13 +15,14 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace geodual::io::detail::gltf {
 
 class ModelBuilder {
  public:
   /// `where` starts every error message (the output path, or "glTF output").
-  explicit ModelBuilder(std::string where);
+  explicit ModelBuilder(std::string where, GltfCompression compression = GltfCompression::none);
 
   /// `normals` empty: area-weighted ones; otherwise normalised, with the
   /// area-weighted normal where a row is zero or not finite.
@@ -31,14 +34,23 @@ class ModelBuilder {
   /// The model with its default scene listing every node; throws when there is none.
   tinygltf::Model finish();
 
+  /// The buffer views holding meshopt-encoded data (add_meshopt_views() writes their extension).
+  const std::vector<MeshoptView>& meshopt_views() const { return meshopt_views_; }
+
  private:
+  void add_meshopt_triangles(std::string_view name, const TriangleStreams& streams);
+  void add_draco_triangles(std::string_view name, const TriangleStreams& streams, const std::string& where);
+  void use_extension(const std::string& name);
   int add_positions(const VertexMatrix& points, const std::string& where);
   std::optional<int> add_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where);
   int add_indices(std::span<const Index> indices, Index vertex_count);
   int add_accessor(std::span<const std::byte> data, int component_type, int type, std::size_t count, int target);
-  void add_node(std::string_view name, tinygltf::Primitive primitive);
+  int add_view(std::span<const std::byte> data, int target);
+  tinygltf::Node& add_node(std::string_view name, tinygltf::Primitive primitive);
 
   std::string where_;
+  GltfCompression compression_;
+  std::vector<MeshoptView> meshopt_views_;
   tinygltf::Model model_;
   std::size_t triangle_meshes_ = 0;
   std::size_t line_sets_ = 0;

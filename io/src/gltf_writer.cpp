@@ -1,6 +1,7 @@
 // glTF 2.0 writing: the public entry points of geodual/io/gltf.hpp. The scene
-// becomes a tinygltf::Model (gltf_model_builder.hpp), which tinygltf writes;
-// this file picks the container and writes atomically.
+// becomes a tinygltf::Model (gltf_model_builder.hpp), which tinygltf writes
+// (and gltf_meshopt_views.hpp completes for meshopt compression); this file
+// picks the container and writes atomically.
 
 #include "geodual/io/gltf.hpp"
 
@@ -8,6 +9,7 @@
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/mesh/error.hpp"
 #include "gltf_asset_extras.hpp"
+#include "gltf_meshopt_views.hpp"
 #include "gltf_model_builder.hpp"
 
 #include <cstdint>
@@ -20,8 +22,9 @@ namespace {
 
 constexpr std::string_view unnamed_output = "glTF output";
 
-std::vector<std::byte> write_model(tinygltf::Model model, const detail::gltf::AssetExtras& extras,
-                                   GltfContainer container, const std::string& where) {
+std::vector<std::byte> write_model(const detail::gltf::ModelBuilder& builder, tinygltf::Model model,
+                                   const detail::gltf::AssetExtras& extras, GltfContainer container,
+                                   const std::string& where) {
   model.asset.extras = extras.placeholder();
   const bool glb = container == GltfContainer::glb;
   std::ostringstream stream;
@@ -30,6 +33,7 @@ std::vector<std::byte> write_model(tinygltf::Model model, const detail::gltf::As
     throw Error(where + ": tinygltf could not write the glTF file");
   }
   std::string file = std::move(stream).str();
+  if (!builder.meshopt_views().empty()) detail::gltf::add_meshopt_views(file, glb, builder.meshopt_views());
   if (glb && file.size() > std::numeric_limits<std::uint32_t>::max()) {
     throw Error(where + ": " + std::to_string(file.size()) +
                 " bytes do not fit a GLB file (at most 4 GiB); write fewer or smaller meshes");
@@ -40,7 +44,7 @@ std::vector<std::byte> write_model(tinygltf::Model model, const detail::gltf::As
 }
 
 std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer container, const std::string& where) {
-  detail::gltf::ModelBuilder builder(where);
+  detail::gltf::ModelBuilder builder(where, scene.compression);
   for (const GltfTriangleMesh& entry : scene.triangle_meshes) {
     builder.add_triangles(entry.name, entry.mesh, entry.colors, entry.normals, entry.scalars);
   }
@@ -48,7 +52,7 @@ std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer contai
   for (const GltfPointSet& entry : scene.point_sets) builder.add_points(entry);
   tinygltf::Model model = builder.finish();
   model.asset.generator = scene.generator;
-  return write_model(std::move(model), detail::gltf::AssetExtras(scene.extras_json, where), container, where);
+  return write_model(builder, std::move(model), detail::gltf::AssetExtras(scene.extras_json, where), container, where);
 }
 
 GltfContainer container_for(const std::filesystem::path& path) {
@@ -66,6 +70,15 @@ void write_bytes(const std::filesystem::path& path, const std::vector<std::byte>
 }
 
 }  // namespace
+
+std::string_view gltf_compression_name(GltfCompression compression) {
+  switch (compression) {
+    case GltfCompression::none: return "none";
+    case GltfCompression::meshopt: return "meshopt";
+    case GltfCompression::draco: return "draco";
+  }
+  return "?";
+}
 
 std::vector<std::byte> encode_gltf(const GltfScene& scene, GltfContainer container) {
   return encode_scene(scene, container, std::string(unnamed_output));
@@ -89,17 +102,19 @@ GltfTriangleMesh gltf_triangle_mesh(std::string name, TriangleMesh mesh, const V
   return entry;
 }
 
-void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes) {
+void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
+                GltfCompression compression) {
   const GltfContainer container = container_for(path);
   if (!attributes.empty()) {
-    write_bytes(
-        path, encode_scene({.triangle_meshes = {gltf_triangle_mesh({}, mesh, attributes)}}, container, path.string()));
+    GltfScene scene{.triangle_meshes = {gltf_triangle_mesh({}, mesh, attributes)}, .compression = compression};
+    write_bytes(path, encode_scene(scene, container, path.string()));
     return;
   }
-  detail::gltf::ModelBuilder builder(path.string());
+  detail::gltf::ModelBuilder builder(path.string(), compression);
   builder.add_triangles({}, mesh, ColorMatrix{}, VertexMatrix{}, {});  // no copy of the mesh
-  write_bytes(path,
-              write_model(builder.finish(), detail::gltf::AssetExtras({}, path.string()), container, path.string()));
+  tinygltf::Model model = builder.finish();
+  write_bytes(path, write_model(builder, std::move(model), detail::gltf::AssetExtras({}, path.string()), container,
+                                path.string()));
 }
 
 }  // namespace geodual::io

@@ -17,6 +17,7 @@
 #include "text_table.hpp"
 
 #include "geodual/io/atomic_file.hpp"
+#include "geodual/io/gltf.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
 #include "geodual/mesh/coordinate_range.hpp"
@@ -238,6 +239,13 @@ class RemeshCommand final : public Command {
                     "vertices and written where the output format has room: all or none")
         ->capture_default_str()
         ->check(CLI::IsMember({"all", "none"}));
+    command
+        .add_option("--compress", compress_,
+                    "glTF output for the web: none, meshopt (EXT_meshopt_compression with KHR_mesh_quantization) "
+                    "or draco (KHR_draco_mesh_compression); .glb and .gltf only, and only viewers with the "
+                    "extension read the file (docs/formats.md)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "meshopt", "draco"}));
     return command;
   }
 
@@ -252,6 +260,7 @@ class RemeshCommand final : public Command {
     }
     const std::string& mesh_path = mesh_paths_.front();
     // Every output checked before any work: nothing is written unless all can be.
+    check_compression(output_path_);
     io::require_output_path(output_path_, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path, sites_.file(), feature_file_});
     if (!preview_path_.empty()) {
@@ -270,6 +279,21 @@ class RemeshCommand final : public Command {
   /// The exit status of a remesh written whose Hausdorff distance is still
   /// above --max-error (docs/cli.md).
   static constexpr int kErrorBoundMissed = 4;
+
+  /// --compress is for glTF outputs: refused, before any work, for the others.
+  void check_compression(const std::string& output) const {
+    const std::string extension = io::lowercase_extension(output);
+    if (compress_ != "none" && extension != ".glb" && extension != ".gltf") {
+      throw UsageError("remesh: --compress " + compress_ + " compresses glTF; " + output +
+                       " is not .glb or .gltf (write .glb, or drop --compress)");
+    }
+  }
+
+  io::GltfCompression compression() const {
+    return compress_ == "meshopt" ? io::GltfCompression::meshopt
+           : compress_ == "draco" ? io::GltfCompression::draco
+                                  : io::GltfCompression::none;
+  }
 
   /// --max-error's refusals, before any work.
   void check_error_bound_flags() const {
@@ -305,6 +329,7 @@ class RemeshCommand final : public Command {
       outputs.push_back(output);
     }
     for (const std::string& output : outputs) {
+      check_compression(output);
       io::require_output_path(output, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
       for (const std::string& mesh_path : mesh_paths_) io::refuse_to_overwrite_inputs(output, {mesh_path});
     }
@@ -490,6 +515,7 @@ class RemeshCommand final : public Command {
     nlohmann::ordered_json json;
     json["mesh"] = mesh_path;
     json["output"] = output_path;
+    json["compress"] = compress_;
     json["attributes"] = pipeline::attribute_list(run.attributes);
     json.update(figures);
     for (const auto& [stage, seconds] : pipeline::seconds_per_stage(run.timings)) {
@@ -515,7 +541,7 @@ class RemeshCommand final : public Command {
     }
     // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, attributes.colors, still_wanted, lines);
-    write_remesh(output_path, result.mesh, attributes, figures.dump());
+    write_remesh(output_path, result.mesh, attributes, figures.dump(), compression());
     const double write_seconds = seconds_since(write_start);
     bar.finish();
     json["write_s"] = write_seconds;
@@ -787,6 +813,7 @@ class RemeshCommand final : public Command {
   std::string feature_file_;
   std::string color_ = "none";
   std::string attributes_ = "all";
+  std::string compress_ = "none";
 };
 
 }  // namespace

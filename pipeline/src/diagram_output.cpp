@@ -75,17 +75,22 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
 }
 
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
-                  const std::string& extras_json) {
+                  const std::string& extras_json, io::GltfCompression compression) {
   const std::string extension = io::lowercase_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
     io::GltfScene scene;
     scene.generator = "geodual " + std::string(build_version());
     scene.extras_json = extras_json;
+    scene.compression = compression;
     scene.triangle_meshes.push_back(io::gltf_triangle_mesh("remesh", mesh, attributes));
     io::write_gltf(path, scene);
     return;
   }
   if (extension == ".ply" || extension == ".obj") {
+    if (compression != io::GltfCompression::none) {
+      throw Error(path.string() + ": " + std::string(io::gltf_compression_name(compression)) +
+                  " compression is for glTF; write .glb or .gltf");
+    }
     io::write_mesh(path, mesh, attributes);
     return;
   }

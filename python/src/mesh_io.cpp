@@ -3,12 +3,16 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 
+#include "geodual/io/atomic_file.hpp"
+#include "geodual/io/gltf.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/io/write_mesh.hpp"
+#include "geodual/mesh/error.hpp"
 
 #include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
+#include <string>
 #include <utility>
 
 namespace geodual::python {
@@ -28,8 +32,25 @@ py::object read_mesh(const std::filesystem::path& path, bool colors) {
                         c.rows() > 0 ? py::object(colors_to_array(c)) : py::object(py::none()));
 }
 
+io::GltfCompression compression_from_name(const std::string& name, const std::filesystem::path& path) {
+  io::GltfCompression compression = io::GltfCompression::none;
+  if (name == "meshopt") {
+    compression = io::GltfCompression::meshopt;
+  } else if (name == "draco") {
+    compression = io::GltfCompression::draco;
+  } else if (name != "none") {
+    throw UsageError("write_mesh: compress='" + name + "' is not one of 'none', 'meshopt', 'draco'");
+  }
+  const std::string extension = io::lowercase_extension(path);
+  if (compression != io::GltfCompression::none && extension != ".glb" && extension != ".gltf") {
+    throw UsageError("write_mesh: compress='" + name + "' compresses glTF; " + path.string() + " is not .glb or .gltf");
+  }
+  return compression;
+}
+
 void write_mesh(const std::filesystem::path& path, const py::handle& vertices, const py::handle& faces,
-                const py::handle& colors) {
+                const py::handle& colors, const std::string& compress) {
+  const io::GltfCompression compression = compression_from_name(compress, path);
   const TriangleMesh mesh = mesh_from_arrays(vertices, faces);
   VertexAttributes attributes;
   if (!colors.is_none()) {
@@ -37,7 +58,11 @@ void write_mesh(const std::filesystem::path& path, const py::handle& vertices, c
     attributes.color_type = ValueType::uint8;
   }
   py::gil_scoped_release release;
-  io::write_mesh(path, mesh, attributes);
+  if (compression != io::GltfCompression::none) {
+    io::write_gltf(path, mesh, attributes, compression);
+  } else {
+    io::write_mesh(path, mesh, attributes);
+  }
 }
 
 }  // namespace
@@ -62,6 +87,7 @@ Example:
     V, F = geodual.read_mesh("scan.ply")
 )");
   module.def("write_mesh", &write_mesh, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("colors") = py::none(),
+             py::arg("compress") = "none",
              R"(Write a triangle mesh by extension: .ply (binary), .obj, .glb or .gltf.
 
 V: n x 3 vertex positions (any real or integer dtype, finite); F: m x 3 vertex
@@ -70,9 +96,15 @@ floats in [0, 1] or uint8, stored as 8-bit colours where the format has room.
 The file is written to a temporary name and renamed: a failure leaves no
 partial file.
 
+compress: "none", or for .glb/.gltf "meshopt" (EXT_meshopt_compression with
+KHR_mesh_quantization) or "draco" (KHR_draco_mesh_compression), as
+`geodual remesh --compress` writes them; only viewers with the extension read
+such files, and geodual.read_mesh refuses them.
+
 Raises ValueError for bad shapes, non-finite coordinates or indices out of
-range, TypeError for non-numeric arrays, geodual.Error for what the writer
-refuses (an unknown extension, a folder that does not exist).
+range, TypeError for non-numeric arrays, geodual.UsageError (a ValueError)
+for an unknown compress or one with a non-glTF path, geodual.Error for what
+the writer refuses (an unknown extension, a folder that does not exist).
 )");
 }
 

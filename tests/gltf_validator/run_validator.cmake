@@ -64,10 +64,10 @@ run_or_fail("writing the library scenes" ${SAMPLES} ${WORK_DIR}/library)
 string(STRIP "${run_output}" run_output)
 string(REPLACE "\n" ";" files "${run_output}")
 list(LENGTH files library_count)
-# 11 scenes x 2 containers + 4 write_gltf files; a shorter list means a writer
-# silently skipped something.
-if(NOT library_count EQUAL 26)
-  message(FATAL_ERROR "gltf_validator: geodual_gltf_samples listed ${library_count} files, expected 26:\n${run_output}")
+# (11 scenes + 3 scenes x 2 compressions) x 2 containers + 4 write_gltf files;
+# a shorter list means a writer silently skipped something.
+if(NOT library_count EQUAL 38)
+  message(FATAL_ERROR "gltf_validator: geodual_gltf_samples listed ${library_count} files, expected 38:\n${run_output}")
 endif()
 
 set(cli_dir ${WORK_DIR}/cli)
@@ -83,6 +83,12 @@ foreach(ext glb gltf)
     list(APPEND files ${cli_dir}/${name}.${ext})
   endforeach()
 endforeach()
+# Compressed for the web.
+run_or_fail("geodual remesh --compress meshopt -o remesh_meshopt.glb"
+  ${CLI} remesh ${MESH} --sites 500 --seed 3 --samples 10000 --compress meshopt -o ${cli_dir}/remesh_meshopt.glb)
+run_or_fail("geodual remesh --compress draco -o remesh_draco.gltf"
+  ${CLI} remesh ${MESH} --sites 500 --seed 3 --samples 10000 --compress draco -o ${cli_dir}/remesh_draco.gltf)
+list(APPEND files ${cli_dir}/remesh_meshopt.glb ${cli_dir}/remesh_draco.gltf)
 # The bundled scan: open (holes), larger; what remesh-default writes.
 run_or_fail("geodual remesh on the bundled scan -o bunny_remesh.glb"
   ${CLI} remesh ${BUNDLED_SCAN} --sites 1000 --lloyd 2 --samples 10000 -o ${cli_dir}/bunny_remesh.glb)
@@ -107,6 +113,28 @@ endif()
 if(NOT out MATCHES "all ${file_count} files pass with zero errors and zero warnings")
   message(FATAL_ERROR "gltf_validator: validate.mjs exited 0 without confirming all ${file_count} files")
 endif()
+# The pinned validator (2.0.0-dev.3.10) knows neither compression extension: it
+# reports each as UNSUPPORTED_EXTENSION (an info) and checks the glTF around the
+# compressed data, not the data. Said here, and held to, so that a validator
+# that checks them is noticed (then demand its verdict instead); the data is
+# checked by decoding it in tests/io/gltf_compression_test.cpp.
+foreach(extension_and_suffix "EXT_meshopt_compression;_meshopt" "KHR_draco_mesh_compression;_draco")
+  list(GET extension_and_suffix 0 extension)
+  list(GET extension_and_suffix 1 suffix)
+  set(expected 0)
+  foreach(file IN LISTS files)
+    get_filename_component(stem ${file} NAME_WE)
+    if(stem MATCHES "${suffix}$")
+      math(EXPR expected "${expected} + 1")
+    endif()
+  endforeach()
+  if(NOT out MATCHES "not validated: ${extension} in ${expected} files")
+    message(FATAL_ERROR "gltf_validator: expected the validator to report ${extension} as unsupported in the "
+                        "${expected} files compressed with it; see its output above")
+  endif()
+  message(STATUS "gltf-validator ${installed_version} does not check ${extension}: it reports it as "
+                 "UNSUPPORTED_EXTENSION (info) in the ${expected} files that use it; 0 errors, 0 warnings otherwise")
+endforeach()
 
 # 4. The harness itself: a file with only a warning must fail the check.
 set(warning_file ${WORK_DIR}/warning_only.gltf)

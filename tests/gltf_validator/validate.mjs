@@ -29,6 +29,9 @@ if (files.length === 0) {
 }
 
 const severityNames = ['error', 'warning', 'info', 'hint'];
+// Extension name -> how many files the validator reported it in as
+// UNSUPPORTED_EXTENSION (an info: it does not check what the extension holds).
+const unsupported = new Map();
 
 // Validates one file; returns true when it has no errors and no warnings.
 async function validateFile(path) {
@@ -62,6 +65,8 @@ async function validateFile(path) {
       `${info.totalVertexCount ?? '?'} vertices, ${info.totalTriangleCount ?? '?'} triangles)`);
   for (const m of messages) {
     console.log(`       ${severityNames[m.severity] ?? m.severity} ${m.code} at ${m.pointer ?? m.offset ?? '?'}: ${m.message}`);
+    const name = m.code === 'UNSUPPORTED_EXTENSION' ? /'([^']+)'/.exec(m.message)?.[1] : undefined;
+    if (name) unsupported.set(name, (unsupported.get(name) ?? 0) + 1);
   }
   return clean;
 }
@@ -70,6 +75,9 @@ console.log(`Khronos glTF-Validator ${validator.version()}, ${files.length} file
 let failed = 0;
 for (const file of files) {
   if (!(await validateFile(file))) ++failed;
+}
+for (const [name, count] of [...unsupported].sort()) {
+  console.log(`not validated: ${name} in ${count} files (UNSUPPORTED_EXTENSION)`);
 }
 if (failed > 0) {
   console.log(`${failed} of ${files.length} files have glTF errors or warnings`);

@@ -1,7 +1,8 @@
 // Writes one .glb and one .gltf for each kind of scene geodual's glTF writer
 // produces (triangles, colours, scalar attributes, LINES, POINTS, extras, both
-// index widths, degenerate and unreferenced vertices, awkward names), so that
-// validate.mjs can check them with the Khronos glTF-Validator.
+// index widths, degenerate and unreferenced vertices, awkward names), and of
+// some of them compressed with meshopt and with Draco, so that validate.mjs
+// can check them with the Khronos glTF-Validator.
 //
 //   geodual_gltf_samples OUTPUT_FOLDER
 //
@@ -12,6 +13,7 @@
 #include "geodual/io/gltf.hpp"
 #include "geodual/mesh/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <exception>
@@ -219,6 +221,19 @@ std::vector<Sample> samples() {
     scene.point_sets.push_back(some_points(sphere, 11, false));
     scene.extras_json = R"({"generator": "geodual_gltf_samples", "sites": 42, "energy": [1.5, 0.25e-7],
       "nested": {"ok": true, "none": null, "text": "\u00e9\u4e2d"}})";
+  }
+
+  // Compressed for the web: the scan's attributes, uint32 indices, and
+  // everything at once (degenerate and unreferenced vertices, lines and points
+  // left uncompressed beside the meshes).
+  for (const GltfCompression compression : {GltfCompression::meshopt, GltfCompression::draco}) {
+    for (const char* name : {"triangles_scan_attributes", "uint32_indices", "everything_extras"}) {
+      const auto base = std::find_if(out.begin(), out.end(), [&](const Sample& sample) { return sample.name == name; });
+      Sample compressed = *base;
+      compressed.name = std::string(name) + "_" + std::string(gltf_compression_name(compression));
+      compressed.scene.compression = compression;
+      out.push_back(std::move(compressed));
+    }
   }
   return out;
 }

@@ -106,3 +106,26 @@ def test_colors_round_trip_through_every_format(tmp_path, extension):
     # PLY keeps the bytes; OBJ prints k / 255 exactly; glTF's linear COLOR_0 (float32) comes back within rounding.
     tolerance = 1e-6 if extension == ".glb" else 0
     np.testing.assert_allclose(C2 * 255, C.astype(np.float64), atol=255 * tolerance + 1e-4)
+
+
+@pytest.mark.parametrize("compress,extension", [("meshopt", "EXT_meshopt_compression"),
+                                                ("draco", "KHR_draco_mesh_compression")])
+def test_write_mesh_compresses_gltf_which_read_mesh_refuses_by_name(tmp_path, compress, extension):
+    V, F = grid_plane(20)
+    plain, packed = tmp_path / "plain.glb", tmp_path / f"{compress}.glb"
+    geodual.write_mesh(plain, V, F)
+    geodual.write_mesh(packed, V, F, compress=compress)
+    assert packed.stat().st_size < plain.stat().st_size
+    assert extension.encode() in packed.read_bytes()
+    with pytest.raises(geodual.Error, match=extension) as error:
+        geodual.read_mesh(packed)
+    assert str(packed) in str(error.value)
+
+
+def test_write_mesh_refuses_compress_for_other_formats_and_unknown_names(tmp_path):
+    V, F = grid_plane(3)
+    with pytest.raises(ValueError, match=r"compress='meshopt'.*mesh\.ply"):
+        geodual.write_mesh(tmp_path / "mesh.ply", V, F, compress="meshopt")
+    with pytest.raises(ValueError, match="'zip'"):
+        geodual.write_mesh(tmp_path / "mesh.glb", V, F, compress="zip")
+    assert list(tmp_path.iterdir()) == []

@@ -78,7 +78,7 @@ def test_remesh_report_is_the_cli_json_less_paths_and_times(woody, tmp_path):
     run = subprocess.run([cli, "remesh", mesh, "--sites", "300", "--samples", "-1", "--json", "--quiet",
                           "-o", str(tmp_path / "woody.ply")], capture_output=True, text=True, check=True)
     figures = json.loads(run.stdout)
-    for key in ("mesh", "output", "attributes", "time_s", "peak_memory_bytes"):
+    for key in ("mesh", "output", "compress", "attributes", "time_s", "peak_memory_bytes"):
         figures.pop(key)
     figures = {k: v for k, v in figures.items() if not k.endswith("_s")}
     assert list(figures) == list(report)

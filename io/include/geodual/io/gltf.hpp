@@ -13,7 +13,9 @@
 //    and scalar attributes, and uint16 indices when every vertex index fits
 //    below 65535 (the primitive restart value), uint32 otherwise;
 //  - .glb: one GLB file. .gltf: one JSON file with the binary data embedded as
-//    a base64 data URI (one file, so the atomic rename covers all of it).
+//    a base64 data URI (one file, so the atomic rename covers all of it);
+//  - with GltfScene::compression, the triangle meshes compressed for the web
+//    (GltfCompression); line and point sets are written as above.
 // The output passes the Khronos glTF-Validator without errors or warnings,
 // and the same scene always gives the same bytes.
 
@@ -25,6 +27,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace geodual::io {
@@ -75,6 +78,27 @@ struct GltfPointSet {
   ColorMatrix colors{};   ///< COLOR_0 per point: empty, or one row per point
 };
 
+/// How triangle meshes are stored (docs/formats.md). Both compressed forms
+/// mark their extensions required: a viewer without them cannot show the file.
+enum class GltfCompression {
+  none,  ///< float32 attributes, uint16/uint32 indices, as above
+  /// EXT_meshopt_compression over KHR_mesh_quantization: triangles reordered
+  /// for the vertex cache, then vertices for fetch (meshoptimizer); positions
+  /// as uint16 on a 14-bit grid over the largest bounding-box side,
+  /// dequantised by the node's translation and uniform scale; normals as
+  /// normalised int8 through the 8-bit octahedral filter; colours as
+  /// normalised uint16; scalars as float32.
+  meshopt,
+  /// KHR_draco_mesh_compression (Draco edgebreaker): positions quantised to
+  /// 14 bits, normals to 10 (octahedral), colours to 16; scalars exact. Draco
+  /// orders the vertices and triangles, and drops unused vertices and
+  /// triangles with a repeated corner.
+  draco,
+};
+
+/// "none", "meshopt" or "draco".
+std::string_view gltf_compression_name(GltfCompression compression);
+
 /// Everything one file holds. Needs at least one entry. Every member has a
 /// default, so designated initializers may leave any of them out.
 struct GltfScene {
@@ -85,6 +109,8 @@ struct GltfScene {
   std::string extras_json{};
   /// asset.generator: the program that wrote the file, with its version.
   std::string generator = "geodual";
+  /// How the triangle meshes are stored.
+  GltfCompression compression = GltfCompression::none;
 };
 
 enum class GltfContainer {
@@ -104,7 +130,8 @@ std::vector<std::byte> encode_gltf(const GltfScene& scene, GltfContainer contain
 void write_gltf(const std::filesystem::path& path, const GltfScene& scene);
 
 /// Writes one triangle mesh (positions, normals, indices) and its attributes
-/// (gltf_triangle_mesh) to `path`, as above.
-void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {});
+/// (gltf_triangle_mesh) to `path`, as above, stored as `compression` says.
+void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {},
+                GltfCompression compression = GltfCompression::none);
 
 }  // namespace geodual::io

@@ -1,6 +1,7 @@
 #pragma once
 // Writing Voronoi diagrams and remeshes, and the pictures of them.
 
+#include "geodual/io/gltf.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/vertex_attributes.hpp"
 #include "geodual/voronoi/voronoi_diagram.hpp"
@@ -25,9 +26,11 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
                            const voronoi::VoronoiDiagram& diagram, const std::string& extras_json = {});
 
 /// A remeshed surface and its vertex attributes by extension: .ply, .obj,
-/// .glb or .gltf (io::write_mesh; glTF with `extras_json` in asset.extras).
+/// .glb or .gltf (io::write_mesh; glTF with `extras_json` in asset.extras,
+/// its triangles stored as `compression` says). A compression other than
+/// none with a .ply or .obj path throws geodual::Error.
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {},
-                  const std::string& extras_json = {});
+                  const std::string& extras_json = {}, io::GltfCompression compression = io::GltfCompression::none);
 
 /// Per vertex, the mean quality Q of its triangles mapped to a colour: red
 /// (Q = 0) through yellow to green (Q = 1), sRGB-encoded as VertexAttributes::colors.
