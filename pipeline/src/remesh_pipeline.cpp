@@ -657,6 +657,24 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
   return FeaturesNotKept{std::move(reason), stretches_of(surface, all)};
 }
 
+/// Whether the creases `options` detect on result's surface (at the count
+/// asked) include some round narrow faceted sides
+/// (FeatureSamplingOptions::parallel_fold_angle).
+bool faceted_sides_hold_creases(const RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
+  const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
+  const std::int64_t sites = options.edge_length > 0 || options.faces > 0 ? result.sites_for_sizing : options.sites;
+  const remesh::FeatureSamplingOptions sampling =
+      remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
+  remesh::FeatureOptions detect = remesh::remesh_feature_options(
+      surface, sites, sampling.sharp_angle, sampling.min_feature_length, sampling.continuation_angle);
+  detect.given_edges = sampling.given_edges;
+  detect.excluded_edges = sampling.excluded_edges;
+  detect.parallel_fold_angle = sampling.parallel_fold_angle;
+  const std::size_t with_faceted = remesh::detect_features(surface, detect).sharp_edges.size();
+  detect.parallel_fold_angle = 0;
+  return remesh::detect_features(surface, detect).sharp_edges.size() != with_faceted;
+}
+
 /// One remesh of result.input (run_stages) that keeps the features
 /// (remesh_keeping_features); where no try keeps them with the sites asked
 /// for, with twice as many, as often as options.features.max_site_doublings
@@ -703,6 +721,21 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
         return;
       }
     }
+  }
+  // Where the creases round narrow faceted sides are too many for every
+  // count tried, all that again without those, before no crease at all.
+  if (options.features.drop_faceted_sides && options.features.sampling.parallel_fold_angle > 0 &&
+      faceted_sides_hold_creases(result, options)) {
+    RemeshPipelineOptions rough = options;
+    rough.features.sampling.parallel_fold_angle = 0;
+    result.timings.clear();
+    remesh_once(result, rough, input_density, refinement);
+    if (!result.features.empty()) {
+      result.remesh.repair_problems.insert(
+          result.remesh.repair_problems.begin(),
+          "the creases round narrow faceted sides left out, as no try kept them: " + not_kept->reason);
+    }
+    return;
   }
   result.features_dropped_reason = std::move(not_kept->reason);
   result.features_left_out = std::move(not_kept->left_out);

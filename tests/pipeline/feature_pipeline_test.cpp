@@ -791,6 +791,20 @@ TEST(FeaturePipeline, WhereCloserChainSitesDoNotWeldTheTriesRunAgainWithoutThem)
       << result.remesh.repair_problems.front();
 }
 
+TEST(FeaturePipeline, WhereNoCountKeepsTheCreasesRoundNarrowFacetedSidesTheOthersAreKept) {
+  // OpenSCAD's children at 500 sites: with the creases round its thin
+  // plates' faceted rims no try keeps them, at 500, 1,000 or 2,000 sites;
+  // without those, the tries and doublings keep the others, and say why.
+  const pipeline::RemeshPipelineResult result =
+      remesh_without_statistics(io::read_mesh("tests/data/cad/children.stl"), 500);
+  EXPECT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
+  EXPECT_GT(result.features.sharp_chains, 100);
+  ASSERT_FALSE(result.remesh.repair_problems.empty());
+  EXPECT_NE(result.remesh.repair_problems.front().find("the creases round narrow faceted sides left out"),
+            std::string::npos)
+      << result.remesh.repair_problems.front();
+}
+
 TEST(FeaturePipeline, ATryThatLeavesOutEveryCreaseIsNotTakenAsKeepingThem) {
   // OpenSCAD's example021 at 1,000 sites: the tries leave out its creases
   // near the faults until none is left. That remesh is the one without

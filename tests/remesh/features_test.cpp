@@ -856,6 +856,30 @@ TEST(FeatureSampling, CreasesRoundNarrowSmoothRegionsGoWhereTheChainsWouldTakeTh
                    remesh::sample_features(prepared, 2000, all_kept).features.sharp_length);
   all_kept.max_share_narrow_regions = -0.1;
   EXPECT_THROW(remesh::sample_features(prepared, 500, all_kept), UsageError);
+  remesh::FeatureSamplingOptions wrong;
+  wrong.parallel_fold_angle = 91;
+  EXPECT_THROW(remesh::sample_features(prepared, 500, wrong), UsageError);
+}
+
+TEST(FeatureSampling, CreasesRoundNarrowFacetedSidesGoFirstWhereTheChainsWouldTakeTheWholeCount) {
+  // OpenSCAD's projection at 500 sites: with the creases round its narrow
+  // faceted sides (thin plates' polygonal rims) the chains hold more points
+  // than the count; without those they fit, and the creases round its other
+  // narrow smooth regions stay.
+  const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/projection.stl").mesh).mesh;
+  const remesh::RemeshSurface prepared(part);
+  remesh::FeatureSamplingOptions all_kept;
+  all_kept.max_share_narrow_regions = std::numeric_limits<double>::max();
+  EXPECT_GT(remesh::sample_features(prepared, 500, all_kept).sites.points, 500);
+  remesh::FeatureSamplingOptions faceted_rough = all_kept;
+  faceted_rough.parallel_fold_angle = 0;
+  const remesh::FeatureSampling without_faceted = remesh::sample_features(prepared, 500, faceted_rough);
+  EXPECT_LE(without_faceted.sites.points, 500);
+  const remesh::FeatureSampling sampled = remesh::sample_features(prepared, 500);
+  EXPECT_EQ(sampled.features.sharp_edges, without_faceted.features.sharp_edges);
+  // Judged at the rough width everywhere, fewer would stay.
+  faceted_rough.max_share_narrow_regions = 0;
+  EXPECT_LT(remesh::sample_features(prepared, 500, faceted_rough).features.sharp_length, sampled.features.sharp_length);
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {

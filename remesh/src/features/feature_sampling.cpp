@@ -40,6 +40,8 @@ void check_options(const FeatureSamplingOptions& options) {
           "max share near features", options.max_share_near_features, "a finite fraction >= 0 of the sites");
   require(std::isfinite(options.max_share_tightened) && options.max_share_tightened >= 0, "max share tightened",
           options.max_share_tightened, "a finite fraction >= 0 of the sites");
+  require(in(options.parallel_fold_angle, 0, 90), "parallel fold angle", options.parallel_fold_angle,
+          "in [0, 90] degrees (0: off)");
   require(std::isfinite(options.max_share_narrow_regions) && options.max_share_narrow_regions >= 0,
           "max share narrow regions", options.max_share_narrow_regions, "a finite fraction >= 0 of the sites");
 }
@@ -53,6 +55,7 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   const double spacing = uniform_spacing(surface, sites);
   FeatureOptions feature_options = remesh_feature_options(surface, sites, options.sharp_angle,
                                                           options.min_feature_length, options.continuation_angle);
+  feature_options.parallel_fold_angle = options.parallel_fold_angle;
   feature_options.given_edges = options.given_edges;
   feature_options.excluded_edges = options.excluded_edges;
   FeatureSiteOptions site_options{.spacing = spacing,
@@ -68,11 +71,19 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
     return true;
   };
   if (!line_creases(detect_features(prepared, feature_options))) return sampling;
-  if (static_cast<double>(sampling.sites.points) > options.max_share_narrow_regions * static_cast<double>(sites) &&
-      feature_options.min_region_width < feature_options.min_rough_region_width) {
-    // The creases are more than the count carries: those round narrow
-    // regions go, smooth or not.
-    feature_options.min_region_width = feature_options.min_rough_region_width;
+  // Where the creases are more than the count carries, those round narrow
+  // faceted sides go, then those round narrow regions, smooth or not.
+  const auto too_many = [&] {
+    return static_cast<double>(sampling.sites.points) > options.max_share_narrow_regions * static_cast<double>(sites) &&
+           feature_options.min_region_width < feature_options.min_rough_region_width;
+  };
+  for (const bool faceted_go : {true, false}) {
+    if (!too_many() || (faceted_go && feature_options.parallel_fold_angle == 0)) continue;
+    if (faceted_go) {
+      feature_options.parallel_fold_angle = 0;
+    } else {
+      feature_options.min_region_width = feature_options.min_rough_region_width;
+    }
     FeatureSet fewer = detect_features(prepared, feature_options);
     if (fewer.sharp_edges.size() < sampling.features.sharp_edges.size() && !line_creases(std::move(fewer))) {
       return sampling;

@@ -52,10 +52,14 @@ struct FeatureSamplingOptions {
   double tight_spacing = 0.4;
   double max_share_near_features = 0.1;
   double max_share_tightened = 0.25;
+  /// Narrow regions whose folds are parallel lines are smooth (FeatureOptions::
+  /// parallel_fold_angle; 0: rough where steep).
+  double parallel_fold_angle = 10;
   /// Where the chain points would be more than this share of the count with
   /// the creases round narrow smooth regions kept (FeatureOptions::
-  /// min_region_width), those go too, as round narrow rough ones: the count
-  /// cannot carry them.
+  /// min_region_width), those round narrow faceted sides go first (judged
+  /// with parallel_fold_angle 0), then the rest, as round narrow rough ones:
+  /// the count cannot carry them.
   double max_share_narrow_regions = 1.0;
 };
 
