@@ -657,12 +657,12 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
   return FeaturesNotKept{std::move(reason), stretches_of(surface, all)};
 }
 
-/// Whether the creases `options` detect on result's surface (at the count
-/// asked) include some round narrow faceted sides
+/// Whether the creases `options` detect on result's surface for `sites`
+/// sites include some round narrow faceted sides
 /// (FeatureSamplingOptions::parallel_fold_angle).
-bool faceted_sides_hold_creases(const RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
+bool faceted_sides_hold_creases(const RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                                std::int64_t sites) {
   const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
-  const std::int64_t sites = options.edge_length > 0 || options.faces > 0 ? result.sites_for_sizing : options.sites;
   const remesh::FeatureSamplingOptions sampling =
       remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
   remesh::FeatureOptions detect = remesh::remesh_feature_options(
@@ -724,8 +724,14 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   }
   // Where the creases round narrow faceted sides are too many for every
   // count tried, all that again without those, before no crease at all.
-  if (options.features.drop_faceted_sides && options.features.sampling.parallel_fold_angle > 0 &&
-      faceted_sides_hold_creases(result, options)) {
+  const auto at_some_count = [&] {  // of those tried
+    const int doublings = refinement || options.given_sites ? 0 : options.features.max_site_doublings;
+    for (int doubling = 0; doubling <= doublings; ++doubling) {
+      if (faceted_sides_hold_creases(result, options, asked << doubling)) return true;
+    }
+    return false;
+  };
+  if (options.features.drop_faceted_sides && options.features.sampling.parallel_fold_angle > 0 && at_some_count()) {
     RemeshPipelineOptions rough = options;
     rough.features.sampling.parallel_fold_angle = 0;
     result.timings.clear();
