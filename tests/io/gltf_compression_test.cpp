@@ -4,6 +4,8 @@
 // same triangles, the other attributes, determinism, and geodual's reader,
 // which refuses compressed files with a message naming the file and extension.
 
+#include "glb_parts.hpp"
+
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/error.hpp"
@@ -31,31 +33,10 @@
 namespace geodual::io {
 namespace {
 namespace fs = std::filesystem;
+using gltf_test::Glb;
+using gltf_test::split_glb;
+using gltf_test::u32_at;
 using nlohmann::json;
-
-std::uint32_t u32_at(const std::vector<std::byte>& data, std::size_t offset) {
-  std::uint32_t value = 0;
-  std::memcpy(&value, data.data() + offset, sizeof value);
-  return value;
-}
-
-struct Glb {
-  json document;
-  std::vector<std::byte> bin;
-};
-
-Glb split_glb(const std::vector<std::byte>& glb) {
-  Glb out;
-  EXPECT_EQ(u32_at(glb, 8), glb.size());
-  const std::uint32_t json_length = u32_at(glb, 12);
-  const auto* text = reinterpret_cast<const char*>(glb.data() + 20);
-  out.document = json::parse(text, text + json_length);
-  const std::size_t bin_header = 20 + json_length;
-  EXPECT_EQ(u32_at(glb, bin_header + 4), 0x004E4942u);  // "BIN\0"
-  EXPECT_EQ(bin_header + 8 + u32_at(glb, bin_header), glb.size());
-  out.bin.assign(glb.begin() + static_cast<std::ptrdiff_t>(bin_header + 8), glb.end());
-  return out;
-}
 
 // A torus of `around` x `across` vertices, with RGBA colours and a scalar that
 // vary over it; every vertex is used and none coincide.

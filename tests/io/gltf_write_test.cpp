@@ -2,6 +2,8 @@
 // validator) requires, normals, colours and custom attributes, determinism,
 // input checks and atomic replacement.
 
+#include "glb_parts.hpp"
+
 #include "geodual/io/gltf.hpp"
 #include "geodual/mesh/error.hpp"
 
@@ -21,13 +23,10 @@
 namespace geodual::io {
 namespace {
 namespace fs = std::filesystem;
+using gltf_test::Glb;
+using gltf_test::split_glb;
+using gltf_test::u32_at;
 using nlohmann::json;
-
-std::uint32_t u32_at(const std::vector<std::byte>& data, std::size_t offset) {
-  std::uint32_t value = 0;
-  std::memcpy(&value, data.data() + offset, sizeof value);
-  return value;
-}
 
 std::vector<std::byte> read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -49,33 +48,6 @@ GltfScene one_mesh_scene(TriangleMesh mesh) {
   GltfScene scene;
   scene.triangle_meshes.push_back({.name = "tet", .mesh = std::move(mesh)});
   return scene;
-}
-
-struct Glb {
-  json document;
-  std::vector<std::byte> bin;
-};
-
-// Splits a GLB as a reader would, checking the container rules on the way.
-Glb split_glb(const std::vector<std::byte>& glb) {
-  Glb out;
-  EXPECT_GE(glb.size(), 28u);
-  EXPECT_EQ(std::memcmp(glb.data(), "glTF", 4), 0);
-  EXPECT_EQ(u32_at(glb, 4), 2u);
-  EXPECT_EQ(u32_at(glb, 8), glb.size());
-  const std::uint32_t json_length = u32_at(glb, 12);
-  EXPECT_EQ(u32_at(glb, 16), 0x4E4F534Au);  // "JSON"
-  EXPECT_EQ(json_length % 4, 0u);
-  const auto* text = reinterpret_cast<const char*>(glb.data() + 20);
-  out.document = json::parse(text, text + json_length);  // trailing padding spaces are JSON whitespace
-  const std::size_t bin_header = 20 + json_length;
-  EXPECT_EQ(bin_header % 4, 0u);
-  const std::uint32_t bin_length = u32_at(glb, bin_header);
-  EXPECT_EQ(u32_at(glb, bin_header + 4), 0x004E4942u);  // "BIN\0"
-  EXPECT_EQ(bin_length % 4, 0u);
-  EXPECT_EQ(bin_header + 8 + bin_length, glb.size());
-  out.bin.assign(glb.begin() + static_cast<std::ptrdiff_t>(bin_header + 8), glb.end());
-  return out;
 }
 
 // The floats of a FLOAT accessor, read through its buffer view.
