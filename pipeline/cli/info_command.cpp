@@ -12,6 +12,7 @@
 #include "geodual/mesh/mesh_report.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/report_json.hpp"
+#include "geodual/remesh/feature_sampling.hpp"
 #include "geodual/remesh/features.hpp"
 #include "geodual/remesh/manifold_cut.hpp"
 #include "geodual/remesh/remesh.hpp"
@@ -65,16 +66,18 @@ class InfoCommand final : public Command {
     const auto analysis_start = std::chrono::steady_clock::now();
     const MeshReport report = analyze_mesh(loaded.mesh);
     stop_if_interrupted();
-    // The features on the surface a remesh sees: the input cut to a manifold.
+    // The features on the surface a remesh sees (the input cut to a
+    // manifold), as its sampling keeps them for the count: fewer where their
+    // chains would take more than the count (FeatureSamplingOptions::max_share_narrow_regions).
     remesh::FeatureSet features;
     double narrowest_corner = 360;
     if (sharp_angle_ > 0 && report.faces > 0) {
-      const TriangleMesh surface = remesh::cut_to_manifold(loaded.mesh).mesh;
-      features = remesh::detect_features(
-          surface, remesh::remesh_feature_options(surface, sites_, sharp_angle_,
-                                                  remesh::FeatureSamplingOptions{}.min_feature_length,
-                                                  remesh::FeatureSamplingOptions{}.continuation_angle));
-      narrowest_corner = remesh::narrowest_corner_angle(surface, features);
+      const TriangleMesh cut = remesh::cut_to_manifold(loaded.mesh).mesh;
+      const remesh::RemeshSurface surface(cut);
+      remesh::FeatureSamplingOptions options;
+      options.sharp_angle = sharp_angle_;
+      features = remesh::sample_features(surface, sites_, options).features;
+      narrowest_corner = remesh::narrowest_corner_angle(cut, features);
     }
     const double analysis_seconds = seconds_since(analysis_start);
     stop_if_interrupted();

@@ -6,10 +6,14 @@
 
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/mesh_report.hpp"
+#include "geodual/remesh/feature_sampling.hpp"
+#include "geodual/remesh/features.hpp"
+#include "geodual/remesh/manifold_cut.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -102,6 +106,23 @@ TEST(InfoCommand, ReportsTheSharpFeaturesOfABox) {
   run = run_cli({"info", path.string()});  // off by default: it takes several times the analysis
   EXPECT_EQ(run.out.find("sharp features"), std::string::npos) << run.out;
   EXPECT_EQ(run_cli({"info", path.string(), "--sharp-angle", "nan"}).exit_status, 2);
+}
+
+TEST(InfoCommand, ReportsTheCreasesTheRemeshSamplesForItsCount) {
+  // OpenSCAD's candleStand at 500 sites: the chains round all its narrow
+  // smooth regions would hold more points than the count, and the remesh's
+  // sampling keeps fewer (FeatureSamplingOptions::max_share_narrow_regions);
+  // info reports those, not the detection's all.
+  const CliRun run =
+      run_cli({"info", "tests/data/cad/candleStand.stl", "--sites", "500", "--sharp-angle", "60", "--json"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  const TriangleMesh cut = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/candleStand.stl").mesh).mesh;
+  const remesh::FeatureSampling sampled = remesh::sample_features(remesh::RemeshSurface(cut), 500);
+  EXPECT_EQ(json["feature_chains"].get<std::int64_t>(), sampled.features.sharp_chains);
+  EXPECT_DOUBLE_EQ(json["feature_length"].get<double>(), sampled.features.sharp_length);
+  const remesh::FeatureSet detected = remesh::detect_features(cut, remesh::remesh_feature_options(cut, 500, 60, 0.5));
+  EXPECT_LT(json["feature_length"].get<double>(), detected.sharp_length);
 }
 
 TEST(InfoCommand, NoNarrowestCornerWhereNoCornerJoinsTwoFeatures) {
