@@ -29,11 +29,6 @@ namespace fs = std::filesystem;
 
 constexpr const char* scan = "examples/data/bunny.ply";
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /// The bunny with 8-bit colours of a field linear in space (spanning most of
 /// [0, 1] over its bounding box) and a float scalar linear in space.
 class ColouredScan : public ::testing::Test {

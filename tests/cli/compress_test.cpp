@@ -24,11 +24,6 @@ namespace fs = std::filesystem;
 
 constexpr const char* scan = "tests/data/bunny.ply";
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // asset.extras of a GLB: the remesh's statistics, the same whatever the compression.
 nlohmann::json extras_of(const std::string& glb) {
   std::uint32_t json_length = 0;

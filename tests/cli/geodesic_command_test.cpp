@@ -24,11 +24,6 @@ namespace {
 
 constexpr const char* small_mesh = "tests/data/fertility.ply";
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /// Per-vertex (distance, site) from a PLY written by `geodual geodesic`:
 /// vertex records are x y z distance (double) and site (int).
 void read_field(const std::string& bytes, std::vector<double>& distance, std::vector<std::int32_t>& site) {

@@ -26,11 +26,6 @@ namespace {
 
 constexpr const char* scan = "examples/data/bunny.ply";
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /// A wavy n x n grid of 2 (n - 1)^2 faces, `phase` shifting its waves.
 TriangleMesh wavy_grid(int n, double phase) {
   TriangleMesh mesh;

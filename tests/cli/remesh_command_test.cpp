@@ -29,11 +29,6 @@ namespace {
 constexpr const char* genus_four = "tests/data/fertility.ply";
 constexpr const char* open_scan = "examples/data/bunny.ply";
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(RemeshCommand, EveryOutputFormatHoldsTheRemesh) {
   ScratchFolder folder;
   const MeshReport input = analyze_mesh(io::read_mesh(open_scan).mesh);
