@@ -665,11 +665,7 @@ bool faceted_sides_hold_creases(const RemeshPipelineResult& result, const Remesh
   const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
   const remesh::FeatureSamplingOptions sampling =
       remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
-  remesh::FeatureOptions detect = remesh::remesh_feature_options(
-      surface, sites, sampling.sharp_angle, sampling.min_feature_length, sampling.continuation_angle);
-  detect.given_edges = sampling.given_edges;
-  detect.excluded_edges = sampling.excluded_edges;
-  detect.parallel_fold_angle = sampling.parallel_fold_angle;
+  remesh::FeatureOptions detect = remesh::feature_detection_options(surface, sites, sampling);
   const std::size_t with_faceted = remesh::detect_features(surface, detect).sharp_edges.size();
   detect.parallel_fold_angle = 0;
   return remesh::detect_features(surface, detect).sharp_edges.size() != with_faceted;

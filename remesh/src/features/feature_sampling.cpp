@@ -46,6 +46,16 @@ void check_options(const FeatureSamplingOptions& options) {
           "max share narrow regions", options.max_share_narrow_regions, "a finite fraction >= 0 of the sites");
 }
 
+FeatureOptions feature_detection_options(const TriangleMesh& surface, std::int64_t sites,
+                                         const FeatureSamplingOptions& options) {
+  FeatureOptions detection = remesh_feature_options(surface, sites, options.sharp_angle, options.min_feature_length,
+                                                    options.continuation_angle);
+  detection.parallel_fold_angle = options.parallel_fold_angle;
+  detection.given_edges = options.given_edges;
+  detection.excluded_edges = options.excluded_edges;
+  return detection;
+}
+
 FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t sites,
                                 const FeatureSamplingOptions& options) {
   check_options(options);
@@ -53,11 +63,7 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   FeatureSampling sampling;
   if ((options.sharp_angle <= 0 && options.given_edges.empty()) || sites < 4) return sampling;
   const double spacing = uniform_spacing(surface, sites);
-  FeatureOptions feature_options = remesh_feature_options(surface, sites, options.sharp_angle,
-                                                          options.min_feature_length, options.continuation_angle);
-  feature_options.parallel_fold_angle = options.parallel_fold_angle;
-  feature_options.given_edges = options.given_edges;
-  feature_options.excluded_edges = options.excluded_edges;
+  FeatureOptions feature_options = feature_detection_options(surface, sites, options);
   FeatureSiteOptions site_options{.spacing = spacing,
                                   .max_chord_error = chord_error(surface, options.max_chord_error),
                                   .min_spacing = options.min_spacing * spacing,

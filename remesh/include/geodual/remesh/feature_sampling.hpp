@@ -87,6 +87,11 @@ struct FeatureSampling {
   const TriangleMesh& sites_surface(const TriangleMesh& surface) const { return empty() ? surface : cut.mesh; }
 };
 
+/// The detection options sample_features starts from for `sites` sites on
+/// `surface` (remesh_feature_options, with options' fold angle, given and excluded edges).
+FeatureOptions feature_detection_options(const TriangleMesh& surface, std::int64_t sites,
+                                         const FeatureSamplingOptions& options);
+
 /// The features of `surface` (a 2-manifold, such as cut_to_manifold's mesh, prepared)
 /// for a remesh of `sites` sites, the cut along them and the sites on them.
 /// Deterministic. \throw UsageError for options out of range.
