@@ -15,6 +15,7 @@ namespace {
 
 constexpr int normal_bits = 10;
 constexpr int color_bits = 16;
+constexpr int texcoord_bits = 16;  // a step of 1/65535 of the coordinates' range: 1/16 texel at 4096 texels
 
 // Adds `components` floats per vertex as an attribute of `type`; returns its unique id.
 std::uint32_t add_attribute(draco::Mesh& mesh, draco::GeometryAttribute::Type type, int components,
@@ -47,6 +48,14 @@ DracoPrimitive encode_draco(const TriangleStreams& streams, const std::string& w
     out.attribute_ids.emplace_back(
         "COLOR_0", add_attribute(mesh, draco::GeometryAttribute::COLOR, streams.color_channels, streams.colors));
   }
+  if (!streams.texcoords.empty()) {
+    out.attribute_ids.emplace_back("TEXCOORD_0",
+                                   add_attribute(mesh, draco::GeometryAttribute::TEX_COORD, 2, streams.texcoords));
+  }
+  if (!streams.tangents.empty()) {  // exact, as the scalars: Draco quantises GENERIC attributes only when asked
+    out.attribute_ids.emplace_back("TANGENT",
+                                   add_attribute(mesh, draco::GeometryAttribute::GENERIC, 4, streams.tangents));
+  }
   for (const NamedScalars& scalar : streams.scalars) {
     out.attribute_ids.emplace_back(scalar.name,
                                    add_attribute(mesh, draco::GeometryAttribute::GENERIC, 1, scalar.values));
@@ -56,6 +65,7 @@ DracoPrimitive encode_draco(const TriangleStreams& streams, const std::string& w
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, draco_position_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, normal_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, color_bits);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, texcoord_bits);
   encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
   draco::EncoderBuffer buffer;
   if (const draco::Status status = encoder.EncodeMeshToBuffer(mesh, &buffer); !status.ok()) {

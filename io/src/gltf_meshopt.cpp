@@ -142,6 +142,50 @@ MeshoptPrimitive encode_meshopt(const TriangleStreams& mesh) {
                         n, 8);
   }
 
+  if (!mesh.texcoords.empty()) {
+    // TEXCOORD_0: normalised uint16 where every coordinate is in [0, 1] (an
+    // atlas: a step of 1/65535 is 1/16 texel at 4096 texels), float32 otherwise.
+    const bool unit =
+        std::all_of(mesh.texcoords.begin(), mesh.texcoords.end(), [](float c) { return c >= 0.0F && c <= 1.0F; });
+    MeshoptStream& uv = out.streams.emplace_back();
+    uv.attribute = "TEXCOORD_0";
+    uv.components = 2;
+    if (unit) {
+      uv.component_type = ComponentType::unsigned_short;
+      uv.normalized = true;
+      uv.byte_stride = 4;
+      uv.encoded =
+          encode_vertices(pack<std::uint16_t>(order, 2, 4,
+                                              [&](std::uint32_t v, std::size_t k) {
+                                                return quantize_unit<std::uint16_t>(mesh.texcoords[2 * v + k], 65535);
+                                              }),
+                          n, 4);
+    } else {
+      uv.byte_stride = 8;
+      uv.encoded = encode_vertices(
+          pack<float>(order, 2, 8, [&](std::uint32_t v, std::size_t k) { return mesh.texcoords[2 * v + k]; }), n, 8);
+    }
+  }
+
+  if (!mesh.tangents.empty()) {
+    // TANGENT: normalised int8 x, y, z, w through the octahedral filter, which keeps w (+-1).
+    MeshoptStream& tangent = out.streams.emplace_back();
+    tangent.attribute = "TANGENT";
+    tangent.component_type = ComponentType::byte;
+    tangent.components = 4;
+    tangent.normalized = true;
+    tangent.byte_stride = 4;
+    tangent.filter = "OCTAHEDRAL";
+    std::vector<float> reordered(4 * n);
+    for (std::size_t v = 0; v < n; ++v) {
+      std::copy_n(mesh.tangents.begin() + static_cast<std::ptrdiff_t>(4 * order.source[v]), 4,
+                  reordered.begin() + static_cast<std::ptrdiff_t>(4 * v));
+    }
+    std::vector<std::byte> filtered(4 * n);
+    meshopt_encodeFilterOct(filtered.data(), n, 4, normal_bits, reordered.data());
+    tangent.encoded = encode_vertices(filtered, n, 4);
+  }
+
   for (const NamedScalars& scalar : mesh.scalars) {  // float32, as written uncompressed
     MeshoptStream& stream = out.streams.emplace_back();
     stream.attribute = scalar.name;

@@ -17,16 +17,18 @@ namespace geodual::io::detail::gltf {
 
 /// One accessor's data, meshopt-encoded.
 struct MeshoptStream {
-  std::string attribute{};  ///< "POSITION", "NORMAL", "COLOR_0", "_NAME"; empty for the indices
+  std::string
+      attribute{};  ///< "POSITION", "NORMAL", "COLOR_0", "TEXCOORD_0", "TANGENT", "_NAME"; empty for the indices
   std::vector<std::byte> encoded{};
   std::size_t count = 0;        ///< vertices, or indices
   std::size_t byte_stride = 0;  ///< decoded bytes per element: a multiple of 4 for vertices, 2 or 4 for indices
   ComponentType component_type = ComponentType::float_;
-  int components = 1;  ///< 1 (SCALAR), 3 (VEC3) or 4 (VEC4)
+  int components = 1;  ///< 1 (SCALAR), 2 (VEC2), 3 (VEC3) or 4 (VEC4)
   bool normalized = false;
   std::vector<double> min{}, max{};  ///< POSITION only: the integer grid's bounds
   /// EXT_meshopt_compression's filter that a decoder applies after the codec: "NONE" or
-  /// "OCTAHEDRAL" (NORMAL: 8-bit octahedral x, y, decoded to normalised int8 x, y, z and a zero).
+  /// "OCTAHEDRAL" (NORMAL: 8-bit octahedral x, y, decoded to normalised int8 x, y, z and a zero;
+  /// TANGENT: the same with w kept).
   std::string filter = "NONE";
 };
 

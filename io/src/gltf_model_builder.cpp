@@ -52,7 +52,12 @@ std::span<const std::byte> bytes_of(const std::vector<T>& values) {
 }
 
 int accessor_type(int components) {
-  return components == 1 ? TINYGLTF_TYPE_SCALAR : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+  switch (components) {
+    case 1: return TINYGLTF_TYPE_SCALAR;
+    case 2: return TINYGLTF_TYPE_VEC2;
+    case 3: return TINYGLTF_TYPE_VEC3;
+    default: return TINYGLTF_TYPE_VEC4;
+  }
 }
 
 // x, y, z per vertex as float32; throws where a coordinate is not a finite float32 value.
@@ -126,6 +131,43 @@ void check_scalar(const GltfVertexScalar& scalar, std::set<std::string, std::les
   }
 }
 
+// TEXCOORD_0's values: finite, one row per vertex (empty: none).
+std::vector<float> checked_texcoords(const TexcoordMatrix& texcoords, Index vertex_count, const std::string& where) {
+  if (texcoords.rows() == 0) return {};
+  if (texcoords.rows() != vertex_count) {
+    fail(where, "has " + std::to_string(texcoords.rows()) + " texture coordinates for " + std::to_string(vertex_count) +
+                    " vertices");
+  }
+  for (Eigen::Index v = 0; v < texcoords.rows(); ++v) {
+    if (!texcoords.row(v).allFinite()) {
+      fail(where, "texture coordinates of vertex " + std::to_string(v) + " are not finite");
+    }
+  }
+  return {texcoords.data(), texcoords.data() + texcoords.size()};
+}
+
+// TANGENT's values: xyz normalised, w the sign of the row's w (empty: none).
+std::vector<float> checked_tangents(const TangentMatrix& tangents, Index vertex_count, const std::string& where) {
+  if (tangents.rows() == 0) return {};
+  if (tangents.rows() != vertex_count) {
+    fail(where,
+         "has " + std::to_string(tangents.rows()) + " tangents for " + std::to_string(vertex_count) + " vertices");
+  }
+  std::vector<float> values(static_cast<std::size_t>(tangents.size()));
+  for (Eigen::Index v = 0; v < tangents.rows(); ++v) {
+    const double length = tangents.row(v).head<3>().cast<double>().norm();
+    const float w = tangents(v, 3);
+    if (!std::isfinite(length) || !(length > 0) || !(w == 1.0F || w == -1.0F)) {
+      fail(where, "tangent of vertex " + std::to_string(v) + " is not a direction with w = +1 or -1 (glTF's TANGENT)");
+    }
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      values[static_cast<std::size_t>(4 * v + k)] = static_cast<float>(tangents(v, k) / length);
+    }
+    values[static_cast<std::size_t>(4 * v + 3)] = w;
+  }
+  return values;
+}
+
 }  // namespace
 
 ModelBuilder::ModelBuilder(std::string where, GltfCompression compression)
@@ -135,55 +177,111 @@ ModelBuilder::ModelBuilder(std::string where, GltfCompression compression)
   model_.buffers.emplace_back();
 }
 
-void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh, const ColorMatrix& colors,
-                                 const VertexMatrix& normals, std::span<const GltfVertexScalar> scalars) {
+void ModelBuilder::add_triangles(std::string_view name, const TriangleMesh& mesh, const GltfTriangleMesh& entry) {
   const std::string where = where_ + ": " + entry_name("triangle mesh", triangle_meshes_++, name);
   if (mesh.num_faces() == 0) fail(where, "has no triangles");
   const std::span<const Index> corners(mesh.faces.data(), static_cast<std::size_t>(mesh.faces.size()));
   check_indices(corners, mesh.num_vertices(), "face", 3, where);
+  std::vector<float> texcoords = checked_texcoords(entry.texcoords, mesh.num_vertices(), where);
+  std::vector<float> tangents = checked_tangents(entry.tangents, mesh.num_vertices(), where);
+  const std::optional<int> material = add_material(entry, where);
 
   if (compression_ != GltfCompression::none) {
     TriangleStreams streams;
     streams.vertex_count = static_cast<std::size_t>(mesh.num_vertices());
     streams.positions = float_positions(mesh.vertices, where);
-    streams.normals = unit_normals(mesh, normals, where);
-    if (colors.size() > 0) {
-      check_colors(colors, mesh.vertices.rows(), where);
-      streams.color_channels = static_cast<int>(colors.cols());
-      streams.colors.assign(colors.data(), colors.data() + colors.size());
+    streams.normals = unit_normals(mesh, entry.normals, where);
+    if (entry.colors.size() > 0) {
+      check_colors(entry.colors, mesh.vertices.rows(), where);
+      streams.color_channels = static_cast<int>(entry.colors.cols());
+      streams.colors.assign(entry.colors.data(), entry.colors.data() + entry.colors.size());
     }
     std::set<std::string, std::less<>> names;
-    for (const GltfVertexScalar& scalar : scalars) {
+    for (const GltfVertexScalar& scalar : entry.scalars) {
       check_scalar(scalar, names, mesh.num_vertices(), where);
       streams.scalars.push_back({valid_utf8(scalar.name), scalar.values});
     }
+    streams.texcoords = std::move(texcoords);
+    streams.tangents = std::move(tangents);
     streams.indices.assign(corners.begin(), corners.end());
     if (compression_ == GltfCompression::meshopt) {
       add_meshopt_triangles(name, streams);
     } else {
       add_draco_triangles(name, streams, where);
     }
+    if (material) model_.meshes.back().primitives.back().material = *material;
     return;
   }
 
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.attributes["POSITION"] = add_positions(mesh.vertices, where);
-  const std::vector<float> normal_values = unit_normals(mesh, normals, where);
+  const std::vector<float> normal_values = unit_normals(mesh, entry.normals, where);
   primitive.attributes["NORMAL"] =
       add_accessor(bytes_of(normal_values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normal_values.size() / 3,
                    TINYGLTF_TARGET_ARRAY_BUFFER);
-  if (const auto color = add_colors(colors, mesh.vertices.rows(), where)) primitive.attributes["COLOR_0"] = *color;
+  if (const auto color = add_colors(entry.colors, mesh.vertices.rows(), where)) {
+    primitive.attributes["COLOR_0"] = *color;
+  }
+  if (!texcoords.empty()) {
+    primitive.attributes["TEXCOORD_0"] =
+        add_accessor(bytes_of(texcoords), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, texcoords.size() / 2,
+                     TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+  if (!tangents.empty()) {
+    primitive.attributes["TANGENT"] =
+        add_accessor(bytes_of(tangents), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, tangents.size() / 4,
+                     TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
 
   std::set<std::string, std::less<>> names;
-  for (const GltfVertexScalar& scalar : scalars) {
+  for (const GltfVertexScalar& scalar : entry.scalars) {
     check_scalar(scalar, names, mesh.num_vertices(), where);
     primitive.attributes[valid_utf8(scalar.name)] =
         add_accessor(bytes_of(scalar.values), TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, scalar.values.size(),
                      TINYGLTF_TARGET_ARRAY_BUFFER);
   }
   primitive.indices = add_indices(corners, mesh.num_vertices());
+  if (material) primitive.material = *material;
   add_node(name, std::move(primitive));
+}
+
+std::optional<int> ModelBuilder::add_material(const GltfTriangleMesh& entry, const std::string& where) {
+  if (entry.base_color_texture.empty() && entry.normal_texture.empty()) return std::nullopt;
+  if (entry.texcoords.rows() == 0) fail(where, "has textures but no texture coordinates (TEXCOORD_0)");
+  tinygltf::Material material;
+  material.pbrMetallicRoughness.metallicFactor = 0;  // a scan's surface: a dielectric, fully rough
+  material.pbrMetallicRoughness.roughnessFactor = 1;
+  if (!entry.base_color_texture.empty()) {
+    material.pbrMetallicRoughness.baseColorTexture.index =
+        add_texture(entry.base_color_texture, "base colour texture", where);
+  }
+  if (!entry.normal_texture.empty()) {
+    material.normalTexture.index = add_texture(entry.normal_texture, "normal texture", where);
+  }
+  model_.materials.push_back(std::move(material));
+  return static_cast<int>(model_.materials.size() - 1);
+}
+
+int ModelBuilder::add_texture(const GltfImage& image, std::string_view what, const std::string& where) {
+  if (image.mime_type != "image/png" && image.mime_type != "image/jpeg") {
+    fail(where, std::string(what) + " has MIME type '" + image.mime_type + "'; glTF embeds image/png or image/jpeg");
+  }
+  if (model_.samplers.empty()) {  // one sampler for every texture: trilinear, repeated
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    model_.samplers.push_back(std::move(sampler));
+  }
+  tinygltf::Image stored;
+  stored.bufferView = add_view(image.bytes, /*target=*/0);
+  stored.mimeType = image.mime_type;
+  model_.images.push_back(std::move(stored));
+  tinygltf::Texture texture;
+  texture.sampler = 0;
+  texture.source = static_cast<int>(model_.images.size() - 1);
+  model_.textures.push_back(std::move(texture));
+  return static_cast<int>(model_.textures.size() - 1);
 }
 
 void ModelBuilder::add_meshopt_triangles(std::string_view name, const TriangleStreams& streams) {
@@ -234,6 +332,8 @@ void ModelBuilder::add_draco_triangles(std::string_view name, const TriangleStre
     accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     accessor.type = attribute == "POSITION" || attribute == "NORMAL" ? TINYGLTF_TYPE_VEC3
                     : attribute == "COLOR_0"                         ? accessor_type(streams.color_channels)
+                    : attribute == "TEXCOORD_0"                      ? TINYGLTF_TYPE_VEC2
+                    : attribute == "TANGENT"                         ? TINYGLTF_TYPE_VEC4
                                                                      : TINYGLTF_TYPE_SCALAR;
     accessor.count = encoded.decoded_vertices;
     if (attribute == "POSITION") {

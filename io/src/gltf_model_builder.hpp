@@ -24,10 +24,10 @@ class ModelBuilder {
   /// `where` starts every error message (the output path, or "glTF output").
   explicit ModelBuilder(std::string where, GltfCompression compression = GltfCompression::none);
 
-  /// `normals` empty: area-weighted ones; otherwise normalised, with the
-  /// area-weighted normal where a row is zero or not finite.
-  void add_triangles(std::string_view name, const TriangleMesh& mesh, const ColorMatrix& colors,
-                     const VertexMatrix& normals, std::span<const GltfVertexScalar> scalars);
+  /// `mesh` with the attributes and textures of `entry` (whose own mesh is
+  /// not read). Normals empty: area-weighted ones; otherwise normalised, with
+  /// the area-weighted normal where a row is zero or not finite.
+  void add_triangles(std::string_view name, const TriangleMesh& mesh, const GltfTriangleMesh& entry);
   void add_lines(const GltfLineSet& lines);
   void add_points(const GltfPointSet& points);
 
@@ -41,6 +41,8 @@ class ModelBuilder {
   void add_meshopt_triangles(std::string_view name, const TriangleStreams& streams);
   void add_draco_triangles(std::string_view name, const TriangleStreams& streams, const std::string& where);
   void use_extension(const std::string& name);
+  std::optional<int> add_material(const GltfTriangleMesh& entry, const std::string& where);
+  int add_texture(const GltfImage& image, std::string_view what, const std::string& where);
   int add_positions(const VertexMatrix& points, const std::string& where);
   std::optional<int> add_colors(const ColorMatrix& colors, Eigen::Index rows, const std::string& where);
   int add_indices(std::span<const Index> indices, Index vertex_count);

@@ -23,6 +23,8 @@ struct TriangleStreams {
   int color_channels = 0;          ///< 0 (no COLOR_0), 3 or 4
   std::vector<float> colors{};     ///< color_channels per vertex, linear, in [0, 1]
   std::vector<NamedScalars> scalars{};
+  std::vector<float> texcoords{};        ///< TEXCOORD_0: empty, or 2 per vertex, finite
+  std::vector<float> tangents{};         ///< TANGENT: empty, or 4 per vertex, xyz unit, w +-1
   std::vector<std::uint32_t> indices{};  ///< 3 per triangle, each < vertex_count
 };
 

@@ -46,7 +46,7 @@ std::vector<std::byte> write_model(const detail::gltf::ModelBuilder& builder, ti
 std::vector<std::byte> encode_scene(const GltfScene& scene, GltfContainer container, const std::string& where) {
   detail::gltf::ModelBuilder builder(where, scene.compression);
   for (const GltfTriangleMesh& entry : scene.triangle_meshes) {
-    builder.add_triangles(entry.name, entry.mesh, entry.colors, entry.normals, entry.scalars);
+    builder.add_triangles(entry.name, entry.mesh, entry);
   }
   for (const GltfLineSet& entry : scene.line_sets) builder.add_lines(entry);
   for (const GltfPointSet& entry : scene.point_sets) builder.add_points(entry);
@@ -111,7 +111,7 @@ void write_gltf(const std::filesystem::path& path, const TriangleMesh& mesh, con
     return;
   }
   detail::gltf::ModelBuilder builder(path.string(), compression);
-  builder.add_triangles({}, mesh, ColorMatrix{}, VertexMatrix{}, {});  // no copy of the mesh
+  builder.add_triangles({}, mesh, GltfTriangleMesh{});  // no copy of the mesh
   tinygltf::Model model = builder.finish();
   write_bytes(path, write_model(builder, std::move(model), detail::gltf::AssetExtras({}, path.string()), container,
                                 path.string()));

@@ -53,9 +53,14 @@ char* put_number(char* at, LineBuffer& line, T value) {
   return std::to_chars(at, line.data() + line.size(), value).ptr;
 }
 
-void write_obj_text(std::ostream& out, const TriangleMesh& mesh, const ColorMatrix& colors) {
+void write_obj_text(std::ostream& out, const TriangleMesh& mesh, const ColorMatrix& colors,
+                    const ObjTexturing* texturing) {
   TextBlockWriter text(out);
   LineBuffer line;
+  if (texturing != nullptr) {
+    const std::string library = "mtllib " + texturing->material_library + "\n";
+    text.append(library.data(), library.data() + library.size());
+  }
   for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
     char* at = line.data();
     *at++ = 'v';
@@ -70,12 +75,32 @@ void write_obj_text(std::ostream& out, const TriangleMesh& mesh, const ColorMatr
     *at++ = '\n';
     text.append(line.data(), at);
   }
+  if (texturing != nullptr) {
+    for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
+      char* at = line.data();
+      *at++ = 'v';
+      *at++ = 't';
+      *at++ = ' ';
+      at = put_number(at, line, texturing->texcoords(v, 0));
+      *at++ = ' ';
+      at = put_number(at, line, 1 - texturing->texcoords(v, 1));
+      *at++ = '\n';
+      text.append(line.data(), at);
+    }
+    const std::string use = "usemtl " + texturing->material + "\n";
+    text.append(use.data(), use.data() + use.size());
+  }
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
     char* at = line.data();
     *at++ = 'f';
     for (Eigen::Index corner = 0; corner < 3; ++corner) {
       *at++ = ' ';
-      at = put_number(at, line, static_cast<std::int64_t>(mesh.faces(f, corner)) + 1);
+      const auto index = static_cast<std::int64_t>(mesh.faces(f, corner)) + 1;
+      at = put_number(at, line, index);
+      if (texturing != nullptr) {
+        *at++ = '/';
+        at = put_number(at, line, index);
+      }
     }
     *at++ = '\n';
     text.append(line.data(), at);
@@ -83,19 +108,40 @@ void write_obj_text(std::ostream& out, const TriangleMesh& mesh, const ColorMatr
   text.flush();
 }
 
-}  // namespace
-
-void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors) {
+void write_obj_file(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors,
+                    const ObjTexturing* texturing) {
   detail::check_face_indices(path, mesh);
   if (colors.rows() > 0 && (colors.rows() != mesh.vertices.rows() || colors.cols() < 3)) {
     detail::throw_file_error(path, "vertex colours: ", colors.rows(), " rows of ", colors.cols(), " channels for ",
                              mesh.vertices.rows(), " vertices");
   }
+  if (texturing != nullptr) {
+    if (texturing->texcoords.rows() != mesh.vertices.rows() || !texturing->texcoords.allFinite()) {
+      detail::throw_file_error(path, "texture coordinates: ", texturing->texcoords.rows(),
+                               " finite rows needed, one per vertex, for ", mesh.vertices.rows(), " vertices");
+    }
+    for (const std::string* name : {&texturing->material_library, &texturing->material}) {
+      if (name->empty() || name->find_first_of("\r\n") != std::string::npos) {
+        detail::throw_file_error(path, "material names must be one non-empty line");
+      }
+    }
+  }
   write_file_atomically(path, [&](std::ostream& out) {
     static constexpr std::string_view header = "# written by geodual\n";
     out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    write_obj_text(out, mesh, colors);
+    write_obj_text(out, mesh, colors, texturing);
   });
+}
+
+}  // namespace
+
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors) {
+  write_obj_file(path, mesh, colors, nullptr);
+}
+
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors,
+               const ObjTexturing& texturing) {
+  write_obj_file(path, mesh, colors, &texturing);
 }
 
 }  // namespace geodual::io

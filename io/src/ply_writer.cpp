@@ -117,10 +117,12 @@ void check_columns(const fs::path& path, const TriangleMesh& mesh, const VertexA
   }
 }
 
-std::string ply_header(const TriangleMesh& mesh, const std::vector<PlyColumn>& columns) {
-  std::string header =
-      detail::str_cat("ply\nformat binary_little_endian 1.0\ncomment written by geodual\n", "element vertex ",
-                      mesh.vertices.rows(), "\nproperty double x\nproperty double y\nproperty double z\n");
+std::string ply_header(const TriangleMesh& mesh, const std::vector<PlyColumn>& columns,
+                       const std::string& texture_file) {
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by geodual\n";
+  if (!texture_file.empty()) header += detail::str_cat("comment TextureFile ", texture_file, "\n");
+  header += detail::str_cat("element vertex ", mesh.vertices.rows(),
+                            "\nproperty double x\nproperty double y\nproperty double z\n");
   for (const PlyColumn& column : columns) {
     header += detail::str_cat("property ", ply_type_name(column.type), " ", column.name, "\n");
   }
@@ -221,11 +223,15 @@ std::string ply_attribute_problem(const VertexAttributes& attributes) {
   return column_problem(ply_columns(attributes));
 }
 
-void write_ply(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes) {
+void write_ply(const fs::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
+               const std::string& texture_file) {
   detail::check_face_indices(path, mesh);
+  if (texture_file.find_first_of("\r\n") != std::string::npos) {
+    throw_file_error(path, "the texture file name may not hold a line break");
+  }
   const std::vector<PlyColumn> columns = ply_columns(attributes);
   check_columns(path, mesh, attributes, columns);
-  const std::string header = ply_header(mesh, columns);
+  const std::string header = ply_header(mesh, columns, texture_file);
   write_file_atomically(path, [&](std::ostream& out) {
     out.write(header.data(), static_cast<std::streamsize>(header.size()));
     write_body(out, mesh, columns);

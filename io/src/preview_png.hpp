@@ -1,5 +1,5 @@
 #pragma once
-// Internal: PNG encoding for the preview (stb_image_write).
+// Internal: PNG encoding for the preview (image_file.cpp, with the texture images).
 
 #include <cstdint>
 #include <vector>

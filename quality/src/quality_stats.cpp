@@ -10,6 +10,7 @@
 #include "geodual/mesh/coordinate_range.hpp"
 
 #include "geodual/mesh/detail/morton_code.hpp"
+#include "geodual/mesh/detail/nearest_primitive.hpp"
 #include "geodual/mesh/detail/progress_from_threads.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
@@ -108,66 +109,8 @@ double squared_distance_to_segment(const Point& point, const Segment& segment) {
   return geodual::squared_distance_to_segment(eigen(point), eigen(segment.source()), eigen(segment.target()));
 }
 
-/// Traversal traits for the exact squared distance from a point to the
-/// primitives (triangles or segments) of an AABB tree: children are visited
-/// nearest box first, and a box no nearer than the best primitive so far is
-/// skipped. It starts from the distance to a given primitive (the previous
-/// query's nearest, for queries in spatial order) instead of the tree's k-d
-/// tree hint (costly for points far from the surface). The result is the
-/// minimum over the primitives, so it depends on the query alone, not on the
-/// start, the order of queries or the thread.
-template <typename Primitive, double (*squared_distance_to)(const Point&, const typename Primitive::Datum&)>
-class NearestPrimitive {
- public:
-  using Iterator = typename Primitive::Id;
-
-  /// `first`: the tree's first primitive, to number the primitives from.
-  NearestPrimitive(Iterator first, double start_squared, std::size_t start_primitive)
-      : first_(first), best_(start_squared), best_primitive_(start_primitive) {}
-
-  using Node = CGAL::AABB_node<CGAL::AABB_traits<Kernel, Primitive>>;
-  using Priority = double;  ///< higher first: minus the squared distance to the box
-
-  bool go_further() const { return true; }
-
-  void intersection(const Point& query, const Primitive& primitive) {
-    const double d2 = squared_distance_to(query, primitive.datum());
-    if (d2 < best_) {
-      best_ = d2;
-      best_primitive_ = static_cast<std::size_t>(primitive.id() - first_);
-    }
-  }
-
-  bool do_intersect(const Point& query, const Node& node) const { return box_distance(query, node) < best_; }
-
-  std::pair<bool, Priority> do_intersect_with_priority(const Point& query, const Node& node) const {
-    const double d2 = box_distance(query, node);
-    return {d2 < best_, -d2};
-  }
-
-  double squared_distance() const { return best_; }
-  std::size_t nearest_primitive() const { return best_primitive_; }
-
- private:
-  static double box_distance(const Point& q, const Node& node) {
-    const CGAL::Bbox_3& box = node.bbox();
-    double d2 = 0.0;
-    for (int axis = 0; axis < 3; ++axis) {
-      const double below = box.min(axis) - q[axis];
-      const double above = q[axis] - box.max(axis);
-      const double gap = std::max({below, above, 0.0});
-      d2 += gap * gap;
-    }
-    return d2;
-  }
-
-  Iterator first_;
-  double best_;
-  std::size_t best_primitive_;
-};
-
-using NearestTriangle = NearestPrimitive<TrianglePrimitive, squared_distance_to_triangle>;
-using NearestSegment = NearestPrimitive<SegmentPrimitive, squared_distance_to_segment>;
+using NearestTriangle = NearestPrimitive<Kernel, TrianglePrimitive, squared_distance_to_triangle>;
+using NearestSegment = NearestPrimitive<Kernel, SegmentPrimitive, squared_distance_to_segment>;
 
 /// CGAL's median split of the tree build, asking `progress` first at every
 /// node of at least 4096 primitives, so that a cancel ends a build of millions

@@ -9,9 +9,10 @@
 //  - coordinates, colours and scalars as float32: a double that is not a
 //    float32 value is rounded to the nearest one;
 //  - triangle meshes: POSITION, NORMAL (area-weighted vertex normals, unit
-//    length; (0, 0, 1) where the surrounding area is zero), optional COLOR_0
-//    and scalar attributes, and uint16 indices when every vertex index fits
-//    below 65535 (the primitive restart value), uint32 otherwise;
+//    length; (0, 0, 1) where the surrounding area is zero), optional COLOR_0,
+//    TEXCOORD_0, TANGENT and scalar attributes, and uint16 indices when every
+//    vertex index fits below 65535 (the primitive restart value), uint32
+//    otherwise; with textures, a material holding them (embedded images);
 //  - .glb: one GLB file. .gltf: one JSON file with the binary data embedded as
 //    a base64 data URI (one file, so the atomic rename covers all of it);
 //  - with GltfScene::compression, the triangle meshes compressed for the web
@@ -46,6 +47,19 @@ struct GltfVertexScalar {
   std::vector<float> values{};
 };
 
+/// An image embedded in the file: the bytes of a PNG or JPEG file
+/// (encode_image) and its MIME type, "image/png" or "image/jpeg".
+struct GltfImage {
+  std::vector<std::byte> bytes{};
+  std::string mime_type{};
+  bool empty() const { return bytes.empty(); }
+};
+
+/// Texture coordinates (u, v) per vertex, as TEXCOORD_0 holds them.
+using TexcoordMatrix = Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor>;
+/// Tangents (x, y, z, w) per vertex, as TANGENT holds them.
+using TangentMatrix = Eigen::Matrix<float, Eigen::Dynamic, 4, Eigen::RowMajor>;
+
 /// A triangle mesh (a TRIANGLES primitive).
 struct GltfTriangleMesh {
   std::string name{};    ///< node and mesh name; empty: none
@@ -55,6 +69,16 @@ struct GltfTriangleMesh {
   /// (normalised; a zero or non-finite row gets the area-weighted normal).
   VertexMatrix normals{};
   std::vector<GltfVertexScalar> scalars{};  ///< one value per vertex each
+  /// TEXCOORD_0: empty, or one finite row per vertex.
+  TexcoordMatrix texcoords{};
+  /// TANGENT: empty, or one row per vertex: xyz of unit length, w = +1 or -1
+  /// (bitangent = cross(normal, tangent) w).
+  TangentMatrix tangents{};
+  /// The material's baseColorTexture and normalTexture (both address
+  /// TEXCOORD_0, so they need texcoords): empty, or an embedded image. With
+  /// either, the material is non-metallic and fully rough (a scan's look).
+  GltfImage base_color_texture{};
+  GltfImage normal_texture{};
 };
 
 /// A triangle mesh entry carrying `attributes` as glTF has them: colours

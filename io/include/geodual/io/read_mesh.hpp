@@ -4,6 +4,7 @@
 // whose message names the file and the problem.
 
 #include "geodual/io/mesh_format.hpp"
+#include "geodual/mesh/texture_image.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/vertex_attributes.hpp"
 
@@ -33,6 +34,9 @@ struct LoadedMesh {
   /// What the file stores per vertex besides positions (colours, normals,
   /// other scalars); each member empty when the file has none.
   VertexAttributes attributes;
+  /// The base colour texture (glTF's baseColorTexture with TEXCOORD_0) at full
+  /// resolution, for baking; empty when the file has none.
+  SurfaceTexture texture;
   ReadInfo info;
 };
 

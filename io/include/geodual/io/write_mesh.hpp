@@ -7,6 +7,8 @@
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/vertex_attributes.hpp"
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -22,7 +24,10 @@ namespace geodual::io {
 /// printable words, unique, not taken by the coordinates, normals or colours
 /// written; each attribute has one row per vertex; face indices must be in
 /// range. Violations throw geodual::Error naming the path; nothing is written.
-void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {});
+/// `texture_file` (empty: none) is named in a "comment TextureFile NAME" line,
+/// as MeshLab reads a texture (with per-vertex texture_u, texture_v scalars).
+void write_ply(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {},
+               const std::string& texture_file = {});
 
 /// Why write_ply would refuse the names of `attributes` (e.g. "vertex property
 /// 'x' is taken by the coordinates"), or an empty string: to check before
@@ -34,6 +39,17 @@ std::string ply_attribute_problem(const VertexAttributes& attributes);
 /// max_digits10 = 17 significant digits), so the round trip is exact. With
 /// colours (one row per vertex, RGB first), vertices are "v x y z r g b" (alpha is dropped).
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors = {});
+
+/// What a textured OBJ adds: "mtllib LIBRARY" and "usemtl MATERIAL" before the
+/// faces, a "vt u v" per vertex (OBJ's v points up: 1 minus glTF's), and faces
+/// "f a/a b/b c/c".
+struct ObjTexturing {
+  Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> texcoords{};  ///< per vertex, glTF's (v down)
+  std::string material_library{};                                         ///< the .mtl file's name, relative to the OBJ
+  std::string material{};
+};
+void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh, const ColorMatrix& colors,
+               const ObjTexturing& texturing);
 
 /// Writes by extension (case-insensitive): .ply, .obj, .glb or .gltf (glTF: see
 /// gltf.hpp for more); any other extension is a geodual::Error. The
