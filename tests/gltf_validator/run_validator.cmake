@@ -64,10 +64,10 @@ run_or_fail("writing the library scenes" ${SAMPLES} ${WORK_DIR}/library)
 string(STRIP "${run_output}" run_output)
 string(REPLACE "\n" ";" files "${run_output}")
 list(LENGTH files library_count)
-# (11 scenes + 3 scenes x 2 compressions) x 2 containers + 4 write_gltf files;
+# (13 scenes + 4 scenes x 2 compressions) x 2 containers + 4 write_gltf files;
 # a shorter list means a writer silently skipped something.
-if(NOT library_count EQUAL 38)
-  message(FATAL_ERROR "gltf_validator: geodual_gltf_samples listed ${library_count} files, expected 38:\n${run_output}")
+if(NOT library_count EQUAL 46)
+  message(FATAL_ERROR "gltf_validator: geodual_gltf_samples listed ${library_count} files, expected 46:\n${run_output}")
 endif()
 
 set(cli_dir ${WORK_DIR}/cli)

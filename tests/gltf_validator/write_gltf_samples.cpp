@@ -11,6 +11,7 @@
 // scene here is valid input).
 
 #include "geodual/io/gltf.hpp"
+#include "geodual/io/image_file.hpp"
 #include "geodual/mesh/error.hpp"
 
 #include <algorithm>
@@ -143,6 +144,46 @@ TriangleMesh awkward_mesh() {
   return mesh;
 }
 
+// A 16 x 16 image of `channels` channels: a gradient, or flat normals tilted
+// by a wave (`normals`), as a baker writes them.
+TextureImage small_image(int channels, bool normals) {
+  TextureImage image{.width = 16, .height = 16, .channels = channels};
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      if (normals) {
+        const double nx = 0.3 * std::sin(x * 0.7), ny = 0.3 * std::cos(y * 0.5);
+        const double nz = std::sqrt(1 - nx * nx - ny * ny);
+        for (const double c : {nx, ny, nz})
+          image.texels.push_back(static_cast<std::uint8_t>(std::lround((c + 1) * 127.5)));
+      } else {
+        image.texels.insert(image.texels.end(),
+                            {static_cast<std::uint8_t>(16 * x), static_cast<std::uint8_t>(16 * y), 200});
+        if (channels == 4) image.texels.push_back(255);
+      }
+    }
+  }
+  return image;
+}
+
+// The grid as a baker's textured remesh: TEXCOORD_0 over [0, 1]^2, TANGENT
+// along +u, a base colour texture (`format`) and a PNG normal map.
+GltfTriangleMesh textured_grid(ImageFormat format) {
+  GltfTriangleMesh entry{.name = "textured", .mesh = grid(9)};
+  const auto n = entry.mesh.num_vertices();
+  entry.texcoords.resize(n, 2);
+  entry.tangents.resize(n, 4);
+  for (Index v = 0; v < n; ++v) {
+    entry.texcoords.row(v) << static_cast<float>((v % 9) / 8.0), static_cast<float>(1 - (v / 9) / 8.0);
+    const Eigen::Vector3d along_x(1, 0, 0.1 * entry.mesh.vertices(v, 1));  // d(position)/dx on the grid's surface
+    const Eigen::Vector3f t = along_x.normalized().cast<float>();
+    entry.tangents.row(v) << t.x(), t.y(), t.z(), 1.0F;
+  }
+  entry.base_color_texture = {.bytes = encode_image(small_image(4, false), format),
+                              .mime_type = std::string(image_mime_type(format))};
+  entry.normal_texture = {.bytes = encode_image(small_image(3, true), ImageFormat::png), .mime_type = "image/png"};
+  return entry;
+}
+
 struct Sample {
   std::string name;
   GltfScene scene;
@@ -189,6 +230,11 @@ std::vector<Sample> samples() {
         {.name = "grid", .mesh = big, .scalars = {{.name = "_HEIGHT", .values = height_field(big.vertices)}}});
   }
 
+  out.push_back({"textured_png", {}});
+  out.back().scene.triangle_meshes.push_back(textured_grid(ImageFormat::png));
+  out.push_back({"textured_jpeg", {}});
+  out.back().scene.triangle_meshes.push_back(textured_grid(ImageFormat::jpeg));
+
   out.push_back({"lines", {}});
   out.back().scene.line_sets.push_back(equator_lines(1.0, 30, false));
 
@@ -227,7 +273,7 @@ std::vector<Sample> samples() {
   // everything at once (degenerate and unreferenced vertices, lines and points
   // left uncompressed beside the meshes).
   for (const GltfCompression compression : {GltfCompression::meshopt, GltfCompression::draco}) {
-    for (const char* name : {"triangles_scan_attributes", "uint32_indices", "everything_extras"}) {
+    for (const char* name : {"triangles_scan_attributes", "uint32_indices", "everything_extras", "textured_png"}) {
       const auto base = std::find_if(out.begin(), out.end(), [&](const Sample& sample) { return sample.name == name; });
       Sample compressed = *base;
       compressed.name = std::string(name) + "_" + std::string(gltf_compression_name(compression));

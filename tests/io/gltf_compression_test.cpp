@@ -25,6 +25,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -84,6 +85,8 @@ struct Decoded {
   std::vector<std::array<float, 4>> colors;
   std::vector<float> scalar;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::array<float, 2>> texcoords;  ///< where written
+  std::vector<std::array<float, 4>> tangents;   ///< where written
 };
 
 // The byte range of buffer 0 that a meshopt view's extension points at.
@@ -162,6 +165,26 @@ Decoded decode_meshopt(const Glb& glb) {
   const auto [scalar, scalar_stride] = decode(primitive["attributes"]["_HEIGHT"].get<int>(), 4);
   out.scalar.resize(out.positions.size());
   std::memcpy(out.scalar.data(), scalar.data(), scalar.size());
+  if (primitive["attributes"].contains("TEXCOORD_0")) {  // normalised uint16 u, v
+    const json& accessor = doc["accessors"][primitive["attributes"]["TEXCOORD_0"].get<int>()];
+    EXPECT_EQ(accessor["componentType"], 5123);
+    EXPECT_EQ(accessor["normalized"], true);
+    const auto [uvs, uv_stride] = decode(primitive["attributes"]["TEXCOORD_0"].get<int>(), 4);
+    for (std::size_t v = 0; v < out.positions.size(); ++v) {
+      std::array<std::uint16_t, 2> q{};
+      std::memcpy(q.data(), uvs.data() + v * uv_stride, 4);
+      out.texcoords.push_back({q[0] / 65535.0F, q[1] / 65535.0F});
+    }
+  }
+  if (primitive["attributes"].contains("TANGENT")) {  // normalised int8 x, y, z, w through the octahedral filter
+    const auto [tangents, tangent_stride] = decode(primitive["attributes"]["TANGENT"].get<int>(), 4);
+    for (std::size_t v = 0; v < out.positions.size(); ++v) {
+      std::array<std::int8_t, 4> q{};
+      std::memcpy(q.data(), tangents.data() + v * tangent_stride, 4);
+      out.tangents.push_back({std::max(q[0] / 127.0F, -1.0F), std::max(q[1] / 127.0F, -1.0F),
+                              std::max(q[2] / 127.0F, -1.0F), std::max(q[3] / 127.0F, -1.0F)});
+    }
+  }
   const json& index_accessor = doc["accessors"][primitive["indices"].get<int>()];
   const auto [indices, index_size] = decode(primitive["indices"].get<int>(), 2);
   EXPECT_EQ(index_size, index_accessor["componentType"] == 5123 ? 2u : 4u);
@@ -215,6 +238,14 @@ Decoded decode_draco(const Glb& glb) {
     colors->GetMappedValue(draco::PointIndex(v), out.colors.emplace_back().data());
     scalar->GetMappedValue(draco::PointIndex(v), &out.scalar.emplace_back());
   }
+  if (primitive["attributes"].contains("TEXCOORD_0")) {
+    const draco::PointAttribute* uvs = attribute("TEXCOORD_0");
+    const draco::PointAttribute* tangents = attribute("TANGENT");
+    for (draco::PointIndex::ValueType v = 0; v < mesh.num_points(); ++v) {
+      uvs->GetMappedValue(draco::PointIndex(v), out.texcoords.emplace_back().data());
+      tangents->GetMappedValue(draco::PointIndex(v), out.tangents.emplace_back().data());
+    }
+  }
   EXPECT_EQ(doc["accessors"][primitive["indices"].get<int>()]["count"].get<std::size_t>(), 3 * mesh.num_faces());
   for (draco::FaceIndex::ValueType f = 0; f < mesh.num_faces(); ++f) {
     const draco::Mesh::Face& face = mesh.face(draco::FaceIndex(f));
@@ -230,7 +261,7 @@ std::array<Index, 3> canonical(std::array<Index, 3> t) {
 }
 
 struct Errors {
-  double position = 0, normal = 0, color = 0, scalar = 0;
+  double position = 0, normal = 0, color = 0, scalar = 0, texcoord = 0, tangent = 0;
 };
 
 // Matches each decoded vertex to the input vertex nearest to it; expects a
@@ -259,6 +290,18 @@ Errors compare(const GltfTriangleMesh& input, const Decoded& decoded, double tol
     }
     errors.scalar =
         std::max(errors.scalar, static_cast<double>(std::abs(decoded.scalar[d] - input.scalars[0].values[v])));
+    if (input.texcoords.rows() > 0) {
+      EXPECT_EQ(decoded.texcoords.size(), decoded.positions.size());
+      EXPECT_EQ(decoded.tangents.size(), decoded.positions.size());
+      for (Index k = 0; k < 2; ++k) {
+        errors.texcoord = std::max(
+            errors.texcoord, static_cast<double>(std::abs(decoded.texcoords[d][k] - input.texcoords(original[d], k))));
+      }
+      for (Index k = 0; k < 4; ++k) {
+        errors.tangent = std::max(
+            errors.tangent, static_cast<double>(std::abs(decoded.tangents[d][k] - input.tangents(original[d], k))));
+      }
+    }
     if (input.normals.rows() > 0) {  // given normals: to the decoded one's unit vector
       const Eigen::RowVector3d unit = input.normals.row(original[d]).normalized();
       for (Index k = 0; k < 3; ++k) {
@@ -322,6 +365,35 @@ TEST(GltfCompression, NormalsComeBackWithinTheirQuantisation) {
     const Errors errors = compare(input, decoded, extent(input.mesh) / ((1 << 14) - 1));
     EXPECT_LE(errors.normal, tolerance) << gltf_compression_name(compression);
     std::cout << gltf_compression_name(compression) << ": normal component error " << errors.normal << '\n';
+  }
+}
+
+TEST(GltfCompression, TextureCoordinatesAndTangentsComeBackWithinTheirQuantisation) {
+  GltfTriangleMesh input = torus(48, 40);
+  // The torus's (u, v) over [0, 1] and its tangent along u (w +1 and -1 in turn).
+  input.texcoords.resize(input.mesh.num_vertices(), 2);
+  input.tangents.resize(input.mesh.num_vertices(), 4);
+  for (Index v = 0; v < input.mesh.num_vertices(); ++v) {
+    const int i = v / 40, j = v % 40;
+    input.texcoords.row(v) << static_cast<float>(i / 47.0), static_cast<float>(j / 39.0);
+    const double u = 2 * std::numbers::pi * i / 48;
+    input.tangents.row(v) << static_cast<float>(-std::sin(u)), static_cast<float>(std::cos(u)), 0.0F,
+        v % 2 == 0 ? 1.0F : -1.0F;
+  }
+  input.base_color_texture = {.bytes = {std::byte{1}}, .mime_type = "image/png"};  // bytes as given, never decoded
+  // meshopt: uint16 (half a step of 1/65535) and 8-bit octahedral; Draco: 16 bits over the range, tangents exact.
+  for (const auto& [compression, texcoord_tolerance, tangent_tolerance] :
+       {std::tuple{GltfCompression::meshopt, 0.5 / 65535 + 1e-7, 0.02},
+        std::tuple{GltfCompression::draco, 1.0 / 65535, 0.0}}) {
+    const Glb glb = split_glb(encode_gltf(scene_of(input, compression), GltfContainer::glb));
+    const Decoded decoded = compression == GltfCompression::meshopt ? decode_meshopt(glb) : decode_draco(glb);
+    const Errors errors = compare(input, decoded, extent(input.mesh) / ((1 << 14) - 1));
+    EXPECT_LE(errors.texcoord, texcoord_tolerance) << gltf_compression_name(compression);
+    EXPECT_LE(errors.tangent, tangent_tolerance) << gltf_compression_name(compression);
+    const json& material = glb.document["materials"][0];
+    EXPECT_EQ(glb.document["meshes"][0]["primitives"][0]["material"], 0);
+    EXPECT_EQ(material["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
+    EXPECT_EQ(glb.document["images"][0]["mimeType"], "image/png");
   }
 }
 

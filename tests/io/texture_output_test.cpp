@@ -1,0 +1,115 @@
+// The texture parts of the writers: glTF's TEXCOORD_0, TANGENT and material
+// textures (read back through geodual's reader, which samples the base colour
+// texture at the vertices), OBJ's vt lines and material library, PLY's
+// TextureFile comment, and the PNG and JPEG images.
+
+#include "geodual/io/gltf.hpp"
+#include "geodual/io/image_file.hpp"
+#include "geodual/io/read_mesh.hpp"
+#include "geodual/io/write_mesh.hpp"
+#include "io_test_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+
+namespace geodual::io {
+namespace {
+namespace fs = std::filesystem;
+
+TriangleMesh unit_quad() {
+  return {.vertices = VertexMatrix{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+          .faces = FaceMatrix{{0, 1, 2}, {0, 2, 3}}};
+}
+
+TextureImage flat_image(int size, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  TextureImage image{.width = size, .height = size, .channels = 3};
+  for (int i = 0; i < size * size; ++i) image.texels.insert(image.texels.end(), {r, g, b});
+  return image;
+}
+
+TEST(TextureOutput, AGltfBaseColourTextureIsReadBackAtTheVertices) {
+  test::TempDir dir;
+  GltfTriangleMesh entry{.name = "quad", .mesh = unit_quad()};
+  entry.texcoords = TexcoordMatrix{{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  entry.tangents = TangentMatrix{{1, 0, 0, 1}, {1, 0, 0, 1}, {1, 0, 0, 1}, {1, 0, 0, 1}};
+  for (const ImageFormat format : {ImageFormat::png, ImageFormat::jpeg}) {
+    entry.base_color_texture = {.bytes = encode_image(flat_image(8, 200, 100, 50), format),
+                                .mime_type = std::string(image_mime_type(format))};
+    const fs::path path = dir.path() / ("quad_" + std::string(image_format_name(format)) + ".glb");
+    write_gltf(path, {.triangle_meshes = {entry}});
+    const LoadedMesh loaded = read_mesh(path);
+    ASSERT_EQ(loaded.attributes.colors.rows(), 4) << image_format_name(format);
+    const int tolerance = format == ImageFormat::png ? 1 : 3;  // JPEG's loss on a flat image
+    for (Index v = 0; v < 4; ++v) {
+      EXPECT_NEAR(loaded.attributes.colors(v, 0) * 255, 200, tolerance);
+      EXPECT_NEAR(loaded.attributes.colors(v, 1) * 255, 100, tolerance);
+      EXPECT_NEAR(loaded.attributes.colors(v, 2) * 255, 50, tolerance);
+    }
+  }
+}
+
+TEST(TextureOutput, TexturesNeedCoordinatesAndTangentsMustBeDirectionsWithASign) {
+  GltfTriangleMesh entry{.mesh = unit_quad()};
+  entry.base_color_texture = {.bytes = encode_image(flat_image(4, 1, 2, 3), ImageFormat::png),
+                              .mime_type = "image/png"};
+  EXPECT_NE(test::error_message([&] {
+              (void)encode_gltf({.triangle_meshes = {entry}}, GltfContainer::glb);
+            }).find("no texture coordinates"),
+            std::string::npos);
+  entry.texcoords = TexcoordMatrix::Zero(4, 2);
+  entry.tangents = TangentMatrix{{1, 0, 0, 1}, {1, 0, 0, 0.5}, {1, 0, 0, 1}, {1, 0, 0, 1}};
+  EXPECT_NE(test::error_message([&] {
+              (void)encode_gltf({.triangle_meshes = {entry}}, GltfContainer::glb);
+            }).find("tangent of vertex 1"),
+            std::string::npos);
+  entry.tangents.resize(0, 4);
+  entry.base_color_texture.mime_type = "image/webp";
+  EXPECT_NE(test::error_message([&] {
+              (void)encode_gltf({.triangle_meshes = {entry}}, GltfContainer::glb);
+            }).find("image/webp"),
+            std::string::npos);
+}
+
+TEST(TextureOutput, ObjGetsTextureCoordinatesWithVUpAndItsMaterialLibrary) {
+  test::TempDir dir;
+  const fs::path path = dir.path() / "quad.obj";
+  ObjTexturing texturing{.material_library = "quad.mtl", .material = "remesh"};
+  texturing.texcoords.resize(4, 2);
+  texturing.texcoords << 0, 0.25, 1, 0.25, 1, 1, 0, 1;
+  write_obj(path, unit_quad(), {}, texturing);
+  const std::string text = test::read_file(path);
+  EXPECT_NE(text.find("mtllib quad.mtl\n"), std::string::npos);
+  EXPECT_NE(text.find("vt 0 0.75\nvt 1 0.75\nvt 1 0\nvt 0 0\nusemtl remesh\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"), std::string::npos) << text;
+  const LoadedMesh back = read_mesh(path);  // geodual's reader takes the vertex indices
+  EXPECT_EQ(back.mesh.faces, unit_quad().faces);
+  texturing.texcoords.resize(3, 2);
+  EXPECT_THROW(write_obj(path, unit_quad(), {}, texturing), Error);
+}
+
+TEST(TextureOutput, PlyNamesItsTextureFileInAComment) {
+  test::TempDir dir;
+  const fs::path path = dir.path() / "quad.ply";
+  write_ply(path, unit_quad(), {}, "quad_basecolor.png");
+  const std::string text = test::read_file(path);
+  EXPECT_EQ(text.find("ply\nformat binary_little_endian 1.0\ncomment written by geodual\ncomment TextureFile "
+                      "quad_basecolor.png\nelement vertex 4\n"),
+            0u);
+  EXPECT_EQ(read_mesh(path).mesh.faces, unit_quad().faces);
+  EXPECT_THROW(write_ply(path, unit_quad(), {}, "two\nlines.png"), Error);
+}
+
+TEST(TextureOutput, ImagesAreRefusedWhenTheirTexelsDoNotMatchTheirSize) {
+  TextureImage image = flat_image(4, 1, 2, 3);
+  EXPECT_EQ(encode_image(image, ImageFormat::png), encode_image(image, ImageFormat::png)) << "deterministic";
+  image.texels.pop_back();
+  EXPECT_THROW((void)encode_image(image, ImageFormat::png), Error);
+  image = flat_image(4, 1, 2, 3);
+  image.channels = 2;
+  EXPECT_THROW((void)encode_image(image, ImageFormat::jpeg), Error);
+}
+
+}  // namespace
+}  // namespace geodual::io
