@@ -31,7 +31,7 @@ struct AtlasOptions {
   double max_chart_angle = 60;
   /// Edges of the mesh (its vertex pairs, in either order) that no chart
   /// crosses: they become seams. Edges that are not edges of the mesh are ignored.
-  std::vector<std::array<Index, 2>> seams;
+  std::vector<std::array<Index, 2>> seams = {};
 };
 
 /// The atlas of a mesh: the mesh's triangles on vertices copied where a seam
