@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 namespace geodual::remesh::detail {
 namespace {
@@ -80,18 +81,19 @@ struct BoxPlace {
 
 /// Skyline packing: the texture filled from the top (y = 0) down, the
 /// skyline being the lowest filled row over each run of columns. Each box,
-/// in the given order, goes where its far edge is nearest the top (then
-/// leftmost), upright or turned.
+/// in the given order, goes upright or turned where it leaves the least
+/// space unusable under it (with `least_waste`) and then where its far edge
+/// is nearest the top, then leftmost.
 class Skyline {
  public:
   explicit Skyline(int size) : size_(size) {}
 
-  bool pack(const std::vector<std::array<int, 2>>& boxes, const std::vector<std::size_t>& order,
+  bool pack(const std::vector<std::array<int, 2>>& boxes, const std::vector<std::size_t>& order, bool least_waste,
             std::vector<BoxPlace>& places) {
     segments_.assign(1, {0, 0, size_});
     places.resize(boxes.size());
     for (const std::size_t i : order) {
-      long best_score = -1;
+      std::array<long, 3> best_score{-1, 0, 0};
       BoxPlace best;
       int best_width = 0, best_height = 0;
       for (int turned = 0; turned < 2; ++turned) {
@@ -100,10 +102,10 @@ class Skyline {
         for (std::size_t s = 0; s < segments_.size(); ++s) {
           const int x = segments_[s].x;
           if (x + width > size_) break;
-          const int y = floor_under(s, x + width);
+          const auto [y, waste] = floor_under(s, x + width);
           if (y + height > size_) continue;
-          const long score = static_cast<long>(y + height) * (size_ + 1) + x;
-          if (best_score < 0 || score < best_score) {
+          const std::array<long, 3> score{least_waste ? waste : 0, y + height, x};
+          if (best_score[0] < 0 || score < best_score) {
             best_score = score;
             best = {x, y, turned == 1};
             best_width = width;
@@ -111,7 +113,7 @@ class Skyline {
           }
         }
       }
-      if (best_score < 0) return false;
+      if (best_score[0] < 0) return false;
       places[i] = best;
       raise(best.x, best_width, best.y + best_height);
     }
@@ -123,11 +125,17 @@ class Skyline {
     int x, y, width;
   };
 
-  // The lowest free row over columns [segments_[s].x, end).
-  int floor_under(std::size_t s, int end) const {
+  // The lowest free row over columns [segments_[s].x, end), and the texels
+  // between it and the skyline there, which a box resting on it would waste.
+  std::pair<int, long> floor_under(std::size_t s, int end) const {
     int y = 0;
-    for (; s < segments_.size() && segments_[s].x < end; ++s) y = std::max(y, segments_[s].y);
-    return y;
+    for (std::size_t t = s; t < segments_.size() && segments_[t].x < end; ++t) y = std::max(y, segments_[t].y);
+    long waste = 0;
+    for (std::size_t t = s; t < segments_.size() && segments_[t].x < end; ++t) {
+      const int overlap = std::min(end, segments_[t].x + segments_[t].width) - segments_[t].x;
+      waste += static_cast<long>(y - segments_[t].y) * overlap;
+    }
+    return {y, waste};
   }
 
   // Columns [x, x + width) filled down to row y.
@@ -178,15 +186,21 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
     rectangles[i] = smallest_rectangle(charts[i]);
     area += rectangles[i].size.prod();
   }
-  // Larger boxes first: by the longer side, then the shorter.
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const Eigen::Vector2d& p = rectangles[a].size;
-    const Eigen::Vector2d& q = rectangles[b].size;
-    return p.maxCoeff() != q.maxCoeff() ? p.maxCoeff() > q.maxCoeff() : p.minCoeff() > q.minCoeff();
-  });
+  // Orders to try, larger boxes first: by the longer side, by the shorter
+  // side, by area.
+  std::vector<std::vector<std::size_t>> orders;
+  for (int key = 0; key < 3; ++key) {
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    auto measure = [&](std::size_t i) {
+      const Eigen::Vector2d& size = rectangles[i].size;
+      return key == 0 ? size.maxCoeff() : key == 1 ? size.minCoeff() : size.prod();
+    };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return measure(a) > measure(b); });
+    orders.push_back(std::move(order));
+  }
 
+  // The first packing that fits, of each order with each placement rule.
   Skyline skyline(texture_size);
   std::vector<std::array<int, 2>> boxes(n);
   std::vector<BoxPlace> places, best_places;
@@ -194,7 +208,12 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
     for (std::size_t i = 0; i < n; ++i) {
       for (int axis = 0; axis < 2; ++axis) boxes[i][axis] = texels(rectangles[i].size[axis], scale) + 2 * gutter;
     }
-    return skyline.pack(boxes, order, places);
+    for (const bool least_waste : {false, true}) {
+      for (const std::vector<std::size_t>& order : orders) {
+        if (skyline.pack(boxes, order, least_waste, places)) return true;
+      }
+    }
+    return false;
   };
 
   // The scale (texels per chart length unit) that would fill the texture
