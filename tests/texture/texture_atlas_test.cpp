@@ -220,10 +220,14 @@ void expect_valid_atlas(const TriangleMesh& mesh, const TextureAtlas& atlas, con
 }
 
 void report(const char* name, const TriangleMesh& mesh, const TextureAtlas& atlas, double seconds) {
+  std::vector<Index> chart_faces(atlas.charts, 0);
+  for (const Index c : atlas.chart_of_face) ++chart_faces[c];
+  const auto small = std::count_if(chart_faces.begin(), chart_faces.end(), [](Index faces) { return faces < 10; });
   std::cout << name << ": " << mesh.num_vertices() << " vertices, " << mesh.num_faces() << " faces, " << atlas.charts
-            << " charts, texture used " << atlas.texture_used << ", area distortion mean " << atlas.mean_area_distortion
-            << " max " << atlas.max_area_distortion << ", angle distortion mean " << atlas.mean_angle_distortion
-            << " max " << atlas.max_angle_distortion << " deg, " << seconds << " s\n";
+            << " charts (" << small << " of fewer than 10 faces), texture used " << atlas.texture_used
+            << ", area distortion mean " << atlas.mean_area_distortion << " max " << atlas.max_area_distortion
+            << ", angle distortion mean " << atlas.mean_angle_distortion << " max " << atlas.max_angle_distortion
+            << " deg, " << seconds << " s\n";
 }
 
 TextureAtlas timed_atlas(const char* name, const TriangleMesh& mesh, const AtlasOptions& options) {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <deque>
 #include <numbers>
+#include <utility>
 
 namespace geodual::remesh::detail {
 namespace {
@@ -56,6 +57,8 @@ class ChartGrower {
   }
 
   bool assigned(Index f) const { return chart_of_[f] >= 0; }
+  const std::vector<Eigen::Vector3d>& normals() const { return normal_; }
+  const std::vector<double>& areas() const { return area_; }
 
   std::vector<Index> grow(Index seed, Index chart, std::vector<Index>& rejected) {
     std::vector<Index> faces;
@@ -156,6 +159,59 @@ Index breadth_first(const FaceNeighbours& neighbours, const std::vector<Index>& 
   return last;
 }
 
+/// Charts of fewer than `small` faces merged, in chart order, into the
+/// neighbour they share most crossable edges with (then the first) whose
+/// faces, with theirs, all stay within the angle of the joint mean normal;
+/// charts left empty removed.
+void merge_small_charts(const FaceNeighbours& neighbours, const std::vector<Eigen::Vector3d>& normals,
+                        const std::vector<double>& areas, double max_angle, std::size_t small,
+                        std::vector<std::vector<Index>>& charts) {
+  std::vector<Index> chart_of(neighbours.size(), -1);
+  std::vector<Eigen::Vector3d> sums(charts.size(), Eigen::Vector3d::Zero());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    for (const Index f : charts[c]) {
+      chart_of[f] = static_cast<Index>(c);
+      sums[c] += areas[f] * normals[f];
+    }
+  }
+  auto within_cone = [&](const std::vector<Index>& faces, const Eigen::Vector3d& mean) {
+    return std::all_of(faces.begin(), faces.end(),
+                       [&](Index f) { return angle_between(normals[f], mean) <= max_angle; });
+  };
+  std::vector<std::pair<Index, Index>> shared;  // (neighbour chart, crossable edges shared)
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    if (charts[c].empty() || charts[c].size() >= small) continue;
+    shared.clear();
+    for (const Index f : charts[c]) {
+      for (const Index g : neighbours[f]) {
+        if (g < 0 || chart_of[g] == static_cast<Index>(c)) continue;
+        const auto at =
+            std::find_if(shared.begin(), shared.end(), [&](const auto& s) { return s.first == chart_of[g]; });
+        if (at == shared.end()) {
+          shared.emplace_back(chart_of[g], 1);
+        } else {
+          ++at->second;
+        }
+      }
+    }
+    std::stable_sort(shared.begin(), shared.end(), [](const auto& a, const auto& b) {
+      return a.second != b.second ? a.second > b.second : a.first < b.first;
+    });
+    for (const auto& [d, edges] : shared) {
+      const Eigen::Vector3d sum = sums[c] + sums[d];
+      if (!(sum.norm() > 0)) continue;
+      const Eigen::Vector3d mean = sum.normalized();
+      if (!within_cone(charts[c], mean) || !within_cone(charts[d], mean)) continue;
+      for (const Index f : charts[c]) chart_of[f] = d;
+      charts[d].insert(charts[d].end(), charts[c].begin(), charts[c].end());
+      sums[d] = sum;
+      charts[c].clear();
+      break;
+    }
+  }
+  std::erase_if(charts, [](const std::vector<Index>& faces) { return faces.empty(); });
+}
+
 }  // namespace
 
 FaceNeighbours chart_neighbours(const TriangleMesh& mesh, const std::vector<std::array<Index, 2>>& seams) {
@@ -204,6 +260,9 @@ std::vector<std::vector<Index>> grow_charts(const TriangleMesh& mesh, const Face
     }
     charts.push_back(grower.grow(seed, static_cast<Index>(charts.size()), rejected));
   }
+  constexpr std::size_t small_chart = 16;
+  merge_small_charts(neighbours, grower.normals(), grower.areas(), max_angle_degrees * std::numbers::pi / 180,
+                     small_chart, charts);
   return charts;
 }
 
