@@ -172,8 +172,9 @@ class Skyline {
 };
 
 /// The texels a chart side of this length takes at this scale: whole ones,
-/// always with some slack, so that no chart point lies on a texel edge.
-int texels(double length, double scale) { return static_cast<int>(std::floor(length * scale)) + 1; }
+/// with more than half a texel of slack, so that no chart point comes near
+/// a texel edge of its box (and round-off cannot take it into the gutter).
+int texels(double length, double scale) { return static_cast<int>(std::floor(length * scale + 0.5)) + 1; }
 
 }  // namespace
 
