@@ -31,7 +31,7 @@ struct AtlasOptions {
   double max_chart_angle = 60;
   /// Edges of the mesh (its vertex pairs, in either order) that no chart
   /// crosses: they become seams. Edges that are not edges of the mesh are ignored.
-  std::vector<std::array<Index, 2>> seams{};
+  std::vector<std::array<Index, 2>> seams = {};
 };
 
 /// The atlas of a mesh: the mesh's triangles on vertices copied where a seam
@@ -45,7 +45,10 @@ struct TextureAtlas {
   /// top-left corner of the image's first texel, (1, 1) the bottom-right
   /// corner of its last. A triangle keeps its orientation: counter-clockwise
   /// in 3D seen from outside is clockwise in (u, v) with v down, i.e.
-  /// counter-clockwise seen as an image.
+  /// counter-clockwise seen as an image: in the numbers stored,
+  /// (u1 - u0) (v2 - v0) - (v1 - v0) (u2 - u0) < 0 for every face. Every
+  /// chart keeps `gutter` free texels round it (so two charts are at least
+  /// 2 gutter texels apart) and charts do not overlap.
   UvMatrix uvs;
   /// Per face, its chart (0 .. charts - 1).
   std::vector<Index> chart_of_face;
