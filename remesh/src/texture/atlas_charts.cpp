@@ -16,6 +16,11 @@
 namespace geodual::remesh::detail {
 namespace {
 
+/// The weight of a face's distance from the seed beside its normal's
+/// deviation in the order charts grow (0.5: the best texture use of a few
+/// tried on a sphere, fandisk and a bunny remesh).
+constexpr double kRoundness = 0.5;
+
 /// The angle in radians between two unit vectors.
 double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
@@ -29,8 +34,8 @@ int corner_at(const TriangleMesh& mesh, Index f, Index v) {
   return -1;
 }
 
-/// A face waiting to join the chart being grown: the smallest normal
-/// deviation first, then the earliest pushed.
+/// A face waiting to join the chart being grown: the smallest priority
+/// (ChartGrower::priority) first, then the earliest pushed.
 struct Candidate {
   double deviation;
   Index order;
@@ -48,9 +53,13 @@ class ChartGrower {
       : neighbours_(neighbours), max_angle_(max_angle_degrees * std::numbers::pi / 180) {
     const Index n = mesh.num_faces();
     normal_.resize(n);
+    centroid_.resize(n);
     area_.resize(n);
     for (Index f = 0; f < n; ++f) {
       normal_[f] = face_unit_normal(mesh, f);
+      centroid_[f] = (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
+                      mesh.vertices.row(mesh.faces(f, 2))) /
+                     3;
       area_[f] = face_area(mesh, f);
     }
     chart_of_.assign(n, -1);
@@ -65,6 +74,8 @@ class ChartGrower {
     sum_ = Eigen::Vector3d::Zero();
     heap_.clear();
     order_ = 0;
+    seed_ = centroid_[seed];
+    chart_area_ = 0;
     add(seed, chart, faces);
     reference_ = mean();
     reference_spread_ = 0;
@@ -92,10 +103,11 @@ class ChartGrower {
     chart_of_[f] = chart;
     faces.push_back(f);
     sum_ += area_[f] * normal_[f];
+    chart_area_ += area_[f];
     const Eigen::Vector3d m = mean();
     for (const Index g : neighbours_[f]) {
       if (g < 0 || assigned(g)) continue;
-      heap_.push_back({angle_between(normal_[g], m), order_++, g});
+      heap_.push_back({priority(g, m), order_++, g});
       std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
     }
   }
@@ -125,7 +137,19 @@ class ChartGrower {
 
   const FaceNeighbours& neighbours_;
   const double max_angle_;
+  // Normal deviation (as a share of the cone's angle) plus distance from the
+  // seed (as a share of the radius of a disk of the chart's area): charts
+  // grow round, which packs better, and turn as little as they can.
+  double priority(Index g, const Eigen::Vector3d& mean) const {
+    const double radius = std::sqrt(chart_area_ / std::numbers::pi);
+    const double distance = radius > 0 ? (centroid_[g] - seed_).norm() / radius : 0;
+    return angle_between(normal_[g], mean) / max_angle_ + kRoundness * distance;
+  }
+
   std::vector<Eigen::Vector3d> normal_;
+  std::vector<Eigen::Vector3d> centroid_;
+  Eigen::Vector3d seed_ = Eigen::Vector3d::Zero();
+  double chart_area_ = 0;
   std::vector<double> area_;
   std::vector<Index> chart_of_;
   std::vector<Candidate> heap_;

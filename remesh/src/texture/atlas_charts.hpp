@@ -23,8 +23,9 @@ using FaceNeighbours = std::vector<std::array<Index, 3>>;
 FaceNeighbours chart_neighbours(const TriangleMesh& mesh, const std::vector<std::array<Index, 2>>& seams);
 
 /// Charts grown over the faces: each one from a seed, over crossable edges,
-/// taking the face whose normal is nearest the chart's area-weighted mean
-/// normal first, while every face of the chart stays within
+/// taking first the face whose normal turns least from the chart's
+/// area-weighted mean normal and lies nearest the seed (a weighted sum of
+/// the two), while every face of the chart stays within
 /// max_angle_degrees of that mean. Seeds are the faces next to earlier
 /// charts, in the order they were met, else the first face left.
 /// Deterministic. Each chart's faces are listed in the order they joined.
