@@ -11,6 +11,7 @@
 #   geodual::io        readers and writers
 #   geodual::voronoi   exact geodesics and the geodesic Voronoi diagram
 #   geodual::remesh    site sampling, Lloyd, dual Delaunay, quality statistics
+#   geodual::texture   the remesh's texture atlas and baking (headers in include/geodual/remesh)
 #   geodual::pipeline  stage orchestration (what the CLI calls)
 #   geodual::geodual   the command line tool (an imported executable)
 #
@@ -27,7 +28,7 @@ set(GEODUAL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/geodual CACHE STRING
 mark_as_advanced(GEODUAL_INSTALL_CMAKEDIR)
 
 # Library targets and their exported names.
-set(GEODUAL_INSTALLED_COMPONENTS mesh io voronoi remesh quality pipeline)
+set(GEODUAL_INSTALLED_COMPONENTS mesh io voronoi remesh texture quality pipeline)
 set(_geodual_installed_libraries)
 foreach(component IN LISTS GEODUAL_INSTALLED_COMPONENTS)
   set_target_properties(geodual_${component} PROPERTIES EXPORT_NAME ${component})
@@ -44,7 +45,7 @@ install(TARGETS ${_geodual_installed_libraries} geodual
 # Public headers only: each module's include/geodual/<module>/ folder becomes
 # include/geodual/<module>/. Private headers (a module's src/, mesh/detail/)
 # stay in the source tree.
-foreach(module IN LISTS GEODUAL_INSTALLED_COMPONENTS)
+foreach(module IN ITEMS mesh io voronoi remesh quality pipeline)  # texture's headers are remesh's
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/geodual/${module}
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/geodual
     COMPONENT development

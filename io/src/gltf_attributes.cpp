@@ -215,6 +215,19 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
     colors_.reserve(4 * total_vertices);
   }
 
+  // The texture kept whole: one image, alone, on every primitive.
+  std::set<std::size_t> images;
+  bool texture_alone = n > 0;
+  for (const PrimitiveAttributes* p : primitives) {
+    if (p->texture && p->texcoord) images.insert(p->texture->image);
+    texture_alone = texture_alone && p->texture && p->texcoord && !p->color && p->base_color_factor == white;
+  }
+  if (texture_alone && images.size() == 1) {
+    texture_image_ = *images.begin();
+    texcoords_.reserve(2 * total_vertices);
+    notes_.emplace_back("base colour texture kept whole for baking, with its TEXCOORD at every vertex");
+  }
+
   read_normals_ = n > 0 && with_normal == n;
   if (read_normals_) {
     notes_.emplace_back("vertex normals from NORMAL");
@@ -242,6 +255,11 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
 
 void AttributeReader::append(const PrimitiveAttributes& primitive, std::size_t count, const MeshInstance& instance) {
   if (read_colors_) append_colors(primitive, count);
+  if (texture_image_) {
+    for_each_element(*primitive.texcoord, [&](std::size_t, const double* uv) {
+      texcoords_.insert(texcoords_.end(), {uv[0], uv[1]});
+    });
+  }
   if (read_normals_) append_normals(primitive, count, instance);
   for (OutputScalar& scalar : scalars_) {
     for_each_element(primitive.scalars.at(scalar.name), [&](std::size_t, const double* value) {
@@ -291,6 +309,28 @@ void AttributeReader::append_normals(const PrimitiveAttributes& primitive, std::
     if (length > 0.0 && std::isfinite(length)) out /= length;
     normals_finite_ = normals_finite_ && out.allFinite();
   });
+}
+
+SurfaceTexture AttributeReader::take_texture(const FaceMatrix& faces) {
+  SurfaceTexture texture;
+  if (!texture_image_) return texture;
+  const DecodedImage& image = textures_.image(*texture_image_);
+  bool opaque = true;
+  for (std::size_t t = 3; t < image.rgba.size(); t += 4) opaque = opaque && image.rgba[t] == 255;
+  texture.image = {.width = image.width, .height = image.height, .channels = opaque ? 3 : 4};
+  texture.image.texels.reserve(static_cast<std::size_t>(image.width) * image.height * texture.image.channels);
+  for (std::size_t t = 0; t < image.rgba.size(); t += 4) {
+    texture.image.texels.insert(texture.image.texels.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(t),
+                                image.rgba.begin() + static_cast<std::ptrdiff_t>(t + texture.image.channels));
+  }
+  texture.corner_uvs.resize(3 * faces.rows(), 2);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const auto v = static_cast<std::size_t>(faces(f, c));
+      texture.corner_uvs.row(3 * f + c) << texcoords_[2 * v], texcoords_[2 * v + 1];
+    }
+  }
+  return texture;
 }
 
 VertexAttributes AttributeReader::take() {

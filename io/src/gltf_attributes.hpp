@@ -13,9 +13,14 @@
 //    linear part and renormalised; read only when every primitive has NORMAL.
 //  - Scalars: SCALAR attributes named "_NAME", stored as NAME; each read only
 //    when every primitive has it.
+//  - The texture, kept whole for baking (LoadedMesh::texture): where every
+//    primitive's base colour is one and the same image sampled at its
+//    TEXCOORD_n, with no COLOR_0 and a white factor, that image and each
+//    vertex's coordinates.
 // Accessors are checked when planned; values are decoded (and textures
 // decoded) only while the output is written, vertex block by vertex block.
 
+#include "geodual/mesh/texture_image.hpp"
 #include "geodual/mesh/vertex_attributes.hpp"
 #include "gltf_accessor.hpp"
 #include "gltf_json.hpp"
@@ -69,6 +74,11 @@ class AttributeReader {
   /// The rows appended, moved out (attributes with non-finite values dropped, with a note).
   VertexAttributes take();
 
+  /// The base colour texture, where every primitive's is the same image
+  /// alone, with its coordinates at the corners of `faces` (the triangles on
+  /// the vertices appended); empty otherwise.
+  SurfaceTexture take_texture(const FaceMatrix& faces);
+
   /// What was read, dropped or ignored, for ReadInfo::notes (complete after take()).
   std::vector<std::string> notes() const;
 
@@ -100,6 +110,8 @@ class AttributeReader {
   std::vector<double> normals_;  // x, y, z per vertex
   bool normals_finite_ = true;
   std::vector<OutputScalar> scalars_;
+  std::optional<std::size_t> texture_image_;  // the one image kept whole, if any
+  std::vector<double> texcoords_;             // u, v per vertex, with texture_image_
 
   std::vector<std::string> notes_;
   std::set<std::string> seen_attributes_;  // every attribute name of every primitive planned

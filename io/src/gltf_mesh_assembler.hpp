@@ -49,6 +49,8 @@ class MeshAssembler {
 
   /// The vertex attributes of the mesh assemble() returned (one row per vertex), moved out.
   VertexAttributes take_attributes();
+  /// The base colour texture kept whole (AttributeReader::take_texture) on the assembled faces.
+  SurfaceTexture take_texture(const FaceMatrix& faces) { return attributes_.take_texture(faces); }
 
   /// Remarks on what was skipped, converted, transformed or read, for
   /// ReadInfo::notes (complete after take_attributes()).

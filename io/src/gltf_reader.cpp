@@ -153,6 +153,7 @@ LoadedMesh read_gltf_document(std::span<const std::byte> data, bool binary, cons
   gltf::MeshAssembler assembler(root, buffers, textures, allow_quantized, where);
   result.mesh = assembler.assemble(instances);
   result.attributes = assembler.take_attributes();
+  result.texture = assembler.take_texture(result.mesh.faces);
   for (std::string& note : assembler.notes()) info.notes.push_back(std::move(note));
   return result;
 }

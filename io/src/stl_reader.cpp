@@ -11,9 +11,9 @@
 
 #include "byte_order.hpp"
 #include "file_error.hpp"
+#include "geodual/mesh/detail/position_welder.hpp"
 #include "parse_number.hpp"
 #include "polygon_triangulation.hpp"
-#include "position_welder.hpp"
 #include "text_lines.hpp"
 #include "triangle_buffer.hpp"
 

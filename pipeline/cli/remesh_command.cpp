@@ -27,6 +27,7 @@
 #include "geodual/pipeline/feature_output.hpp"
 #include "geodual/pipeline/remesh_pipeline.hpp"
 #include "geodual/pipeline/report_json.hpp"
+#include "geodual/pipeline/textured_output.hpp"
 #include "geodual/pipeline/version.hpp"
 #include "geodual/quality/quality_stats.hpp"
 #include "geodual/remesh/remesh.hpp"
@@ -246,12 +247,31 @@ class RemeshCommand final : public Command {
                     "extension read the file (docs/formats.md)")
         ->capture_default_str()
         ->check(CLI::IsMember({"none", "meshopt", "draco"}));
+    command
+        .add_option("--texture-size", texture_size_,
+                    "A texture atlas for the remesh, N x N texels (0: none), with the input's base colour (its "
+                    "texture, else its vertex colours) baked onto it")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 16384));
+    command
+        .add_option("--bake", bake_,
+                    "What --texture-size bakes besides the base colour: normal (a tangent-space normal map of the "
+                    "input's shading normals, with TANGENT frames), or color (the base colour only)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"color", "normal"}));
+    command
+        .add_option("--texture-format", texture_format_,
+                    "The base colour texture's format: png or jpeg (the normal map is always PNG); glTF embeds "
+                    "them, PLY and OBJ get them beside the output")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"png", "jpeg"}));
     return command;
   }
 
   int run() override {
     sites_.validate("remesh");
     check_error_bound_flags();
+    check_texture_flags();
     if (!output_dir_.empty()) return run_batch();
     if (output_path_.empty()) throw UsageError("remesh: give the output: -o OUT, or --output-dir DIR");
     if (mesh_paths_.size() > 1) {
@@ -263,6 +283,9 @@ class RemeshCommand final : public Command {
     check_compression(output_path_);
     io::require_output_path(output_path_, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path, sites_.file(), feature_file_});
+    for (const std::filesystem::path& side : texture_files(output_path_)) {
+      io::refuse_to_overwrite_inputs(side, {mesh_path, sites_.file(), feature_file_});
+    }
     if (!preview_path_.empty()) {
       io::require_output_path(preview_path_, {".png"}, "a preview");
       io::refuse_to_overwrite_inputs(preview_path_, {mesh_path, sites_.file(), feature_file_});
@@ -293,6 +316,26 @@ class RemeshCommand final : public Command {
     return compress_ == "meshopt" ? io::GltfCompression::meshopt
            : compress_ == "draco" ? io::GltfCompression::draco
                                   : io::GltfCompression::none;
+  }
+
+  /// --bake and --texture-format need --texture-size; refused before any work.
+  void check_texture_flags() const {
+    if (texture_size_ > 0 && texture_size_ < 64) {
+      throw UsageError("remesh: --texture-size " + std::to_string(texture_size_) + " is too small: at least 64");
+    }
+    if (texture_size_ == 0 && (bake_ != "color" || texture_format_ != "png")) {
+      throw UsageError("remesh: --bake and --texture-format are for the texture atlas: give --texture-size N too");
+    }
+  }
+
+  io::ImageFormat texture_format() const {
+    return texture_format_ == "jpeg" ? io::ImageFormat::jpeg : io::ImageFormat::png;
+  }
+
+  /// The files a textured output writes beside `output` (none without --texture-size).
+  std::vector<std::filesystem::path> texture_files(const std::string& output) const {
+    if (texture_size_ == 0) return {};
+    return textured_remesh_side_files(output, texture_format());
   }
 
   /// --max-error's refusals, before any work.
@@ -331,7 +374,12 @@ class RemeshCommand final : public Command {
     for (const std::string& output : outputs) {
       check_compression(output);
       io::require_output_path(output, {".glb", ".gltf", ".ply", ".obj"}, "a remesh");
-      for (const std::string& mesh_path : mesh_paths_) io::refuse_to_overwrite_inputs(output, {mesh_path});
+      for (const std::string& mesh_path : mesh_paths_) {
+        io::refuse_to_overwrite_inputs(output, {mesh_path});
+        for (const std::filesystem::path& side : texture_files(output)) {
+          io::refuse_to_overwrite_inputs(side, {mesh_path});
+        }
+      }
     }
 
     // Scans run side by side, as many at once as --threads allows; each
@@ -482,6 +530,8 @@ class RemeshCommand final : public Command {
     options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
     options.max_error_pct = max_error_pct_;
     options.max_sites = max_sites_;
+    options.texture_size = texture_size_;
+    options.bake_normal_map = bake_ == "normal";
     std::string round_label;  // with --max-error: which remesh the bar shows
     options.on_error_round = [&](int round, std::int64_t sites) {
       round_label =
@@ -541,7 +591,13 @@ class RemeshCommand final : public Command {
     }
     // The picture first: it is the part Ctrl-C can stop, and then nothing is written.
     if (!preview_path_.empty()) write_mesh_preview(preview_path_, result.mesh, attributes.colors, still_wanted, lines);
-    write_remesh(output_path, result.mesh, attributes, figures.dump(), compression());
+    if (run.atlas) {
+      write_textured_remesh(output_path, result.mesh, attributes,
+                            {.atlas = *run.atlas, .baked = run.textures, .base_color_format = texture_format()},
+                            figures.dump(), compression());
+    } else {
+      write_remesh(output_path, result.mesh, attributes, figures.dump(), compression());
+    }
     const double write_seconds = seconds_since(write_start);
     bar.finish();
     json["write_s"] = write_seconds;
@@ -700,6 +756,18 @@ class RemeshCommand final : public Command {
     if (const std::vector<std::string> kept = pipeline::attribute_list(run.attributes); !kept.empty()) {
       table.add("attributes", comma_list(kept) + " (interpolated)");
     }
+    if (run.atlas) {
+      const remesh::TextureAtlas& atlas = *run.atlas;
+      std::string baked = run.textures.base_color.empty() ? "" : "base colour";
+      if (!run.textures.normal_map.empty()) baked += std::string(baked.empty() ? "" : ", ") + "normal map";
+      table.add("texture", std::to_string(options.texture_size) + " x " + std::to_string(options.texture_size) + ", " +
+                               with_thousands(atlas.charts) + " charts covering " +
+                               significant(100 * atlas.texture_used, 3) + " %, angle distortion " +
+                               significant(atlas.mean_angle_distortion, 2) + " deg mean (" +
+                               significant(atlas.max_angle_distortion, 2) + " max), area distortion " +
+                               significant(atlas.mean_area_distortion, 2) + " mean; " +
+                               (baked.empty() ? "nothing to bake (no colour in the input)" : baked + " baked"));
+    }
     table.add("topology", "Euler characteristic " + std::to_string(quality.euler_characteristic) + ", " +
                               std::to_string(quality.boundary_loops) + " boundary loops, manifold");
     table.add("quality", "Qmin " + significant(quality.q_min, 3) + ", Qavg " + significant(quality.q_avg, 3) +
@@ -814,6 +882,9 @@ class RemeshCommand final : public Command {
   std::string color_ = "none";
   std::string attributes_ = "all";
   std::string compress_ = "none";
+  int texture_size_ = 0;
+  std::string bake_ = "color";
+  std::string texture_format_ = "png";
 };
 
 }  // namespace

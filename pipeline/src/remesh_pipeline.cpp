@@ -1,10 +1,12 @@
 #include "geodual/pipeline/remesh_pipeline.hpp"
 
 #include "geodual/mesh/coordinate_range.hpp"
+#include "geodual/mesh/detail/position_welder.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/sharp_edges.hpp"
 #include "geodual/mesh/union_find.hpp"
 #include "geodual/pipeline/diagram_output.hpp"
 #include "geodual/pipeline/feature_file.hpp"
@@ -27,6 +29,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace geodual::pipeline {
@@ -90,6 +93,7 @@ std::string_view stage_name(Stage stage) {
     case Stage::relax: return "relax";
     case Stage::dual: return "dual";
     case Stage::statistics: return "statistics";
+    case Stage::texture: return "texture";
   }
   return "?";
 }
@@ -810,21 +814,99 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
   return std::move(*best);
 }
 
+/// A textured input's vertices at the same position welded into one, the
+/// first copy's attributes kept: glTF splits vertices along a texture's seams,
+/// which would otherwise be boundaries of the remesh. The faces keep their
+/// order, and the texture's coordinates stay at their corners; the feature
+/// edges given on the input move to the welded vertices.
+void weld_texture_seams(io::LoadedMesh& input, RemeshPipelineOptions& options) {
+  PositionWelder welder(static_cast<std::size_t>(input.mesh.num_vertices()));
+  std::vector<Index> welded(static_cast<std::size_t>(input.mesh.num_vertices()));
+  std::vector<Index> first_copy;
+  for (Index v = 0; v < input.mesh.num_vertices(); ++v) {
+    welded[v] = welder.weld(input.mesh.vertices(v, 0), input.mesh.vertices(v, 1), input.mesh.vertices(v, 2));
+    if (welded[v] == static_cast<Index>(first_copy.size())) first_copy.push_back(v);
+  }
+  if (welder.welded_corners() == 0) return;
+  input.mesh.vertices = welder.vertices();
+  for (Eigen::Index i = 0; i < input.mesh.faces.size(); ++i)
+    input.mesh.faces.data()[i] = welded[input.mesh.faces.data()[i]];
+  VertexAttributes& attributes = input.attributes;
+  const auto keep_first = [&](auto& rows) {
+    if (rows.rows() == 0) return;
+    std::remove_cvref_t<decltype(rows)> kept(static_cast<Eigen::Index>(first_copy.size()), rows.cols());
+    for (std::size_t v = 0; v < first_copy.size(); ++v)
+      kept.row(static_cast<Eigen::Index>(v)) = rows.row(first_copy[v]);
+    rows = std::move(kept);
+  };
+  keep_first(attributes.colors);
+  keep_first(attributes.normals);
+  for (VertexScalar& scalar : attributes.scalars) {
+    std::vector<double> kept;
+    for (const Index v : first_copy) kept.push_back(scalar.values[static_cast<std::size_t>(v)]);
+    scalar.values = std::move(kept);
+  }
+  for (auto* edges : {&options.features.sampling.given_edges, &options.features.sampling.excluded_edges}) {
+    for (std::array<Index, 2>& edge : *edges) edge = {welded[edge[0]], welded[edge[1]]};
+  }
+  input.info.notes.push_back(std::to_string(welder.welded_corners()) +
+                             " vertices at the same position as another welded to it, the texture's seams");
+}
+
+/// The texture stage (options.texture_size > 0): the remesh's atlas and the input's look baked onto it.
+void texture_stage(RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
+  report(options.progress, Stage::texture, 0.0);
+  StageClock clock(result.timings, Stage::texture);
+  const TriangleMesh& remeshed = result.remesh.mesh;
+  const double angle = options.features.sampling.sharp_angle > 0 ? options.features.sampling.sharp_angle : 60.0;
+  remesh::AtlasOptions atlas_options{.texture_size = options.texture_size, .seams = atlas_seams(remeshed, angle)};
+  result.atlas = remesh::make_texture_atlas(remeshed, atlas_options);
+  report(options.progress, Stage::texture, 0.5);
+  const VertexAttributes& look = result.input.attributes;
+  result.textures = remesh::bake_textures(
+      result.input.mesh, {.colors = look.colors, .normals = look.normals, .texture = result.input.texture}, remeshed,
+      *result.atlas, {.texture_size = options.texture_size, .normal_map = options.bake_normal_map});
+  clock.stop();
+  report(options.progress, Stage::texture, 1.0);
+}
+
 }  // namespace
 
-RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options) {
-  require_one_site_source(options);
-  require_error_bound_options(options);
-  remesh::check_options(options.remesh);
-  remesh::check_options(options.features);
-  remesh::check_options(options.smoothing);
-  require_edges_of(input.mesh, options.features.sampling.given_edges, "feature edge");
-  require_edges_of(input.mesh, options.features.sampling.excluded_edges, "excluded feature edge");
+std::vector<std::array<Index, 2>> atlas_seams(const TriangleMesh& remesh, double angle_degrees) {
+  const MeshTopology topology = build_mesh_topology(remesh);
+  std::vector<std::array<Index, 2>> seams;
+  for (const Index e : sharp_edges(remesh, topology, angle_degrees)) seams.push_back(topology.edge_vertices[e]);
+  return seams;
+}
+
+RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& given_options) {
+  require_one_site_source(given_options);
+  require_error_bound_options(given_options);
+  remesh::check_options(given_options.remesh);
+  remesh::check_options(given_options.features);
+  remesh::check_options(given_options.smoothing);
+  require_edges_of(input.mesh, given_options.features.sampling.given_edges, "feature edge");
+  require_edges_of(input.mesh, given_options.features.sampling.excluded_edges, "excluded feature edge");
+  RemeshPipelineOptions welded_options;
+  const bool weld = !input.texture.empty() && !given_options.given_sites;
+  if (weld) {
+    welded_options = given_options;
+    weld_texture_seams(input, welded_options);
+  }
+  const RemeshPipelineOptions& options = weld ? welded_options : given_options;
+  if (options.texture_size != 0) {
+    remesh::check_options(remesh::AtlasOptions{.texture_size = options.texture_size});
+    remesh::check_options(remesh::BakeOptions{.texture_size = options.texture_size});
+  }
   RemeshPipelineResult result;
   result.input = std::move(input);
   result.input_report = analyze_mesh(result.input.mesh);
-  if (options.max_error_pct > 0) return remesh_within_error(std::move(result), options);
-  remesh_once(result, options, {});
+  if (options.max_error_pct > 0) {
+    result = remesh_within_error(std::move(result), options);
+  } else {
+    remesh_once(result, options, {});
+  }
+  if (options.texture_size != 0) texture_stage(result, options);
   return result;
 }
 

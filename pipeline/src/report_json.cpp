@@ -225,6 +225,23 @@ nlohmann::ordered_json remesh_report_json(const RemeshPipelineResult& run, const
     error_rounds.push_back({{"sites", round.sites}, {"hausdorff_pct", round.hausdorff_pct}});
   }
   figures["error_rounds"] = error_rounds;
+  // The texture atlas and what was baked onto it (null without --texture-size).
+  if (run.atlas) {
+    const remesh::TextureAtlas& atlas = *run.atlas;
+    figures["texture"] = {{"size", options.texture_size},
+                          {"atlas_vertices", atlas.source_vertex.size()},
+                          {"charts", atlas.charts},
+                          {"texture_used", atlas.texture_used},
+                          {"mean_area_distortion", atlas.mean_area_distortion},
+                          {"max_area_distortion", atlas.max_area_distortion},
+                          {"mean_angle_distortion_deg", atlas.mean_angle_distortion},
+                          {"max_angle_distortion_deg", atlas.max_angle_distortion},
+                          {"texels_baked", run.textures.texels_baked},
+                          {"base_color", !run.textures.base_color.empty()},
+                          {"normal_map", !run.textures.normal_map.empty()}};
+  } else {
+    figures["texture"] = nullptr;
+  }
   if (run.statistics) {
     figures["hausdorff_pct"] = run.statistics->hausdorff_pct;
     const Eigen::Vector3d& farthest = run.statistics->hausdorff_point;

@@ -30,7 +30,10 @@
 #include "geodual/remesh/remesh.hpp"
 #include "geodual/remesh/remesh_smoothing.hpp"
 #include "geodual/remesh/sample_sites.hpp"
+#include "geodual/remesh/texture_atlas.hpp"
+#include "geodual/remesh/texture_bake.hpp"
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -42,10 +45,10 @@
 
 namespace geodual::pipeline {
 
-enum class Stage { load, sample, relax, dual, statistics };
+enum class Stage { load, sample, relax, dual, statistics, texture };
 
 /// "load", "sample", "relax" (Lloyd and its diagrams), "dual" (the dual and
-/// its repair rounds), "statistics".
+/// its repair rounds), "statistics", "texture" (the atlas and the baking).
 std::string_view stage_name(Stage stage);
 
 /// Called now and then with the stage and its fraction done in [0, 1];
@@ -98,6 +101,14 @@ struct RemeshPipelineOptions {
   /// and the sites it asks for (0 where the first is sized by edge length or
   /// faces), so that a progress display can say which remesh it shows.
   std::function<void(int round, std::int64_t sites)> on_error_round;
+  /// The last stage: a texture atlas for the remesh (texture_size texels a
+  /// side; 0: none), with seams along the remesh's edges that turn by at
+  /// least features.sampling.sharp_angle (60 degrees where that is 0), and
+  /// the input's base colour (its texture, else its vertex colours) baked
+  /// onto it (remesh::make_texture_atlas, remesh::bake_textures)...
+  int texture_size = 0;
+  /// ... and a tangent-space normal map of the input's shading normals.
+  bool bake_normal_map = false;
   ProgressCallback progress;
 };
 
@@ -216,7 +227,15 @@ struct RemeshPipelineResult {
   std::vector<ErrorRound> error_rounds;
   bool error_bound_met = true;
   std::vector<StageTiming> timings;  ///< of every remesh made, in order
+  /// With options.texture_size: the remesh's atlas and the textures baked
+  /// onto it (on the atlas's vertices, copies of the remesh's).
+  std::optional<remesh::TextureAtlas> atlas;
+  remesh::BakedTextures textures;
 };
+
+/// The seams of the remesh's atlas: its edges whose faces' normals turn by
+/// at least `angle_degrees`, as vertex pairs (AtlasOptions::seams).
+std::vector<std::array<Index, 2>> atlas_seams(const TriangleMesh& remesh, double angle_degrees);
 
 /// Each vertex of `result.remesh.mesh` as a point of the input mesh (the cuts
 /// keep the input's faces and their corner order, and split vertices into copies).
@@ -228,7 +247,10 @@ std::vector<Index> crease_pin_vertices(const RemeshPipelineResult& result);
 
 /// Runs every stage on a file.
 RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, const RemeshPipelineOptions& options = {});
-/// Runs every stage after `load` on a mesh already read.
+/// Runs every stage after `load` on a mesh already read. An input with a
+/// texture (LoadedMesh::texture) has its vertices at the same position welded
+/// first (glTF splits them along the texture's seams; a note says how many),
+/// unless the sites are given (they name its vertices).
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options = {});
 
 }  // namespace geodual::pipeline

@@ -1,5 +1,5 @@
 #pragma once
-// Internal: turns a stream of corner positions into indexed vertices, merging
+// Turns a stream of corner positions into indexed vertices, merging
 // corners at exactly the same position (STL stores every triangle's corners on
 // their own). Vertices keep the order of their first occurrence. An
 // open-addressing hash table over the coordinates' bit patterns: no
@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace geodual::io::detail {
+namespace geodual {
 
 class PositionWelder {
  public:
@@ -106,4 +106,4 @@ class PositionWelder {
   std::size_t corners_ = 0;
 };
 
-}  // namespace geodual::io::detail
+}  // namespace geodual
