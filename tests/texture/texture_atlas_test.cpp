@@ -404,17 +404,5 @@ TEST(TextureAtlas, RefusesEmptyMeshesAndBadIndices) {
   EXPECT_THROW(make_texture_atlas(unit_square(2), options), UsageError);
 }
 
-// Figures for a mesh named by GEODUAL_ATLAS_MESH (e.g. a remesh), printed;
-// skipped when unset.
-TEST(TextureAtlas, FiguresOfGivenMesh) {
-  const char* path = std::getenv("GEODUAL_ATLAS_MESH");
-  if (path == nullptr) GTEST_SKIP() << "GEODUAL_ATLAS_MESH not set";
-  const TriangleMesh mesh = io::read_mesh(path).mesh;
-  const AtlasOptions options;
-  const TextureAtlas atlas = timed_atlas(path, mesh, options);
-  expect_valid_atlas(mesh, atlas, options);
-  timed_atlas("icosphere(4)", icosphere(4), options);
-}
-
 }  // namespace
 }  // namespace geodual::remesh
