@@ -172,6 +172,23 @@ py::array_t<double> vertices_to_array(const VertexMatrix& vertices) {
   return array;
 }
 
+py::array_t<double> matrix_to_array(
+    const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& matrix) {
+  py::array_t<double> array({static_cast<py::ssize_t>(matrix.rows()), static_cast<py::ssize_t>(matrix.cols())});
+  for (Eigen::Index r = 0; r < matrix.rows(); ++r) {
+    for (Eigen::Index c = 0; c < matrix.cols(); ++c) array.mutable_data()[r * matrix.cols() + c] = matrix(r, c);
+  }
+  return array;
+}
+
+py::object image_to_array(const TextureImage& image) {
+  if (image.empty()) return py::none();
+  py::array_t<std::uint8_t> array({static_cast<py::ssize_t>(image.height), static_cast<py::ssize_t>(image.width),
+                                   static_cast<py::ssize_t>(image.channels)});
+  std::copy(image.texels.begin(), image.texels.end(), array.mutable_data());
+  return array;
+}
+
 py::array_t<Index> faces_to_array(const FaceMatrix& faces) {
   py::array_t<Index> array({static_cast<py::ssize_t>(faces.rows()), py::ssize_t{3}});
   std::copy_n(faces.data(), faces.size(), array.mutable_data());

@@ -5,6 +5,7 @@
 // out of range) instead of a crash. Call with the GIL held.
 
 #include "geodual/mesh/surface_point.hpp"
+#include "geodual/mesh/texture_image.hpp"
 #include "geodual/mesh/triangle_mesh.hpp"
 #include "geodual/mesh/vertex_attributes.hpp"
 
@@ -40,6 +41,11 @@ py::array_t<double> vertices_to_array(const VertexMatrix& vertices);
 py::array_t<Index> faces_to_array(const FaceMatrix& faces);
 py::array_t<float> colors_to_array(const ColorMatrix& colors);
 py::array_t<double> points_to_array(std::span<const Eigen::Vector3d> points);
+/// A row-major matrix of doubles as an n x k array (e.g. texture coordinates, tangents).
+py::array_t<double> matrix_to_array(
+    const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& matrix);
+/// An image as a height x width x channels uint8 array (rows top first), or None where it is empty.
+py::object image_to_array(const TextureImage& image);
 template <class T>
 py::array_t<T> vector_to_array(std::span<const T> values) {
   py::array_t<T> array(static_cast<py::ssize_t>(values.size()));

@@ -47,6 +47,13 @@ struct RemeshResult {
   py::object error_bound_met;
   py::object error_rounds;
   py::object timings;
+  // With texture_size: the atlas (its vertices are copies of the remesh's) and the baked images.
+  py::object uvs = py::none();
+  py::object uv_faces = py::none();
+  py::object uv_vertices = py::none();
+  py::object tangents = py::none();
+  py::object base_color_texture = py::none();
+  py::object normal_texture = py::none();
 };
 
 std::int64_t positive_count(const py::handle& value, const char* name) {
@@ -83,7 +90,7 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
                     const py::object& colors, double sharp_angle, double continuation_angle, bool pin_creases,
                     const py::object& feature_edges, double smoothing_angle, bool fit_deviations,
                     const py::object& progress, bool statistics, const py::object& max_error,
-                    const py::object& max_sites) {
+                    const py::object& max_sites, int texture_size, bool bake_normal) {
   const int sizings = !sites.is_none() + !edge_length.is_none() + !face_count.is_none();
   if (sizings > 1) {
     throw py::value_error("give at most one of sites, edge_length and faces (got " + std::to_string(sizings) + ")");
@@ -133,6 +140,12 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
     if (max_error.is_none()) throw py::value_error("max_sites needs max_error");
     options.max_sites = positive_count(max_sites, "max_sites");
   }
+  if (texture_size != 0 && (texture_size < 64 || texture_size > 16384)) {
+    throw py::value_error("texture_size must be 0 (none) or in [64, 16384], got " + std::to_string(texture_size));
+  }
+  if (bake_normal && texture_size == 0) throw py::value_error("bake_normal needs texture_size");
+  options.texture_size = texture_size;
+  options.bake_normal_map = bake_normal;
   ProgressBridge bridge(progress);
   options.progress = [&bridge](pipeline::Stage stage, double fraction) {
     return bridge(pipeline::stage_name(stage), fraction);
@@ -148,6 +161,14 @@ RemeshResult remesh(const py::handle& vertices, const py::handle& faces, const p
   result.vertices = vertices_to_array(mesh.vertices);
   result.faces = faces_to_array(mesh.faces);
   result.colors = run.attributes.colors.rows() > 0 ? py::object(colors_to_array(run.attributes.colors)) : py::none();
+  if (run.atlas) {
+    result.uvs = matrix_to_array(run.atlas->uvs);
+    result.uv_faces = faces_to_array(run.atlas->faces);
+    result.uv_vertices = vector_to_array<Index>(run.atlas->source_vertex);
+    if (run.textures.tangents.rows() > 0) result.tangents = matrix_to_array(run.textures.tangents);
+    result.base_color_texture = image_to_array(run.textures.base_color);
+    result.normal_texture = image_to_array(run.textures.normal_map);
+  }
   result.stats = json_to_python(run.statistics ? pipeline::quality_report_json(*run.statistics, options.quality)
                                                : pipeline::triangle_quality_json(quality::triangle_quality(mesh)));
   // The counts from the one report the CLI writes too (pipeline::remesh_report_json).
@@ -251,6 +272,20 @@ void add_remesh(py::module_& module) {
                     "with max_error: (sites, hausdorff_pct) of every remesh made, in order; empty without it")
       .def_readonly("timings", &RemeshResult::timings,
                     "dict: seconds per stage (sample, relax, dual, statistics), summed over the remeshes made")
+      .def_readonly("uvs", &RemeshResult::uvs,
+                    "with texture_size: float64 k x 2, glTF texture coordinates (v down) of the atlas's vertices; "
+                    "None otherwise")
+      .def_readonly("uv_faces", &RemeshResult::uv_faces,
+                    "with texture_size: int32 m x 3, the triangles (in the order of faces) on the atlas's vertices")
+      .def_readonly("uv_vertices", &RemeshResult::uv_vertices,
+                    "with texture_size: int32 k, per atlas vertex the remesh vertex it copies (seams copy vertices)")
+      .def_readonly("tangents", &RemeshResult::tangents,
+                    "with bake_normal: float64 k x 4, glTF TANGENT per atlas vertex (the normal map's frame)")
+      .def_readonly("base_color_texture", &RemeshResult::base_color_texture,
+                    "with texture_size: uint8 N x N x 3 (or 4), the baked base colour, sRGB, rows top first; None "
+                    "where the input has no colour")
+      .def_readonly("normal_texture", &RemeshResult::normal_texture,
+                    "with bake_normal: uint8 N x N x 3, the tangent-space normal map ((n + 1) / 2)")
       .def("__repr__", [](const RemeshResult& result) {
         return "<geodual.RemeshResult: " + std::to_string(py::len(result.vertices)) + " vertices, " +
                std::to_string(py::len(result.faces)) + " faces>";
@@ -265,6 +300,7 @@ void add_remesh(py::module_& module) {
       py::arg("smoothing_angle") = remesh::RemeshSmoothingOptions{}.smoothing_angle,
       py::arg("fit_deviations") = remesh::RemeshSmoothingOptions{}.fit_deviations, py::arg("progress") = py::none(),
       py::arg("statistics") = true, py::arg("max_error") = py::none(), py::arg("max_sites") = py::none(),
+      py::arg("texture_size") = 0, py::arg("bake_normal") = false,
       R"(Remesh a triangle mesh through the dual of its exact geodesic Voronoi diagram.
 
 The same pipeline as `geodual remesh`: the surface is cut to a manifold, sites
@@ -321,6 +357,12 @@ sites where it strays furthest until it holds, or until max_sites (default 8
 times the first count) or 8 remeshes; then the closest remesh is returned
 with result.error_bound_met False, as `geodual remesh --max-error` writes it
 and exits with 4. Needs statistics=True and a site count, not given sites.
+texture_size: 0 (none) or N in [64, 16384]: a texture atlas of N x N texels
+for the remesh, with the input's colours baked onto it (result.uvs on the
+atlas's vertices result.uv_vertices and triangles result.uv_faces,
+result.base_color_texture as an N x N x 3 uint8 array), as `geodual remesh
+--texture-size N`. bake_normal: also a tangent-space normal map of the
+input's shading normals (result.normal_texture, result.tangents).
 
 Returns a RemeshResult: .vertices, .faces, .colors, .stats, .timings, and the
 site counts above. Raises ValueError/TypeError for bad arguments,

@@ -89,6 +89,14 @@ run_or_fail("geodual remesh --compress meshopt -o remesh_meshopt.glb"
 run_or_fail("geodual remesh --compress draco -o remesh_draco.gltf"
   ${CLI} remesh ${MESH} --sites 500 --seed 3 --samples 10000 --compress draco -o ${cli_dir}/remesh_draco.gltf)
 list(APPEND files ${cli_dir}/remesh_meshopt.glb ${cli_dir}/remesh_draco.gltf)
+# Textured: the atlas with a normal map baked (fertility has no colours), plain and for the web.
+run_or_fail("geodual remesh --texture-size 256 --bake normal -o remesh_textured.glb"
+  ${CLI} remesh ${MESH} --sites 500 --seed 3 --samples 10000 --texture-size 256 --bake normal
+  -o ${cli_dir}/remesh_textured.glb)
+run_or_fail("geodual remesh --texture-size 256 --bake normal --compress meshopt -o remesh_textured_meshopt.glb"
+  ${CLI} remesh ${MESH} --sites 500 --seed 3 --samples 10000 --texture-size 256 --bake normal --compress meshopt
+  -o ${cli_dir}/remesh_textured_meshopt.glb)
+list(APPEND files ${cli_dir}/remesh_textured.glb ${cli_dir}/remesh_textured_meshopt.glb)
 # The bundled scan: open (holes), larger; what remesh-default writes.
 run_or_fail("geodual remesh on the bundled scan -o bunny_remesh.glb"
   ${CLI} remesh ${BUNDLED_SCAN} --sites 1000 --lloyd 2 --samples 10000 -o ${cli_dir}/bunny_remesh.glb)

@@ -381,3 +381,37 @@ def test_fitting_moves_vertices_towards_the_farthest_points_and_keeps_the_triang
     assert fitted.vertices_fitted > 0
     np.testing.assert_array_equal(fitted.faces, plain.faces)
     assert fitted.stats["hausdorff_pct"] < plain.stats["hausdorff_pct"]
+
+
+def test_texture_size_returns_the_atlas_and_the_baked_images_as_arrays():
+    # A plane coloured red along x: the texel at each atlas vertex's UV holds
+    # (about) the colour of the plane where that vertex is.
+    V, F = grid_plane(31)
+    colors = np.column_stack([V[:, 0], np.zeros(len(V)), np.full(len(V), 0.5)])
+    result = geodual.remesh(V, F, sites=150, lloyd=2, colors=colors, statistics=False, texture_size=128,
+                            bake_normal=True)
+    k = len(result.uvs)
+    assert result.uvs.shape == (k, 2) and result.uv_vertices.shape == (k,)
+    assert result.uv_faces.shape == result.faces.shape
+    assert np.array_equal(result.uv_vertices[result.uv_faces], result.faces), "the atlas's triangles are the remesh's"
+    assert result.tangents.shape == (k, 4) and set(np.unique(result.tangents[:, 3])) <= {-1.0, 1.0}
+    assert result.base_color_texture.shape == (128, 128, 3) and result.base_color_texture.dtype == np.uint8
+    assert result.normal_texture.shape == (128, 128, 3)
+    # A flat input: the normal map holds the remesh's own normal, (0, 0, 1) in tangent space.
+    texel = lambda image, uv: image[min(int(uv[1] * 128), 127), min(int(uv[0] * 128), 127)].astype(float)
+    centroids = result.uvs[result.uv_faces].mean(axis=1)
+    for uv in centroids[:20]:
+        assert abs(texel(result.normal_texture, uv)[2] - 255) <= 2
+    # The red channel grows with x (sRGB-encoded, so monotone, not linear).
+    xs = result.vertices[result.uv_vertices[result.uv_faces]].mean(axis=1)[:, 0]
+    reds = np.array([texel(result.base_color_texture, uv)[0] for uv in centroids])
+    order = np.argsort(xs)
+    assert np.corrcoef(xs[order], reds[order])[0, 1] > 0.95
+
+
+def test_texture_size_is_checked():
+    V, F = grid_plane(11)
+    with pytest.raises(ValueError):
+        geodual.remesh(V, F, sites=30, texture_size=10)
+    with pytest.raises(ValueError):
+        geodual.remesh(V, F, sites=30, bake_normal=True)
