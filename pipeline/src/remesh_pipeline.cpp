@@ -814,45 +814,6 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
   return std::move(*best);
 }
 
-/// A textured input's vertices at the same position welded into one, the
-/// first copy's attributes kept: glTF splits vertices along a texture's seams,
-/// which would otherwise be boundaries of the remesh. The faces keep their
-/// order, and the texture's coordinates stay at their corners; the feature
-/// edges given on the input move to the welded vertices.
-void weld_texture_seams(io::LoadedMesh& input, RemeshPipelineOptions& options) {
-  PositionWelder welder(static_cast<std::size_t>(input.mesh.num_vertices()));
-  std::vector<Index> welded(static_cast<std::size_t>(input.mesh.num_vertices()));
-  std::vector<Index> first_copy;
-  for (Index v = 0; v < input.mesh.num_vertices(); ++v) {
-    welded[v] = welder.weld(input.mesh.vertices(v, 0), input.mesh.vertices(v, 1), input.mesh.vertices(v, 2));
-    if (welded[v] == static_cast<Index>(first_copy.size())) first_copy.push_back(v);
-  }
-  if (welder.welded_corners() == 0) return;
-  input.mesh.vertices = welder.vertices();
-  for (Eigen::Index i = 0; i < input.mesh.faces.size(); ++i)
-    input.mesh.faces.data()[i] = welded[input.mesh.faces.data()[i]];
-  VertexAttributes& attributes = input.attributes;
-  const auto keep_first = [&](auto& rows) {
-    if (rows.rows() == 0) return;
-    std::remove_cvref_t<decltype(rows)> kept(static_cast<Eigen::Index>(first_copy.size()), rows.cols());
-    for (std::size_t v = 0; v < first_copy.size(); ++v)
-      kept.row(static_cast<Eigen::Index>(v)) = rows.row(first_copy[v]);
-    rows = std::move(kept);
-  };
-  keep_first(attributes.colors);
-  keep_first(attributes.normals);
-  for (VertexScalar& scalar : attributes.scalars) {
-    std::vector<double> kept;
-    for (const Index v : first_copy) kept.push_back(scalar.values[static_cast<std::size_t>(v)]);
-    scalar.values = std::move(kept);
-  }
-  for (auto* edges : {&options.features.sampling.given_edges, &options.features.sampling.excluded_edges}) {
-    for (std::array<Index, 2>& edge : *edges) edge = {welded[edge[0]], welded[edge[1]]};
-  }
-  input.info.notes.push_back(std::to_string(welder.welded_corners()) +
-                             " vertices at the same position as another welded to it, the texture's seams");
-}
-
 /// The texture stage (options.texture_size > 0): the remesh's atlas and the input's look baked onto it.
 void texture_stage(RemeshPipelineResult& result, const RemeshPipelineOptions& options) {
   report(options.progress, Stage::texture, 0.0);
@@ -872,6 +833,42 @@ void texture_stage(RemeshPipelineResult& result, const RemeshPipelineOptions& op
 
 }  // namespace
 
+std::vector<Index> weld_texture_seams(io::LoadedMesh& input) {
+  if (input.texture.empty()) return {};
+  PositionWelder welder(static_cast<std::size_t>(input.mesh.num_vertices()));
+  std::vector<Index> welded(static_cast<std::size_t>(input.mesh.num_vertices()));
+  std::vector<Index> first_copy;
+  for (Index v = 0; v < input.mesh.num_vertices(); ++v) {
+    welded[v] = welder.weld(input.mesh.vertices(v, 0), input.mesh.vertices(v, 1), input.mesh.vertices(v, 2));
+    if (welded[v] == static_cast<Index>(first_copy.size())) first_copy.push_back(v);
+  }
+  if (welder.welded_corners() == 0) return {};
+  input.mesh.vertices = welder.vertices();
+  for (Eigen::Index i = 0; i < input.mesh.faces.size(); ++i) {
+    input.mesh.faces.data()[i] = welded[input.mesh.faces.data()[i]];
+  }
+  VertexAttributes& attributes = input.attributes;
+  const auto keep_first = [&](auto& rows) {
+    if (rows.rows() == 0) return;
+    std::remove_cvref_t<decltype(rows)> kept(static_cast<Eigen::Index>(first_copy.size()), rows.cols());
+    for (std::size_t v = 0; v < first_copy.size(); ++v) {
+      kept.row(static_cast<Eigen::Index>(v)) = rows.row(first_copy[v]);
+    }
+    rows = std::move(kept);
+  };
+  keep_first(attributes.colors);
+  keep_first(attributes.normals);
+  for (VertexScalar& scalar : attributes.scalars) {
+    std::vector<double> kept;
+    kept.reserve(first_copy.size());
+    for (const Index v : first_copy) kept.push_back(scalar.values[static_cast<std::size_t>(v)]);
+    scalar.values = std::move(kept);
+  }
+  input.info.notes.push_back(std::to_string(welder.welded_corners()) +
+                             " vertices at the same position as another welded to it (the texture's seams)");
+  return welded;
+}
+
 std::vector<std::array<Index, 2>> atlas_seams(const TriangleMesh& remesh, double angle_degrees) {
   const MeshTopology topology = build_mesh_topology(remesh);
   std::vector<std::array<Index, 2>> seams;
@@ -887,13 +884,18 @@ RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipel
   remesh::check_options(given_options.smoothing);
   require_edges_of(input.mesh, given_options.features.sampling.given_edges, "feature edge");
   require_edges_of(input.mesh, given_options.features.sampling.excluded_edges, "excluded feature edge");
-  RemeshPipelineOptions welded_options;
-  const bool weld = !input.texture.empty() && !given_options.given_sites;
-  if (weld) {
-    welded_options = given_options;
-    weld_texture_seams(input, welded_options);
+  // A textured input's seams welded first; the feature edges given on it move along.
+  std::optional<RemeshPipelineOptions> welded_options;
+  if (!given_options.given_sites) {
+    if (const std::vector<Index> welded = weld_texture_seams(input); !welded.empty()) {
+      welded_options = given_options;
+      for (auto* edges :
+           {&welded_options->features.sampling.given_edges, &welded_options->features.sampling.excluded_edges}) {
+        for (std::array<Index, 2>& edge : *edges) edge = {welded[edge[0]], welded[edge[1]]};
+      }
+    }
   }
-  const RemeshPipelineOptions& options = weld ? welded_options : given_options;
+  const RemeshPipelineOptions& options = welded_options ? *welded_options : given_options;
   if (options.texture_size != 0) {
     remesh::check_options(remesh::AtlasOptions{.texture_size = options.texture_size});
     remesh::check_options(remesh::BakeOptions{.texture_size = options.texture_size});

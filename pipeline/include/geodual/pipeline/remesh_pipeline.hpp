@@ -233,6 +233,15 @@ struct RemeshPipelineResult {
   remesh::BakedTextures textures;
 };
 
+/// Where `input` has a texture (LoadedMesh::texture): its vertices at
+/// exactly the same position welded into one, the first copy keeping its
+/// attributes, the faces in their order and the texture's corner coordinates
+/// with them, and a note in input.info. glTF splits vertices along a
+/// texture's seams, which would otherwise be boundaries of the remesh.
+/// Returns, per vertex of the input as given, its welded vertex; empty where
+/// nothing was welded. run_remesh_pipeline calls it first (not with given sites).
+std::vector<Index> weld_texture_seams(io::LoadedMesh& input);
+
 /// The seams of the remesh's atlas: its edges whose faces' normals turn by
 /// at least `angle_degrees`, as vertex pairs (AtlasOptions::seams).
 std::vector<std::array<Index, 2>> atlas_seams(const TriangleMesh& remesh, double angle_degrees);
@@ -247,10 +256,8 @@ std::vector<Index> crease_pin_vertices(const RemeshPipelineResult& result);
 
 /// Runs every stage on a file.
 RemeshPipelineResult run_remesh_pipeline(const std::filesystem::path& input, const RemeshPipelineOptions& options = {});
-/// Runs every stage after `load` on a mesh already read. An input with a
-/// texture (LoadedMesh::texture) has its vertices at the same position welded
-/// first (glTF splits them along the texture's seams; a note says how many),
-/// unless the sites are given (they name its vertices).
+/// Runs every stage after `load` on a mesh already read, a textured input
+/// welded first (weld_texture_seams; not with given sites, which name its vertices).
 RemeshPipelineResult run_remesh_pipeline(io::LoadedMesh input, const RemeshPipelineOptions& options = {});
 
 }  // namespace geodual::pipeline
