@@ -62,6 +62,30 @@ std::vector<std::byte> pack(const VertexOrder& order, std::size_t components, st
   return data;
 }
 
+// Unit vectors (`components` floats per vertex: x, y, z, and w kept where 4)
+// as normalised int8 x, y, z, w through the 8-bit octahedral filter, which
+// the codec packs tighter: a stream of `attribute`, encoded.
+MeshoptStream octahedral_stream(const char* attribute, const VertexOrder& order, const std::vector<float>& values,
+                                std::size_t components) {
+  const std::size_t n = order.source.size();
+  MeshoptStream stream;
+  stream.attribute = attribute;
+  stream.component_type = ComponentType::byte;
+  stream.components = static_cast<int>(components);
+  stream.normalized = true;
+  stream.byte_stride = 4;
+  stream.filter = "OCTAHEDRAL";
+  std::vector<float> xyzw(4 * n, 0.0F);
+  for (std::size_t v = 0; v < n; ++v) {
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(components * order.source[v]), components,
+                xyzw.begin() + static_cast<std::ptrdiff_t>(4 * v));
+  }
+  std::vector<std::byte> filtered(4 * n);
+  meshopt_encodeFilterOct(filtered.data(), n, 4, normal_bits, xyzw.data());
+  stream.encoded = encode_vertices(filtered, n, 4);
+  return stream;
+}
+
 template <class T>
 T quantize_unit(float value, double steps) {  // [0, 1] to a normalised integer
   return static_cast<T>(std::lround(std::clamp(static_cast<double>(value), 0.0, 1.0) * steps));
@@ -109,22 +133,8 @@ MeshoptPrimitive encode_meshopt(const TriangleStreams& mesh) {
   }
   position.encoded = encode_vertices(pack<std::uint16_t>(order, 3, 8, grid), n, 8);
 
-  // NORMAL: normalised int8 x, y, z and a byte of padding, stored through the
-  // octahedral filter (8-bit x, y of the octahedral map), which the codec packs tighter.
-  MeshoptStream& normal = out.streams.emplace_back();
-  normal.attribute = "NORMAL";
-  normal.component_type = ComponentType::byte;
-  normal.components = 3;
-  normal.normalized = true;
-  normal.byte_stride = 4;
-  normal.filter = "OCTAHEDRAL";
-  std::vector<float> xyzw(4 * n, 0.0F);
-  for (std::size_t v = 0; v < n; ++v) {
-    std::copy_n(mesh.normals.begin() + static_cast<std::ptrdiff_t>(3 * order.source[v]), 3, xyzw.begin() + 4 * v);
-  }
-  std::vector<std::byte> octahedral(4 * n);
-  meshopt_encodeFilterOct(octahedral.data(), n, 4, normal_bits, xyzw.data());
-  normal.encoded = encode_vertices(octahedral, n, 4);
+  // NORMAL: normalised int8 x, y, z and a byte of padding, through the octahedral filter.
+  out.streams.push_back(octahedral_stream("NORMAL", order, mesh.normals, 3));
 
   if (mesh.color_channels > 0) {  // COLOR_0: normalised uint16, RGB padded to 8 bytes
     const auto channels = static_cast<std::size_t>(mesh.color_channels);
@@ -167,23 +177,8 @@ MeshoptPrimitive encode_meshopt(const TriangleStreams& mesh) {
     }
   }
 
-  if (!mesh.tangents.empty()) {
-    // TANGENT: normalised int8 x, y, z, w through the octahedral filter, which keeps w (+-1).
-    MeshoptStream& tangent = out.streams.emplace_back();
-    tangent.attribute = "TANGENT";
-    tangent.component_type = ComponentType::byte;
-    tangent.components = 4;
-    tangent.normalized = true;
-    tangent.byte_stride = 4;
-    tangent.filter = "OCTAHEDRAL";
-    std::vector<float> reordered(4 * n);
-    for (std::size_t v = 0; v < n; ++v) {
-      std::copy_n(mesh.tangents.begin() + static_cast<std::ptrdiff_t>(4 * order.source[v]), 4,
-                  reordered.begin() + static_cast<std::ptrdiff_t>(4 * v));
-    }
-    std::vector<std::byte> filtered(4 * n);
-    meshopt_encodeFilterOct(filtered.data(), n, 4, normal_bits, reordered.data());
-    tangent.encoded = encode_vertices(filtered, n, 4);
+  if (!mesh.tangents.empty()) {  // TANGENT: the same, w (+-1) kept
+    out.streams.push_back(octahedral_stream("TANGENT", order, mesh.tangents, 4));
   }
 
   for (const NamedScalars& scalar : mesh.scalars) {  // float32, as written uncompressed

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace geodual {
 void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh& mesh,
@@ -74,16 +75,21 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
   io::write_gltf(path, scene);
 }
 
+void write_remesh_gltf(const std::filesystem::path& path, io::GltfTriangleMesh entry, const std::string& extras_json,
+                       io::GltfCompression compression) {
+  io::GltfScene scene;
+  scene.generator = "geodual " + std::string(build_version());
+  scene.extras_json = extras_json;
+  scene.compression = compression;
+  scene.triangle_meshes.push_back(std::move(entry));
+  io::write_gltf(path, scene);
+}
+
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes,
                   const std::string& extras_json, io::GltfCompression compression) {
   const std::string extension = io::lowercase_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
-    io::GltfScene scene;
-    scene.generator = "geodual " + std::string(build_version());
-    scene.extras_json = extras_json;
-    scene.compression = compression;
-    scene.triangle_meshes.push_back(io::gltf_triangle_mesh("remesh", mesh, attributes));
-    io::write_gltf(path, scene);
+    write_remesh_gltf(path, io::gltf_triangle_mesh("remesh", mesh, attributes), extras_json, compression);
     return;
   }
   if (extension == ".ply" || extension == ".obj") {

@@ -4,7 +4,7 @@
 #include "geodual/io/mesh_format.hpp"
 #include "geodual/io/write_mesh.hpp"
 #include "geodual/mesh/error.hpp"
-#include "geodual/pipeline/version.hpp"
+#include "geodual/pipeline/diagram_output.hpp"
 
 #include <ostream>
 #include <span>
@@ -103,10 +103,6 @@ void write_textured_remesh(const std::filesystem::path& path, const TriangleMesh
   const VertexAttributes copied = atlas_attributes(attributes, textures);
   const std::string extension = io::lowercase_extension(path);
   if (extension == ".glb" || extension == ".gltf") {
-    io::GltfScene scene;
-    scene.generator = "geodual " + std::string(build_version());
-    scene.extras_json = extras_json;
-    scene.compression = compression;
     io::GltfTriangleMesh entry = io::gltf_triangle_mesh("remesh", on_atlas, copied);
     entry.texcoords = atlas.uvs.cast<float>();
     if (!textures.baked.normal_map.empty()) entry.tangents = textures.baked.tangents.cast<float>();
@@ -116,8 +112,7 @@ void write_textured_remesh(const std::filesystem::path& path, const TriangleMesh
     if (!textures.baked.normal_map.empty()) {
       entry.normal_texture = embedded(textures.baked.normal_map, io::ImageFormat::png);
     }
-    scene.triangle_meshes.push_back(std::move(entry));
-    io::write_gltf(path, scene);
+    write_remesh_gltf(path, std::move(entry), extras_json, compression);
     return;
   }
   if (extension != ".ply" && extension != ".obj") {

@@ -46,12 +46,11 @@
 namespace geodual::quality {
 namespace {
 
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle>::const_iterator;
-using TrianglePrimitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>>;
+using aabb::Kernel;
+using aabb::Point;
+using aabb::Triangle;
+using aabb::TrianglePrimitive;
+using aabb::TriangleTree;
 using Segment = Kernel::Segment_3;
 using SegmentIterator = std::vector<Segment>::const_iterator;
 using SegmentPrimitive = CGAL::AABB_segment_primitive<Kernel, SegmentIterator>;

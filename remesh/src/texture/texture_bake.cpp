@@ -33,12 +33,11 @@
 namespace geodual::remesh {
 namespace {
 
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle>::const_iterator;
-using TrianglePrimitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>>;
+using aabb::Kernel;
+using aabb::Point;
+using aabb::Triangle;
+using aabb::TrianglePrimitive;
+using aabb::TriangleTree;
 
 Eigen::Vector3d to_eigen(const Point& p) { return {p.x(), p.y(), p.z()}; }
 

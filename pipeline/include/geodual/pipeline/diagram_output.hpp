@@ -32,6 +32,11 @@ void write_voronoi_diagram(const std::filesystem::path& path, const TriangleMesh
 void write_remesh(const std::filesystem::path& path, const TriangleMesh& mesh, const VertexAttributes& attributes = {},
                   const std::string& extras_json = {}, io::GltfCompression compression = io::GltfCompression::none);
 
+/// A remesh's glTF file: `entry` alone, `extras_json` in asset.extras,
+/// stored as `compression` says, geodual's version as the generator.
+void write_remesh_gltf(const std::filesystem::path& path, io::GltfTriangleMesh entry, const std::string& extras_json,
+                       io::GltfCompression compression);
+
 /// Per vertex, the mean quality Q of its triangles mapped to a colour: red
 /// (Q = 0) through yellow to green (Q = 1), sRGB-encoded as VertexAttributes::colors.
 ColorMatrix quality_colors(const TriangleMesh& mesh);

@@ -5,12 +5,25 @@
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <utility>
+#include <vector>
 
 namespace geodual {
+
+/// The kernel and the AABB tree of triangles (held in a vector) that both search.
+namespace aabb {
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using Triangle = Kernel::Triangle_3;
+using TriangleIterator = std::vector<Triangle>::const_iterator;
+using TrianglePrimitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
+using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>>;
+}  // namespace aabb
 
 /// Traversal traits for the exact squared distance from a point to the
 /// primitives (triangles or segments) of an AABB tree: children are visited
