@@ -211,9 +211,17 @@ std::vector<Index> rasterise_faces(const TextureAtlas& atlas, int size) {
   return owner;
 }
 
+/// Linear light of each 8-bit sRGB-encoded value.
+using SrgbTable = std::array<float, 256>;
+SrgbTable srgb_table() {
+  SrgbTable table{};
+  for (int i = 0; i < 256; ++i) table[static_cast<std::size_t>(i)] = linear_from_srgb(static_cast<float>(i) / 255.0F);
+  return table;
+}
+
 /// The image's colour at texture coordinates (u, v), in linear light: the
 /// four nearest texels mixed bilinearly, coordinates wrapped (REPEAT).
-std::array<float, 4> sample_linear(const TextureImage& image, double u, double v) {
+std::array<float, 4> sample_linear(const TextureImage& image, const SrgbTable& linear, double u, double v) {
   const double x = u * image.width - 0.5;
   const double y = v * image.height - 0.5;
   const double fx = std::floor(x), fy = std::floor(y);
@@ -224,7 +232,7 @@ std::array<float, 4> sample_linear(const TextureImage& image, double u, double v
     for (int dx = 0; dx < 2; ++dx) {
       const auto weight = static_cast<float>((dx ? ax : 1 - ax) * (dy ? ay : 1 - ay));
       const std::size_t at = image.offset(wrap(fx + dx, image.width), wrap(fy + dy, image.height));
-      for (int k = 0; k < 3; ++k) out[k] += weight * linear_from_srgb(image.texels[at + k] / 255.0F);
+      for (int k = 0; k < 3; ++k) out[k] += weight * linear[image.texels[at + k]];
       if (image.channels == 4) out[3] += weight * (image.texels[at + 3] / 255.0F);
     }
   }
@@ -354,6 +362,14 @@ BakedTextures bake_textures(const TriangleMesh& input, const BakeSource& source,
 
   const std::vector<Index> owner = rasterise_faces(atlas, size);
   const NearestPointFinder finder(input);
+  const SrgbTable linear_of_byte = srgb_table();
+  // The vertex colours in linear light, once (alpha is linear already).
+  ColorMatrix linear_colors = source.colors;
+  for (Eigen::Index v = 0; v < linear_colors.rows(); ++v) {
+    for (Eigen::Index k = 0; k < std::min<Eigen::Index>(3, linear_colors.cols()); ++k) {
+      linear_colors(v, k) = linear_from_srgb(linear_colors(v, k));
+    }
+  }
 
   tbb::parallel_for(tbb::blocked_range<int>(0, size), [&](const tbb::blocked_range<int>& rows) {
     std::size_t near = 0;
@@ -382,14 +398,11 @@ BakedTextures bake_textures(const TriangleMesh& input, const BakeSource& source,
               uv +=
                   b[c] * source.texture.corner_uvs.row(3 * static_cast<Eigen::Index>(on_input.element) + c).transpose();
             }
-            linear = sample_linear(source.texture.image, uv.x(), uv.y());
+            linear = sample_linear(source.texture.image, linear_of_byte, uv.x(), uv.y());
           } else {
             for (int k = 0; k < color_channels; ++k) {
               double mixed = 0;
-              for (int c = 0; c < 3; ++c) {
-                const float value = source.colors(input_corner(c), k);
-                mixed += b[c] * (k < 3 ? linear_from_srgb(value) : value);
-              }
+              for (int c = 0; c < 3; ++c) mixed += b[c] * linear_colors(input_corner(c), k);
               linear[k] = static_cast<float>(mixed);
             }
           }
