@@ -101,29 +101,33 @@ void set_bits(Word* row, int begin, int end) {
   }
 }
 
-/// The longest run of clear bits in a row of `words` words.
-int longest_clear_run(const Word* row, int words) {
-  int best = 0, current = 0;
+/// The runs of clear bits [begin, end) in a row of `words` words, left to
+/// right; returns the longest run's length.
+int clear_runs(const Word* row, int words, std::vector<std::array<int, 2>>& runs) {
+  runs.clear();
+  int longest = 0, start = -1;
   for (int w = 0; w < words; ++w) {
     const Word word = row[w];
-    if (word == 0) {
-      current += kWordBits;
-      continue;
-    }
     for (int bit = 0; bit < kWordBits;) {
       const Word rest = word >> bit;
       if (rest & 1) {
-        best = std::max(best, current);
-        current = 0;
+        if (start >= 0) {
+          runs.push_back({start, w * kWordBits + bit});
+          longest = std::max(longest, w * kWordBits + bit - start);
+          start = -1;
+        }
         bit += std::countr_one(rest);
       } else {
-        const int zeros = rest == 0 ? kWordBits - bit : std::countr_zero(rest);
-        current += zeros;
-        bit += zeros;
+        if (start < 0) start = w * kWordBits + bit;
+        bit += rest == 0 ? kWordBits - bit : std::countr_zero(rest);
       }
     }
   }
-  return std::max(best, current);
+  if (start >= 0) {
+    runs.push_back({start, words * kWordBits});
+    longest = std::max(longest, words * kWordBits - start);
+  }
+  return longest;
 }
 
 /// A chart at one scale and turn: the texels its triangles touch, grown by
@@ -260,7 +264,8 @@ void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<std
   }
 }
 
-/// The texture's texels taken: the footprints placed so far.
+/// The texture's texels taken: the footprints placed so far, as rows of
+/// bits and, per row, its runs of free texels.
 class Occupancy {
  public:
   void reset(int size) {
@@ -269,6 +274,8 @@ class Occupancy {
     bits_.assign(static_cast<std::size_t>(size) * words_, 0);
     for (int y = 0; y < size; ++y) set_bits(row(y), size, words_ * kWordBits);
     longest_.assign(static_cast<std::size_t>(size), size);
+    free_.resize(static_cast<std::size_t>(size));
+    for (auto& runs : free_) runs.assign(1, {0, size});
   }
 
   /// The first place (top row first, then leftmost column) where the
@@ -300,7 +307,8 @@ class Occupancy {
         target[x / kWordBits + w] |= source[w] << shift;
         if (shift != 0) target[x / kWordBits + w + 1] |= source[w] >> (kWordBits - shift);
       }
-      longest_[static_cast<std::size_t>(y + r)] = longest_clear_run(target, words_);
+      const auto at = static_cast<std::size_t>(y + r);
+      longest_[at] = clear_runs(target, words_, free_[at]);
     }
   }
 
@@ -317,18 +325,28 @@ class Occupancy {
     return true;
   }
 
+  // The first column from x on where footprint row r's first run lies in a
+  // free run of texture row y + r (past the texture if none).
+  int first_run_fits_from(const Footprint& footprint, int r, int x, int y) const {
+    const int begin = footprint.run_begin[r], length = footprint.run_end[r] - begin;
+    if (length == 0) return x;
+    const std::vector<std::array<int, 2>>& runs = free_[static_cast<std::size_t>(y + r)];
+    // The first free run that ends at or past the run's end at x.
+    auto at = std::partition_point(runs.begin(), runs.end(),
+                                   [&](const std::array<int, 2>& run) { return run[1] < x + begin + length; });
+    for (; at != runs.end(); ++at) {
+      if ((*at)[1] - (*at)[0] >= length) return std::max(x, (*at)[0] - begin);
+    }
+    return size_;
+  }
+
   // x if the footprint fits at (x, y); else a later column, no column
-  // between being a fit: past the last taken texel that a row's first run
-  // meets, or the next column.
+  // between being a fit: the first where every row's first run lies in a
+  // free run (the widest row's first), or the next column.
   int blocked_until(const Footprint& footprint, int x, int y) const {
-    auto first_run_blocked = [&](int r) {
-      const int begin = footprint.run_begin[r], end = footprint.run_end[r];
-      const int taken = highest_set(row(y + r), x + begin, x + end);
-      return taken >= 0 ? taken - begin + 1 : x;
-    };
-    if (const int next = first_run_blocked(footprint.probe); next != x) return next;
+    if (const int next = first_run_fits_from(footprint, footprint.probe, x, y); next != x) return next;
     for (int r = 0; r < footprint.height; ++r) {
-      if (const int next = first_run_blocked(r); next != x) return next;
+      if (const int next = first_run_fits_from(footprint, r, x, y); next != x) return next;
     }
     const int shift = x % kWordBits;
     for (int r = 0; r < footprint.height; ++r) {
@@ -347,7 +365,8 @@ class Occupancy {
   int size_ = 0;
   int words_ = 0;
   std::vector<Word> bits_;
-  std::vector<int> longest_;  // per row, its longest run of free texels
+  std::vector<int> longest_;                           // per row, its longest run of free texels
+  std::vector<std::vector<std::array<int, 2>>> free_;  // per row, its runs of free texels [begin, end)
 };
 
 /// A chart to pack: its points and triangles, and the turns to try.
