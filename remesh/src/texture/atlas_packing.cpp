@@ -255,8 +255,15 @@ void rasterise(const std::vector<Eigen::Vector2d>& points, const std::vector<std
       if (row[w] != 0) begin = w * kWordBits + std::countr_zero(row[w]);
     }
     if (begin < 0) continue;
-    int end = begin;
-    while (end < out.width && (row[end / kWordBits] >> (end % kWordBits) & 1)) ++end;
+    int end = out.words * kWordBits;  // the first clear bit after begin
+    for (int w = begin / kWordBits; w < out.words; ++w) {
+      const Word clear = ~row[w] & (w == begin / kWordBits ? kAllSet << (begin % kWordBits) : kAllSet);
+      if (clear != 0) {
+        end = w * kWordBits + std::countr_zero(clear);
+        break;
+      }
+    }
+    end = std::min(end, out.width);
     out.run_begin[y] = begin;
     out.run_end[y] = end;
     out.more_runs[y] = highest_set(row, end, out.width) >= 0 ? 1 : 0;
