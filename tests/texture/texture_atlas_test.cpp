@@ -265,7 +265,7 @@ TEST(TextureAtlas, SphereIsCutIntoSeveralDisks) {
   EXPECT_GT(atlas.charts, 1);
   expect_valid_atlas(sphere, atlas, options);
   EXPECT_LT(atlas.mean_angle_distortion, 3);
-  EXPECT_GT(atlas.texture_used, 0.4);
+  EXPECT_GT(atlas.texture_used, 0.55);
 }
 
 TEST(TextureAtlas, TorusIsCutIntoDisks) {
@@ -380,7 +380,9 @@ TEST(TextureAtlas, FandiskWithFeatureSeams) {
     }
     EXPECT_NE(copies[0], copies[1]) << "seam " << a << " " << b;
   }
-  EXPECT_GT(atlas.texture_used, 0.4);
+  // The packer packs the charts' shapes, not their bounding rectangles: a
+  // realistic case (some twenty charts of many shapes) fills well over half the texture.
+  EXPECT_GE(atlas.texture_used, 0.55);
   EXPECT_LT(atlas.mean_angle_distortion, 3);
 }
 

@@ -1,10 +1,14 @@
 #pragma once
-// Packing the atlas's charts into a square texture: each chart turned to its
-// smallest bounding rectangle, all scaled alike, placed by a skyline packer
-// with a gutter of free texels round each one and along the border.
+// Packing the atlas's charts into a square texture: each chart rasterised
+// (every texel its triangles touch, grown by the gutter) at several turns,
+// all charts scaled alike, placed largest first where their texels fit
+// among the texels of the charts placed before.
+
+#include "geodual/mesh/triangle_mesh.hpp"
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace geodual::remesh::detail {
@@ -18,12 +22,19 @@ struct ChartPlacement {
 };
 
 /// Places charts (each a set of points, all at one density, so that their
-/// lengths compare) in a texture of texture_size texels a side: each chart's
-/// bounding rectangle rounded out to whole texels with `gutter` free texels
-/// round it (so 2 gutter between charts, gutter to the border), at as large
-/// a common scale as the packer finds room for (a search on the scale).
-/// Deterministic. \throw geodual::Error when the charts, however small, do
-/// not fit (too many for the texture and gutter).
+/// lengths compare, and its triangles on them) in a texture of texture_size
+/// texels a side, at as large a common scale as the packer finds room for
+/// (a search on the scale): every texel a chart's triangle touches (closed
+/// texel squares) is at least `gutter` texels from the border and more than
+/// 2 gutter texels (in x or in y) from every texel another chart touches.
+/// A chart without triangles stands for its convex hull. Deterministic.
+/// \throw geodual::Error when the charts, however small, do not fit (too
+/// many for the texture and gutter).
+std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vector2d>>& charts,
+                                        const std::vector<std::vector<std::array<Index, 3>>>& triangles,
+                                        int texture_size, int gutter);
+
+/// As above, each chart standing for its convex hull.
 std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vector2d>>& charts, int texture_size,
                                         int gutter);
 

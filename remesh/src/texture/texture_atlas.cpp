@@ -261,9 +261,13 @@ TextureAtlas make_texture_atlas(const TriangleMesh& mesh, const AtlasOptions& op
   to_image_density(mesh, charts);
 
   std::vector<std::vector<Eigen::Vector2d>> points(charts.size());
-  for (std::size_t c = 0; c < charts.size(); ++c) points[c] = charts[c].points;
+  std::vector<std::vector<std::array<Index, 3>>> triangles(charts.size());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    points[c] = charts[c].points;
+    triangles[c] = charts[c].surface.corners;
+  }
   const std::vector<detail::ChartPlacement> placements =
-      detail::pack_charts(points, options.texture_size, options.gutter);
+      detail::pack_charts(points, triangles, options.texture_size, options.gutter);
 
   TextureAtlas atlas;
   atlas.charts = static_cast<Index>(charts.size());
