@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include <tbb/parallel_for.h>
+
 namespace geodual::remesh::detail {
 namespace {
 
@@ -436,36 +438,46 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return pack[a].area > pack[b].area; });
 
+  // Per turn of a chart (at most 8), tried side by side: its footprint and scratch, and where it fits.
+  struct TurnTry {
+    Scratch scratch;
+    Footprint footprint;
+    int x = -1, y = -1;
+  };
+  std::size_t most_turns = 0;
+  for (const PackChart& chart : pack) most_turns = std::max(most_turns, chart.turns.size());
+  std::vector<TurnTry> tries(most_turns);
   Occupancy occupancy;
-  Scratch scratch;
-  Footprint footprint, best_footprint;
   std::vector<ChartPlacement> placements(n), best_placements;
   auto fits = [&](double scale) {
     occupancy.reset(texture_size);
     for (const std::size_t c : order) {
       const PackChart& chart = pack[c];
-      int best_x = -1, best_y = -1;
+      // Every turn's first place (top row first, then leftmost), found in parallel.
+      tbb::parallel_for(std::size_t{0}, chart.turns.size(), [&](std::size_t k) {
+        TurnTry& attempt = tries[k];
+        attempt.x = attempt.y = -1;
+        rasterise(*chart.points, chart.triangles, scale * chart.turns[k], gutter, attempt.scratch, attempt.footprint);
+        if (attempt.footprint.width > texture_size || attempt.footprint.height > texture_size) return;
+        occupancy.find(attempt.footprint, texture_size, attempt.x, attempt.y);
+      });
+      // The one whose bottom is highest, then leftmost, then the first turn: the same whatever the threads.
+      std::size_t best = tries.size();
       long best_bottom = std::numeric_limits<long>::max();
-      for (const Eigen::Matrix2d& turn : chart.turns) {
-        rasterise(*chart.points, chart.triangles, scale * turn, gutter, scratch, footprint);
-        if (footprint.width > texture_size || footprint.height > texture_size) continue;
-        // Only a place whose bottom is higher than the best so far, or as
-        // high and further left, is better.
-        const long max_y = std::min<long>(texture_size, best_bottom - footprint.height);
-        int x = 0, y = 0;
-        if (max_y < 0 || !occupancy.find(footprint, static_cast<int>(max_y), x, y)) continue;
-        const long bottom = y + footprint.height;
-        if (bottom < best_bottom || (bottom == best_bottom && x < best_x)) {
+      for (std::size_t k = 0; k < chart.turns.size(); ++k) {
+        const TurnTry& attempt = tries[k];
+        if (attempt.x < 0) continue;
+        const long bottom = attempt.y + attempt.footprint.height;
+        if (bottom < best_bottom || (bottom == best_bottom && attempt.x < tries[best].x)) {
           best_bottom = bottom;
-          best_x = x;
-          best_y = y;
-          std::swap(footprint, best_footprint);
+          best = k;
         }
       }
-      if (best_x < 0) return false;
-      occupancy.place(best_footprint, best_x, best_y);
-      placements[c].transform = best_footprint.transform;
-      placements[c].offset = best_footprint.shift + Eigen::Vector2d(best_x, best_y);
+      if (best == tries.size()) return false;
+      const TurnTry& chosen = tries[best];
+      occupancy.place(chosen.footprint, chosen.x, chosen.y);
+      placements[c].transform = chosen.footprint.transform;
+      placements[c].offset = chosen.footprint.shift + Eigen::Vector2d(chosen.x, chosen.y);
     }
     return true;
   };
@@ -475,7 +487,7 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
   // fit, then bisect between fitting and not.
   const double size = texture_size;
   double high = area > 0 ? size / std::sqrt(area) : 1.0;
-  double low = high;
+  double low = 0.85 * high;  // charts leave gaps and need their gutters: the bound itself never fits
   double best_scale = 0;
   for (int attempt = 0; attempt < 200 && low * extent > 1e-3; ++attempt) {
     if (fits(low)) {
@@ -484,13 +496,13 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
       break;
     }
     high = low;
-    low *= 0.9;
+    low *= 0.93;
   }
   if (best_scale == 0) {
     throw Error("make_texture_atlas: " + std::to_string(n) + " charts do not fit a texture of " +
                 std::to_string(texture_size) + " texels with a gutter of " + std::to_string(gutter));
   }
-  for (int step = 0; step < 16 && high > low * (1 + 4e-3); ++step) {
+  for (int step = 0; step < 16 && high > low * (1 + 1e-2); ++step) {
     const double middle = 0.5 * (low + high);
     if (fits(middle)) {
       low = middle;
