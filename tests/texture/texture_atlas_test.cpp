@@ -7,6 +7,7 @@
 #include "remesh/analytic_surfaces.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -394,6 +395,18 @@ TEST(TextureAtlas, SameMeshSameAtlas) {
   EXPECT_EQ(first.uvs, second.uvs);
   EXPECT_EQ(first.faces, second.faces);
   EXPECT_EQ(first.chart_of_face, second.chart_of_face);
+}
+
+TEST(TextureAtlas, TheAtlasDoesNotDependOnTheThreads) {
+  const TriangleMesh sphere = icosphere(4);
+  TextureAtlas one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = make_texture_atlas(sphere, {.texture_size = 512});
+  }
+  const TextureAtlas all = make_texture_atlas(sphere, {.texture_size = 512});
+  EXPECT_EQ(one.uvs, all.uvs);
+  EXPECT_EQ(one.faces, all.faces);
 }
 
 TEST(TextureAtlas, RefusesEmptyMeshesAndBadIndices) {
