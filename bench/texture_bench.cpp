@@ -297,7 +297,7 @@ Result measure(const Case& c, std::int64_t samples, std::uint64_t seed) {
     if (r.textured_input) {
       Eigen::Vector2d input_uv = Eigen::Vector2d::Zero();
       for (int k = 0; k < 3; ++k) input_uv += b[k] * texture.corner_uvs.row(3 * input_face + k).transpose();
-      reference = to_srgb(sample(texture.image, input_uv, true, true));
+      reference = to_srgb(sample(texture.image_of(input_face), input_uv, true, true));
     } else {
       reference = interpolate_color(input_colors, input_corners, b);
     }

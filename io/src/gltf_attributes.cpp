@@ -215,17 +215,21 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
     colors_.reserve(4 * total_vertices);
   }
 
-  // The texture kept whole: one image, alone, on every primitive.
-  std::set<std::size_t> images;
-  bool texture_alone = n > 0;
+  // The textures kept whole: every primitive's base colour an image alone.
+  bool textures_alone = n > 0;
   for (const PrimitiveAttributes* p : primitives) {
-    if (p->texture && p->texcoord) images.insert(p->texture->image);
-    texture_alone = texture_alone && p->texture && p->texcoord && !p->color && p->base_color_factor == white;
+    textures_alone = textures_alone && p->texture && p->texcoord && !p->color && p->base_color_factor == white;
   }
-  if (texture_alone && images.size() == 1) {
-    texture_image_ = *images.begin();
+  if (textures_alone) {
+    for (const PrimitiveAttributes* p : primitives) {
+      if (std::find(kept_images_.begin(), kept_images_.end(), p->texture->image) == kept_images_.end()) {
+        kept_images_.push_back(p->texture->image);
+      }
+    }
     texcoords_.reserve(2 * total_vertices);
-    notes_.emplace_back("base colour texture kept whole for baking, with its TEXCOORD at every vertex");
+    vertex_image_.reserve(total_vertices);
+    notes_.push_back(counted(kept_images_.size(), "base colour texture", "base colour textures") +
+                     " kept whole for baking, with the TEXCOORD at every vertex");
   }
 
   read_normals_ = n > 0 && with_normal == n;
@@ -255,9 +259,12 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
 
 void AttributeReader::append(const PrimitiveAttributes& primitive, std::size_t count, const MeshInstance& instance) {
   if (read_colors_) append_colors(primitive, count);
-  if (texture_image_) {
+  if (!kept_images_.empty()) {
+    const auto image = static_cast<std::int32_t>(
+        std::find(kept_images_.begin(), kept_images_.end(), primitive.texture->image) - kept_images_.begin());
     for_each_element(*primitive.texcoord, [&](std::size_t, const double* uv) {
       texcoords_.insert(texcoords_.end(), {uv[0], uv[1]});
+      vertex_image_.push_back(image);
     });
   }
   if (read_normals_) append_normals(primitive, count, instance);
@@ -313,21 +320,30 @@ void AttributeReader::append_normals(const PrimitiveAttributes& primitive, std::
 
 SurfaceTexture AttributeReader::take_texture(const FaceMatrix& faces) {
   SurfaceTexture texture;
-  if (!texture_image_) return texture;
-  const DecodedImage& image = textures_.image(*texture_image_);
-  bool opaque = true;
-  for (std::size_t t = 3; t < image.rgba.size(); t += 4) opaque = opaque && image.rgba[t] == 255;
-  texture.image = {.width = image.width, .height = image.height, .channels = opaque ? 3 : 4};
-  texture.image.texels.reserve(static_cast<std::size_t>(image.width) * image.height * texture.image.channels);
-  for (std::size_t t = 0; t < image.rgba.size(); t += 4) {
-    texture.image.texels.insert(texture.image.texels.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(t),
-                                image.rgba.begin() + static_cast<std::ptrdiff_t>(t + texture.image.channels));
+  if (kept_images_.empty()) return texture;
+  for (const std::size_t index : kept_images_) {
+    const DecodedImage& image = textures_.image(index);
+    bool opaque = true;
+    for (std::size_t t = 3; t < image.rgba.size(); t += 4) opaque = opaque && image.rgba[t] == 255;
+    TextureImage& kept = texture.images.emplace_back();
+    kept = {.width = image.width, .height = image.height, .channels = opaque ? 3 : 4};
+    kept.texels.reserve(static_cast<std::size_t>(image.width) * image.height * kept.channels);
+    for (std::size_t t = 0; t < image.rgba.size(); t += 4) {
+      kept.texels.insert(kept.texels.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(t),
+                         image.rgba.begin() + static_cast<std::ptrdiff_t>(t + kept.channels));
+    }
   }
   texture.corner_uvs.resize(3 * faces.rows(), 2);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
       const auto v = static_cast<std::size_t>(faces(f, c));
       texture.corner_uvs.row(3 * f + c) << texcoords_[2 * v], texcoords_[2 * v + 1];
+    }
+  }
+  if (kept_images_.size() > 1) {  // a face's image: its first corner's primitive's
+    texture.face_image.resize(static_cast<std::size_t>(faces.rows()));
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      texture.face_image[static_cast<std::size_t>(f)] = vertex_image_[static_cast<std::size_t>(faces(f, 0))];
     }
   }
   return texture;

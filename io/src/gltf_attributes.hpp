@@ -13,10 +13,10 @@
 //    linear part and renormalised; read only when every primitive has NORMAL.
 //  - Scalars: SCALAR attributes named "_NAME", stored as NAME; each read only
 //    when every primitive has it.
-//  - The texture, kept whole for baking (LoadedMesh::texture): where every
-//    primitive's base colour is one and the same image sampled at its
-//    TEXCOORD_n, with no COLOR_0 and a white factor, that image and each
-//    vertex's coordinates.
+//  - The textures, kept whole for baking (LoadedMesh::texture): where every
+//    primitive's base colour is an image alone, sampled at its TEXCOORD_n
+//    (no COLOR_0, a white factor), those images, each vertex's coordinates
+//    and each face's image.
 // Accessors are checked when planned; values are decoded (and textures
 // decoded) only while the output is written, vertex block by vertex block.
 
@@ -29,6 +29,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <map>
 #include <optional>
@@ -74,9 +75,9 @@ class AttributeReader {
   /// The rows appended, moved out (attributes with non-finite values dropped, with a note).
   VertexAttributes take();
 
-  /// The base colour texture, where every primitive's is the same image
-  /// alone, with its coordinates at the corners of `faces` (the triangles on
-  /// the vertices appended); empty otherwise.
+  /// The base colour textures, where every primitive's is an image alone,
+  /// with their coordinates at the corners of `faces` (the triangles on the
+  /// vertices appended) and each face's image; empty otherwise.
   SurfaceTexture take_texture(const FaceMatrix& faces);
 
   /// What was read, dropped or ignored, for ReadInfo::notes (complete after take()).
@@ -110,8 +111,9 @@ class AttributeReader {
   std::vector<double> normals_;  // x, y, z per vertex
   bool normals_finite_ = true;
   std::vector<OutputScalar> scalars_;
-  std::optional<std::size_t> texture_image_;  // the one image kept whole, if any
-  std::vector<double> texcoords_;             // u, v per vertex, with texture_image_
+  std::vector<std::size_t> kept_images_;    // the images kept whole, if any (glTF image indices)
+  std::vector<double> texcoords_;           // u, v per vertex, with kept_images_
+  std::vector<std::int32_t> vertex_image_;  // per vertex, its primitive's image in kept_images_
 
   std::vector<std::string> notes_;
   std::set<std::string> seen_attributes_;  // every attribute name of every primitive planned

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace geodual::io {
 namespace {
@@ -48,6 +49,32 @@ TEST(TextureOutput, AGltfBaseColourTextureIsReadBackAtTheVertices) {
       EXPECT_NEAR(loaded.attributes.colors(v, 2) * 255, 50, tolerance);
     }
   }
+}
+
+TEST(TextureOutput, EveryBaseColourTextureIsKeptWholeWithEachFacesImage) {
+  test::TempDir dir;
+  GltfScene scene;
+  for (const std::uint8_t red : {std::uint8_t{200}, std::uint8_t{20}}) {
+    GltfTriangleMesh& entry = scene.triangle_meshes.emplace_back(GltfTriangleMesh{.mesh = unit_quad()});
+    entry.texcoords = TexcoordMatrix{{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    entry.base_color_texture = {.bytes = encode_image(flat_image(2, red, 0, 0), ImageFormat::png),
+                                .mime_type = "image/png"};
+  }
+  const fs::path path = dir.path() / "two.glb";
+  write_gltf(path, scene);
+  const LoadedMesh loaded = read_mesh(path);
+  ASSERT_EQ(loaded.mesh.num_faces(), 4);
+  ASSERT_EQ(loaded.texture.images.size(), 2u);
+  EXPECT_EQ(loaded.texture.images[0].texels[0], 200);
+  EXPECT_EQ(loaded.texture.images[1].texels[0], 20);
+  EXPECT_EQ(loaded.texture.face_image, (std::vector<std::int32_t>{0, 0, 1, 1}));
+  EXPECT_EQ(loaded.texture.corner_uvs.rows(), 12);
+  EXPECT_EQ(loaded.texture.corner_uvs.row(3 * 3 + 1), Eigen::RowVector2d(1, 0)) << "face 3's corner 1 is vertex 2";
+  // One texture with a factor that is not white: the colours only, no texture kept.
+  scene.triangle_meshes.pop_back();
+  scene.triangle_meshes[0].colors = ColorMatrix::Constant(4, 3, 0.5F);
+  write_gltf(path, scene);
+  EXPECT_TRUE(read_mesh(path).texture.empty()) << "COLOR_0 multiplies the texture: baked from the vertex colours";
 }
 
 TEST(TextureOutput, TexturesNeedCoordinatesAndTangentsMustBeDirectionsWithASign) {

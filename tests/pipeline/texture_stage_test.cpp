@@ -81,7 +81,7 @@ TEST(TextureStage, WeldTextureSeamsJoinsCopiesAndKeepsTheFirstCopysAttributes) {
   input.mesh.faces = FaceMatrix{{0, 1, 2}, {5, 3, 4}};
   input.attributes.colors = ColorMatrix{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
   EXPECT_TRUE(pipeline::weld_texture_seams(input).empty()) << "no texture: nothing welded";
-  input.texture.image = {.width = 1, .height = 1, .channels = 3, .texels = {9, 9, 9}};
+  input.texture.images = {{.width = 1, .height = 1, .channels = 3, .texels = {9, 9, 9}}};
   input.texture.corner_uvs = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>::Zero(6, 2);
   const std::vector<Index> welded = pipeline::weld_texture_seams(input);
   EXPECT_EQ(welded, (std::vector<Index>{0, 1, 2, 2, 3, 0}));

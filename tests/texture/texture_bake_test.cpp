@@ -131,14 +131,14 @@ TEST(BakeTextures, ChartsAreSpreadByThePaddingAndNoFurther) {
 TEST(BakeTextures, ATexturedInputIsSampledThroughItsCornerCoordinates) {
   const TriangleMesh input = test::unit_square(4);
   SurfaceTexture texture;
-  texture.image = {.width = 64, .height = 64, .channels = 3};
-  texture.image.texels.resize(64 * 64 * 3);
+  TextureImage& image = texture.images.emplace_back(TextureImage{.width = 64, .height = 64, .channels = 3});
+  image.texels.resize(64 * 64 * 3);
   for (int y = 0; y < 64; ++y) {
     for (int x = 0; x < 64; ++x) {
-      const std::size_t at = texture.image.offset(x, y);
-      texture.image.texels[at] = static_cast<std::uint8_t>(30 * (x / 8));
-      texture.image.texels[at + 1] = static_cast<std::uint8_t>(50 + 20 * (y / 8));
-      texture.image.texels[at + 2] = 200;
+      const std::size_t at = image.offset(x, y);
+      image.texels[at] = static_cast<std::uint8_t>(30 * (x / 8));
+      image.texels[at + 1] = static_cast<std::uint8_t>(50 + 20 * (y / 8));
+      image.texels[at + 2] = 200;
     }
   }
   // u = x, v = 1 - y: the image upright on the square seen from +z.
@@ -165,6 +165,40 @@ TEST(BakeTextures, ATexturedInputIsSampledThroughItsCornerCoordinates) {
     ++checked;
   });
   EXPECT_GT(checked, 1000);
+}
+
+TEST(BakeTextures, EachFaceIsSampledInItsOwnImage) {
+  // The unit square's left half in a red image, its right half in a blue one.
+  const TriangleMesh input = test::unit_square(4);
+  SurfaceTexture texture;
+  for (const std::uint8_t red : {std::uint8_t{220}, std::uint8_t{30}}) {
+    TextureImage& image = texture.images.emplace_back(TextureImage{.width = 4, .height = 4, .channels = 3});
+    for (int t = 0; t < 16; ++t)
+      image.texels.insert(image.texels.end(), {red, 60, static_cast<std::uint8_t>(250 - red)});
+  }
+  texture.corner_uvs =
+      Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>::Constant(3 * input.num_faces(), 2, 0.5);
+  for (Index f = 0; f < input.num_faces(); ++f) {
+    const double x = (input.vertices(input.faces(f, 0), 0) + input.vertices(input.faces(f, 1), 0) +
+                      input.vertices(input.faces(f, 2), 0)) /
+                     3;
+    texture.face_image.push_back(x < 0.5 ? 0 : 1);
+  }
+  const TriangleMesh remesh = test::unit_square(2);
+  const TextureAtlas atlas = per_face_atlas(remesh);
+  constexpr int size = 256;
+  const BakedTextures baked = bake_textures(input, {.texture = texture}, remesh, atlas, {.texture_size = size});
+  int left = 0, right = 0;
+  for_each_texel(remesh, atlas, size, [&](Index, int i, int j, const Eigen::Vector3d&, const Eigen::Vector3d& p) {
+    if (std::abs(p.x() - 0.5) < 0.05) return;  // the faces on either side of x = 1/2 meet there
+    const std::uint8_t red = baked.base_color.texels[baked.base_color.offset(i, j)];
+    EXPECT_EQ(red, p.x() < 0.5 ? 220 : 30) << p.transpose();
+    ++(p.x() < 0.5 ? left : right);
+  });
+  EXPECT_GT(left, 1000);
+  EXPECT_GT(right, 1000);
+  texture.face_image[0] = 2;
+  EXPECT_THROW(bake_textures(input, {.texture = texture}, remesh, atlas, {.texture_size = size}), UsageError);
 }
 
 // The shading normal a glTF viewer shows at a texel: the vertices' NORMAL and

@@ -304,11 +304,18 @@ void check_sizes(const TriangleMesh& input, const BakeSource& source, const Tria
   require(
       source.texture.empty() || source.texture.corner_uvs.rows() == 3 * static_cast<Eigen::Index>(input.num_faces()),
       "the texture's coordinates must be three rows per input face");
-  require(source.texture.empty() ||
-              ((source.texture.image.channels == 3 || source.texture.image.channels == 4) &&
-               source.texture.image.width > 0 && source.texture.image.height > 0 &&
-               source.texture.image.texels.size() == source.texture.image.offset(0, source.texture.image.height)),
-          "the texture's image must be RGB or RGBA with width x height texels");
+  for (const TextureImage& image : source.texture.images) {
+    require((image.channels == 3 || image.channels == 4) && image.width > 0 && image.height > 0 &&
+                image.texels.size() == image.offset(0, image.height),
+            "the texture's images must be RGB or RGBA with width x height texels");
+  }
+  require(source.texture.face_image.empty() ||
+              source.texture.face_image.size() == static_cast<std::size_t>(input.num_faces()),
+          "the texture's images must be given one per input face, or not at all");
+  for (const std::int32_t image : source.texture.face_image) {
+    require(image >= 0 && static_cast<std::size_t>(image) < source.texture.images.size(),
+            "a face of the input names texture image " + std::to_string(image));
+  }
   require(atlas.faces.rows() == remesh.faces.rows(), "the atlas has " + std::to_string(atlas.faces.rows()) +
                                                          " faces for a remesh of " +
                                                          std::to_string(remesh.faces.rows()));
@@ -353,8 +360,11 @@ BakedTextures bake_textures(const TriangleMesh& input, const BakeSource& source,
   if (bake_normal) baked.tangents = atlas_tangents(remesh, atlas, baked.normals);
   if (!bake_color && !bake_normal) return baked;
 
-  const int color_channels =
-      !source.texture.empty() ? source.texture.image.channels : static_cast<int>(source.colors.cols());
+  int color_channels = static_cast<int>(source.colors.cols());
+  if (!source.texture.empty()) {
+    color_channels = 3;
+    for (const TextureImage& image : source.texture.images) color_channels = std::max(color_channels, image.channels);
+  }
   if (bake_color) baked.base_color = blank_image(size, color_channels);
   if (bake_normal) baked.normal_map = blank_image(size, 3);
   const VertexMatrix input_normals =
@@ -398,7 +408,7 @@ BakedTextures bake_textures(const TriangleMesh& input, const BakeSource& source,
               uv +=
                   b[c] * source.texture.corner_uvs.row(3 * static_cast<Eigen::Index>(on_input.element) + c).transpose();
             }
-            linear = sample_linear(source.texture.image, linear_of_byte, uv.x(), uv.y());
+            linear = sample_linear(source.texture.image_of(on_input.element), linear_of_byte, uv.x(), uv.y());
           } else {
             for (int k = 0; k < color_channels; ++k) {
               double mixed = 0;

@@ -26,14 +26,21 @@ struct TextureImage {
 
 /// A surface's base colour texture: texture coordinates at every face corner
 /// (glTF's convention: (0, 0) the top-left corner of the image, v down) and
-/// the image they address, sampled bilinearly with the coordinates wrapped
-/// (glTF's default sampler, REPEAT).
+/// the images they address -- one per material, a face in one of them --
+/// sampled bilinearly with the coordinates wrapped (glTF's default sampler,
+/// REPEAT).
 struct SurfaceTexture {
   /// Three rows per face: face f's corner c at row 3 f + c.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> corner_uvs{};
-  TextureImage image{};
+  std::vector<TextureImage> images{};
+  /// Per face, the image its coordinates address; empty: image 0 for every face.
+  std::vector<std::int32_t> face_image{};
 
-  bool empty() const { return image.empty(); }
+  bool empty() const { return images.empty(); }
+  /// The image face f's coordinates address.
+  const TextureImage& image_of(std::int64_t f) const {
+    return images[face_image.empty() ? 0 : static_cast<std::size_t>(face_image[static_cast<std::size_t>(f)])];
+  }
 };
 
 }  // namespace geodual
