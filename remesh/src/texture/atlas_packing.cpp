@@ -437,6 +437,13 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return pack[a].area > pack[b].area; });
+  // Charts after the largest few (a share of the area under 1 % each) are
+  // tried at the quarter turns of their smallest rectangle only: they fill
+  // holes, where the four other turns rarely find a better place, at half the cost.
+  for (std::size_t rank = 0; rank < n; ++rank) {
+    PackChart& chart = pack[order[rank]];
+    if (rank >= 8 && chart.area < 0.01 * area && chart.turns.size() > 4) chart.turns.resize(4);
+  }
 
   // Per turn of a chart (at most 8), tried side by side: its footprint and scratch, and where it fits.
   struct TurnTry {
