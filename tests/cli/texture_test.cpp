@@ -148,5 +148,16 @@ TEST(TextureCommand, FlagsAreCheckedBeforeAnyWork) {
   }
 }
 
+TEST(TextureCommand, ATextureTooSmallForTheChartsFailsAndWritesNothing) {
+  ScratchFolder folder;
+  const fs::path out = folder.path() / "out.obj";
+  const CliRun run = run_cli({"remesh", "tests/data/bunny.ply", "--sites", "1000", "--texture-size", "64",
+                              "--no-statistics", "-o", out.string(), "-q"});
+  EXPECT_EQ(run.exit_status, 1) << run.err;
+  EXPECT_NE(run.err.find("charts do not fit a texture of 64 texels"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("--texture-size"), std::string::npos) << run.err;
+  EXPECT_TRUE(fs::is_empty(folder.path())) << "no remesh, image or material file";
+}
+
 }  // namespace
 }  // namespace geodual::cli_test

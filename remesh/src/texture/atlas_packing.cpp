@@ -507,7 +507,8 @@ std::vector<ChartPlacement> pack_charts(const std::vector<std::vector<Eigen::Vec
   }
   if (best_scale == 0) {
     throw Error("make_texture_atlas: " + std::to_string(n) + " charts do not fit a texture of " +
-                std::to_string(texture_size) + " texels with a gutter of " + std::to_string(gutter));
+                std::to_string(texture_size) + " texels with a gutter of " + std::to_string(gutter) +
+                " texels each; a larger texture (--texture-size) holds them");
   }
   for (int step = 0; step < 16 && high > low * (1 + 1e-2); ++step) {
     const double middle = 0.5 * (low + high);
