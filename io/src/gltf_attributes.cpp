@@ -321,18 +321,7 @@ void AttributeReader::append_normals(const PrimitiveAttributes& primitive, std::
 SurfaceTexture AttributeReader::take_texture(const FaceMatrix& faces) {
   SurfaceTexture texture;
   if (kept_images_.empty()) return texture;
-  for (const std::size_t index : kept_images_) {
-    const DecodedImage& image = textures_.image(index);
-    bool opaque = true;
-    for (std::size_t t = 3; t < image.rgba.size(); t += 4) opaque = opaque && image.rgba[t] == 255;
-    TextureImage& kept = texture.images.emplace_back();
-    kept = {.width = image.width, .height = image.height, .channels = opaque ? 3 : 4};
-    kept.texels.reserve(static_cast<std::size_t>(image.width) * image.height * kept.channels);
-    for (std::size_t t = 0; t < image.rgba.size(); t += 4) {
-      kept.texels.insert(kept.texels.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(t),
-                         image.rgba.begin() + static_cast<std::ptrdiff_t>(t + kept.channels));
-    }
-  }
+  for (const std::size_t index : kept_images_) texture.images.push_back(texture_image(textures_.image(index)));
   texture.corner_uvs.resize(3 * faces.rows(), 2);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {

@@ -125,6 +125,19 @@ std::array<float, 4> sample_texture(const DecodedImage& image, const TextureSamp
   return out;
 }
 
+TextureImage texture_image(const DecodedImage& image) {
+  bool opaque = true;
+  for (std::size_t t = 3; t < image.rgba.size(); t += 4) opaque = opaque && image.rgba[t] == 255;
+  TextureImage kept{.width = image.width, .height = image.height, .channels = opaque ? 3 : 4};
+  kept.texels.reserve(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
+                      static_cast<std::size_t>(kept.channels));
+  for (std::size_t t = 0; t < image.rgba.size(); t += 4) {
+    kept.texels.insert(kept.texels.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(t),
+                       image.rgba.begin() + static_cast<std::ptrdiff_t>(t + static_cast<std::size_t>(kept.channels)));
+  }
+  return kept;
+}
+
 DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& where) {
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(where, "is larger than 2 GiB; cannot decode it");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());

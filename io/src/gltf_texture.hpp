@@ -11,6 +11,7 @@
 // centre at ((i + 0.5) / width, (j + 0.5) / height). Bilinear filtering mixes
 // texels in linear space, as a GPU does with an sRGB texture.
 
+#include "geodual/mesh/texture_image.hpp"
 #include "gltf_buffers.hpp"
 #include "gltf_json.hpp"
 
@@ -43,6 +44,9 @@ struct DecodedImage {
 
 /// Linear RGBA (each in [0, 1]) of `image` at texture coordinates (u, v).
 std::array<float, 4> sample_texture(const DecodedImage& image, const TextureSampler& sampler, double u, double v);
+
+/// The image as geodual keeps it: RGB where every alpha is 255, else RGBA.
+TextureImage texture_image(const DecodedImage& image);
 
 /// Decodes PNG or JPEG bytes; throws geodual::Error("<where>: ...") naming the problem.
 DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& where);

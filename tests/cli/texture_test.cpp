@@ -121,6 +121,13 @@ TEST(TextureCommand, ObjAndPlyGetTheirImagesBesideThem) {
   EXPECT_NE(text.find("mtllib remesh.mtl\n"), std::string::npos);
   EXPECT_NE(text.find("\nvt "), std::string::npos);
 
+  // The textured OBJ is an input like any other: remeshed again, its texture baked anew.
+  const fs::path again = folder.path() / "again.glb";
+  run = run_cli({"remesh", obj.string(), "--sites", "200", "--texture-size", "256", "--no-statistics", "-o",
+                 again.string(), "--json", "-q"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["texture"]["base_color"], true);
+
   const fs::path ply = folder.path() / "remesh.ply";
   run = run_cli({"remesh", input.string(), "--sites", "300", "--texture-size", "256", "--no-statistics", "-o",
                  ply.string(), "-q"});

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -114,6 +115,45 @@ TEST(TextureOutput, ObjGetsTextureCoordinatesWithVUpAndItsMaterialLibrary) {
   EXPECT_EQ(back.mesh.faces, unit_quad().faces);
   texturing.texcoords.resize(3, 2);
   EXPECT_THROW(write_obj(path, unit_quad(), {}, texturing), Error);
+}
+
+// A textured OBJ as scanners export it: quads with vt corners, two materials
+// whose map_Kd images lie beside it.
+TEST(TextureOutput, ATexturedObjKeepsItsImagesAndEachCornersCoordinates) {
+  test::TempDir dir;
+  io::write_image(dir.path() / "red.png", flat_image(4, 200, 10, 10), ImageFormat::png);
+  io::write_image(dir.path() / "blue.jpg", flat_image(4, 10, 10, 200), ImageFormat::jpeg);
+  test::write_file(dir.path() / "scan.mtl",
+                   "newmtl left\nKd 1 1 1\nmap_Kd red.png\n\nnewmtl right \nmap_Kd -s 1 1 1 blue.jpg\n");
+  const fs::path obj = test::write_file(dir.path() / "scan.obj",
+                                        "mtllib scan.mtl\n"
+                                        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
+                                        "vt 0 0\nvt 0.5 0\nvt 1 0\nvt 0 1\nvt 0.5 1\nvt 1 1\n"
+                                        "usemtl left\nf 1/1 2/2 5/5 4/4\n"
+                                        "usemtl right\nf 2/2 3/3 6/6 5/5\n");
+  const LoadedMesh loaded = read_mesh(obj);
+  ASSERT_EQ(loaded.mesh.num_faces(), 4);
+  ASSERT_EQ(loaded.texture.images.size(), 2u);
+  EXPECT_EQ(loaded.texture.face_image, (std::vector<std::int32_t>{0, 0, 1, 1}));
+  for (Index f = 0; f < 4; ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const Index v = loaded.mesh.faces(f, c);
+      // The corner's coordinates are its vertex's vt: u = x / 2, v = 1 - y (OBJ's v up, glTF's down).
+      EXPECT_DOUBLE_EQ(loaded.texture.corner_uvs(3 * f + c, 0), loaded.mesh.vertices(v, 0) / 2);
+      EXPECT_DOUBLE_EQ(loaded.texture.corner_uvs(3 * f + c, 1), 1 - loaded.mesh.vertices(v, 1));
+    }
+  }
+  ASSERT_EQ(loaded.attributes.colors.rows(), 6) << "colours sampled from the images where the vertices have none";
+  EXPECT_NEAR(loaded.attributes.colors(0, 0) * 255, 200, 1);
+  EXPECT_NEAR(loaded.attributes.colors(2, 2) * 255, 200, 4);  // from the JPEG
+
+  // An image that is not there: the mesh is read, the texture left out with a note.
+  fs::remove(dir.path() / "blue.jpg");
+  const LoadedMesh without = read_mesh(obj);
+  EXPECT_TRUE(without.texture.empty());
+  EXPECT_EQ(without.mesh.num_faces(), 4);
+  EXPECT_TRUE(std::any_of(without.info.notes.begin(), without.info.notes.end(),
+                          [](const std::string& note) { return note.find("texture ignored") == 0; }));
 }
 
 TEST(TextureOutput, PlyNamesItsTextureFileInAComment) {
