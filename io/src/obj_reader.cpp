@@ -146,6 +146,7 @@ class ObjParser {
   void take_texture(LoadedMesh& loaded) const {
     if (texcoords_.empty() || libraries_.empty()) return;
     const auto note = [&](const std::string& why) { loaded.info.notes.push_back("texture ignored: " + why); };
+    if (file_.empty()) return note("read from memory without a name, its material library cannot be found");
     if (std::find(corner_texcoords_.begin(), corner_texcoords_.end(), -1) != corner_texcoords_.end()) {
       return note("some face corners have no 'vt'");
     }
