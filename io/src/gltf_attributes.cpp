@@ -136,6 +136,7 @@ void AttributeReader::plan_material(const Json& primitive, const Json& attribute
   if (const Json* extensions = optional_object(*texture_info, "extensions", info_where);
       extensions != nullptr && find_member(*extensions, "KHR_texture_transform") != nullptr) {
     transformed_texture_materials_.insert(*index);
+    plan.texture_transformed = true;
   }
   const std::optional<TextureStore::Texture> found = textures_.texture(texture, info_where);
   if (!found) {
@@ -217,8 +218,17 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
 
   // The textures kept whole: every primitive's base colour an image alone.
   bool textures_alone = n > 0;
+  bool sampled_as_baked = true;  // REPEAT both ways, no transform: as the baker samples
   for (const PrimitiveAttributes* p : primitives) {
     textures_alone = textures_alone && p->texture && p->texcoord && !p->color && p->base_color_factor == white;
+    sampled_as_baked = sampled_as_baked && p->texture && !p->texture_transformed &&
+                       p->texture->sampler.wrap_s == WrapMode::repeat && p->texture->sampler.wrap_t == WrapMode::repeat;
+  }
+  if (textures_alone && !sampled_as_baked) {
+    textures_alone = false;
+    notes_.emplace_back(
+        "base colour textures not kept for baking: a sampler clamps or mirrors, or "
+        "KHR_texture_transform moves them (the vertex colours are baked instead)");
   }
   if (textures_alone) {
     for (const PrimitiveAttributes* p : primitives) {
@@ -227,7 +237,6 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
       }
     }
     texcoords_.reserve(2 * total_vertices);
-    vertex_image_.reserve(total_vertices);
     notes_.push_back(counted(kept_images_.size(), "base colour texture", "base colour textures") +
                      " kept whole for baking, with the TEXCOORD at every vertex");
   }
@@ -260,11 +269,8 @@ void AttributeReader::choose(const std::vector<const PrimitiveAttributes*>& prim
 void AttributeReader::append(const PrimitiveAttributes& primitive, std::size_t count, const MeshInstance& instance) {
   if (read_colors_) append_colors(primitive, count);
   if (!kept_images_.empty()) {
-    const auto image = static_cast<std::int32_t>(
-        std::find(kept_images_.begin(), kept_images_.end(), primitive.texture->image) - kept_images_.begin());
     for_each_element(*primitive.texcoord, [&](std::size_t, const double* uv) {
       texcoords_.insert(texcoords_.end(), {uv[0], uv[1]});
-      vertex_image_.push_back(image);
     });
   }
   if (read_normals_) append_normals(primitive, count, instance);
@@ -318,7 +324,13 @@ void AttributeReader::append_normals(const PrimitiveAttributes& primitive, std::
   });
 }
 
-SurfaceTexture AttributeReader::take_texture(const FaceMatrix& faces) {
+std::int32_t AttributeReader::kept_image(const PrimitiveAttributes& primitive) const {
+  if (kept_images_.empty() || !primitive.texture) return -1;
+  const auto at = std::find(kept_images_.begin(), kept_images_.end(), primitive.texture->image);
+  return at == kept_images_.end() ? -1 : static_cast<std::int32_t>(at - kept_images_.begin());
+}
+
+SurfaceTexture AttributeReader::take_texture(const FaceMatrix& faces, std::vector<std::int32_t> face_image) {
   SurfaceTexture texture;
   if (kept_images_.empty()) return texture;
   for (const std::size_t index : kept_images_) texture.images.push_back(texture_image(textures_.image(index)));
@@ -329,12 +341,7 @@ SurfaceTexture AttributeReader::take_texture(const FaceMatrix& faces) {
       texture.corner_uvs.row(3 * f + c) << texcoords_[2 * v], texcoords_[2 * v + 1];
     }
   }
-  if (kept_images_.size() > 1) {  // a face's image: its first corner's primitive's
-    texture.face_image.resize(static_cast<std::size_t>(faces.rows()));
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-      texture.face_image[static_cast<std::size_t>(f)] = vertex_image_[static_cast<std::size_t>(faces(f, 0))];
-    }
-  }
+  if (kept_images_.size() > 1) texture.face_image = std::move(face_image);
   return texture;
 }
 

@@ -44,6 +44,7 @@ struct PrimitiveAttributes {
   std::optional<AccessorView> color;  ///< COLOR_0
   std::array<double, 4> base_color_factor{1, 1, 1, 1};
   std::optional<TextureStore::Texture> texture;  ///< baseColorTexture with a readable image
+  bool texture_transformed = false;              ///< with KHR_texture_transform (not applied)
   std::optional<AccessorView> texcoord;          ///< the texture's TEXCOORD_n
   std::size_t texcoord_set = 0;
   std::optional<AccessorView> normal;
@@ -75,10 +76,14 @@ class AttributeReader {
   /// The rows appended, moved out (attributes with non-finite values dropped, with a note).
   VertexAttributes take();
 
-  /// The base colour textures, where every primitive's is an image alone,
-  /// with their coordinates at the corners of `faces` (the triangles on the
-  /// vertices appended) and each face's image; empty otherwise.
-  SurfaceTexture take_texture(const FaceMatrix& faces);
+  /// Which of the textures kept whole `primitive`'s base colour is (-1: none kept).
+  std::int32_t kept_image(const PrimitiveAttributes& primitive) const;
+
+  /// The base colour textures, where every primitive's is an image alone
+  /// (sampled with REPEAT, untransformed), with their coordinates at the
+  /// corners of `faces` (the triangles on the vertices appended) and
+  /// `face_image` (kept_image of each face's primitive); empty otherwise.
+  SurfaceTexture take_texture(const FaceMatrix& faces, std::vector<std::int32_t> face_image);
 
   /// What was read, dropped or ignored, for ReadInfo::notes (complete after take()).
   std::vector<std::string> notes() const;
@@ -111,9 +116,8 @@ class AttributeReader {
   std::vector<double> normals_;  // x, y, z per vertex
   bool normals_finite_ = true;
   std::vector<OutputScalar> scalars_;
-  std::vector<std::size_t> kept_images_;    // the images kept whole, if any (glTF image indices)
-  std::vector<double> texcoords_;           // u, v per vertex, with kept_images_
-  std::vector<std::int32_t> vertex_image_;  // per vertex, its primitive's image in kept_images_
+  std::vector<std::size_t> kept_images_;  // the images kept whole, if any (glTF image indices)
+  std::vector<double> texcoords_;         // u, v per vertex, with kept_images_
 
   std::vector<std::string> notes_;
   std::set<std::string> seen_attributes_;  // every attribute name of every primitive planned

@@ -184,6 +184,9 @@ void MeshAssembler::append_triangles(const PrimitivePlan& primitive, std::size_t
 
   // Planned totals keep every index below 2^31.
   const auto base = static_cast<Index>(first_vertex);
+  if (const std::int32_t image = attributes_.kept_image(primitive.attributes); image >= 0) {
+    face_image_.insert(face_image_.end(), triangles.corners.size() / 3, image);
+  }
   for (std::size_t t = 0; t < triangles.corners.size(); t += 3) {
     const Index a = base + static_cast<Index>(triangles.corners[t]);
     const Index b = base + static_cast<Index>(triangles.corners[t + 1]);

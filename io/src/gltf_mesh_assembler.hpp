@@ -50,7 +50,9 @@ class MeshAssembler {
   /// The vertex attributes of the mesh assemble() returned (one row per vertex), moved out.
   VertexAttributes take_attributes();
   /// The base colour texture kept whole (AttributeReader::take_texture) on the assembled faces.
-  SurfaceTexture take_texture(const FaceMatrix& faces) { return attributes_.take_texture(faces); }
+  SurfaceTexture take_texture(const FaceMatrix& faces) {
+    return attributes_.take_texture(faces, std::move(face_image_));
+  }
 
   /// Remarks on what was skipped, converted, transformed or read, for
   /// ReadInfo::notes (complete after take_attributes()).
@@ -87,6 +89,8 @@ class MeshAssembler {
   std::map<std::size_t, MeshPlan> plans_;  // by mesh index
   std::vector<double> vertices_;           // x, y, z per vertex
   std::vector<Index> faces_;               // three per triangle
+  std::vector<std::int32_t>
+      face_image_;  // per triangle, its primitive's texture kept whole (AttributeReader::kept_image)
 
   std::size_t instances_ = 0;
   std::size_t transformed_instances_ = 0;

@@ -71,7 +71,7 @@ class ObjParser {
       } else if (keyword == "usemtl") {
         material_ = material_index(trimmed(words.rest()));
       } else if (keyword == "mtllib") {
-        libraries_.emplace_back(trimmed(words.rest()));
+        for (std::string_view library; words.next(library);) libraries_.emplace_back(library);
       }
       // vn, vp, g, o, s, l, p, ...: not geometry geodual uses.
     }
@@ -147,6 +147,7 @@ class ObjParser {
     if (texcoords_.empty() || libraries_.empty()) return;
     const auto note = [&](const std::string& why) { loaded.info.notes.push_back("texture ignored: " + why); };
     if (file_.empty()) return note("read from memory without a name, its material library cannot be found");
+    if (face_sizes_.size() != face_count_) return note("some faces come before the first 'vt'");
     if (std::find(corner_texcoords_.begin(), corner_texcoords_.end(), -1) != corner_texcoords_.end()) {
       return note("some face corners have no 'vt'");
     }
@@ -154,7 +155,7 @@ class ObjParser {
       return note("some faces have no material ('usemtl')");
     }
     // Each material's image (map_Kd), from the libraries beside the file.
-    std::map<std::string, std::string, std::less<>> image_of_material;
+    std::map<std::string, fs::path, std::less<>> image_of_material;
     for (const std::string& library : libraries_) {
       try {
         read_material_library(file_.parent_path() / library, image_of_material);
@@ -164,20 +165,23 @@ class ObjParser {
     }
     std::vector<std::string> names(materials_.size());
     for (const auto& [name, index] : materials_) names[static_cast<std::size_t>(index)] = name;
+    std::vector<std::uint8_t> used(materials_.size(), 0);  // materials no face uses need no image
+    for (const int m : face_material_) used[static_cast<std::size_t>(m)] = 1;
     SurfaceTexture texture;
     std::vector<gltf::DecodedImage> decoded;                       // the images as decoded, for the vertex colours
     std::map<std::string, std::int32_t, std::less<>> image_index;  // by image path
     std::vector<std::int32_t> image_of(materials_.size(), -1);
     for (std::size_t m = 0; m < names.size(); ++m) {
+      if (!used[m]) continue;
       const auto found = image_of_material.find(names[m]);
       if (found == image_of_material.end()) return note("material '" + names[m] + "' has no image ('map_Kd')");
-      const auto [at, added] = image_index.emplace(found->second, static_cast<std::int32_t>(texture.images.size()));
+      const auto [at, added] =
+          image_index.emplace(found->second.string(), static_cast<std::int32_t>(texture.images.size()));
       image_of[m] = at->second;
       if (!added) continue;
       try {
-        const std::string what = "image '" + found->second + "' of material '" + names[m] + "'";
-        const fs::path path = file_.parent_path() / found->second;
-        decoded.push_back(gltf::decode_image(gltf::read_external_file(path, what, file_.string()), what));
+        const std::string what = "image '" + found->second.string() + "' of material '" + names[m] + "'";
+        decoded.push_back(gltf::decode_image(gltf::read_external_file(found->second, what, file_.string()), what));
         texture.images.push_back(gltf::texture_image(decoded.back()));
       } catch (const std::exception& error) {
         return note(error.what());
@@ -216,10 +220,12 @@ class ObjParser {
     loaded.texture = std::move(texture);
   }
 
-  /// Adds each material's `map_Kd` image (its file name: the line's last
-  /// word, after any options) from the library at `path`.
+  /// Adds each material's `map_Kd` image from the library at `path`: the
+  /// file named after the statement's options (each `-name` with the words
+  /// that follow it that are numbers or on/off), spaces kept, '\\' read as
+  /// '/', relative to the library's folder.
   static void read_material_library(const fs::path& path,
-                                    std::map<std::string, std::string, std::less<>>& image_of_material) {
+                                    std::map<std::string, fs::path, std::less<>>& image_of_material) {
     const std::vector<std::byte> bytes = gltf::read_external_file(path, "material library", path.string());
     LineCursor lines(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     std::string material;
@@ -231,9 +237,22 @@ class ObjParser {
       if (keyword == "newmtl") {
         material = std::string(trimmed(words.rest()));
       } else if (keyword == "map_Kd" && !material.empty()) {
-        std::string_view last, word;
-        while (words.next(word)) last = word;
-        if (!last.empty()) image_of_material[material] = std::string(last);
+        std::string_view rest = trimmed(words.rest());
+        while (rest.starts_with('-')) {  // an option and its values
+          WordCursor option(rest);
+          std::string_view word;
+          option.next(word);
+          for (std::string_view value = option.rest(); !value.empty(); value = option.rest()) {
+            WordCursor peek(value);
+            peek.next(word);
+            if (!parse_double(word) && word != "on" && word != "off") break;
+            option.next(word);
+          }
+          rest = option.rest();
+        }
+        std::string file(rest);
+        std::replace(file.begin(), file.end(), '\\', '/');
+        if (!file.empty()) image_of_material[material] = path.parent_path() / file;
       }
     }
   }
@@ -287,13 +306,16 @@ class ObjParser {
     ++face_count_;
     corners_.clear();
     std::string_view word;
+    const bool textured = !texcoords_.empty();  // a face before any vt: no texture (take_texture says so)
     while (words.next(word)) {
       corners_.push_back(vertex_of_corner(word));
-      corner_texcoords_.push_back(texcoord_of_corner(word));
+      if (textured) corner_texcoords_.push_back(texcoord_of_corner(word));
     }
-    corner_vertices_.insert(corner_vertices_.end(), corners_.begin(), corners_.end());
-    face_sizes_.push_back(corners_.size());
-    face_material_.push_back(material_);
+    if (textured) {
+      corner_vertices_.insert(corner_vertices_.end(), corners_.begin(), corners_.end());
+      face_sizes_.push_back(corners_.size());
+      face_material_.push_back(material_);
+    }
     if (corners_.size() < 3) {
       throw_line_error(file_, lines_.line_number(), "face ", face_count_, " has ", corners_.size(),
                        " corners; a face needs at least 3");

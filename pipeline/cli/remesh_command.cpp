@@ -285,6 +285,13 @@ class RemeshCommand final : public Command {
     io::refuse_to_overwrite_inputs(output_path_, {mesh_path, sites_.file(), feature_file_});
     for (const std::filesystem::path& side : texture_files(output_path_)) {
       io::refuse_to_overwrite_inputs(side, {mesh_path, sites_.file(), feature_file_});
+      // Nor may the remesh's own outputs overwrite each other.
+      for (const std::string& other : {preview_path_, report_path_}) {
+        if (!other.empty() && std::filesystem::path(other).lexically_normal() == side.lexically_normal()) {
+          throw UsageError("remesh: " + other + " is also where the texture of " + output_path_ +
+                           " goes; name it otherwise");
+        }
+      }
     }
     if (!preview_path_.empty()) {
       io::require_output_path(preview_path_, {".png"}, "a preview");

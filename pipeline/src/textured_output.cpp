@@ -33,6 +33,7 @@ VertexAttributes atlas_attributes(const VertexAttributes& attributes, const Reme
   if (textures.baked.base_color.empty()) out.colors = rows_at(attributes.colors, source);
   out.normals = textures.baked.normals;
   for (const VertexScalar& scalar : attributes.scalars) {
+    if (scalar.name == "texture_u" || scalar.name == "texture_v") continue;  // the atlas's own replace the input's
     VertexScalar& copy = out.scalars.emplace_back(VertexScalar{.name = scalar.name, .type = scalar.type, .values = {}});
     copy.values.reserve(source.size());
     for (const Index v : source) copy.values.push_back(scalar.values[static_cast<std::size_t>(v)]);
@@ -122,12 +123,14 @@ void write_textured_remesh(const std::filesystem::path& path, const TriangleMesh
     throw Error(path.string() + ": " + std::string(io::gltf_compression_name(compression)) +
                 " compression is for glTF; write .glb or .gltf");
   }
-  write_images(path, textures);
   if (extension == ".obj") {
+    // Everything that could fail checked or encoded before the first file is written.
+    const std::string library = beside(path, ".mtl").filename().string();
+    if (library.find_first_of("\r\n") != std::string::npos) throw Error(path.string() + ": a name with a line break");
+    write_images(path, textures);
     write_material_library(path, textures);
-    io::write_obj(
-        path, on_atlas, copied.colors,
-        {.texcoords = atlas.uvs, .material_library = beside(path, ".mtl").filename().string(), .material = "remesh"});
+    io::write_obj(path, on_atlas, copied.colors,
+                  {.texcoords = atlas.uvs, .material_library = library, .material = "remesh"});
     return;
   }
   // PLY: texture_u and texture_v per vertex with v up, as MeshLab reads them.
@@ -140,10 +143,14 @@ void write_textured_remesh(const std::filesystem::path& path, const TriangleMesh
   }
   with_uvs.scalars.push_back(std::move(u));
   with_uvs.scalars.push_back(std::move(v));
+  if (const std::string problem = io::ply_attribute_problem(with_uvs); !problem.empty()) {
+    throw Error(path.string() + ": " + problem);
+  }
   const std::string texture_file =
       textures.baked.base_color.empty()
           ? (textures.baked.normal_map.empty() ? std::string() : normal_map_file(path).filename().string())
           : base_color_file(path, textures.base_color_format).filename().string();
+  write_images(path, textures);
   io::write_ply(path, on_atlas, with_uvs, texture_file);
 }
 

@@ -271,7 +271,7 @@ void add_remesh(py::module_& module) {
       .def_readonly("error_rounds", &RemeshResult::error_rounds,
                     "with max_error: (sites, hausdorff_pct) of every remesh made, in order; empty without it")
       .def_readonly("timings", &RemeshResult::timings,
-                    "dict: seconds per stage (sample, relax, dual, statistics), summed over the remeshes made")
+                    "dict: seconds per stage (sample, relax, dual, statistics, texture), summed over the remeshes made")
       .def_readonly("uvs", &RemeshResult::uvs,
                     "with texture_size: float64 k x 2, glTF texture coordinates (v down) of the atlas's vertices; "
                     "None otherwise")
@@ -346,7 +346,7 @@ along the surface to where that distance is least, never below 30 degrees
 or the remesh's worst Q (result.vertices_fitted; True by default; none with
 lloyd=0).
 progress: None or progress(stage, fraction) with stage one of "sample",
-"relax", "dual", "statistics"; return False to cancel (geodual.Cancelled).
+"relax", "dual", "statistics", "texture"; return False to cancel (geodual.Cancelled).
 Ctrl-C raises KeyboardInterrupt.
 statistics: compare the remesh with the input (Hausdorff and RMS distance
 with 10^6 samples per side); result.stats then has the keys of

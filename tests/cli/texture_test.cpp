@@ -9,6 +9,7 @@
 #include "geodual/io/gltf.hpp"
 #include "geodual/io/image_file.hpp"
 #include "geodual/io/read_mesh.hpp"
+#include "geodual/io/write_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -153,6 +154,33 @@ TEST(TextureCommand, FlagsAreCheckedBeforeAnyWork) {
     EXPECT_FALSE(run.err.empty());
     EXPECT_FALSE(fs::exists(out));
   }
+}
+
+TEST(TextureCommand, TheRemeshsOwnFilesMayNotMeetAndAPlysOwnCoordinatesGiveWay) {
+  ScratchFolder folder;
+  const fs::path out = folder.path() / "out.obj";
+  CliRun run = run_cli({"remesh", "tests/data/spot.ply", "--sites", "300", "--texture-size", "128", "--preview",
+                        (folder.path() / "out_basecolor.png").string(), "-o", out.string()});
+  EXPECT_EQ(run.exit_status, 2) << run.err;
+  EXPECT_NE(run.err.find("texture"), std::string::npos) << run.err;
+  EXPECT_TRUE(fs::is_empty(folder.path()));
+
+  // A PLY scan with MeshLab's per-vertex texture_u / texture_v and colours,
+  // remeshed into PLY with an atlas: the atlas's coordinates replace the scan's.
+  io::LoadedMesh scan = io::read_mesh("tests/data/spot.ply");
+  VertexAttributes attributes;
+  attributes.colors = ColorMatrix::Constant(scan.mesh.num_vertices(), 3, 0.5F);
+  for (const char* name : {"texture_u", "texture_v"}) {
+    attributes.scalars.push_back({.name = name, .type = ValueType::float32, .values = {}});
+    for (Index v = 0; v < scan.mesh.num_vertices(); ++v) attributes.scalars.back().values.push_back(0.25);
+  }
+  const fs::path input = folder.path() / "scan.ply";
+  io::write_ply(input, scan.mesh, attributes);
+  const fs::path ply = folder.path() / "remesh.ply";
+  run = run_cli({"remesh", input.string(), "--sites", "300", "--texture-size", "128", "--no-statistics", "-o",
+                 ply.string(), "-q"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  EXPECT_TRUE(fs::exists(folder.path() / "remesh_basecolor.png"));
 }
 
 TEST(TextureCommand, ATextureTooSmallForTheChartsFailsAndWritesNothing) {

@@ -376,6 +376,21 @@ TEST(GltfAttributes, SamplerWrapModesAndNearestFilter) {
   EXPECT_TRUE(near(repeat.row(2), texel(0, 1))) << repeat.row(2);  // nearest: no mixing
 }
 
+TEST(GltfAttributes, OnlyATextureSampledAsTheBakerSamplesIsKeptWhole) {
+  const std::string images = R"([{"uri":")" + png_data_uri(png_of(texels, 2, 2)) + R"("}])";
+  const std::vector<float> uv = {0.25f, 0.25f, 0.75f, 0.25f, 0.25f, 0.75f};
+  const LoadedMesh repeated = read_json(textured_file(uv, images, R"("wrapS":10497)"));
+  ASSERT_EQ(repeated.texture.images.size(), 1u);
+  EXPECT_EQ(repeated.texture.images[0].texels, texels) << "the PNG's texels, whole";
+  EXPECT_EQ(repeated.texture.corner_uvs.row(1), Eigen::RowVector2d(0.75, 0.25));
+  // A clamping sampler, or a factor that is not white: the vertex colours only, with a note.
+  const LoadedMesh clamped = read_json(textured_file(uv, images, R"("wrapS":33071)"));
+  EXPECT_TRUE(clamped.texture.empty());
+  EXPECT_TRUE(has_note_containing(clamped.info, "not kept for baking"));
+  EXPECT_EQ(clamped.attributes.colors.rows(), 3);
+  EXPECT_TRUE(read_json(textured_file(uv, images, "", "[1,0.5,1,1]")).texture.empty());
+}
+
 TEST(GltfAttributes, TextureTimesFactorAndTextureFromAGlbBufferView) {
   // The same texture as a GLB image in the BIN chunk, under a factor that halves green (linear).
   const std::vector<std::byte> png = png_of(texels, 2, 2);

@@ -121,12 +121,17 @@ TEST(TextureOutput, ObjGetsTextureCoordinatesWithVUpAndItsMaterialLibrary) {
 // whose map_Kd images lie beside it.
 TEST(TextureOutput, ATexturedObjKeepsItsImagesAndEachCornersCoordinates) {
   test::TempDir dir;
-  io::write_image(dir.path() / "red.png", flat_image(4, 200, 10, 10), ImageFormat::png);
-  io::write_image(dir.path() / "blue.jpg", flat_image(4, 10, 10, 200), ImageFormat::jpeg);
-  test::write_file(dir.path() / "scan.mtl",
-                   "newmtl left\nKd 1 1 1\nmap_Kd red.png\n\nnewmtl right \nmap_Kd -s 1 1 1 blue.jpg\n");
+  // The library in a folder of its own, its images named from there (one with
+  // a space, after options); a material no face uses has no image.
+  fs::create_directories(dir.path() / "mats" / "maps");
+  io::write_image(dir.path() / "mats" / "maps" / "red one.png", flat_image(4, 200, 10, 10), ImageFormat::png);
+  io::write_image(dir.path() / "mats" / "blue.jpg", flat_image(4, 10, 10, 200), ImageFormat::jpeg);
+  test::write_file(dir.path() / "mats" / "scan.mtl",
+                   "newmtl unused\nKd 1 1 1\n\nnewmtl left\nKd 1 1 1\nmap_Kd -o 0 0 -clamp off maps\\red one.png\n\n"
+                   "newmtl right \r\nmap_Kd -s 1 1 1 blue.jpg\r\n");
+  test::write_file(dir.path() / "more.mtl", "newmtl other\n");
   const fs::path obj = test::write_file(dir.path() / "scan.obj",
-                                        "mtllib scan.mtl\n"
+                                        "mtllib mats/scan.mtl more.mtl\nusemtl unused\n"
                                         "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
                                         "vt 0 0\nvt 0.5 0\nvt 1 0\nvt 0 1\nvt 0.5 1\nvt 1 1\n"
                                         "usemtl left\nf 1/1 2/2 5/5 4/4\n"
@@ -148,7 +153,7 @@ TEST(TextureOutput, ATexturedObjKeepsItsImagesAndEachCornersCoordinates) {
   EXPECT_NEAR(loaded.attributes.colors(2, 2) * 255, 200, 4);  // from the JPEG
 
   // An image that is not there: the mesh is read, the texture left out with a note.
-  fs::remove(dir.path() / "blue.jpg");
+  fs::remove(dir.path() / "mats" / "blue.jpg");
   const LoadedMesh without = read_mesh(obj);
   EXPECT_TRUE(without.texture.empty());
   EXPECT_EQ(without.mesh.num_faces(), 4);

@@ -222,8 +222,10 @@ SrgbTable srgb_table() {
 /// The image's colour at texture coordinates (u, v), in linear light: the
 /// four nearest texels mixed bilinearly, coordinates wrapped (REPEAT).
 std::array<float, 4> sample_linear(const TextureImage& image, const SrgbTable& linear, double u, double v) {
-  const double x = u * image.width - 0.5;
-  const double y = v * image.height - 0.5;
+  // REPEAT: only the fraction counts (a coordinate that is not finite reads as 0).
+  const auto fraction = [](double t) { return std::isfinite(t) ? t - std::floor(t) : 0.0; };
+  const double x = fraction(u) * image.width - 0.5;
+  const double y = fraction(v) * image.height - 0.5;
   const double fx = std::floor(x), fy = std::floor(y);
   const double ax = x - fx, ay = y - fy;
   const auto wrap = [](double i, int n) { return static_cast<int>(((static_cast<long long>(i) % n) + n) % n); };
@@ -319,8 +321,8 @@ void check_sizes(const TriangleMesh& input, const BakeSource& source, const Tria
   require(atlas.faces.rows() == remesh.faces.rows(), "the atlas has " + std::to_string(atlas.faces.rows()) +
                                                          " faces for a remesh of " +
                                                          std::to_string(remesh.faces.rows()));
-  require(atlas.uvs.rows() == static_cast<Eigen::Index>(atlas.source_vertex.size()),
-          "the atlas needs one texture coordinate per atlas vertex");
+  require(atlas.uvs.rows() == static_cast<Eigen::Index>(atlas.source_vertex.size()) && atlas.uvs.allFinite(),
+          "the atlas needs one finite texture coordinate per atlas vertex");
   for (const Index v : atlas.source_vertex) {
     require(v >= 0 && v < remesh.num_vertices(), "an atlas vertex copies vertex " + std::to_string(v) +
                                                      " of a remesh of " + std::to_string(remesh.num_vertices()));
