@@ -157,6 +157,7 @@ class ObjParser {
     // Each material's image (map_Kd), from the libraries beside the file.
     std::map<std::string, fs::path, std::less<>> image_of_material;
     for (const std::string& library : libraries_) {
+      loaded.info.companion_files.push_back(file_.parent_path() / library);
       try {
         read_material_library(file_.parent_path() / library, image_of_material);
       } catch (const std::exception& error) {
@@ -180,6 +181,7 @@ class ObjParser {
       image_of[m] = at->second;
       if (!added) continue;
       try {
+        loaded.info.companion_files.push_back(found->second);
         const std::string what = "image '" + found->second.string() + "' of material '" + names[m] + "'";
         decoded.push_back(gltf::decode_image(gltf::read_external_file(found->second, what, file_.string()), what));
         texture.images.push_back(gltf::texture_image(decoded.back()));

@@ -549,6 +549,14 @@ class RemeshCommand final : public Command {
     };
     io::LoadedMesh loaded = io::read_mesh(mesh_path);
     require_computable_range(loaded.mesh, mesh_path);
+    // The files the input came with (an OBJ's material libraries and images) are inputs too.
+    std::vector<std::filesystem::path> outputs = texture_files(output_path);
+    outputs.emplace_back(output_path);
+    if (!preview_path_.empty()) outputs.emplace_back(preview_path_);
+    if (!report_path_.empty()) outputs.emplace_back(report_path_);
+    for (const std::filesystem::path& companion : loaded.info.companion_files) {
+      for (const std::filesystem::path& output : outputs) io::refuse_to_overwrite_inputs(output, {companion});
+    }
     // Attributes a PLY output could not name: said now, not after the work.
     if (options.attributes && io::lowercase_extension(output_path) == ".ply") {
       if (const std::string problem = io::ply_attribute_problem(loaded.attributes); !problem.empty()) {

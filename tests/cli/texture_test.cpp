@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -181,6 +182,28 @@ TEST(TextureCommand, TheRemeshsOwnFilesMayNotMeetAndAPlysOwnCoordinatesGiveWay) 
                  ply.string(), "-q"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   EXPECT_TRUE(fs::exists(folder.path() / "remesh_basecolor.png"));
+}
+
+TEST(TextureCommand, AnObjsMaterialLibraryAndImagesAreInputsToo) {
+  ScratchFolder folder;
+  const fs::path input = textured_sphere(folder.path());
+  // The sphere as a textured OBJ, a.obj, whose material library is then renamed b.mtl.
+  const fs::path a = folder.path() / "a.obj";
+  CliRun run = run_cli(
+      {"remesh", input.string(), "--sites", "200", "--texture-size", "128", "--no-statistics", "-o", a.string(), "-q"});
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  fs::rename(folder.path() / "a.mtl", folder.path() / "b.mtl");
+  std::string text = slurp(a);
+  text.replace(text.find("mtllib a.mtl"), 12, "mtllib b.mtl");
+  std::ofstream(a, std::ios::binary | std::ios::trunc) << text;
+  const std::string library = slurp(folder.path() / "b.mtl");
+  // b.obj would write its own library as b.mtl, over a.obj's: refused before any work.
+  run = run_cli({"remesh", a.string(), "--sites", "200", "--texture-size", "128", "--no-statistics", "-o",
+                 (folder.path() / "b.obj").string(), "-q"});
+  EXPECT_EQ(run.exit_status, 1) << run.err;
+  EXPECT_NE(run.err.find("refusing to overwrite"), std::string::npos) << run.err;
+  EXPECT_EQ(slurp(folder.path() / "b.mtl"), library);
+  EXPECT_FALSE(fs::exists(folder.path() / "b.obj"));
 }
 
 TEST(TextureCommand, ATextureTooSmallForTheChartsFailsAndWritesNothing) {

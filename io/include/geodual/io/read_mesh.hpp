@@ -27,6 +27,10 @@ struct ReadInfo {
   std::int64_t polygons_split = 0;  ///< polygons with more than 3 corners split into triangles
   std::int64_t welded_corners = 0;  ///< STL: triangle corners merged into shared vertices
   std::vector<std::string> notes;   ///< human-readable remarks: welding, what was ignored
+  /// Files read besides the mesh file itself: an OBJ's material libraries and
+  /// images (glTF's external buffers and images are not listed), so that no
+  /// output overwrites them.
+  std::vector<std::filesystem::path> companion_files;
 };
 
 struct LoadedMesh {
