@@ -5,10 +5,12 @@
 #include "texture/atlas_charts.hpp"
 #include "texture/atlas_lscm.hpp"
 #include "texture/atlas_packing.hpp"
+#include "texture/texel_raster.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -230,23 +232,10 @@ void measure(const TriangleMesh& mesh, int texture_size, TextureAtlas& atlas) {
   const int size = texture_size;
   std::vector<std::uint8_t> used(static_cast<std::size_t>(size) * size, 0);
   for (Index f = 0; f < n; ++f) {
-    Eigen::Vector2d p[3];
+    std::array<Eigen::Vector2d, 3> p;
     for (int k = 0; k < 3; ++k) p[k] = size * atlas.uvs.row(atlas.faces(f, k)).transpose();
-    const double sign = signed_area(p[0], p[1], p[2]) < 0 ? -1.0 : 1.0;
-    auto low = [&](int axis) {
-      return std::max(0, static_cast<int>(std::floor(std::min({p[0][axis], p[1][axis], p[2][axis]}) - 0.5)));
-    };
-    auto high = [&](int axis) {
-      return std::min(size - 1, static_cast<int>(std::ceil(std::max({p[0][axis], p[1][axis], p[2][axis]}) - 0.5)));
-    };
-    for (int y = low(1); y <= high(1); ++y) {
-      for (int x = low(0); x <= high(0); ++x) {
-        const Eigen::Vector2d centre(x + 0.5, y + 0.5);
-        bool inside = true;
-        for (int k = 0; k < 3 && inside; ++k) inside = sign * cross(p[(k + 1) % 3] - p[k], centre - p[k]) >= 0;
-        if (inside) used[static_cast<std::size_t>(y) * size + x] = 1;
-      }
-    }
+    detail::for_each_texel_in(
+        p, size, [&](int x, int y, const Eigen::Vector3d&) { used[static_cast<std::size_t>(y) * size + x] = 1; });
   }
   const auto count = std::count(used.begin(), used.end(), std::uint8_t{1});
   atlas.texture_used = static_cast<double>(count) / static_cast<double>(used.size());

@@ -13,6 +13,7 @@
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/face_area.hpp"
 #include "geodual/mesh/triangle_distance.hpp"
+#include "texture/texel_raster.hpp"
 
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
@@ -192,21 +193,9 @@ double signed_area2(const std::array<Eigen::Vector2d, 3>& t) {
 std::vector<Index> rasterise_faces(const TextureAtlas& atlas, int size) {
   std::vector<Index> owner(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), -1);
   for (Eigen::Index f = 0; f < atlas.faces.rows(); ++f) {
-    const auto t = texel_corners(atlas, f, size);
-    const double area2 = signed_area2(t);
-    if (!(std::abs(area2) > 0)) continue;
-    const double x0 = std::min({t[0].x(), t[1].x(), t[2].x()}), x1 = std::max({t[0].x(), t[1].x(), t[2].x()});
-    const double y0 = std::min({t[0].y(), t[1].y(), t[2].y()}), y1 = std::max({t[0].y(), t[1].y(), t[2].y()});
-    const int i0 = std::max(0, static_cast<int>(std::ceil(x0 - 0.5)));
-    const int i1 = std::min(size - 1, static_cast<int>(std::floor(x1 - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil(y0 - 0.5)));
-    const int j1 = std::min(size - 1, static_cast<int>(std::floor(y1 - 0.5)));
-    for (int j = j0; j <= j1; ++j) {
-      for (int i = i0; i <= i1; ++i) {
-        const Eigen::Vector3d w = barycentric(t, {i + 0.5, j + 0.5}, area2);
-        if (w.minCoeff() >= 0) owner[static_cast<std::size_t>(j) * size + i] = static_cast<Index>(f);
-      }
-    }
+    detail::for_each_texel_in(texel_corners(atlas, f, size), size, [&](int x, int y, const Eigen::Vector3d&) {
+      owner[static_cast<std::size_t>(y) * size + x] = static_cast<Index>(f);
+    });
   }
   return owner;
 }
