@@ -49,11 +49,19 @@ VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
   return group_vertex_copies(cut.original_vertex, num_vertices, used);
 }
 
+/// A point along a chain: at arc length `at`, at chain vertex `vertex`
+/// (its index in the chain; -1: inside an edge, where it slides in the
+/// relaxation; a vertex site stays).
+struct ChainStop {
+  double at = 0;
+  std::ptrdiff_t vertex = -1;
+};
+
 /// A stretch of a chain between two arc lengths, split into `parts`.
 struct Stretch {
   double from, to;
   int parts = 1;
-  bool tight = false;  ///< its parts are shorter than min_spacing
+  bool bends = false;  ///< no even parts of at least min_spacing keep to twice the chord error
 };
 
 /// The most parts of at least `spacing` a stretch of `length` splits into (16 at most).
@@ -72,29 +80,67 @@ bool fits(const ChainWalk& walk, double from, double to, int parts, double error
 /// The stretch [from, to] of `walk`'s chain: where its chord leaves the
 /// chain by more than the chord error, split evenly into the fewest parts
 /// that keep to it (at most 16, no shorter than min_spacing), so that the
-/// chain gets denser where it bends, there only. Where the shortest parts
-/// still leave it by more than twice the error, parts down to tight_spacing,
-/// if some number of them keeps to twice the error.
+/// chain gets denser where it bends, there only; `bends` where the shortest
+/// parts still leave it by more than twice the error.
 Stretch split_stretch(const ChainWalk& walk, double from, double to, const FeatureSiteOptions& options) {
   Stretch stretch{from, to};
   if (!(options.max_chord_error > 0) || walk.within(from, to, options.max_chord_error)) return stretch;
   const int most = most_parts(to - from, options.min_spacing);
-  const int most_tight =
-      std::max(most, most_parts(to - from, options.tight_spacing > 0 ? options.tight_spacing : options.min_spacing));
   int parts = std::min(most, 2);
   while (parts < most && !fits(walk, from, to, parts, options.max_chord_error)) ++parts;
-  parts = std::max(parts, 1);
-  if (!fits(walk, from, to, parts, 2 * options.max_chord_error)) {
-    // Closer parts only where some number of them keeps to twice the error
-    // (a smooth bend): a chain that wiggles at the input's scale (a scan's
-    // noise) would not keep to it at any spacing the tight one allows.
-    int tight = parts + 1;
-    while (tight <= most_tight && !fits(walk, from, to, tight, 2 * options.max_chord_error)) ++tight;
-    if (tight <= most_tight) parts = tight;
-  }
-  stretch.parts = parts;
-  stretch.tight = parts > most;
+  stretch.parts = std::max(parts, 1);
+  stretch.bends = !fits(walk, from, to, stretch.parts, 2 * options.max_chord_error);
   return stretch;
+}
+
+/// The chain vertex strictly inside (from, to), at least `margin` from both,
+/// farthest from the chord between the chain's points there; -1 where none.
+std::ptrdiff_t farthest_vertex(const ChainWalk& walk, double from, double to, double margin) {
+  const Eigen::Vector3d p = walk.point(from), d = walk.point(to) - p;
+  const double dd = d.squaredNorm();
+  std::ptrdiff_t farthest = -1;
+  double largest = -1;
+  const auto first = std::upper_bound(walk.at.begin(), walk.at.end(), from + margin);
+  const auto last = std::lower_bound(first, walk.at.end(), to - margin);
+  for (auto it = first; it < last; ++it) {
+    const auto i = static_cast<std::size_t>(it - walk.at.begin());
+    const Eigen::Vector3d x = walk.surface.vertices.row(walk.chain.vertices[i]).transpose() - p;
+    const double t = dd > 0 ? std::clamp(x.dot(d) / dd, 0.0, 1.0) : 0.0;
+    if (const double distance = (x - t * d).norm(); distance > largest) {
+      largest = distance;
+      farthest = static_cast<std::ptrdiff_t>(i);
+    }
+  }
+  return farthest;
+}
+
+/// Appends to `stops` the points inside [from, to] that split it into parts
+/// about `spacing` long whose chords keep to the chord error: twice it
+/// between two vertex stops, which stay where they are, once it where a
+/// part's end slides. Where even parts do not keep to it, the chain's own
+/// vertex farthest from the chord is a stop and each side is split alike:
+/// Douglas and Peucker's simplification of the polyline, so that a chord
+/// between two of its vertices leaves it by no more than the error. That
+/// vertex is at least `margin` from either end, or a quarter of the part
+/// where that is less, but never less than 0.6 `margin` (closer chain
+/// points would make slivers, and the weld takes points a fifth of a
+/// spacing apart for one). Where no vertex is that far from the ends, the
+/// even parts.
+void split_at_bends(const ChainWalk& walk, ChainStop from, ChainStop to, double spacing, double margin, double error,
+                    std::vector<ChainStop>& stops) {
+  const int parts = std::max(1, static_cast<int>(std::lround((to.at - from.at) / spacing)));
+  const bool fixed = parts == 1 && from.vertex >= 0 && to.vertex >= 0;
+  const double room = std::max(0.6 * margin, std::min(margin, (to.at - from.at) / 4));
+  const std::ptrdiff_t vertex =
+      fits(walk, from.at, to.at, parts, fixed ? 2 * error : error) ? -1 : farthest_vertex(walk, from.at, to.at, room);
+  if (vertex < 0) {
+    for (int j = 1; j < parts; ++j) stops.push_back({from.at + (to.at - from.at) * j / parts});
+    return;
+  }
+  const ChainStop bend{walk.at[static_cast<std::size_t>(vertex)], vertex};
+  split_at_bends(walk, from, bend, spacing, margin, error, stops);
+  stops.push_back(bend);
+  split_at_bends(walk, bend, to, spacing, margin, error, stops);
 }
 
 /// Round a corner, the first site of every chain at one distance d: the
@@ -144,20 +190,49 @@ std::vector<double> stretch_ends(const FeatureChain& chain, double length, std::
   return ends;
 }
 
-/// At a corner where an open `chain` ends alone (`ends_at` it: one chain
-/// end), the stretch from it takes the spacing of a tight stretch after it:
-/// the sites round the corner are as close as the chain's there.
-void match_tight_stretches_at_lone_ends(const FeatureChain& chain, const std::map<Index, int>& ends_at,
-                                        std::vector<Stretch>& stretches) {
-  if (chain.closed || stretches.size() < 2) return;
-  for (const bool front : {true, false}) {
-    Stretch& end = front ? stretches.front() : stretches.back();
-    const Stretch& next = front ? stretches[1] : stretches[stretches.size() - 2];
-    if (end.tight || !next.tight || ends_at.at(front ? chain.vertices.front() : chain.vertices.back()) > 1) continue;
-    const double spacing = (next.to - next.from) / next.parts;
-    const auto parts = static_cast<int>(std::llround((end.to - end.from) / spacing));
-    if (parts > end.parts) end.parts = parts, end.tight = true;
+/// The points of `walk`'s chain (the stretch `ends` of stretch_ends, about
+/// `own` apart) where it bends beyond what even parts follow: split at its
+/// own vertices (split_at_bends) from its corners, or round a closed chain
+/// from its first vertex. The first site round a corner moves to the chain's
+/// vertex nearest it within the tight spacing, if any: a vertex there is
+/// where the chain bends, and a site beside it would cut the bend.
+std::vector<ChainStop> stops_at_bends(const ChainWalk& walk, std::span<const double> ends, double own,
+                                      const FeatureSiteOptions& options) {
+  std::vector<ChainStop> stops;
+  const auto last_vertex = static_cast<std::ptrdiff_t>(walk.at.size()) - 1;
+  const ChainStop front{0, 0}, back{walk.length(), last_vertex};
+  const auto split = [&](ChainStop from, ChainStop to) {
+    split_at_bends(walk, from, to, own, options.tight_spacing, options.max_chord_error, stops);
+  };
+  if (walk.chain.closed) {
+    stops.push_back(front);
+    split(front, back);
+    return stops;
   }
+  const auto stop_near = [&](double at) {
+    ChainStop stop{at};
+    const auto upper =
+        static_cast<std::ptrdiff_t>(std::upper_bound(walk.at.begin(), walk.at.end(), at) - walk.at.begin());
+    for (std::ptrdiff_t i = std::max<std::ptrdiff_t>(1, upper - 1); i <= std::min(upper, last_vertex - 1); ++i) {
+      const double distance = std::abs(walk.at[static_cast<std::size_t>(i)] - at);
+      if (distance < options.tight_spacing && (stop.vertex < 0 || distance < std::abs(stop.at - at))) {
+        stop = {walk.at[static_cast<std::size_t>(i)], i};
+      }
+    }
+    return stop;
+  };
+  const ChainStop first = stop_near(ends[1]);
+  ChainStop last = stop_near(ends[ends.size() - 2]);
+  split(front, first);
+  stops.push_back(first);
+  if (last.at > first.at) {
+    split(first, last);
+    stops.push_back(last);
+  } else {
+    last = first;
+  }
+  split(last, back);
+  return stops;
 }
 
 }  // namespace
@@ -189,39 +264,43 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     segments.push_back(std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(walk.length() / options.spacing)));
   }
   const std::map<Index, double> corner_distance = corner_distances(features, walks, segments);
-  // Chain ends per vertex: a corner where one chain ends alone has no wedge
-  // to keep the first sites' distances equal in.
-  std::map<Index, int> ends_at;
-  for (const FeatureChain& chain : features.chains) {
-    if (chain.closed) continue;
-    ++ends_at[chain.vertices.front()];
-    ++ends_at[chain.vertices.back()];
-  }
-  std::vector<double> at;
   std::vector<Stretch> stretches;
+  std::vector<ChainStop> stops;
   for (std::size_t c = 0; c < walks.size(); ++c) {
     const FeatureChain& chain = features.chains[c];
-    const double length = walks[c].length(), own = length / static_cast<double>(segments[c]);
+    const ChainWalk& walk = walks[c];
+    const double length = walk.length(), own = length / static_cast<double>(segments[c]);
     if (!(length > 0)) continue;
     const std::vector<double> ends = stretch_ends(chain, length, segments[c], own, corner_distance);
     stretches.clear();
     for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
-      stretches.push_back(split_stretch(walks[c], ends[k], ends[k + 1], options));
+      stretches.push_back(split_stretch(walk, ends[k], ends[k + 1], options));
     }
-    match_tight_stretches_at_lone_ends(chain, ends_at, stretches);
-    at.clear();
-    for (std::size_t k = 0; k < stretches.size(); ++k) {
-      const auto [from, to, parts, tight] = stretches[k];
-      if (k > 0) at.push_back(from);
-      for (int j = 1; j < parts; ++j) at.push_back(from + (to - from) * j / parts);
-      if (tight) {  // the stretch's points, ends included
-        for (int j = 0; j <= parts; ++j) {
-          result.dense_points.push_back({walks[c].point(from + (to - from) * j / parts), (to - from) / parts});
-        }
+    stops.clear();
+    const bool bends = std::any_of(stretches.begin(), stretches.end(), [](const Stretch& s) { return s.bends; });
+    if (bends && options.tight_spacing > 0) {
+      stops = stops_at_bends(walk, ends, own, options);
+      // The stops closer than min_spacing, with their distance to the nearer neighbour.
+      for (std::size_t k = 0; k < stops.size(); ++k) {
+        const double before = (k > 0 ? stops[k - 1].at : chain.closed ? stops.back().at - length : 0.0);
+        const double after = (k + 1 < stops.size() ? stops[k + 1].at
+                              : chain.closed       ? stops.front().at + length
+                                                   : length);
+        const double gap = std::min(stops[k].at - before, after - stops[k].at);
+        if (gap < options.min_spacing) result.dense_points.push_back({walk.point(stops[k].at), gap});
       }
+    } else {
+      for (std::size_t k = 0; k < stretches.size(); ++k) {
+        const auto [from, to, parts, bent] = stretches[k];
+        if (k > 0) stops.push_back({from});
+        for (int j = 1; j < parts; ++j) stops.push_back({from + (to - from) * j / parts});
+      }
+      if (chain.closed) stops.push_back({0});  // the closing end is a site too (the open ends are corners)
     }
-    if (chain.closed) at.push_back(0);  // the closing end is a site too (the open ends are corners)
-    for (const double s : at) add(walks[c].key_at(s));
+    for (const ChainStop& stop : stops) {
+      const Index vertex = stop.vertex >= 0 ? chain.vertices[static_cast<std::size_t>(stop.vertex)] : -1;
+      add(vertex >= 0 ? SiteKey{vertex, vertex, 0} : walk.key_at(stop.at));
+    }
   }
   return result;
 }

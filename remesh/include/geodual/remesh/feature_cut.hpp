@@ -62,9 +62,10 @@ struct FeatureSiteOptions {
   double max_chord_error = 0;
   /// ... but no closer than this along it (0: no bound) ...
   double min_spacing = 0;
-  /// ... except where a chord would still leave the chain by more than twice
-  /// max_chord_error: there down to this spacing, if parts that far apart
-  /// or farther keep to twice the error (0: min_spacing).
+  /// ... except on a chain where a chord would still leave it by more than
+  /// twice max_chord_error: that chain is split at its own vertices where it
+  /// bends (Douglas-Peucker), points about this far apart and never closer
+  /// than 0.6 of it, so that its chords keep to twice the error (0: none).
   double tight_spacing = 0;
 };
 
