@@ -78,15 +78,10 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   };
   if (!line_creases(detect_features(prepared, feature_options))) return sampling;
   // Where the creases are more than the count carries, those round narrow
-  // faceted sides go, then those round narrow regions, smooth or not. The
-  // points where chains bend come on top of the count (points_tightened):
-  // the chains' points are counted without them.
-  FeatureSiteOptions loose_options = site_options;
-  loose_options.tight_spacing = 0;
+  // faceted sides go, then those round narrow regions, smooth or not.
   const auto too_many = [&] {
-    if (!(feature_options.min_region_width < feature_options.min_rough_region_width)) return false;
-    const std::int64_t points = feature_sites(prepared, sampling.features, sampling.cut, loose_options).points;
-    return static_cast<double>(points) > options.max_share_narrow_regions * static_cast<double>(sites);
+    return static_cast<double>(sampling.sites.points) > options.max_share_narrow_regions * static_cast<double>(sites) &&
+           feature_options.min_region_width < feature_options.min_rough_region_width;
   };
   for (const bool faceted_go : {true, false}) {
     if (!too_many() || (faceted_go && feature_options.parallel_fold_angle == 0)) continue;
@@ -102,7 +97,8 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   }
   const TriangleMesh& cut = sampling.cut.mesh;
   if (sampling.sites.dense_points.empty()) return sampling;
-  FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, loose_options);
+  site_options.tight_spacing = 0;
+  FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, site_options);
   sampling.points_tightened = sampling.sites.points - loose.points;
   if (static_cast<double>(sampling.points_tightened) > options.max_share_tightened * static_cast<double>(sites)) {
     sampling.sites = std::move(loose);

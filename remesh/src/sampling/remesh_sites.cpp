@@ -55,10 +55,7 @@ RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count
   const RemeshSurface& sites_surface = features.empty() ? surface : cut.emplace(features.cut.mesh);
   const auto pinned = static_cast<std::int64_t>(pins.pins.size());
   RemeshSites result;
-  // The points a chain takes where it bends (FeatureSampling::points_tightened) come on top of the
-  // count: taken from it, they would leave the rest of the surface coarser.
-  std::int64_t beside_chains =
-      std::max<std::int64_t>(0, count - (features.sites.points - features.points_tightened) - pinned);
+  std::int64_t beside_chains = std::max<std::int64_t>(0, count - features.sites.points - pinned);
   if (!features.empty()) {
     // Where chains crowd narrow pieces, the others would get fewer than their
     // share: the count grows so that they keep it, where that is more than a
@@ -66,10 +63,9 @@ RemeshSites sample_remesh_sites(const RemeshSurface& surface, std::int64_t count
     constexpr double kMaxShortfall = 0.1;
     const std::int64_t needed = sites_for_the_density_asked(sites_surface, features.sites.sites, count);
     if (static_cast<double>(needed - beside_chains) > kMaxShortfall * static_cast<double>(count)) {
-      const std::int64_t asked = count + features.points_tightened;
       const std::int64_t total = features.sites.points + pinned + needed;
-      result.sites_added_for_crowding = total - asked;
-      result.crowding_reason = "site count " + std::to_string(asked) + " raised to " + std::to_string(total) +
+      result.sites_added_for_crowding = total - count;
+      result.crowding_reason = "site count " + std::to_string(count) + " raised to " + std::to_string(total) +
                                ": the " + std::to_string(features.sites.points) +
                                " sites on the creases crowd pieces too narrow for them, and the " +
                                std::to_string(beside_chains) + " left of the count would give the other pieces " +

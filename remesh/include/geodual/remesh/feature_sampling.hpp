@@ -43,7 +43,7 @@ struct FeatureSamplingOptions {
   double min_spacing = 0.75;
   /// ... except where a chord would still leave the chain: there at its own
   /// vertices where it bends, about this many spacings apart (FeatureSiteOptions::
-  /// tight_spacing), on top of the count, with the sites beside them as close (FeatureSampling::density)
+  /// tight_spacing), with the sites beside them as close (FeatureSampling::density)
   /// unless those would be more than max_share_near_features of the count or
   /// the surface's faces are too wide to carry that density (carries_density):
   /// then spaced as elsewhere beside the chain (narrower triangles against it).
