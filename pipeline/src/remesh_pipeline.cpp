@@ -682,12 +682,27 @@ bool faceted_sides_hold_creases(const RemeshPipelineResult& result, const Remesh
 /// remesh without any, and why.
 void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& options,
                  std::span<const double> input_density, const SiteRefinement* refinement = nullptr) {
-  // Where the tries fail with chain sites closer along curved creases, once
-  // more with them no closer than min_spacing: fewer chain sites weld where
-  // more did not (a part whose creases bend at every spacing).
+  // Where the tries fail with chain sites closer along curved creases (at
+  // their vertices where they bend), once more with them evenly closer, then
+  // with them no closer than min_spacing: other chain sites, or fewer, weld
+  // where those did not (a part whose creases bend at every spacing).
   const auto keep_features = [&](const RemeshPipelineOptions& with) {
     std::optional<FeaturesNotKept> not_kept = remesh_keeping_features(result, with, input_density, refinement);
-    if (!not_kept || result.feature_sites_tightened == 0 || !with.features.loosen_chain_sites) return not_kept;
+    if (!not_kept || !with.features.loosen_chain_sites) return not_kept;
+    if (with.features.sampling.split_at_bends) {
+      // The points where chains bend, evenly closer instead of at their vertices.
+      RemeshPipelineOptions even = with;
+      even.features.sampling.split_at_bends = false;
+      result.timings.clear();
+      if (!remesh_keeping_features(result, even, input_density, refinement) && !result.features.empty()) {
+        result.remesh.repair_problems.insert(
+            result.remesh.repair_problems.begin(),
+            "chain sites evenly closer where creases bend, as the weld with them at the creases' vertices failed: " +
+                not_kept->reason);
+        return std::optional<FeaturesNotKept>{};
+      }
+    }
+    if (result.feature_sites_tightened == 0) return not_kept;
     RemeshPipelineOptions loose = with;
     loose.features.sampling.tight_spacing = 0;
     result.timings.clear();

@@ -731,57 +731,6 @@ TEST(FeatureCut, BoxFallsIntoSixSidesAndSitesComeInTwins) {
   EXPECT_EQ(static_cast<std::ptrdiff_t>(remesh::missing_twins(box, features, cut, at_copy).size()), copies - 1);
 }
 
-TEST(FeatureCut, ChordRefinementOfACurvedChainKeepsTheMinimumSpacing) {
-  // A cone's base rim is a circular crease of length 2 pi: at spacing 0.5,
-  // 13 stretches whose chords leave the circle by about 0.03.
-  const TriangleMesh cone =
-      bench::hard_case_detail::closed_cone({0, 0, 0}, {0, 0, 1}, 1.0, 1.0, /*segments=*/256, /*rings=*/8);
-  const remesh::FeatureSet features = remesh::detect_features(cone);
-  ASSERT_EQ(features.sharp_chains, 1);
-  ASSERT_TRUE(features.chains[0].closed);
-  const remesh::FeatureCut cut = remesh::cut_along_features(cone, features);
-  // The smallest gap between the rim's points (by angle, as a chord).
-  const auto smallest_gap = [&](const remesh::FeatureSiteOptions& options) {
-    std::vector<double> angles;
-    for (const SurfacePoint& site : remesh::feature_sites(cone, features, cut, options).sites) {
-      const Eigen::Vector3d p = site.position(cut.mesh);
-      angles.push_back(std::atan2(p.y(), p.x()));
-    }
-    std::sort(angles.begin(), angles.end());
-    angles.erase(std::unique(angles.begin(), angles.end()), angles.end());  // twins
-    double gap = 2 * std::numbers::pi + angles.front() - angles.back();
-    for (std::size_t k = 1; k < angles.size(); ++k) gap = std::min(gap, angles[k] - angles[k - 1]);
-    return 2 * std::sin(gap / 2);
-  };
-  EXPECT_GT(smallest_gap({.spacing = 0.5}), 0.45);
-  // A chord error of 1e-3 asks for 6 parts a stretch...
-  EXPECT_LT(smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3}), 0.1);
-  // ... but none closer than the minimum spacing: 2 parts of 0.24.
-  const double floored = smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2});
-  EXPECT_GT(floored, 0.2 * (1 - 1e-3));
-  EXPECT_LT(floored, 0.3);
-  EXPECT_TRUE(remesh::feature_sites(cone, features, cut, {.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2})
-                  .dense_points.empty());
-  // Where the floor leaves the chords 0.007 off the rim, beyond twice the
-  // error, the rim's own vertices are its points where it bends (Douglas and
-  // Peucker): every fourth vertex of the 256-gon, whose chords leave it by
-  // 0.0012, no closer than 0.6 of the tight spacing; every point is reported
-  // with its spacing, for the sites around it.
-  const remesh::FeatureSiteOptions tight{
-      .spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2, .tight_spacing = 0.1};
-  const double tightened = smallest_gap(tight);
-  EXPECT_GT(tightened, 0.06);
-  EXPECT_LT(tightened, 0.13);
-  const remesh::FeatureSites sites = remesh::feature_sites(cone, features, cut, tight);
-  EXPECT_EQ(sites.points, 64);
-  for (const SurfacePoint& site : sites.sites) EXPECT_EQ(site.kind, SurfacePoint::Kind::vertex);
-  ASSERT_EQ(sites.dense_points.size(), 64u);
-  for (const remesh::SpacedPoint& point : sites.dense_points) {
-    EXPECT_NEAR(point.spacing, 4 * 2 * std::sin(std::numbers::pi / 256), 1e-9);  // four sides of the 256-gon
-    EXPECT_NEAR(std::hypot(point.position.x(), point.position.y()), 1.0, 1e-12);
-  }
-}
-
 /// The largest distance from a vertex of `chain` to the chord between the
 /// chain's points (`sites`, on cut.mesh) on either side of it along the chain.
 double largest_chord_error(const TriangleMesh& mesh, const remesh::FeatureChain& chain, const TriangleMesh& cut_mesh,
@@ -820,6 +769,58 @@ double largest_chord_error(const TriangleMesh& mesh, const remesh::FeatureChain&
     largest = std::max(largest, (p + t * (q - p) - x).norm());
   }
   return largest;
+}
+
+TEST(FeatureCut, ChordRefinementOfACurvedChainKeepsTheMinimumSpacing) {
+  // A cone's base rim is a circular crease of length 2 pi: at spacing 0.5,
+  // 13 stretches whose chords leave the circle by about 0.03.
+  const TriangleMesh cone =
+      bench::hard_case_detail::closed_cone({0, 0, 0}, {0, 0, 1}, 1.0, 1.0, /*segments=*/256, /*rings=*/8);
+  const remesh::FeatureSet features = remesh::detect_features(cone);
+  ASSERT_EQ(features.sharp_chains, 1);
+  ASSERT_TRUE(features.chains[0].closed);
+  const remesh::FeatureCut cut = remesh::cut_along_features(cone, features);
+  // The smallest gap between the rim's points (by angle, as a chord).
+  const auto smallest_gap = [&](const remesh::FeatureSiteOptions& options) {
+    std::vector<double> angles;
+    for (const SurfacePoint& site : remesh::feature_sites(cone, features, cut, options).sites) {
+      const Eigen::Vector3d p = site.position(cut.mesh);
+      angles.push_back(std::atan2(p.y(), p.x()));
+    }
+    std::sort(angles.begin(), angles.end());
+    angles.erase(std::unique(angles.begin(), angles.end()), angles.end());  // twins
+    double gap = 2 * std::numbers::pi + angles.front() - angles.back();
+    for (std::size_t k = 1; k < angles.size(); ++k) gap = std::min(gap, angles[k] - angles[k - 1]);
+    return 2 * std::sin(gap / 2);
+  };
+  EXPECT_GT(smallest_gap({.spacing = 0.5}), 0.45);
+  // A chord error of 1e-3 asks for 6 parts a stretch...
+  EXPECT_LT(smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3}), 0.1);
+  // ... but none closer than the minimum spacing: 2 parts of 0.24.
+  const double floored = smallest_gap({.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2});
+  EXPECT_GT(floored, 0.2 * (1 - 1e-3));
+  EXPECT_LT(floored, 0.3);
+  EXPECT_TRUE(remesh::feature_sites(cone, features, cut, {.spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2})
+                  .dense_points.empty());
+  // Where the floor leaves the chords 0.007 off the rim, beyond twice the
+  // error, the rim is split (evenly where that keeps to twice the error,
+  // else at its own vertices where it bends) into parts no shorter than 0.6
+  // of the tight spacing whose chords keep to twice the error; every point
+  // closer than the minimum spacing is reported with its spacing, for the
+  // sites around it.
+  const remesh::FeatureSiteOptions tight{
+      .spacing = 0.5, .max_chord_error = 1e-3, .min_spacing = 0.2, .tight_spacing = 0.1};
+  const double tightened = smallest_gap(tight);
+  EXPECT_GT(tightened, 0.06);
+  EXPECT_LT(tightened, 0.13);
+  const remesh::FeatureSites sites = remesh::feature_sites(cone, features, cut, tight);
+  EXPECT_LE(largest_chord_error(cone, features.chains[0], cut.mesh, sites.sites), 2e-3);
+  ASSERT_FALSE(sites.dense_points.empty());
+  for (const remesh::SpacedPoint& point : sites.dense_points) {
+    EXPECT_LT(point.spacing, 0.2);
+    EXPECT_GT(point.spacing, 0.06);
+    EXPECT_NEAR(std::hypot(point.position.x(), point.position.y()), 1.0, 1e-3);
+  }
 }
 
 TEST(FeatureCut, ChainSitesFollowACoarseCircleWithinTwiceTheChordError) {

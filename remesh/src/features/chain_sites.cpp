@@ -8,6 +8,7 @@
 #include "geodual/mesh/vertex_copies.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -49,9 +50,8 @@ VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
   return group_vertex_copies(cut.original_vertex, num_vertices, used);
 }
 
-/// A point along a chain: at arc length `at`, at chain vertex `vertex`
-/// (its index in the chain; -1: inside an edge, where it slides in the
-/// relaxation; a vertex site stays).
+/// A point along a chain: at arc length `at`, at chain vertex `vertex` (its
+/// index in the chain; -1: inside an edge).
 struct ChainStop {
   double at = 0;
   std::ptrdiff_t vertex = -1;
@@ -115,32 +115,31 @@ std::ptrdiff_t farthest_vertex(const ChainWalk& walk, double from, double to, do
 }
 
 /// Appends to `stops` the points inside [from, to] that split it into parts
-/// about `spacing` long whose chords keep to the chord error: twice it
-/// between two vertex stops, which stay where they are, once it where a
-/// part's end slides. Where even parts do not keep to it, the chain's own
-/// vertex farthest from the chord is a stop and each side is split alike:
-/// Douglas and Peucker's simplification of the polyline, so that a chord
-/// between two of its vertices leaves it by no more than the error. That
+/// whose chords keep to `error`: the fewest even parts about `spacing` long
+/// or shorter, down to `margin`, that do; where none do, the chain's own
+/// vertex farthest from the chord is a point and each side is split alike
+/// (Douglas and Peucker's simplification of the polyline, so that a chord
+/// between two of its vertices leaves it by no more than the error). That
 /// vertex is at least `margin` from either end, or a quarter of the part
 /// where that is less, but never less than 0.6 `margin` (closer chain
-/// points would make slivers, and the weld takes points a fifth of a
-/// spacing apart for one). Where no vertex is that far from the ends, the
-/// even parts.
-void split_at_bends(const ChainWalk& walk, ChainStop from, ChainStop to, double spacing, double margin, double error,
+/// points make slivers, and the weld takes points a fifth of a spacing apart
+/// for one). Where no vertex is that far from the ends, the even parts.
+void split_at_bends(const ChainWalk& walk, double from, double to, double spacing, double margin, double error,
                     std::vector<ChainStop>& stops) {
-  const int parts = std::max(1, static_cast<int>(std::lround((to.at - from.at) / spacing)));
-  const bool fixed = parts == 1 && from.vertex >= 0 && to.vertex >= 0;
-  const double room = std::max(0.6 * margin, std::min(margin, (to.at - from.at) / 4));
-  const std::ptrdiff_t vertex =
-      fits(walk, from.at, to.at, parts, fixed ? 2 * error : error) ? -1 : farthest_vertex(walk, from.at, to.at, room);
-  if (vertex < 0) {
-    for (int j = 1; j < parts; ++j) stops.push_back({from.at + (to.at - from.at) * j / parts});
-    return;
+  const int parts = std::max(1, static_cast<int>(std::lround((to - from) / spacing)));
+  const auto split_evenly = [&](int n) {
+    for (int j = 1; j < n; ++j) stops.push_back({from + (to - from) * j / n});
+  };
+  for (int n = parts; n <= std::max(parts, most_parts(to - from, margin)); ++n) {
+    if (fits(walk, from, to, n, error)) return split_evenly(n);
   }
+  const double room = std::max(0.6 * margin, std::min(margin, (to - from) / 4));
+  const std::ptrdiff_t vertex = farthest_vertex(walk, from, to, room);
+  if (vertex < 0) return split_evenly(parts);
   const ChainStop bend{walk.at[static_cast<std::size_t>(vertex)], vertex};
-  split_at_bends(walk, from, bend, spacing, margin, error, stops);
+  split_at_bends(walk, from, bend.at, spacing, margin, error, stops);
   stops.push_back(bend);
-  split_at_bends(walk, bend, to, spacing, margin, error, stops);
+  split_at_bends(walk, bend.at, to, spacing, margin, error, stops);
 }
 
 /// Round a corner, the first site of every chain at one distance d: the
@@ -202,7 +201,7 @@ std::vector<ChainStop> stops_at_bends(const ChainWalk& walk, std::span<const dou
   const auto last_vertex = static_cast<std::ptrdiff_t>(walk.at.size()) - 1;
   const ChainStop front{0, 0}, back{walk.length(), last_vertex};
   const auto split = [&](ChainStop from, ChainStop to) {
-    split_at_bends(walk, from, to, own, options.tight_spacing, options.max_chord_error, stops);
+    split_at_bends(walk, from.at, to.at, own, options.tight_spacing, 2 * options.max_chord_error, stops);
   };
   if (walk.chain.closed) {
     stops.push_back(front);
@@ -235,6 +234,77 @@ std::vector<ChainStop> stops_at_bends(const ChainWalk& walk, std::span<const dou
   return stops;
 }
 
+/// The points of `walk`'s chain split into `stretches` (split_stretch): each
+/// stretch that bends evenly into the fewest parts down to tight_spacing that
+/// keep to twice the chord error, if any; at a corner where the chain ends
+/// `alone` (front, back), the stretch from it as closely as a tight one
+/// after it. The points of tight stretches (parts shorter than min_spacing),
+/// ends included, go to `dense` with their parts' length.
+std::vector<ChainStop> stops_closer_evenly(const ChainWalk& walk, std::vector<Stretch> stretches,
+                                           std::array<bool, 2> alone, const FeatureSiteOptions& options,
+                                           std::vector<SpacedPoint>& dense) {
+  std::vector<bool> tight(stretches.size(), false);
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    Stretch& stretch = stretches[k];
+    if (!stretch.bends) continue;
+    const double length = stretch.to - stretch.from;
+    const int most = most_parts(length, options.min_spacing);
+    for (int n = stretch.parts + 1; n <= std::max(most, most_parts(length, options.tight_spacing)); ++n) {
+      if (fits(walk, stretch.from, stretch.to, n, 2 * options.max_chord_error)) {
+        stretch.parts = n;
+        tight[k] = n > most;
+        break;
+      }
+    }
+  }
+  if (!walk.chain.closed && stretches.size() >= 2) {
+    for (const bool front : {true, false}) {
+      const std::size_t end = front ? 0 : stretches.size() - 1, next = front ? 1 : stretches.size() - 2;
+      if (tight[end] || !tight[next] || !alone[front ? 0 : 1]) continue;
+      const double spacing = (stretches[next].to - stretches[next].from) / stretches[next].parts;
+      const auto parts = static_cast<int>(std::llround((stretches[end].to - stretches[end].from) / spacing));
+      if (parts > stretches[end].parts) stretches[end].parts = parts, tight[end] = true;
+    }
+  }
+  std::vector<ChainStop> stops;
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    const auto [from, to, parts, bends] = stretches[k];
+    if (k > 0) stops.push_back({from});
+    for (int j = 1; j < parts; ++j) stops.push_back({from + (to - from) * j / parts});
+    for (int j = 0; tight[k] && j <= parts; ++j)
+      dense.push_back({walk.point(from + (to - from) * j / parts), (to - from) / parts});
+  }
+  if (walk.chain.closed) stops.push_back({0});
+  return stops;
+}
+
+/// At a corner where an open chain ends alone (no wedge whose first sites
+/// must sit at one distance), the part from the corner to its first point is
+/// split as closely as the chain's points after it where those are closer
+/// than min_spacing: the sites round the corner are as close as the chain's
+/// there. `alone` at the chain's front and back.
+void match_close_points_at_lone_ends(double length, std::array<bool, 2> alone, double min_spacing,
+                                     std::vector<ChainStop>& stops) {
+  if (stops.size() < 2) return;
+  if (alone[0]) {
+    const double gap = stops[1].at - stops[0].at;
+    const auto parts = static_cast<int>(std::llround(stops[0].at / gap));
+    if (gap < min_spacing && parts > 1) {
+      std::vector<ChainStop> before;
+      for (int j = 1; j < parts; ++j) before.push_back({stops[0].at * j / parts});
+      stops.insert(stops.begin(), before.begin(), before.end());
+    }
+  }
+  if (alone[1]) {
+    const std::size_t n = stops.size();
+    const double gap = stops[n - 1].at - stops[n - 2].at, last = stops[n - 1].at;
+    const auto parts = static_cast<int>(std::llround((length - last) / gap));
+    if (gap < min_spacing && parts > 1) {
+      for (int j = 1; j < parts; ++j) stops.push_back({last + (length - last) * j / parts});
+    }
+  }
+}
+
 }  // namespace
 
 FeatureSites feature_sites(const TriangleMesh& surface, const FeatureSet& features, const FeatureCut& cut,
@@ -264,6 +334,14 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     segments.push_back(std::max<std::int64_t>(chain.closed ? 3 : 1, std::llround(walk.length() / options.spacing)));
   }
   const std::map<Index, double> corner_distance = corner_distances(features, walks, segments);
+  // Chain ends per vertex: a corner where one chain ends alone has no wedge
+  // to keep the first sites' distances equal in.
+  std::map<Index, int> ends_at;
+  for (const FeatureChain& chain : features.chains) {
+    if (chain.closed) continue;
+    ++ends_at[chain.vertices.front()];
+    ++ends_at[chain.vertices.back()];
+  }
   std::vector<Stretch> stretches;
   std::vector<ChainStop> stops;
   for (std::size_t c = 0; c < walks.size(); ++c) {
@@ -278,8 +356,13 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     }
     stops.clear();
     const bool bends = std::any_of(stretches.begin(), stretches.end(), [](const Stretch& s) { return s.bends; });
-    if (bends && options.tight_spacing > 0) {
+    const std::array<bool, 2> alone = {!chain.closed && ends_at[chain.vertices.front()] == 1,
+                                       !chain.closed && ends_at[chain.vertices.back()] == 1};
+    if (bends && options.tight_spacing > 0 && !options.split_at_bends) {
+      stops = stops_closer_evenly(walk, stretches, alone, options, result.dense_points);
+    } else if (bends && options.tight_spacing > 0) {
       stops = stops_at_bends(walk, ends, own, options);
+      match_close_points_at_lone_ends(length, alone, options.min_spacing, stops);
       // The stops closer than min_spacing, with their distance to the nearer neighbour.
       for (std::size_t k = 0; k < stops.size(); ++k) {
         const double before = (k > 0 ? stops[k - 1].at : chain.closed ? stops.back().at - length : 0.0);
@@ -297,10 +380,10 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
       }
       if (chain.closed) stops.push_back({0});  // the closing end is a site too (the open ends are corners)
     }
-    for (const ChainStop& stop : stops) {
-      const Index vertex = stop.vertex >= 0 ? chain.vertices[static_cast<std::size_t>(stop.vertex)] : -1;
-      add(vertex >= 0 ? SiteKey{vertex, vertex, 0} : walk.key_at(stop.at));
-    }
+    // A point at a chain vertex too is a point of an edge beside it (a
+    // vertex site stays where it is in the relaxation, and on the pulley's
+    // bore its triangles came out with angles of 6 degrees).
+    for (const ChainStop& stop : stops) add(walk.key_at(stop.at));
   }
   return result;
 }

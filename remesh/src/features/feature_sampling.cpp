@@ -67,7 +67,8 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   FeatureSiteOptions site_options{.spacing = spacing,
                                   .max_chord_error = chord_error(surface, options.max_chord_error),
                                   .min_spacing = options.min_spacing * spacing,
-                                  .tight_spacing = options.tight_spacing * spacing};
+                                  .tight_spacing = options.tight_spacing * spacing,
+                                  .split_at_bends = options.split_at_bends};
   // These creases, the cut along them and their chain sites; false where there are none.
   const auto line_creases = [&](FeatureSet features) {
     sampling.features = std::move(features);

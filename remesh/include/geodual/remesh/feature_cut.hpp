@@ -67,6 +67,10 @@ struct FeatureSiteOptions {
   /// bends (Douglas-Peucker), points about this far apart and never closer
   /// than 0.6 of it, so that its chords keep to twice the error (0: none).
   double tight_spacing = 0;
+  /// Where a chain bends, split it at its own vertices (Douglas-Peucker);
+  /// false: each stretch that bends evenly into the fewest parts down to
+  /// tight_spacing that keep to twice max_chord_error, if any.
+  bool split_at_bends = true;
 };
 
 struct FeatureSites {

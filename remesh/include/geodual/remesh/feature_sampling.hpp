@@ -53,6 +53,9 @@ struct FeatureSamplingOptions {
   double tight_spacing = 0.4;
   double max_share_near_features = 0.1;
   double max_share_tightened = 0.25;
+  /// Where chains bend, points at their own vertices; false: evenly closer
+  /// parts (FeatureSiteOptions::split_at_bends).
+  bool split_at_bends = true;
   /// Narrow regions whose folds are parallel lines are smooth (FeatureOptions::
   /// parallel_fold_angle; 0: rough where steep).
   double parallel_fold_angle = 10;
