@@ -509,8 +509,8 @@ TEST(FeaturePipeline, TheRetryLeavesOutOnlyTheCreasesNearTheFaultsAndReportsThem
 
 TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsThem) {
   // cheburashka at 2,000 sites: some of its seven creases are finer than
-  // the spacing, and the repair of the cut surface's dual adds 7 sites
-  // (0.35 %); a bound of 0.2 % leaves out the creases where it would add them.
+  // the spacing, and the repair of the cut surface's dual adds 16 sites
+  // (0.7 %); a bound of 0.5 % leaves out the creases where it would add them.
   const io::LoadedMesh scan = io::read_mesh("tests/data/cheburashka.ply");
   pipeline::RemeshPipelineOptions options;
   options.features.max_sites_added = 0;
@@ -518,9 +518,9 @@ TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsTh
   ASSERT_TRUE(kept.features_dropped_reason.empty()) << kept.features_dropped_reason;
   EXPECT_TRUE(kept.features_dropped_near.empty());
   EXPECT_GT(kept.features.sharp_chains, 0);
-  EXPECT_GT(static_cast<double>(kept.remesh.sites_added), 0.002 * static_cast<double>(kept.initial_sites.size()));
+  EXPECT_GT(static_cast<double>(kept.remesh.sites_added), 0.005 * static_cast<double>(kept.initial_sites.size()));
   pipeline::RemeshPipelineOptions bounded;
-  bounded.features.max_sites_added = 0.002;
+  bounded.features.max_sites_added = 0.005;
   const pipeline::RemeshPipelineResult partly = remesh_without_statistics(scan, 2000, bounded);
   ASSERT_TRUE(partly.features_dropped_reason.empty()) << partly.features_dropped_reason;
   EXPECT_NE(partly.features_partly_dropped_reason.find("allowed"), std::string::npos)
@@ -528,7 +528,7 @@ TEST(FeaturePipeline, CreasesWhoseRepairWouldAddManySitesAreLeftOutWhereItAddsTh
   EXPECT_FALSE(partly.features_dropped_near.empty());
   EXPECT_GT(partly.features.sharp_chains, 0);
   EXPECT_LT(partly.features.sharp_edges.size(), kept.features.sharp_edges.size());
-  EXPECT_LE(static_cast<double>(partly.remesh.sites_added), 0.002 * static_cast<double>(partly.initial_sites.size()));
+  EXPECT_LE(static_cast<double>(partly.remesh.sites_added), 0.005 * static_cast<double>(partly.initial_sites.size()));
 }
 
 TEST(FeaturePipeline, FeatureColoursMarkTheVerticesOnTheCreasesAndTheLinesTraceThem) {
@@ -775,21 +775,19 @@ TEST(FeaturePipeline, WhereChainSitesCrowdNarrowPiecesTheOthersKeepTheSpacingAsk
   EXPECT_GT(quality::feature_recall(part.mesh, result.remesh.mesh, long_creases).long_recall_pct, 85.0);
 }
 
-TEST(FeaturePipeline, CurvedCreasesKeepTheirPointsWhereTheyBendAtTheCountAsked) {
-  // OpenSCAD's example020 at 2,000 sites: its helical creases bend at every
-  // spacing. Their chain points at the chains' own vertices where they bend
-  // weld (chain points evenly closer did not, and the tries fell back to
-  // chain points 3/4 of a spacing apart): the creases are kept with them,
-  // on top of the count, and no site is added for the creases.
+TEST(FeaturePipeline, WhereCloserChainSitesDoNotWeldTheTriesRunAgainWithoutThem) {
+  // OpenSCAD's example020 at 2,000 sites: with its curved creases' chain
+  // sites closer than 3/4 of a spacing, no try keeps the creases; with them
+  // no closer, one does, at the count asked, and the report says why.
   const pipeline::RemeshPipelineResult result =
       remesh_without_statistics(io::read_mesh("tests/data/cad/example020.stl"), 2000);
   EXPECT_TRUE(result.features_dropped_reason.empty()) << result.features_dropped_reason;
   EXPECT_FALSE(result.features.empty());
   EXPECT_EQ(result.sites_added_for_creases, 0);
-  EXPECT_GT(result.feature_sites_tightened, 0);
-  for (const std::string& problem : result.remesh.repair_problems) {
-    EXPECT_EQ(problem.find("no closer along curved creases"), std::string::npos) << problem;
-  }
+  EXPECT_EQ(result.feature_sites_tightened, 0);
+  ASSERT_FALSE(result.remesh.repair_problems.empty());
+  EXPECT_NE(result.remesh.repair_problems.front().find("no closer along curved creases"), std::string::npos)
+      << result.remesh.repair_problems.front();
 }
 
 TEST(FeaturePipeline, WhereNoCountKeepsTheCreasesRoundNarrowFacetedSidesTheOthersAreKept) {
