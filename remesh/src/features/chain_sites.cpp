@@ -50,13 +50,6 @@ VertexCopies used_vertex_copies(const FeatureCut& cut, Index num_vertices) {
   return group_vertex_copies(cut.original_vertex, num_vertices, used);
 }
 
-/// A point along a chain: at arc length `at`, at chain vertex `vertex` (its
-/// index in the chain; -1: inside an edge).
-struct ChainStop {
-  double at = 0;
-  std::ptrdiff_t vertex = -1;
-};
-
 /// A stretch of a chain between two arc lengths, split into `parts`.
 struct Stretch {
   double from, to;
@@ -125,10 +118,10 @@ std::ptrdiff_t farthest_vertex(const ChainWalk& walk, double from, double to, do
 /// points make slivers, and the weld takes points a fifth of a spacing apart
 /// for one). Where no vertex is that far from the ends, the even parts.
 void split_at_bends(const ChainWalk& walk, double from, double to, double spacing, double margin, double error,
-                    std::vector<ChainStop>& stops) {
+                    std::vector<double>& stops) {
   const int parts = std::max(1, static_cast<int>(std::lround((to - from) / spacing)));
   const auto split_evenly = [&](int n) {
-    for (int j = 1; j < n; ++j) stops.push_back({from + (to - from) * j / n});
+    for (int j = 1; j < n; ++j) stops.push_back(from + (to - from) * j / n);
   };
   for (int n = parts; n <= std::max(parts, most_parts(to - from, margin)); ++n) {
     if (fits(walk, from, to, n, error)) return split_evenly(n);
@@ -136,10 +129,10 @@ void split_at_bends(const ChainWalk& walk, double from, double to, double spacin
   const double room = std::max(0.6 * margin, std::min(margin, (to - from) / 4));
   const std::ptrdiff_t vertex = farthest_vertex(walk, from, to, room);
   if (vertex < 0) return split_evenly(parts);
-  const ChainStop bend{walk.at[static_cast<std::size_t>(vertex)], vertex};
-  split_at_bends(walk, from, bend.at, spacing, margin, error, stops);
+  const double bend = walk.at[static_cast<std::size_t>(vertex)];
+  split_at_bends(walk, from, bend, spacing, margin, error, stops);
   stops.push_back(bend);
-  split_at_bends(walk, bend.at, to, spacing, margin, error, stops);
+  split_at_bends(walk, bend, to, spacing, margin, error, stops);
 }
 
 /// Round a corner, the first site of every chain at one distance d: the
@@ -195,61 +188,60 @@ std::vector<double> stretch_ends(const FeatureChain& chain, double length, std::
 /// from its first vertex. The first site round a corner moves to the chain's
 /// vertex nearest it within the tight spacing, if any: a vertex there is
 /// where the chain bends, and a site beside it would cut the bend.
-std::vector<ChainStop> stops_at_bends(const ChainWalk& walk, std::span<const double> ends, double own,
-                                      const FeatureSiteOptions& options) {
-  std::vector<ChainStop> stops;
-  const auto last_vertex = static_cast<std::ptrdiff_t>(walk.at.size()) - 1;
-  const ChainStop front{0, 0}, back{walk.length(), last_vertex};
-  const auto split = [&](ChainStop from, ChainStop to) {
-    split_at_bends(walk, from.at, to.at, own, options.tight_spacing, 2 * options.max_chord_error, stops);
+std::vector<double> stops_at_bends(const ChainWalk& walk, std::span<const double> ends, double own,
+                                   const FeatureSiteOptions& options) {
+  std::vector<double> stops;
+  const auto split = [&](double from, double to) {
+    split_at_bends(walk, from, to, own, options.tight_spacing, 2 * options.max_chord_error, stops);
   };
   if (walk.chain.closed) {
-    stops.push_back(front);
-    split(front, back);
+    stops.push_back(0);
+    split(0, walk.length());
     return stops;
   }
+  // The inner chain vertex nearest `at`, where one is within the tight spacing.
   const auto stop_near = [&](double at) {
-    ChainStop stop{at};
-    const auto upper =
-        static_cast<std::ptrdiff_t>(std::upper_bound(walk.at.begin(), walk.at.end(), at) - walk.at.begin());
-    for (std::ptrdiff_t i = std::max<std::ptrdiff_t>(1, upper - 1); i <= std::min(upper, last_vertex - 1); ++i) {
-      const double distance = std::abs(walk.at[static_cast<std::size_t>(i)] - at);
-      if (distance < options.tight_spacing && (stop.vertex < 0 || distance < std::abs(stop.at - at))) {
-        stop = {walk.at[static_cast<std::size_t>(i)], i};
+    const auto upper = static_cast<std::size_t>(std::upper_bound(walk.at.begin(), walk.at.end(), at) - walk.at.begin());
+    double nearest = at;
+    for (std::size_t i = std::max<std::size_t>(1, upper) - 1; i <= std::min(upper, walk.at.size() - 2); ++i) {
+      const double distance = std::abs(walk.at[i] - at);
+      if (i > 0 && distance < options.tight_spacing && (nearest == at || distance < std::abs(nearest - at))) {
+        nearest = walk.at[i];
       }
     }
-    return stop;
+    return nearest;
   };
-  const ChainStop first = stop_near(ends[1]);
-  ChainStop last = stop_near(ends[ends.size() - 2]);
-  split(front, first);
+  const double first = stop_near(ends[1]);
+  double last = stop_near(ends[ends.size() - 2]);
+  split(0, first);
   stops.push_back(first);
-  if (last.at > first.at) {
+  if (last > first) {
     split(first, last);
     stops.push_back(last);
   } else {
     last = first;
   }
-  split(last, back);
+  split(last, walk.length());
   return stops;
 }
 
 /// The points of `walk`'s chain split into `stretches` (split_stretch): each
-/// stretch that bends evenly into the fewest parts down to tight_spacing that
-/// keep to twice the chord error, if any; at a corner where the chain ends
+/// stretch that bends evenly into the fewest parts down to tight_spacing (0:
+/// none closer) that keep to twice the chord error, if any; at a corner where the chain ends
 /// `alone` (front, back), the stretch from it as closely as a tight one
 /// after it. The points of tight stretches (parts shorter than min_spacing),
 /// ends included, go to `dense` with their parts' length.
-std::vector<ChainStop> stops_closer_evenly(const ChainWalk& walk, std::vector<Stretch> stretches,
-                                           std::array<bool, 2> alone, const FeatureSiteOptions& options,
-                                           std::vector<SpacedPoint>& dense) {
+std::vector<double> stops_closer_evenly(const ChainWalk& walk, std::vector<Stretch> stretches,
+                                        std::array<bool, 2> alone, const FeatureSiteOptions& options,
+                                        std::vector<SpacedPoint>& dense) {
   std::vector<bool> tight(stretches.size(), false);
   for (std::size_t k = 0; k < stretches.size(); ++k) {
     Stretch& stretch = stretches[k];
     if (!stretch.bends) continue;
     const double length = stretch.to - stretch.from;
     const int most = most_parts(length, options.min_spacing);
-    for (int n = stretch.parts + 1; n <= std::max(most, most_parts(length, options.tight_spacing)); ++n) {
+    const int most_tight = options.tight_spacing > 0 ? std::max(most, most_parts(length, options.tight_spacing)) : most;
+    for (int n = stretch.parts + 1; n <= most_tight; ++n) {
       if (fits(walk, stretch.from, stretch.to, n, 2 * options.max_chord_error)) {
         stretch.parts = n;
         tight[k] = n > most;
@@ -266,7 +258,7 @@ std::vector<ChainStop> stops_closer_evenly(const ChainWalk& walk, std::vector<St
       if (parts > stretches[end].parts) stretches[end].parts = parts, tight[end] = true;
     }
   }
-  std::vector<ChainStop> stops;
+  std::vector<double> stops;
   for (std::size_t k = 0; k < stretches.size(); ++k) {
     const auto [from, to, parts, bends] = stretches[k];
     if (k > 0) stops.push_back({from});
@@ -284,20 +276,20 @@ std::vector<ChainStop> stops_closer_evenly(const ChainWalk& walk, std::vector<St
 /// than min_spacing: the sites round the corner are as close as the chain's
 /// there. `alone` at the chain's front and back.
 void match_close_points_at_lone_ends(double length, std::array<bool, 2> alone, double min_spacing,
-                                     std::vector<ChainStop>& stops) {
+                                     std::vector<double>& stops) {
   if (stops.size() < 2) return;
   if (alone[0]) {
-    const double gap = stops[1].at - stops[0].at;
-    const auto parts = static_cast<int>(std::llround(stops[0].at / gap));
+    const double gap = stops[1] - stops[0];
+    const auto parts = static_cast<int>(std::llround(stops[0] / gap));
     if (gap < min_spacing && parts > 1) {
-      std::vector<ChainStop> before;
-      for (int j = 1; j < parts; ++j) before.push_back({stops[0].at * j / parts});
+      std::vector<double> before;
+      for (int j = 1; j < parts; ++j) before.push_back(stops[0] * j / parts);
       stops.insert(stops.begin(), before.begin(), before.end());
     }
   }
   if (alone[1]) {
     const std::size_t n = stops.size();
-    const double gap = stops[n - 1].at - stops[n - 2].at, last = stops[n - 1].at;
+    const double gap = stops[n - 1] - stops[n - 2], last = stops[n - 1];
     const auto parts = static_cast<int>(std::llround((length - last) / gap));
     if (gap < min_spacing && parts > 1) {
       for (int j = 1; j < parts; ++j) stops.push_back({last + (length - last) * j / parts});
@@ -343,7 +335,7 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     ++ends_at[chain.vertices.back()];
   }
   std::vector<Stretch> stretches;
-  std::vector<ChainStop> stops;
+  std::vector<double> stops;
   for (std::size_t c = 0; c < walks.size(); ++c) {
     const FeatureChain& chain = features.chains[c];
     const ChainWalk& walk = walks[c];
@@ -354,36 +346,26 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
     for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
       stretches.push_back(split_stretch(walk, ends[k], ends[k + 1], options));
     }
-    stops.clear();
     const bool bends = std::any_of(stretches.begin(), stretches.end(), [](const Stretch& s) { return s.bends; });
     const std::array<bool, 2> alone = {!chain.closed && ends_at[chain.vertices.front()] == 1,
                                        !chain.closed && ends_at[chain.vertices.back()] == 1};
-    if (bends && options.tight_spacing > 0 && !options.split_at_bends) {
-      stops = stops_closer_evenly(walk, stretches, alone, options, result.dense_points);
-    } else if (bends && options.tight_spacing > 0) {
+    if (bends && options.tight_spacing > 0 && options.split_at_bends) {
       stops = stops_at_bends(walk, ends, own, options);
       match_close_points_at_lone_ends(length, alone, options.min_spacing, stops);
       // The stops closer than min_spacing, with their distance to the nearer neighbour.
       for (std::size_t k = 0; k < stops.size(); ++k) {
-        const double before = (k > 0 ? stops[k - 1].at : chain.closed ? stops.back().at - length : 0.0);
-        const double after = (k + 1 < stops.size() ? stops[k + 1].at
-                              : chain.closed       ? stops.front().at + length
-                                                   : length);
-        const double gap = std::min(stops[k].at - before, after - stops[k].at);
-        if (gap < options.min_spacing) result.dense_points.push_back({walk.point(stops[k].at), gap});
+        const double before = k > 0 ? stops[k - 1] : chain.closed ? stops.back() - length : 0.0;
+        const double after = k + 1 < stops.size() ? stops[k + 1] : chain.closed ? stops.front() + length : length;
+        const double gap = std::min(stops[k] - before, after - stops[k]);
+        if (gap < options.min_spacing) result.dense_points.push_back({walk.point(stops[k]), gap});
       }
     } else {
-      for (std::size_t k = 0; k < stretches.size(); ++k) {
-        const auto [from, to, parts, bent] = stretches[k];
-        if (k > 0) stops.push_back({from});
-        for (int j = 1; j < parts; ++j) stops.push_back({from + (to - from) * j / parts});
-      }
-      if (chain.closed) stops.push_back({0});  // the closing end is a site too (the open ends are corners)
+      stops = stops_closer_evenly(walk, stretches, alone, options, result.dense_points);
     }
     // A point at a chain vertex too is a point of an edge beside it (a
     // vertex site stays where it is in the relaxation, and on the pulley's
     // bore its triangles came out with angles of 6 degrees).
-    for (const ChainStop& stop : stops) add(walk.key_at(stop.at));
+    for (const double stop : stops) add(walk.key_at(stop));
   }
   return result;
 }
