@@ -208,6 +208,7 @@ SampledSites sample_around_features(RemeshPipelineResult& result, const RemeshPi
   sampled.pin_segments = std::move(pins.segments);
   result.feature_sites = creases.sites.points;
   result.feature_sites_tightened = creases.points_tightened;
+  result.feature_chains_split_at_bends = creases.sites.chains_split_at_bends;
   result.site_twins = static_cast<std::int64_t>(creases.sites.sites.size()) - creases.sites.points;
   result.features = std::move(creases.features);
   result.feature_cut = std::move(creases.cut);
@@ -553,6 +554,7 @@ std::vector<FeatureLeftOut> stretches_of(const TriangleMesh& surface, std::span<
 struct FeaturesNotKept {
   std::string reason;
   std::vector<FeatureLeftOut> left_out;
+  bool chains_split_at_bends = false;  ///< in some try (FeatureSites::chains_split_at_bends)
 };
 
 /// One remesh of result.input (run_stages) that keeps the features: where
@@ -580,6 +582,7 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
   std::vector<std::array<Index, 2>> excluded;  // the sharp edges left out near those places
   std::vector<Eigen::Vector3d> dropped_near;   // the places
   std::string dropped_reason;                  // why the try with them all failed
+  bool split_at_bends = false;                 // some failed try split chains where they bend
   // Each try costs a relaxation; a part that still fails after this many
   // has creases finer than the spacing all over.
   constexpr int kMaxCreaseDrops = 6, kMaxPatientDrops = 2;
@@ -617,7 +620,7 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
         if (!excluded.empty() && result.features.empty()) {
           const TriangleMesh& surface = result.surface.mesh;
           return FeaturesNotKept{"every crease left out near the faults: " + dropped_reason,
-                                 stretches_of(surface, excluded)};
+                                 stretches_of(surface, excluded), split_at_bends};
         }
         if (!excluded.empty()) {
           result.features_dropped_near = std::move(dropped_near);
@@ -630,6 +633,7 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
       } catch (const Error& e) {
         if (!features_failed()) throw;
         reason = e.what();
+        split_at_bends = split_at_bends || result.feature_chains_split_at_bends > 0;
         const auto* repair = dynamic_cast<const remesh::DualRepairError*>(&e);
         places = repair ? repair->places() : std::vector<Eigen::Vector3d>{};
         if (round == 0 && attempt == 0) first_sites = std::move(result.initial_sites);
@@ -658,7 +662,7 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
   const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
   std::vector<std::array<Index, 2>> all = result.features.sharp_edges;
   all.insert(all.end(), excluded.begin(), excluded.end());
-  return FeaturesNotKept{std::move(reason), stretches_of(surface, all)};
+  return FeaturesNotKept{std::move(reason), stretches_of(surface, all), split_at_bends};
 }
 
 /// Whether the creases `options` detect on result's surface for `sites`
@@ -689,7 +693,7 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
   const auto keep_features = [&](const RemeshPipelineOptions& with) {
     std::optional<FeaturesNotKept> not_kept = remesh_keeping_features(result, with, input_density, refinement);
     if (!not_kept || !with.features.loosen_chain_sites) return not_kept;
-    if (with.features.sampling.split_at_bends) {
+    if (not_kept->chains_split_at_bends) {
       // The points where chains bend, evenly closer instead of at their vertices.
       RemeshPipelineOptions even = with;
       even.features.sampling.split_at_bends = false;

@@ -836,6 +836,7 @@ TEST(FeatureCut, ChainSitesFollowACoarseCircleWithinTwiceTheChordError) {
   const remesh::FeatureSiteOptions options{
       .spacing = 0.5, .max_chord_error = 2e-3, .min_spacing = 0.375, .tight_spacing = 0.2};
   const remesh::FeatureSites sites = remesh::feature_sites(cylinder, features, cut, options);
+  EXPECT_EQ(sites.chains_split_at_bends, 2);
   for (const remesh::FeatureChain& chain : features.chains) {
     EXPECT_LE(largest_chord_error(cylinder, chain, cut.mesh, sites.sites), 2 * options.max_chord_error);
   }
@@ -843,7 +844,12 @@ TEST(FeatureCut, ChainSitesFollowACoarseCircleWithinTwiceTheChordError) {
   remesh::FeatureSiteOptions loose = options;
   loose.tight_spacing = 0;
   const remesh::FeatureSites even = remesh::feature_sites(cylinder, features, cut, loose);
+  EXPECT_EQ(even.chains_split_at_bends, 0);
   EXPECT_GT(largest_chord_error(cylinder, features.chains[0], cut.mesh, even.sites), 4 * options.max_chord_error);
+  // Within a chord error of 0.05, chords 3/4 of a spacing apart keep to the rims.
+  remesh::FeatureSiteOptions coarse_error = options;
+  coarse_error.max_chord_error = 0.05;
+  EXPECT_EQ(remesh::feature_sites(cylinder, features, cut, coarse_error).chains_split_at_bends, 0);
 }
 
 TEST(FeatureCut, ChainSitesFollowAMachinedPartsCreasesWithinTwiceTheChordError) {
@@ -912,27 +918,48 @@ TEST(FeatureSampling, CreasesRoundNarrowSmoothRegionsGoWhereTheChainsWouldTakeTh
 }
 
 TEST(FeatureSampling, CreasesRoundNarrowFacetedSidesGoFirstWhereTheChainsWouldTakeTooMuchOfTheCount) {
-  // OpenSCAD's projection at 500 sites: its chains hold 541 points with the
-  // creases round its narrow faceted sides (thin plates' polygonal rims),
-  // 505 without, 96 judged rough everywhere. Where the chains may take 1.05
-  // of the count (525), those round the faceted sides go first, and the
-  // creases round its other narrow smooth regions stay.
+  // OpenSCAD's projection at 500 sites: without the points where they bend,
+  // its chains hold 475 points with the creases round its narrow faceted
+  // sides (thin plates' polygonal rims), 451 without. Where the chains may
+  // take 0.92 of the count (460), those round the faceted sides go first,
+  // and the creases round its other narrow smooth regions stay.
   const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/projection.stl").mesh).mesh;
   const remesh::RemeshSurface prepared(part);
   remesh::FeatureSamplingOptions all_kept;
   all_kept.max_share_narrow_regions = std::numeric_limits<double>::max();
-  EXPECT_GT(remesh::sample_features(prepared, 500, all_kept).sites.points, 525);
-  remesh::FeatureSamplingOptions faceted_rough = all_kept;
-  faceted_rough.parallel_fold_angle = 0;
-  const remesh::FeatureSampling without_faceted = remesh::sample_features(prepared, 500, faceted_rough);
-  EXPECT_LE(without_faceted.sites.points, 525);
+  remesh::FeatureSamplingOptions evenly = all_kept;
+  evenly.tight_spacing = 0;
+  EXPECT_GT(remesh::sample_features(prepared, 500, evenly).sites.points, 460);
+  evenly.parallel_fold_angle = 0;
+  const remesh::FeatureSampling without_faceted = remesh::sample_features(prepared, 500, evenly);
+  EXPECT_LE(without_faceted.sites.points, 460);
   remesh::FeatureSamplingOptions share;
-  share.max_share_narrow_regions = 1.05;
+  share.max_share_narrow_regions = 0.92;
   const remesh::FeatureSampling sampled = remesh::sample_features(prepared, 500, share);
   EXPECT_EQ(sampled.features.sharp_edges, without_faceted.features.sharp_edges);
   // Judged at the rough width everywhere, fewer would stay.
-  faceted_rough.max_share_narrow_regions = 0;
-  EXPECT_LT(remesh::sample_features(prepared, 500, faceted_rough).features.sharp_length, sampled.features.sharp_length);
+  evenly.max_share_narrow_regions = 0;
+  EXPECT_LT(remesh::sample_features(prepared, 500, evenly).features.sharp_length, sampled.features.sharp_length);
+}
+
+TEST(FeatureSampling, PointsWhereChainsBendGoBeforeCreasesWhereTheyAloneExceedTheShare) {
+  // projection at 500 sites: the points where its chains bend take them
+  // from 475 points to more than the count. Those points go, and every
+  // crease stays, at the chains' even spacing.
+  const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/projection.stl").mesh).mesh;
+  const remesh::RemeshSurface prepared(part);
+  remesh::FeatureSamplingOptions all_kept;
+  all_kept.max_share_narrow_regions = std::numeric_limits<double>::max();
+  const remesh::FeatureSampling tightened = remesh::sample_features(prepared, 500, all_kept);
+  ASSERT_GT(tightened.sites.points, 500);
+  all_kept.tight_spacing = 0;
+  const remesh::FeatureSampling evenly = remesh::sample_features(prepared, 500, all_kept);
+  ASSERT_LE(evenly.sites.points, 500);
+  const remesh::FeatureSampling sampled = remesh::sample_features(prepared, 500);
+  EXPECT_EQ(sampled.features.sharp_edges, tightened.features.sharp_edges);
+  EXPECT_EQ(sampled.sites.points, evenly.sites.points);
+  EXPECT_EQ(sampled.points_tightened, 0);
+  EXPECT_TRUE(sampled.density.empty());
 }
 
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {

@@ -351,6 +351,7 @@ FeatureSites feature_sites(const RemeshSurface& prepared, const FeatureSet& feat
                                        !chain.closed && ends_at[chain.vertices.back()] == 1};
     if (bends && options.tight_spacing > 0 && options.split_at_bends) {
       stops = stops_at_bends(walk, ends, own, options);
+      ++result.chains_split_at_bends;
       match_close_points_at_lone_ends(length, alone, options.min_spacing, stops);
       // The stops closer than min_spacing, with their distance to the nearer neighbour.
       for (std::size_t k = 0; k < stops.size(); ++k) {

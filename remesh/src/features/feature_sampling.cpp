@@ -79,33 +79,40 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   };
   if (!line_creases(detect_features(prepared, feature_options))) return sampling;
   // Where the creases are more than the count carries, those round narrow
-  // faceted sides go, then those round narrow regions, smooth or not.
-  const auto too_many = [&] {
-    return static_cast<double>(sampling.sites.points) > options.max_share_narrow_regions * static_cast<double>(sites) &&
-           feature_options.min_region_width < feature_options.min_rough_region_width;
+  // faceted sides go, then those round narrow regions, smooth or not. The
+  // share is judged on the chains' sites without the points where they bend
+  // (tight_spacing 0): where those points alone take the chains beyond it,
+  // they go, not creases (below).
+  FeatureSiteOptions loose_options = site_options;
+  loose_options.tight_spacing = 0;
+  const auto narrow_regions_kept = [&] {
+    return feature_options.min_region_width < feature_options.min_rough_region_width;
   };
+  const double share = options.max_share_narrow_regions * static_cast<double>(sites);
+  FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, loose_options);
   for (const bool faceted_go : {true, false}) {
-    if (!too_many() || (faceted_go && feature_options.parallel_fold_angle == 0)) continue;
+    const bool too_many = narrow_regions_kept() && static_cast<double>(loose.points) > share;
+    if (!too_many || (faceted_go && feature_options.parallel_fold_angle == 0)) continue;
     if (faceted_go) {
       feature_options.parallel_fold_angle = 0;
     } else {
       feature_options.min_region_width = feature_options.min_rough_region_width;
     }
     FeatureSet fewer = detect_features(prepared, feature_options);
-    if (fewer.sharp_edges.size() < sampling.features.sharp_edges.size() && !line_creases(std::move(fewer))) {
-      return sampling;
+    if (fewer.sharp_edges.size() < sampling.features.sharp_edges.size()) {
+      if (!line_creases(std::move(fewer))) return sampling;
+      loose = feature_sites(prepared, sampling.features, sampling.cut, loose_options);
     }
   }
-  const TriangleMesh& cut = sampling.cut.mesh;
-  if (sampling.sites.dense_points.empty()) return sampling;
-  site_options.tight_spacing = 0;
-  FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, site_options);
   sampling.points_tightened = sampling.sites.points - loose.points;
-  if (static_cast<double>(sampling.points_tightened) > options.max_share_tightened * static_cast<double>(sites)) {
+  if (static_cast<double>(sampling.points_tightened) > options.max_share_tightened * static_cast<double>(sites) ||
+      (narrow_regions_kept() && static_cast<double>(sampling.sites.points) > share)) {
     sampling.sites = std::move(loose);
     sampling.points_tightened = 0;
     return sampling;
   }
+  const TriangleMesh& cut = sampling.cut.mesh;
+  if (sampling.sites.dense_points.empty()) return sampling;
   sampling.density = spacing_density(cut, sampling.sites.dense_points, {.spacing = spacing});
   sampling.density_spacing = spacing;
   sampling.sites_near_features = sites_for_density(cut, sites, {}, sampling.density) - sites;

@@ -165,6 +165,9 @@ struct RemeshPipelineResult {
   /// Of those, the points added where a crease bends too much for chords
   /// 3/4 of a spacing long (FeatureSampling::points_tightened).
   std::int64_t feature_sites_tightened = 0;
+  /// The chains whose points lie at their own vertices where they bend
+  /// (remesh::FeatureSites::chains_split_at_bends).
+  std::int64_t feature_chains_split_at_bends = 0;
   /// Sites added beside the features where their sites are closer than the
   /// spacing (FeatureSites::dense_points), so that the triangles there keep their shape.
   std::int64_t sites_added_near_features = 0;

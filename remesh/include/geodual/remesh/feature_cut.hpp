@@ -83,6 +83,8 @@ struct FeatureSites {
   /// along the chain. The sites around them should be as close
   /// (chain_density), or the triangles between make slivers.
   std::vector<SpacedPoint> dense_points;
+  /// The chains split at their own vertices where they bend (options.split_at_bends).
+  std::int64_t chains_split_at_bends = 0;
 };
 
 /// Sites along every chain, evenly by arc length between its corners (a
