@@ -962,6 +962,24 @@ TEST(FeatureSampling, PointsWhereChainsBendGoBeforeCreasesWhereTheyAloneExceedTh
   EXPECT_TRUE(sampled.density.empty());
 }
 
+TEST(FeatureSampling, EvenlyCloserPointsWhereThoseAtTheBendsAreMoreThanTheCountCarries) {
+  // OpenSCAD's CSG-modules at 500 sites: its chains' points at their own
+  // vertices where they bend would add more than a quarter of the count
+  // (max_share_tightened); evenly closer ones add fewer, and stay.
+  const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/CSG-modules.stl").mesh).mesh;
+  const remesh::RemeshSurface prepared(part);
+  remesh::FeatureSamplingOptions unbounded;
+  unbounded.max_share_tightened = std::numeric_limits<double>::max();
+  const remesh::FeatureSampling at_bends = remesh::sample_features(prepared, 500, unbounded);
+  ASSERT_GT(at_bends.sites.chains_split_at_bends, 0);
+  ASSERT_GT(at_bends.points_tightened, 125);
+  const remesh::FeatureSampling sampled = remesh::sample_features(prepared, 500);
+  EXPECT_EQ(sampled.features.sharp_edges, at_bends.features.sharp_edges);
+  EXPECT_EQ(sampled.sites.chains_split_at_bends, 0);
+  EXPECT_GT(sampled.points_tightened, 0);
+  EXPECT_LE(sampled.points_tightened, 125);
+}
+
 TEST(FeatureCut, WeldMergesTwinsAndFindsNoCrackInAClosedDual) {
   // Sites at the corners, the crease midpoints and each side's centre: the
   // sides' duals must weld into one closed surface.

@@ -104,13 +104,24 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
       loose = feature_sites(prepared, sampling.features, sampling.cut, loose_options);
     }
   }
-  sampling.points_tightened = sampling.sites.points - loose.points;
-  if (static_cast<double>(sampling.points_tightened) > options.max_share_tightened * static_cast<double>(sites) ||
-      (narrow_regions_kept() && static_cast<double>(sampling.sites.points) > share)) {
+  // The closer points, where the count carries them: at the chains' own
+  // vertices where they bend, else evenly closer (fewer, as a rule), else none.
+  const auto carried = [&](const FeatureSites& closer) {
+    return static_cast<double>(closer.points - loose.points) <=
+               options.max_share_tightened * static_cast<double>(sites) &&
+           !(narrow_regions_kept() && static_cast<double>(closer.points) > share);
+  };
+  if (!carried(sampling.sites) && sampling.sites.chains_split_at_bends > 0) {
+    FeatureSiteOptions evenly_options = site_options;
+    evenly_options.split_at_bends = false;
+    FeatureSites evenly = feature_sites(prepared, sampling.features, sampling.cut, evenly_options);
+    if (carried(evenly)) sampling.sites = std::move(evenly);
+  }
+  if (!carried(sampling.sites)) {
     sampling.sites = std::move(loose);
-    sampling.points_tightened = 0;
     return sampling;
   }
+  sampling.points_tightened = sampling.sites.points - loose.points;
   const TriangleMesh& cut = sampling.cut.mesh;
   if (sampling.sites.dense_points.empty()) return sampling;
   sampling.density = spacing_density(cut, sampling.sites.dense_points, {.spacing = spacing});

@@ -49,6 +49,8 @@ struct FeatureSamplingOptions {
   /// then spaced as elsewhere beside the chain (narrower triangles against it).
   /// Where the chain sites this spacing adds would be more than
   /// max_share_tightened of the count (creases that bend at every spacing),
+  /// or take the chains beyond max_share_narrow_regions, evenly closer ones
+  /// instead of those at the chains' vertices, if those fit; else
   /// min_spacing throughout.
   double tight_spacing = 0.4;
   double max_share_near_features = 0.1;
