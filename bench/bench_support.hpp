@@ -618,6 +618,9 @@ struct RemeshRun {
   std::int64_t sites_added = 0;
   int lloyd_iterations = 0;
   int warm_start_iterations = 0;
+  int error_rounds = 0;          ///< remeshes made under an error bound (0: none)
+  bool error_bound_met = false;  ///< and whether the last met it
+  double bound_checked_pct = 0;  ///< the Hausdorff distance the pipeline's own statistics gave it
   bool has_figures = false;
   QualityFigures output;
   QualityFigures input;  ///< the reference side of compare_meshes, distances NaN

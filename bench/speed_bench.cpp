@@ -32,6 +32,19 @@
 //            runs on one thread, with glibc's malloc as a program that calls
 //            it has it; --cgal-kept-heap tunes it as geodual's.
 //
+// With --max-error PCT, also at every T, after the default job:
+//
+//   geodual --max-error           the same job under an error bound of PCT %
+//                                 (`geodual remesh MESH --sites n --max-error PCT
+//                                 -o OUT.glb`: statistics on, as the bound needs
+//                                 them), each remesh after the first refined
+//                                 locally (RemeshPipelineOptions::refine_locally);
+//   geodual --max-error, global   the same with every site relaxed again
+//                                 (--refine-globally).
+//
+//            Their notes give the remeshes made, whether the bound held, and
+//            the time over the default job's at the same T.
+//
 // Timing: wall and CPU seconds from the file to the written output, for
 // both. Peak RSS: the child's high-water mark at the end of that, which
 // includes what the child inherited from this process (which keeps no mesh).
@@ -87,6 +100,7 @@ struct Options {
   ComparisonOptions comparison;      ///< CGAL's remesh and search, the statistics, the time limit
   std::filesystem::path output_dir;  ///< empty: a temporary folder, removed at the end
   bool cgal_kept_heap = false;       ///< CGAL's runs keep freed memory in the heap too
+  double max_error_pct = 0;          ///< > 0: the jobs under this error bound too
   std::vector<std::filesystem::path> meshes;
 };
 
@@ -120,9 +134,22 @@ Row new_row(const std::string& input, std::int64_t sites, const std::string& met
 // ---------------------------------------------------------------------------
 // The runs (each in a forked child)
 
-/// geodual's default job on `threads` threads, file to file (see the file
+/// geodual's jobs: the default one, and under the error bound refined
+/// locally or globally.
+enum class Job { plain, bounded_locally, bounded_globally };
+
+std::string method_name(Job job) {
+  switch (job) {
+    case Job::plain: return "geodual";
+    case Job::bounded_locally: return "geodual --max-error";
+    case Job::bounded_globally: return "geodual --max-error, global";
+  }
+  return "";
+}
+
+/// geodual's `job` on `threads` threads, file to file (see the file
 /// comment); the figures after the timing when `figures`.
-RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std::int64_t threads,
+RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std::int64_t threads, Job job,
                       const std::filesystem::path& output, bool figures, const Options& options) {
   RemeshRun run;
   pipeline::keep_freed_memory_in_heap();  // as the CLI's main does
@@ -134,7 +161,11 @@ RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     pipeline::RemeshPipelineOptions pipeline_options;  // the CLI's defaults
     pipeline_options.sites = sites;
-    pipeline_options.statistics = false;  // --no-statistics
+    pipeline_options.statistics = job != Job::plain;  // --no-statistics but for the bound
+    if (job != Job::plain) {
+      pipeline_options.max_error_pct = options.max_error_pct;
+      pipeline_options.refine_locally = job == Job::bounded_locally;
+    }
     result = pipeline::run_remesh_pipeline(mesh, pipeline_options);
     // The CLI computes these for the output's extras when the statistics are off.
     const quality::TriangleQuality quality = quality::triangle_quality(result->remesh.mesh);
@@ -147,6 +178,9 @@ RemeshRun run_geodual(const std::filesystem::path& mesh, std::int64_t sites, std
   run.sites_added = result->remesh.sites_added;
   run.lloyd_iterations = result->relaxation.iterations;
   run.warm_start_iterations = result->relaxation.warm_start_iterations;
+  run.error_rounds = static_cast<int>(result->error_rounds.size());
+  run.error_bound_met = result->error_bound_met;
+  if (result->statistics) run.bound_checked_pct = result->statistics->hausdorff_pct;
   if (figures) add_figures(run, result->input.mesh, result->remesh.mesh, options.comparison.samples);
   return run;
 }
@@ -182,7 +216,16 @@ bool same_bytes(const std::filesystem::path& a, const std::filesystem::path& b) 
                     std::istreambuf_iterator<char>(in_b), std::istreambuf_iterator<char>());
 }
 
-/// The rows of one mesh and site count: geodual at every T, then CGAL.
+/// Of one geodual job, its first run that succeeded (the later T are
+/// checked for the same bytes and timed against it).
+struct JobRuns {
+  std::optional<std::filesystem::path> first_output;  ///< of the first T that succeeded
+  std::optional<double> first_seconds;
+  std::int64_t first_threads = 0;
+  std::optional<RemeshRun> figures_of_first;  ///< the first run that measured the figures
+};
+
+/// The rows of one mesh and site count: geodual's jobs at every T, then CGAL.
 std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::int64_t sites,
                          const std::filesystem::path& output_dir, const Options& options) {
   ChildLimits limits;
@@ -190,53 +233,68 @@ std::vector<Row> measure(const std::filesystem::path& mesh, double area, std::in
   const std::string name = mesh.filename().string();
   const std::string stem = mesh.stem().string() + "-" + std::to_string(sites);
   std::vector<Row> rows;
-  std::optional<std::filesystem::path> first_output;  ///< of the first T that succeeded
-  std::optional<double> first_seconds;
-  std::int64_t first_threads = 0;
   std::optional<std::int64_t> target;
-  std::optional<RemeshRun> figures_of_first;  ///< the first run that measured the figures
+  std::vector<Job> jobs = {Job::plain};
+  if (options.max_error_pct > 0) jobs.insert(jobs.end(), {Job::bounded_locally, Job::bounded_globally});
+  std::vector<JobRuns> job_runs(jobs.size());
+  std::vector<std::pair<std::int64_t, double>> plain_seconds;  // per T
   for (const std::int64_t threads : options.threads) {
-    Row row = new_row(name, sites, "geodual", threads);
-    const std::filesystem::path output = output_dir / (stem + "-geodual-t" + std::to_string(threads) + ".glb");
-    std::cerr << "speed_bench:   geodual " << sites << " sites, " << threads
-              << (threads == 1 ? " thread\n" : " threads\n");
-    const bool figures = !figures_of_first;
-    const ChildOutcome outcome =
-        run_in_child(limits, [&] { return to_bytes(run_geodual(mesh, sites, threads, output, figures, options)); });
-    if (outcome.status != ChildOutcome::Status::ok) {
-      row.failure = outcome.message;
-      row.failed_child_rss = outcome.child_max_rss_bytes;
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      const Job job = jobs[j];
+      auto& [first_output, first_seconds, first_threads, figures_of_first] = job_runs[j];
+      Row row = new_row(name, sites, method_name(job), threads);
+      const std::filesystem::path output =
+          output_dir / (stem + "-geodual-" + std::to_string(j) + "-t" + std::to_string(threads) + ".glb");
+      std::cerr << "speed_bench:   " << method_name(job) << " " << sites << " sites, " << threads
+                << (threads == 1 ? " thread\n" : " threads\n");
+      const bool figures = !figures_of_first;
+      const ChildOutcome outcome = run_in_child(
+          limits, [&] { return to_bytes(run_geodual(mesh, sites, threads, job, output, figures, options)); });
+      if (outcome.status != ChildOutcome::Status::ok) {
+        row.failure = outcome.message;
+        row.failed_child_rss = outcome.child_max_rss_bytes;
+        rows.push_back(std::move(row));
+        continue;
+      }
+      RemeshRun run = from_bytes<RemeshRun>(outcome.payload);
+      if (first_output) row.same_output = same_bytes(*first_output, output);
+      if (figures_of_first && row.same_output == true) {  // measured once for the same mesh
+        run.output = figures_of_first->output;
+        run.input = figures_of_first->input;
+        run.has_figures = true;
+      } else if (run.has_figures) {
+        figures_of_first = run;
+      }
+      if (run.lloyd_iterations > 0 || run.warm_start_iterations > 0) {
+        row.notes = std::to_string(run.warm_start_iterations) + " warm-start steps, " +
+                    std::to_string(run.lloyd_iterations) + " Lloyd iteration(s)";
+      }
+      if (run.sites_added > 0) {
+        row.notes += (row.notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
+      }
+      if (first_output) {
+        row.speedup = *first_seconds / run.seconds;
+        const std::string first = std::to_string(first_threads) + (first_threads == 1 ? " thread" : " threads");
+        row.notes = *row.same_output ? "the same bytes as on " + first : "OUTPUT DIFFERS from the one on " + first;
+      } else {
+        first_output = output;
+        first_seconds = run.seconds;
+        first_threads = threads;
+        if (job == Job::plain) target = run.vertices;
+      }
+      if (job == Job::plain) {
+        plain_seconds.emplace_back(threads, run.seconds);
+      } else {
+        std::string bound = std::to_string(run.error_rounds) + " remeshes, H " + fixed(run.bound_checked_pct, 3) +
+                            (run.error_bound_met ? " % <= " : " % > ") + fixed(options.max_error_pct, 3) + " %";
+        for (const auto& [t, seconds] : plain_seconds) {
+          if (t == threads) bound += ", " + fixed(run.seconds / seconds, 2) + "x the default job";
+        }
+        row.notes = bound + "; " + row.notes;
+      }
+      row.run = run;
       rows.push_back(std::move(row));
-      continue;
     }
-    RemeshRun run = from_bytes<RemeshRun>(outcome.payload);
-    if (first_output) row.same_output = same_bytes(*first_output, output);
-    if (figures_of_first && row.same_output == true) {  // measured once for the same mesh
-      run.output = figures_of_first->output;
-      run.input = figures_of_first->input;
-      run.has_figures = true;
-    } else if (run.has_figures) {
-      figures_of_first = run;
-    }
-    if (run.lloyd_iterations > 0 || run.warm_start_iterations > 0) {
-      row.notes = std::to_string(run.warm_start_iterations) + " warm-start steps, " +
-                  std::to_string(run.lloyd_iterations) + " Lloyd iteration(s)";
-    }
-    if (run.sites_added > 0) {
-      row.notes += (row.notes.empty() ? "" : ", ") + ("+" + std::to_string(run.sites_added) + " repair sites");
-    }
-    if (first_output) {
-      row.speedup = *first_seconds / run.seconds;
-      const std::string first = std::to_string(first_threads) + (first_threads == 1 ? " thread" : " threads");
-      row.notes = *row.same_output ? "the same bytes as on " + first : "OUTPUT DIFFERS from the one on " + first;
-    } else {
-      first_output = output;
-      first_seconds = run.seconds;
-      first_threads = threads;
-      target = run.vertices;
-    }
-    row.run = run;
-    rows.push_back(std::move(row));
   }
 
   Row cgal = new_row(name, sites, "CGAL isotropic", 1);
@@ -435,12 +493,15 @@ int run_benchmark(const Options& options) {
 
 constexpr const char* usage =
     "usage: speed_bench [--sites 5000] [--threads 1,2] [--cgal-iterations N] [--tolerance PCT] [--max-runs R]\n"
-    "                   [--samples S] [--time-limit S] [--output-dir DIR] [--cgal-kept-heap] [MESH...]\n"
+    "                   [--samples S] [--time-limit S] [--output-dir DIR] [--cgal-kept-heap] [--max-error PCT]\n"
+    "                   [MESH...]\n"
     "geodual's default job (geodual remesh MESH --sites N --no-statistics -o OUT.glb) on each thread count,\n"
     "and CGAL's isotropic_remeshing at the same vertex count within PCT % (default 3): time, CPU time,\n"
     "peak memory and quality. Prints one JSON object per row, then a Markdown table.\n"
     "--output-dir DIR keeps the outputs there (default: a temporary folder, removed).\n"
     "--cgal-kept-heap: CGAL's runs keep freed memory in the heap, as geodual's (and its CLI's) do.\n"
+    "--max-error PCT: also the job under this error bound (geodual remesh ... --max-error PCT), refined locally\n"
+    "and globally (--refine-globally).\n"
     "default meshes: examples/data/bunny.ply tests/data/armadillo_86k.ply tests/data/fertility.ply\n";
 
 Options parse_options(int argc, char** argv) {
@@ -454,6 +515,11 @@ Options parse_options(int argc, char** argv) {
       options.output_dir = value();
     } else if (word == "--cgal-kept-heap") {
       options.cgal_kept_heap = true;
+    } else if (word == "--max-error") {
+      options.max_error_pct = parse_number(word, value());
+      if (!(options.max_error_pct > 0 && options.max_error_pct <= 100)) {
+        throw UsageError("--max-error: expected a number in (0, 100] (% of the diagonal)");
+      }
     } else {
       return parse_comparison_option(word, value, options.comparison);
     }

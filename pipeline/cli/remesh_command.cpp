@@ -191,6 +191,9 @@ class RemeshCommand final : public Command {
                     "With --max-error: the most sites a remesh may ask for (0: 8 times the first remesh's)")
         ->capture_default_str()
         ->check(integer_between(0, 100'000'000));
+    command.add_flag("--refine-globally", refine_globally_,
+                     "With --max-error: relax every site again in each remesh after the first, not only those near "
+                     "the sites added (slower; the rest of the remesh then changes too)");
     command
         .add_option("--max-repair-rounds", options_.max_repair_rounds,
                     "Rounds of adding sites where the dual fails before giving up (up to as many more while each needs "
@@ -537,6 +540,7 @@ class RemeshCommand final : public Command {
     options.quality.samples_per_side = std::max<std::int64_t>(samples_, 0);
     options.max_error_pct = max_error_pct_;
     options.max_sites = max_sites_;
+    options.refine_locally = !refine_globally_;
     options.texture_size = texture_size_;
     options.bake_normal_map = bake_ == "normal";
     std::string round_label;  // with --max-error: which remesh the bar shows
@@ -841,6 +845,7 @@ class RemeshCommand final : public Command {
     options["max_error"] =
         max_error_pct_ > 0 ? nlohmann::ordered_json(max_error_pct_) : nlohmann::ordered_json(nullptr);
     options["max_sites"] = max_sites_ > 0 ? nlohmann::ordered_json(max_sites_) : nlohmann::ordered_json(nullptr);
+    options["refine_globally"] = refine_globally_;
     options["sharp_angle"] = features_.sampling.sharp_angle;
     options["continuation_angle"] = features_.sampling.continuation_angle;
     options["pin_creases"] = features_.pin_short_creases;
@@ -889,6 +894,7 @@ class RemeshCommand final : public Command {
   std::int64_t samples_ = 1'000'000;
   double max_error_pct_ = 0;
   std::int64_t max_sites_ = 0;
+  bool refine_globally_ = false;
   bool strict_ = false;
   bool json_ = false;
   bool quiet_ = false;

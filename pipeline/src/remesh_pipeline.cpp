@@ -155,6 +155,10 @@ struct SiteRefinement {
   std::int64_t added = 0;
 };
 
+/// How far from the sites added a locally refined remesh moves the sites, in
+/// spacings of its count: the added sites' neighbours, and theirs, make way.
+constexpr double kLocalRefinementReach = 2.0;
+
 /// Where the cut to a manifold made loops the input does not have (at its
 /// non-manifold edges), a note for messages about `surface_loops` loops.
 std::string loops_made_by_cut(const RemeshPipelineResult& result, std::int64_t surface_loops) {
@@ -398,6 +402,7 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
     sites = result.sites_for_sizing = remesh::sites_for_faces(*prepared, options.faces);
   }
   SampledSites sampled;
+  std::vector<std::uint8_t> staying;  // of a local refinement: the sites its relaxation leaves where they are
   result.sites_added_near_features = 0;
   if (options.given_sites) {
     sampled.initial.sites = std::move(given_sites);
@@ -410,9 +415,14 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
       for (std::size_t v = 0; v < values.size(); ++v) values[v] = field[result.surface.original_vertex[v]];
       return values;
     };
+    const std::vector<double> density_now = on_surface(input_density);
     sampled.initial.sites = remesh::add_sites_at_deviations(
-        manifold_surface, refinement->sites, on_surface(refinement->deviation), on_surface(input_density),
+        manifold_surface, refinement->sites, on_surface(refinement->deviation), density_now,
         remesh::uniform_spacing(manifold_surface, sites), refinement->added);
+    if (options.refine_locally) {
+      staying = remesh::sites_away_from_added(manifold_surface, sampled.initial.sites, refinement->sites.size(),
+                                              kLocalRefinementReach * remesh::uniform_spacing(manifold_surface, sites));
+    }
   } else {
     sampled = sample_around_features(result, options, *prepared, sites, given_share, excluded_edges);
   }
@@ -428,6 +438,15 @@ bool run_stages(RemeshPipelineResult& result, const RemeshPipelineOptions& optio
   // relax and dual stages; gone before the statistics.
   const TriangleMesh& surface = result.features.empty() ? manifold_surface : result.feature_cut.mesh;
   remesh::LloydOptions lloyd = relaxation_stage_options(result, options, surface, sampled, input_density, cut_is_input);
+  if (!staying.empty() && lloyd.iterations > 0) {
+    // The sites that move are few, among sites an earlier relaxation left
+    // near the geodesic CVT: the restricted diagram's steps bring them there
+    // too, without an exact diagram per step.
+    lloyd.fixed_sites.resize(staying.size(), 0);
+    for (std::size_t s = 0; s < staying.size(); ++s) lloyd.fixed_sites[s] |= staying[s];
+    lloyd.iterations = 0;
+    lloyd.warm_start_alone = true;
+  }
   report(options.progress, Stage::relax, 0.0);
   StageClock relax_clock(result.timings, Stage::relax);
   std::optional<voronoi::GeodesicSurface> geodesic_surface(std::in_place, surface);
@@ -820,7 +839,9 @@ RemeshPipelineResult remesh_within_error(RemeshPipelineResult result, const Reme
         mesh, density, deviation, {.max_error = bound, .spacing = remesh::uniform_spacing(mesh, sites)});
     const std::int64_t next_sites = std::min(max_sites, remesh::sites_for_density(mesh, sites, density, refined));
     refinement.reset();
-    if (reuse_sites) refinement = SiteRefinement{std::move(last_sites), std::move(deviation), next_sites - sites};
+    if (reuse_sites) {
+      refinement = SiteRefinement{std::move(last_sites), std::move(deviation), next_sites - sites};
+    }
     round.sites = next_sites;
     round.edge_length = 0;
     round.faces = 0;

@@ -854,6 +854,19 @@ TEST(RemeshCommand, MaxErrorRemeshesUntilTheBoundHoldsOrExitsFourWithTheClosest)
   EXPECT_EQ(rounds.back()["hausdorff_pct"].get<double>(), json["hausdorff_pct"].get<double>());
   EXPECT_EQ(analyze_mesh(io::read_mesh(out).mesh).vertices, json["vertices"].get<std::int64_t>());
 
+  // --refine-globally relaxes every site again after the first remesh, which
+  // is the same: the later remeshes differ.
+  const auto global_out = folder.path() / "global.ply";
+  std::vector<std::string> global_args = args;
+  global_args.back() = global_out.string();
+  const CliRun global = run_cli(concat(global_args, {"--json", "--refine-globally"}));
+  ASSERT_EQ(global.exit_status, 0) << global.err;
+  const nlohmann::json global_json = nlohmann::json::parse(global.out);
+  ASSERT_GE(global_json["error_rounds"].size(), 2u);
+  EXPECT_EQ(global_json["error_rounds"][0], rounds[0]);
+  EXPECT_NE(global_json["error_rounds"][1]["hausdorff_pct"], rounds[1]["hausdorff_pct"]);
+  EXPECT_NE(slurp(global_out), slurp(out));
+
   // Stopped by the site limit: the closest remesh is written, a warning
   // says how far it is, and the exit status is 4.
   std::filesystem::remove(out);

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -98,6 +99,55 @@ TEST(ErrorBound, WhereARemeshKeptNoFeaturesTheNextStartsFromItsSites) {
   EXPECT_GT(at_vertices, 0);
   EXPECT_LE(at_vertices, result.error_rounds.back().sites - before);
   EXPECT_GT(at_bump, 0);
+}
+
+TEST(ErrorBound, ALaterRemeshMovesOnlyTheSitesNearThoseAdded) {
+  // Refined locally (the default), the last remesh relaxes the sites within
+  // two spacings of those added, on the restricted diagram alone, with one
+  // exact diagram; the sites farther away stay where the last remesh had
+  // them. Relaxed anew, every site moves, with exact iterations.
+  pipeline::RemeshPipelineOptions options = bounded(0.5);
+  options.sites = 400;
+  options.max_error_rounds = 2;
+  ASSERT_TRUE(options.refine_locally);
+  const pipeline::RemeshPipelineResult local = pipeline::run_remesh_pipeline(sphere_with_bump(), options);
+  ASSERT_EQ(local.error_rounds.size(), 2u);
+  EXPECT_LT(local.error_rounds.back().hausdorff_pct, local.error_rounds.front().hausdorff_pct);
+  EXPECT_EQ(local.relaxation.iterations, 0);
+  EXPECT_GT(local.relaxation.warm_start_iterations, 0);
+  EXPECT_EQ(local.relaxation.diagrams, 1);
+  const TriangleMesh& surface = local.surface.mesh;
+  std::vector<Eigen::Vector3d> added;  // the sites added, at the input's vertices
+  for (const SurfacePoint& site : local.initial_sites) {
+    if (site.kind == SurfacePoint::Kind::vertex) added.push_back(site.position(surface));
+  }
+  ASSERT_GT(added.size(), 0u);
+  const double spacing = std::sqrt(local.statistics->reference.area / static_cast<double>(local.initial_sites.size()));
+  int far = 0, near_moved = 0;
+  for (std::size_t i = 0; i < local.initial_sites.size(); ++i) {
+    const Eigen::Vector3d p = local.initial_sites[i].position(surface);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& a : added) nearest = std::min(nearest, (p - a).norm());
+    const bool same = local.relaxation.sites[i].position(surface) == p;
+    if (nearest > 2.5 * spacing) {
+      ++far;
+      EXPECT_TRUE(same) << "site " << i << ", " << nearest / spacing << " spacings from the nearest added, moved";
+    } else {
+      near_moved += !same;
+    }
+  }
+  EXPECT_GT(far, static_cast<int>(local.initial_sites.size()) / 2);
+  EXPECT_GT(near_moved, static_cast<int>(added.size()));
+
+  options.refine_locally = false;
+  const pipeline::RemeshPipelineResult anew = pipeline::run_remesh_pipeline(sphere_with_bump(), options);
+  ASSERT_EQ(anew.error_rounds.size(), 2u);
+  EXPECT_GE(anew.relaxation.diagrams, 2);
+  int moved = 0;
+  for (std::size_t i = 0; i < anew.initial_sites.size(); ++i) {
+    moved += anew.relaxation.sites[i].position(surface) != anew.initial_sites[i].position(surface);
+  }
+  EXPECT_GT(moved, static_cast<int>(anew.initial_sites.size()) * 9 / 10);
 }
 
 TEST(ErrorBound, TheSiteLimitStopsItWithTheClosestRemesh) {

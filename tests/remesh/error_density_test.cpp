@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace geodual::remesh {
@@ -142,6 +144,34 @@ TEST(ErrorDensity, SitesAreAddedAtTheLargestDeviationsHalfASpacingApart) {
   EXPECT_THROW(add_sites_at_deviations(square, sites, std::vector<double>(3, 1.0), {}, 0.1, 1), UsageError);
   EXPECT_THROW(add_sites_at_deviations(square, sites, deviation, std::vector<double>(deviation.size(), 0.0), 0.1, 1),
                UsageError);
+}
+
+TEST(ErrorDensity, SitesFartherThanTheReachFromEveryAddedOneStay) {
+  const TriangleMesh square = test::unit_square(kGrid);
+  std::vector<SurfacePoint> sites;
+  for (Index f = 0; f < square.num_faces(); f += 37) sites.push_back(SurfacePoint::in_face(f, 0.2, 0.3, 0.5));
+  const std::size_t first_added = sites.size();
+  sites.push_back(SurfacePoint::at_vertex(kCentre));
+  sites.push_back(SurfacePoint::at_vertex(0));  // a corner
+  const double reach = 0.2;
+  const std::vector<std::uint8_t> away = sites_away_from_added(square, sites, first_added, reach);
+  ASSERT_EQ(away.size(), sites.size());
+  int staying = 0;
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t a = first_added; a < sites.size(); ++a) {
+      nearest = std::min(nearest, (sites[s].position(square) - sites[a].position(square)).norm());
+    }
+    EXPECT_EQ(away[s], nearest > reach ? 1 : 0) << s << " at " << nearest;
+    staying += away[s];
+  }
+  EXPECT_GT(staying, static_cast<int>(first_added) / 2);
+  EXPECT_LT(staying, static_cast<int>(first_added));
+  // Nothing added: every site stays.
+  const std::vector<std::uint8_t> none = sites_away_from_added(square, sites, sites.size(), reach);
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), static_cast<std::ptrdiff_t>(sites.size()));
+  EXPECT_THROW(sites_away_from_added(square, sites, first_added, -1.0), UsageError);
+  EXPECT_THROW(sites_away_from_added(square, sites, first_added, std::nan("")), UsageError);
 }
 
 TEST(ErrorDensity, OptionsOutOfRangeAreUsageErrors) {

@@ -286,6 +286,51 @@ TEST(Lloyd, FixedSitesStayWhereTheyAreAndTheOthersMove) {
   }
 }
 
+TEST(Lloyd, AWarmStartAloneMovesTheFewFreeSitesWithOneExactDiagram) {
+  // A cap of free sites among fixed ones (an error bound's later rounds):
+  // the warm start alone relaxes them, on the cells their steps can change,
+  // and only the diagram of the sites reached is exact.
+  const TriangleMesh sphere = test::icosphere(4);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 400);
+  const Eigen::Vector3d pole(0, 0, 1);
+  remesh::LloydOptions options;
+  options.iterations = 0;
+  options.warm_start_alone = true;
+  options.warm_start_iterations = 10;
+  options.fixed_sites.assign(sites.size(), 1);
+  int free = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    if (sites[i].position(sphere).normalized().dot(pole) > 0.8) options.fixed_sites[i] = 0, ++free;
+  }
+  ASSERT_GT(free, 10);
+  ASSERT_LT(4 * free, static_cast<int>(sites.size()));  // few enough for the cells near them alone
+  const remesh::LloydResult relaxed = remesh::lloyd_relax(sphere, sites, options);
+  EXPECT_EQ(relaxed.iterations, 0);
+  EXPECT_GT(relaxed.warm_start_iterations, 0);
+  EXPECT_EQ(relaxed.diagrams, 1);
+  int moved = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const bool same = relaxed.sites[i].position(sphere) == sites[i].position(sphere);
+    if (options.fixed_sites[i]) {
+      EXPECT_TRUE(same) << "fixed site " << i << " moved";
+    } else {
+      moved += !same;
+    }
+  }
+  EXPECT_GT(moved, free / 2);
+  // The exact energy of the whole fell (energy[0]: the sites reached).
+  remesh::LloydOptions given;
+  given.iterations = 0;
+  const remesh::LloydResult unmoved = remesh::lloyd_relax(sphere, sites, given);
+  ASSERT_EQ(unmoved.energy.size(), 1u);
+  EXPECT_LT(relaxed.energy.front(), unmoved.energy.front());
+  // Without warm_start_alone no iterations means none: the given sites.
+  options.warm_start_alone = false;
+  const remesh::LloydResult none = remesh::lloyd_relax(sphere, sites, options);
+  EXPECT_EQ(none.warm_start_iterations, 0);
+  EXPECT_EQ(none.energy, unmoved.energy);
+}
+
 TEST(Lloyd, TheWarmStartCanBeCancelled) {
   // The progress callback of the geodesics is asked between warm-start
   // steps too (with 0), before any diagram: cancelled there, the warm start

@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <map>
 #include <utility>
 
@@ -115,6 +116,49 @@ TEST(RestrictedVoronoi, OfTwoSitesAtOnePlaceTheFirstTakesTheCell) {
   EXPECT_EQ(doubled.area.back(), 0.0);
   EXPECT_EQ(doubled.mass.back(), 0.0);
   EXPECT_NEAR(doubled.area[7], single.area[7], 1e-12);
+}
+
+TEST(RestrictedVoronoi, CellsAskedForAloneAreThoseOfTheWholeDiagram) {
+  // Each cell is cut by every site either way: the cells flagged come out
+  // bit for bit as in the whole diagram, with the boundaries whose first
+  // site is flagged; the others are left empty.
+  const TriangleMesh sphere = test::icosphere(4);
+  const std::vector<SurfacePoint> sites = remesh::sample_sites(sphere, 300);
+  const voronoi::GeodesicField topology = voronoi::compute_geodesic_field(sphere, std::span(sites).first(1));
+  const remesh::detail::RestrictedSurface surface =
+      remesh::detail::prepare_restricted_surface(sphere, *topology.topology, {});
+  const remesh::detail::RestrictedCells whole = remesh::detail::restricted_voronoi(surface, sites);
+  std::vector<std::uint8_t> only(sites.size(), 0);
+  for (std::size_t s = 0; s < sites.size(); s += 3) only[s] = 1;
+  const remesh::detail::RestrictedCells some = remesh::detail::restricted_voronoi(surface, sites, only);
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    SCOPED_TRACE(s);
+    if (only[s]) {
+      EXPECT_EQ(some.area[s], whole.area[s]);
+      EXPECT_EQ(some.mass[s], whole.mass[s]);
+      EXPECT_EQ(some.moment[s], whole.moment[s]);
+      EXPECT_EQ(some.energy[s], whole.energy[s]);
+    } else {
+      EXPECT_EQ(some.area[s], 0.0);
+      EXPECT_EQ(some.energy[s], 0.0);
+    }
+  }
+  std::vector<remesh::detail::RestrictedBoundary> expected;
+  for (const remesh::detail::RestrictedBoundary& boundary : whole.boundaries) {
+    if (only[boundary.site]) expected.push_back(boundary);
+  }
+  ASSERT_EQ(some.boundaries.size(), expected.size());
+  ASSERT_GT(expected.size(), 100u);
+  for (std::size_t b = 0; b < expected.size(); ++b) {
+    const remesh::detail::RestrictedBoundary &got = some.boundaries[b], &want = expected[b];
+    ASSERT_EQ(std::pair(got.site, got.other), std::pair(want.site, want.other));
+    EXPECT_EQ(got.density, want.density);
+    ASSERT_EQ(got.end - got.begin, want.end - want.begin);
+    for (Index k = 0; k < got.end - got.begin; ++k) {
+      EXPECT_EQ(some.segment_ends[got.begin + k], whole.segment_ends[want.begin + k]);
+    }
+  }
+  EXPECT_THROW(remesh::detail::restricted_voronoi(surface, sites, std::vector<std::uint8_t>(3, 1)), Error);
 }
 
 TEST(RestrictedVoronoi, OneOrTwoThreadsGiveTheSameCells) {

@@ -149,4 +149,21 @@ std::vector<SurfacePoint> add_sites_at_deviations(const TriangleMesh& mesh, std:
   return result;
 }
 
+std::vector<std::uint8_t> sites_away_from_added(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                                std::size_t first_added, double reach) {
+  if (!(reach >= 0 && std::isfinite(reach))) {
+    throw UsageError("error density: reach must be a finite number >= 0, got " + std::to_string(reach));
+  }
+  std::vector<std::uint8_t> away(sites.size(), 1);
+  if (first_added >= sites.size()) return away;
+  // The sites in a grid; each added one marks those within reach of it.
+  std::vector<Eigen::Vector3d> positions(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) positions[s] = sites[s].position(mesh);
+  const detail::PointGrid grid(positions, reach > 0 ? reach : 1.0);
+  for (std::size_t s = first_added; s < sites.size(); ++s) {
+    grid.for_each_within(positions[s], reach, [&](Index slot, double) { away[grid.original(slot)] = 0; });
+  }
+  return away;
+}
+
 }  // namespace geodual::remesh

@@ -1,5 +1,6 @@
 #include "geodual/remesh/lloyd.hpp"
 
+#include "common/point_grid.hpp"
 #include "common/surface_walk.hpp"
 #include "geodual/mesh/detail/trim_heap.hpp"
 #include "geodual/mesh/error.hpp"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <utility>
@@ -191,10 +193,41 @@ bool relaxation_step(const LloydOptions& options, double energy, StepControl& co
   return taken;
 }
 
+/// Where only a few of the sites move (at most a quarter), the cells the
+/// warm start's steps can change: per site, 1 for the moving sites and for
+/// those within twice the longest distance between a moving site and a
+/// neighbour of its cell in `cells` (a step keeps a site inside its cell, and
+/// the fixed sites round the moving ones keep those together); empty where
+/// more move, for every cell.
+std::vector<std::uint8_t> cells_the_steps_change(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                                 const std::vector<bool>& movable,
+                                                 const detail::RestrictedCells& cells) {
+  const auto moving = static_cast<std::size_t>(std::count(movable.begin(), movable.end(), true));
+  if (moving == 0 || 4 * moving > sites.size()) return {};
+  std::vector<Eigen::Vector3d> position(sites.size());
+  for (std::size_t s = 0; s < sites.size(); ++s) position[s] = sites[s].position(mesh);
+  double farthest = 0;
+  for (const detail::RestrictedBoundary& boundary : cells.boundaries) {
+    if (movable[boundary.site] || movable[boundary.other]) {
+      farthest = std::max(farthest, (position[boundary.site] - position[boundary.other]).norm());
+    }
+  }
+  std::vector<std::uint8_t> changed(sites.size(), 0);
+  for (std::size_t s = 0; s < sites.size(); ++s) changed[s] = movable[s] ? 1 : 0;
+  if (!(farthest > 0)) return changed;
+  const detail::PointGrid grid(position, 2 * farthest);
+  for (Index slot = 0; slot < grid.size(); ++slot) {
+    if (!movable[grid.original(slot)]) continue;
+    grid.for_each_near(slot, [&](Index other, double) { changed[grid.original(other)] = 1; });
+  }
+  return changed;
+}
+
 /// The warm start: the relaxation's steps on the restricted Voronoi diagram
 /// (restricted_voronoi.hpp) for at most options.warm_start_iterations steps,
 /// stopping early by the same rules. Returns the sites reached and counts
-/// the steps taken.
+/// the steps taken. Where few sites move, only the cells their steps can
+/// change are integrated, and the energies compared are those cells'.
 std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::SurfaceTopology& topology,
                                      std::vector<SurfacePoint> sites, const std::vector<bool>& movable,
                                      const LloydOptions& options, int& steps_taken) {
@@ -203,6 +236,8 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
   const detail::RestrictedSurface surface =
       detail::prepare_restricted_surface(mesh, topology, options.density, detail::any_at_vertex(sites));
   detail::RestrictedCells cells = detail::restricted_voronoi(surface, sites);
+  const std::vector<std::uint8_t> changed = cells_the_steps_change(mesh, sites, movable, cells);
+  if (!changed.empty()) cells = detail::restricted_voronoi(surface, sites, changed);
   detail::CvtNewtonBuffers buffers;
   StepControl control = initial_control(options);
   // The step last taken: the momentum's memory.
@@ -214,7 +249,7 @@ std::vector<SurfacePoint> warm_start(const TriangleMesh& mesh, const voronoi::Su
     for (std::size_t i = 0; i < moving.size(); ++i) moving[i] = moving[i] && cells.mass[i] > 0;
     auto take = [&](std::vector<Eigen::Vector3d> steps, double least_decrease) {
       std::vector<SurfacePoint> moved = detail::move_sites(mesh, topology, sites, steps);
-      detail::RestrictedCells next = detail::restricted_voronoi(surface, moved);
+      detail::RestrictedCells next = detail::restricted_voronoi(surface, moved, changed);
       if (!(next.total_energy() < previous - least_decrease)) return false;
       sites = std::move(moved);
       cells = std::move(next);
@@ -302,7 +337,7 @@ LloydResult lloyd_relax(const voronoi::GeodesicSurface& surface, std::vector<Sur
   result.sites = std::move(sites);
   // The warm start needs no geodesics: the first diagram is that of the
   // sites it reaches (issue #17: no diagram just to judge it).
-  if (options.iterations > 0 && options.warm_start_iterations > 0) {
+  if ((options.iterations > 0 || options.warm_start_alone) && options.warm_start_iterations > 0) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<bool> movable = movable_sites(mesh, result.sites, topology, options);
     result.sites = warm_start(mesh, topology, std::move(result.sites), movable, options, result.warm_start_iterations);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <string>
 #include <utility>
 
 namespace geodual::remesh::detail {
@@ -323,11 +324,16 @@ RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const vor
   return surface;
 }
 
-RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites) {
+RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites,
+                                   std::span<const std::uint8_t> only) {
   const TriangleMesh& mesh = surface.mesh;
   const std::size_t site_count = sites.size();
   if (surface.fans.begin.empty() && any_at_vertex(sites)) {
     throw Error("restricted_voronoi: a site at a vertex, on a surface prepared without vertex sites");
+  }
+  if (!only.empty() && only.size() != site_count) {
+    throw Error("restricted_voronoi: " + std::to_string(only.size()) + " flags for " + std::to_string(site_count) +
+                " sites");
   }
   std::vector<Eigen::Vector3d> position(site_count);
   for (std::size_t s = 0; s < site_count; ++s) position[s] = sites[s].position(mesh);
@@ -367,7 +373,9 @@ RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<c
                         scratch.segment_ends.clear();
                         for (std::size_t slot = b * kBlock; slot < std::min(site_count, (b + 1) * kBlock); ++slot) {
                           block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
-                          cell.integrate(static_cast<Index>(slot), scratch);
+                          if (only.empty() || only[grid.original(static_cast<Index>(slot))] != 0) {
+                            cell.integrate(static_cast<Index>(slot), scratch);
+                          }
                         }
                         block.cell_begin.push_back(static_cast<Index>(scratch.boundaries.size()));
                         block.boundaries = scratch.boundaries;

@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -76,9 +77,13 @@ RestrictedSurface prepare_restricted_surface(const TriangleMesh& mesh, const vor
                                              std::span<const double> density, bool vertex_sites = true);
 
 /// The cells of `sites` on the surface. A site that shares its position with
-/// another gets an empty cell. Bit-identical for any number of threads.
+/// another gets an empty cell. With `only` (one flag per site), only the
+/// cells of the sites flagged are integrated (each still cut by every
+/// site); the others are left empty, and a boundary is kept only where its
+/// lower-numbered site is flagged. Bit-identical for any number of threads.
 /// \throw geodual::Error for a site at a vertex on a surface prepared
 /// without vertex sites.
-RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites);
+RestrictedCells restricted_voronoi(const RestrictedSurface& surface, std::span<const SurfacePoint> sites,
+                                   std::span<const std::uint8_t> only = {});
 
 }  // namespace geodual::remesh::detail

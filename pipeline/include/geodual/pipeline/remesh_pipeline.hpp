@@ -97,6 +97,12 @@ struct RemeshPipelineOptions {
   double max_error_pct = 0;
   std::int64_t max_sites = 0;
   int max_error_rounds = 8;
+  /// Where a remesh under the bound starts from the last one's sites, only
+  /// the sites near those added and near where the density rose move
+  /// (remesh::sites_away_from_refinement), on the restricted diagram alone
+  /// (LloydOptions::warm_start_alone), and the rest of the remesh stays as
+  /// it was; false: every site is relaxed again, as in the first remesh.
+  bool refine_locally = true;
   /// With max_error_pct: called before each remesh with its number (from 1)
   /// and the sites it asks for (0 where the first is sized by edge length or
   /// faces), so that a progress display can say which remesh it shows.

@@ -65,4 +65,12 @@ std::vector<SurfacePoint> add_sites_at_deviations(const TriangleMesh& mesh, std:
                                                   std::span<const double> deviation, std::span<const double> density,
                                                   double spacing, std::int64_t count);
 
+/// The sites the next remesh's relaxation may leave where they are, to
+/// refine locally: per site of `sites` (add_sites_at_deviations' result,
+/// the sites added from `first_added` on), 1 where it lies farther than
+/// `reach` from every added site, 0 elsewhere (LloydOptions::fixed_sites).
+/// \throw UsageError for reach < 0.
+std::vector<std::uint8_t> sites_away_from_added(const TriangleMesh& mesh, std::span<const SurfacePoint> sites,
+                                                std::size_t first_added, double reach);
+
 }  // namespace geodual::remesh

@@ -23,10 +23,16 @@ struct LloydOptions {
   /// At most this many iterations (0: none, the diagram of the given sites).
   int iterations = 10;
   /// At most this many steps on the restricted Voronoi diagram first (the
-  /// warm start, see above; 0: none). Skipped when `iterations` is 0. Between
+  /// warm start, see above; 0: none). Skipped when `iterations` is 0 (unless
+  /// warm_start_alone). Between
   /// its steps it asks voronoi.geodesic.progress (with 0), which can cancel it.
   /// It needs no geodesic diagram: the first is that of the sites it reaches.
   int warm_start_iterations = 30;
+  /// The warm start also where `iterations` is 0; the diagram returned is
+  /// then that of the sites it reached. For a relaxation that moves a few
+  /// sites among fixed ones (`fixed_sites`: an error bound's later rounds),
+  /// whose steps on the restricted diagram cost little beside an exact one.
+  bool warm_start_alone = false;
   /// Heavy-ball momentum of the warm start (Polyak 1964): each least-damped
   /// Newton step also goes this fraction of the step taken before it, which
   /// carries the slow slides of whole rows of cells along (0: none; < 1).
