@@ -132,7 +132,8 @@ class RemeshCommand final : public Command {
     command
         .add_option("--geodesic-tolerance", options_.lloyd.geodesic_tolerance,
                     "Stop the Lloyd iterations, each an exact geodesic diagram, once one lowers the CVT energy by "
-                    "less than this fraction (0: only --lloyd-tolerance)")
+                    "less than this fraction; after the warm start, try none where moving the sites to their cells' "
+                    "centroids would gain less (0: only --lloyd-tolerance stops them)")
         ->capture_default_str()
         ->check(finite_non_negative());
     command

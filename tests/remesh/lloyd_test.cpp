@@ -35,6 +35,7 @@ TEST(Lloyd, EnergyNeverRisesAndQualityImprovesOnAScan) {
   remesh::RemeshOptions none, some;
   none.lloyd.iterations = 0;
   some.lloyd.iterations = 6;
+  some.lloyd.geodesic_tolerance = 0;  // the exact iterations, even after a converged warm start
   const remesh::RemeshResult before = remesh::remesh_from_sites(mesh, sites, none);
   const remesh::RemeshResult after = remesh::remesh_from_sites(mesh, sites, some);
   ASSERT_GE(after.relaxation.energy.size(), 2u);
@@ -158,6 +159,35 @@ TEST(Lloyd, NewtonReachesALowerEnergyAndBetterTrianglesThanLloydOnAScan) {
   // down in as many iterations.
   EXPECT_LT(by_newton.relaxation.energy.back(), by_lloyd.relaxation.energy.back());
   EXPECT_GT(quality::triangle_quality(by_newton.dual.mesh).q_avg, quality::triangle_quality(by_lloyd.dual.mesh).q_avg);
+}
+
+TEST(Lloyd, NoExactIterationWhereTheWarmStartLeftLittleForIt) {
+  // Where the warm start took the sites about as close to the geodesic
+  // centroids as an exact iteration would (its first-order gain below
+  // geodesic_tolerance), the first exact diagram is the last: the iteration
+  // forced would lower the energy by little and change the triangles little.
+  const TriangleMesh mesh = scan("bunny.ply");
+  const std::vector<SurfacePoint> sites =
+      remesh::sample_sites(mesh, 1500, {.strategy = remesh::SamplingStrategy::poisson});
+  remesh::RemeshOptions skipped, forced;
+  forced.lloyd.geodesic_tolerance = 0;
+  forced.lloyd.iterations = 2;
+  const remesh::RemeshResult without = remesh::remesh_from_sites(mesh, sites, skipped);
+  const remesh::RemeshResult with = remesh::remesh_from_sites(mesh, sites, forced);
+  EXPECT_GT(without.relaxation.warm_start_iterations, 0);
+  EXPECT_EQ(without.relaxation.iterations, 0);
+  EXPECT_EQ(without.relaxation.diagrams, 1);
+  ASSERT_GE(with.relaxation.iterations, 1);
+  ASSERT_EQ(without.relaxation.energy.size(), 1u);
+  EXPECT_EQ(with.relaxation.energy.front(), without.relaxation.energy.front());  // the same warm start
+  EXPECT_LT(with.relaxation.energy.front() - with.relaxation.energy.back(), 0.005 * with.relaxation.energy.front());
+  EXPECT_NEAR(quality::triangle_quality(without.dual.mesh).q_avg, quality::triangle_quality(with.dual.mesh).q_avg,
+              0.005);
+  // Few sites on the bunny: cells as large as its ears, where the restricted
+  // diagram is far from the geodesic one and the exact iterations go on.
+  const std::vector<SurfacePoint> few =
+      remesh::sample_sites(mesh, 100, {.strategy = remesh::SamplingStrategy::poisson});
+  EXPECT_GE(remesh::remesh_from_sites(mesh, few, skipped).relaxation.iterations, 1);
 }
 
 TEST(Lloyd, OptionsOutOfRangeAreRefusedByName) {

@@ -43,9 +43,10 @@ struct LloydOptions {
   /// damped, then Lloyd's step decides).
   double tolerance = 1e-5;
   /// The iterations, each an exact geodesic diagram, also stop once one
-  /// lowers the energy by less than this fraction of it. From a converged
-  /// warm start the first lowers it by about 2e-4 and the triangles no longer
-  /// change measurably (docs/algorithms.md#lloydnewton-relaxation); where the
+  /// lowers the energy by less than this fraction of it; after a warm start
+  /// the first is not tried where moving the sites to their cells' centroids
+  /// (the cells kept) would lower it by less, unless sites slide along
+  /// chains (docs/algorithms.md#how-many-exact-diagrams). Where the
   /// restricted diagram is far from the geodesic one (few sites on a curved
   /// or thin surface) the iterations go on. 0: only `tolerance` stops them.
   double geodesic_tolerance = 1e-3;
