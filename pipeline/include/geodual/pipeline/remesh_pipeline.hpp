@@ -98,8 +98,8 @@ struct RemeshPipelineOptions {
   std::int64_t max_sites = 0;
   int max_error_rounds = 8;
   /// Where a remesh under the bound starts from the last one's sites, only
-  /// the sites near those added and near where the density rose move
-  /// (remesh::sites_away_from_refinement), on the restricted diagram alone
+  /// the sites within two spacings of those added move
+  /// (remesh::sites_away_from_added), on the restricted diagram alone
   /// (LloydOptions::warm_start_alone), and the rest of the remesh stays as
   /// it was; false: every site is relaxed again, as in the first remesh.
   bool refine_locally = true;

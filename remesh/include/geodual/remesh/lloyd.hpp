@@ -23,10 +23,10 @@ struct LloydOptions {
   /// At most this many iterations (0: none, the diagram of the given sites).
   int iterations = 10;
   /// At most this many steps on the restricted Voronoi diagram first (the
-  /// warm start, see above; 0: none). Skipped when `iterations` is 0 (unless
-  /// warm_start_alone). Between
-  /// its steps it asks voronoi.geodesic.progress (with 0), which can cancel it.
-  /// It needs no geodesic diagram: the first is that of the sites it reaches.
+  /// warm start, see above; 0: none). Skipped when `iterations` is 0, unless
+  /// warm_start_alone. Between its steps it asks voronoi.geodesic.progress
+  /// (with 0), which can cancel it. It needs no geodesic diagram: the first
+  /// is that of the sites it reaches.
   int warm_start_iterations = 30;
   /// The warm start also where `iterations` is 0; the diagram returned is
   /// then that of the sites it reached. For a relaxation that moves a few
