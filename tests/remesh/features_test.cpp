@@ -9,6 +9,7 @@
 #include "geodual/io/read_mesh.hpp"
 #include "geodual/mesh/error.hpp"
 #include "geodual/mesh/mesh_topology.hpp"
+#include "geodual/mesh/sharp_edges.hpp"
 #include "geodual/remesh/chain_slider.hpp"
 #include "geodual/remesh/crease_pins.hpp"
 #include "geodual/remesh/curvature_density.hpp"
@@ -453,6 +454,52 @@ TEST(Features, FinerTessellationsOfTheSamePartGiveTheSameCreases) {
       EXPECT_EQ(fine.sharp_chains, coarse.sharp_chains);
       EXPECT_NEAR(fine.sharp_length, coarse.sharp_length, 0.05 * coarse.sharp_length);
     }
+  }
+}
+
+/// The share of the length of `mesh`'s edges that turn by `angle` degrees or
+/// more which lies on `features`' sharp edges.
+double share_of_sharp_length_kept(const TriangleMesh& mesh, const remesh::FeatureSet& features, double angle) {
+  const MeshTopology topology = build_mesh_topology(mesh);
+  double all = 0, kept = 0;
+  for (const Index e : sharp_edges(mesh, topology, angle)) {
+    const auto [a, b] = topology.edge_vertices[e];
+    const double length = (mesh.vertices.row(a) - mesh.vertices.row(b)).norm();
+    all += length;
+    if (features.is_sharp(a, b)) kept += length;
+  }
+  return kept / all;
+}
+
+TEST(Features, FoldsBetweenPlanarFacetsPartACreasesSidesOnMachinedPartsOnly) {
+  // example019's creases (70-120 degrees) have sides that meet round their
+  // ends across weaker folds between flat faces. At the scale of 2,000
+  // sites, those folds part the sides as the creases do, and the creases
+  // stay; taken as smooth, they let about a third of the length go.
+  const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/example019.stl").mesh).mesh;
+  const remesh::FeatureSamplingOptions defaults;
+  remesh::FeatureOptions options = remesh::remesh_feature_options(
+      part, 2000, defaults.sharp_angle, defaults.min_feature_length, defaults.continuation_angle);
+  const remesh::FeatureSet parted = remesh::detect_features(part, options);
+  options.facet_folds_part_sides = false;
+  const remesh::FeatureSet joined = remesh::detect_features(part, options);
+  EXPECT_GT(share_of_sharp_length_kept(part, parted, 60), 0.99);
+  EXPECT_LT(share_of_sharp_length_kept(part, joined, 60), 0.8);
+  // Split at its edges' midpoints, the part has the same facets: the same creases.
+  const remesh::FeatureSet finer = pipeline_features(split_at_midpoints(part), 2000);
+  EXPECT_EQ(finer.sharp_chains, parted.sharp_chains);
+  EXPECT_NEAR(finer.sharp_length, parted.sharp_length, 0.05 * parted.sharp_length);
+  // A scan has no such facets, nor has it once split into coplanar
+  // quadruples, each smaller than a remesh triangle at 20,000 sites: its
+  // folds never part the sides.
+  const TriangleMesh bunny = io::read_mesh("tests/data/bunny.ply").mesh;
+  for (const TriangleMesh& scan : {bunny, split_at_midpoints(bunny)}) {
+    SCOPED_TRACE(std::to_string(scan.num_faces()) + " faces");
+    remesh::FeatureOptions scan_options = remesh::remesh_feature_options(
+        scan, 20000, defaults.sharp_angle, defaults.min_feature_length, defaults.continuation_angle);
+    const remesh::FeatureSet with_facets = remesh::detect_features(scan, scan_options);
+    scan_options.facet_folds_part_sides = false;
+    EXPECT_EQ(with_facets.sharp_edges, remesh::detect_features(scan, scan_options).sharp_edges);
   }
 }
 

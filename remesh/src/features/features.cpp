@@ -71,12 +71,15 @@ double turn_degrees(const TriangleMesh& mesh, Index a, Index v, Index b) {
 /// round both ends are always within reach, so that where the input's edges
 /// are longer than the scale, the faces round a lone noisy edge still join.
 /// With max_spread > 0, every face's normal must also lie within max_spread
-/// degrees of its side's mean: both sides are smooth at that scale.
+/// degrees of its side's mean: both sides are smooth at that scale. The
+/// `walls` part the sides as the sharp edges do, without being judged.
 std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& topology,
-                                  const std::vector<Index>& sharp, double angle, double scale, double max_spread = 0) {
+                                  const std::vector<Index>& sharp, double angle, double scale, double max_spread = 0,
+                                  const std::vector<Index>& walls = {}) {
   const Index num_faces = mesh.num_faces();
   std::vector<std::uint8_t> is_sharp(static_cast<std::size_t>(topology.num_edges()), 0);
   for (const Index e : sharp) is_sharp[e] = 1;
+  for (const Index e : walls) is_sharp[e] = 1;
   std::vector<Eigen::Vector3d> normal(static_cast<std::size_t>(num_faces));
   for (Index f = 0; f < num_faces; ++f) {
     const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0)), b = mesh.vertices.row(mesh.faces(f, 1)),
@@ -138,6 +141,58 @@ std::vector<Index> sharp_at_scale(const TriangleMesh& mesh, const MeshTopology& 
     kept.push_back(e);
   }
   return kept;
+}
+
+/// Faces whose normals turn by less than this many degrees across an edge
+/// lie in one plane: a machined part's flat face cut into triangles, or a
+/// faceted side's quad (float coordinates turn them by far less).
+constexpr double kCoplanarAngle = 0.05;
+
+/// A surface is machined, made of planar facets, where at least this share
+/// of its area lies on facets of two faces or more.
+constexpr double kMachinedFacetShare = 0.5;
+
+/// On a machined surface, the edges where the normals turn by `angle`
+/// degrees or more between two planar facets, each at least a remesh
+/// triangle in area (sqrt(3) scale^2, the scale being half the spacing):
+/// a facet is the faces joined across edges that turn by less than
+/// kCoplanarAngle. A CAD part's flat faces and a faceted side's quads are
+/// such facets, and the folds between them are creases however weak. A
+/// scan has few faces coplanar with a neighbour (under a tenth of its area),
+/// and one split into coplanar quadruples has facets smaller than a remesh
+/// triangle unless the remesh is about as fine as the scan was.
+std::vector<Index> folds_between_facets(const TriangleMesh& mesh, const MeshTopology& topology, double angle,
+                                        double scale) {
+  const Index num_faces = mesh.num_faces();
+  std::vector<double> turn(static_cast<std::size_t>(topology.num_edges()));
+  UnionFind facets(static_cast<std::size_t>(num_faces));
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    turn[e] = normal_turn_degrees(mesh, topology, e);
+    if (turn[e] < kCoplanarAngle) facets.unite(topology.edge_faces(e)[0], topology.edge_faces(e)[1]);
+  }
+  const auto size = static_cast<std::size_t>(num_faces);
+  std::vector<double> area(size, 0.0);
+  std::vector<Index> faces_in(size, 0);
+  double total = 0;
+  for (Index f = 0; f < num_faces; ++f) {
+    const Index facet = facets.find(f);
+    area[facet] += face_area(mesh, f);
+    faces_in[facet] += 1;
+  }
+  double on_facets = 0;
+  for (std::size_t f = 0; f < size; ++f) {
+    total += area[f];
+    if (faces_in[f] >= 2) on_facets += area[f];
+  }
+  std::vector<Index> folds;
+  if (!(on_facets >= kMachinedFacetShare * total)) return folds;
+  const double min_area = std::sqrt(3.0) * scale * scale;
+  const auto wide = [&](Index f) { return area[facets.find(f)] >= min_area; };
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    const auto faces = topology.edge_faces(e);
+    if (turn[e] >= angle && wide(faces[0]) && wide(faces[1])) folds.push_back(e);
+  }
+  return folds;
 }
 
 /// Corners and chains of a feature graph (FeatureSet's, with the edge
@@ -343,7 +398,14 @@ FeatureSet detect_features(const RemeshSurface& prepared, const FeatureOptions& 
   std::vector<Index> sharp, sharp_alone;  // the latter judged on their two faces alone
   if (options.sharp_angle > 0) {
     sharp = sharp_alone = sharp_edges(surface, topology, options.sharp_angle);
-    if (options.scale > 0) sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale);
+    if (options.scale > 0) {
+      std::vector<Index> walls;  // where the two sides part, as at the sharp edges
+      if (options.facet_folds_part_sides && options.continuation_angle > 0 &&
+          options.continuation_angle < options.sharp_angle) {
+        walls = folds_between_facets(surface, topology, options.continuation_angle, options.scale);
+      }
+      sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale, 0, walls);
+    }
     if (options.continuation_angle > 0 && options.continuation_angle < options.sharp_angle && !sharp.empty()) {
       const std::vector<Index> continued = continuations(surface, topology, sharp, options);
       sharp.insert(sharp.end(), continued.begin(), continued.end());

@@ -36,6 +36,15 @@ struct FeatureOptions {
   /// separate regions whose mean normals still turn by sharp_angle: a lone
   /// noisy edge, which the faces round its ends join across, is dropped.
   double scale = 0;
+  /// On a machined surface, the folds between its planar facets part the two
+  /// sides in that test as sharp edges do: the edges that turn by
+  /// continuation_angle or more (where that is on) between two facets (faces
+  /// joined across edges that turn by under 0.05 degrees), each at least an
+  /// equilateral triangle of side 2 scale in area. A surface is machined
+  /// where half its area or more lies on facets of two faces or more, which
+  /// a scan's does not. A CAD part's crease whose sides meet round its ends
+  /// across a weaker fold stays sharp.
+  bool facet_folds_part_sides = true;
   /// Chains of sharp edges (corner to corner) shorter than this are dropped,
   /// again and again until none is left (chains that met at a dropped one may
   /// join into a longer one): scan noise and details below the remesh's
