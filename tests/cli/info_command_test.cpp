@@ -126,26 +126,26 @@ TEST(InfoCommand, ReportsTheCreasesTheRemeshSamplesForItsCount) {
 }
 
 TEST(InfoCommand, NoNarrowestCornerWhereNoCornerJoinsTwoFeatures) {
-  // OpenSCAD's example001 at 1,000 sites: its chains all end in the open (at
-  // the cylinders' rims where they fade), so its corners bound no angle.
-  CliRun run = run_cli({"info", "tests/data/cad/example001.stl", "--json", "--sharp-angle", "60", "--sites", "1000"});
+  // cheburashka at 1,000 sites: its creases all fade out on the scan, their
+  // chains end in the open, so its corners bound no angle.
+  CliRun run = run_cli({"info", "tests/data/cheburashka.ply", "--json", "--sharp-angle", "60", "--sites", "1000"});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_GT(json["feature_corners"].get<int>(), 0);
   EXPECT_TRUE(json["feature_narrowest_corner_deg"].is_null()) << json["feature_narrowest_corner_deg"];
-  run = run_cli({"info", "tests/data/cad/example001.stl", "--sharp-angle", "60", "--sites", "1000"});
+  run = run_cli({"info", "tests/data/cheburashka.ply", "--sharp-angle", "60", "--sites", "1000"});
   EXPECT_NE(run.out.find("corners"), std::string::npos) << run.out;
   EXPECT_EQ(run.out.find("narrowest corner"), std::string::npos) << run.out;
   // The remesh says the same.
   const ScratchFolder folder;
-  const std::filesystem::path out = folder.path() / "example001.ply";
+  const std::filesystem::path out = folder.path() / "cheburashka.ply";
   run = run_cli(
-      {"remesh", "tests/data/cad/example001.stl", "--sites", "1000", "--samples", "-1", "--json", "-o", out.string()});
+      {"remesh", "tests/data/cheburashka.ply", "--sites", "1000", "--samples", "-1", "--json", "-o", out.string()});
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const nlohmann::json remeshed = nlohmann::json::parse(run.out);
   EXPECT_GT(remeshed["feature_corners"].get<int>(), 0);
   EXPECT_TRUE(remeshed["feature_narrowest_corner_deg"].is_null());
-  run = run_cli({"remesh", "tests/data/cad/example001.stl", "--sites", "1000", "--samples", "-1", "-o", out.string()});
+  run = run_cli({"remesh", "tests/data/cheburashka.ply", "--sites", "1000", "--samples", "-1", "-o", out.string()});
   const std::string table = run.out + run.err;
   EXPECT_NE(table.find(" corners"), std::string::npos) << table;
   EXPECT_EQ(table.find("the narrowest"), std::string::npos) << table;
