@@ -171,15 +171,14 @@ std::vector<Index> folds_between_facets(const TriangleMesh& mesh, const MeshTopo
     if (turn[e] < kCoplanarAngle) facets.unite(topology.edge_faces(e)[0], topology.edge_faces(e)[1]);
   }
   const auto size = static_cast<std::size_t>(num_faces);
-  std::vector<double> area(size, 0.0);
+  std::vector<double> area(size, 0.0);  // per facet, at its root face
   std::vector<Index> faces_in(size, 0);
-  double total = 0;
   for (Index f = 0; f < num_faces; ++f) {
     const Index facet = facets.find(f);
     area[facet] += face_area(mesh, f);
     faces_in[facet] += 1;
   }
-  double on_facets = 0;
+  double total = 0, on_facets = 0;
   for (std::size_t f = 0; f < size; ++f) {
     total += area[f];
     if (faces_in[f] >= 2) on_facets += area[f];
@@ -400,7 +399,7 @@ FeatureSet detect_features(const RemeshSurface& prepared, const FeatureOptions& 
     sharp = sharp_alone = sharp_edges(surface, topology, options.sharp_angle);
     if (options.scale > 0) {
       std::vector<Index> walls;  // where the two sides part, as at the sharp edges
-      if (options.facet_folds_part_sides && options.continuation_angle > 0 &&
+      if (options.facet_folds_part_sides && !sharp.empty() && options.continuation_angle > 0 &&
           options.continuation_angle < options.sharp_angle) {
         walls = folds_between_facets(surface, topology, options.continuation_angle, options.scale);
       }
