@@ -684,18 +684,34 @@ std::optional<FeaturesNotKept> remesh_keeping_features(RemeshPipelineResult& res
   return FeaturesNotKept{std::move(reason), stretches_of(surface, all), split_at_bends};
 }
 
+/// `options` with the next narrow regions judged rough, keeping fewer creases:
+/// a machined surface's (FeatureSamplingOptions::machined_regions_smooth),
+/// then narrow faceted sides (parallel_fold_angle); none after those.
+std::optional<RemeshPipelineOptions> rougher(const RemeshPipelineOptions& options) {
+  RemeshPipelineOptions rough = options;
+  remesh::FeatureSamplingOptions& sampling = rough.features.sampling;
+  if (sampling.machined_regions_smooth) {
+    sampling.machined_regions_smooth = false;
+  } else if (sampling.parallel_fold_angle > 0) {
+    sampling.parallel_fold_angle = 0;
+  } else {
+    return std::nullopt;
+  }
+  return rough;
+}
+
 /// Whether the creases `options` detect on result's surface for `sites`
-/// sites include some round narrow faceted sides
-/// (FeatureSamplingOptions::parallel_fold_angle).
-bool faceted_sides_hold_creases(const RemeshPipelineResult& result, const RemeshPipelineOptions& options,
-                                std::int64_t sites) {
+/// sites include some that `rough` (rougher's) leaves out.
+bool narrow_regions_hold_creases(const RemeshPipelineResult& result, const RemeshPipelineOptions& options,
+                                 const RemeshPipelineOptions& rough, std::int64_t sites) {
   const TriangleMesh& surface = result.surface.mesh.num_vertices() > 0 ? result.surface.mesh : result.input.mesh;
-  const remesh::FeatureSamplingOptions sampling =
-      remesh::feature_sampling_options(options.features, result.input.mesh, result.surface);
-  remesh::FeatureOptions detect = remesh::feature_detection_options(surface, sites, sampling);
-  const std::size_t with_faceted = remesh::detect_features(surface, detect).sharp_edges.size();
-  detect.parallel_fold_angle = 0;
-  return remesh::detect_features(surface, detect).sharp_edges.size() != with_faceted;
+  const auto creases = [&](const RemeshPipelineOptions& with) {
+    const remesh::FeatureSamplingOptions sampling =
+        remesh::feature_sampling_options(with.features, result.input.mesh, result.surface);
+    return remesh::detect_features(surface, remesh::feature_detection_options(surface, sites, sampling))
+        .sharp_edges.size();
+  };
+  return creases(rough) != creases(options);
 }
 
 /// One remesh of result.input (run_stages) that keeps the features
@@ -760,24 +776,31 @@ void remesh_once(RemeshPipelineResult& result, const RemeshPipelineOptions& opti
       }
     }
   }
-  // Where the creases round narrow faceted sides are too many for every
-  // count tried, all that again without those, before no crease at all.
-  const auto at_some_count = [&] {  // of those tried
+  // Where the creases round narrow regions are too many for every count
+  // tried, all that again without those (a machined surface's first, then
+  // faceted sides), before no crease at all.
+  const auto at_some_count = [&](const RemeshPipelineOptions& rough) {  // of those tried
     const int doublings = refinement || options.given_sites ? 0 : options.features.max_site_doublings;
     for (int doubling = 0; doubling <= doublings; ++doubling) {
-      if (faceted_sides_hold_creases(result, options, asked << doubling)) return true;
+      if (narrow_regions_hold_creases(result, options, rough, asked << doubling)) return true;
     }
     return false;
   };
-  if (options.features.drop_faceted_sides && options.features.sampling.parallel_fold_angle > 0 && at_some_count()) {
-    RemeshPipelineOptions rough = options;
-    rough.features.sampling.parallel_fold_angle = 0;
+  // The first rougher options that leave creases out.
+  std::optional<RemeshPipelineOptions> rough =
+      options.features.drop_faceted_sides ? rougher(options) : std::optional<RemeshPipelineOptions>{};
+  while (rough && !at_some_count(*rough)) rough = rougher(*rough);
+  if (rough) {
+    const bool machined = !rough->features.sampling.machined_regions_smooth &&
+                          rough->features.sampling.parallel_fold_angle == options.features.sampling.parallel_fold_angle;
     result.timings.clear();
-    remesh_once(result, rough, input_density, refinement);
+    remesh_once(result, *rough, input_density, refinement);
     if (!result.features.empty()) {
       result.remesh.repair_problems.insert(
           result.remesh.repair_problems.begin(),
-          "the creases round narrow faceted sides left out, as no try kept them: " + not_kept->reason);
+          std::string(machined ? "the creases round the machined surface's narrow rough regions"
+                               : "the creases round narrow faceted sides") +
+              " left out, as no try kept them: " + not_kept->reason);
     }
     return;
   }

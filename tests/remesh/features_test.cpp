@@ -111,10 +111,14 @@ TEST(Features, CreasesRoundARegionNarrowerThanTheMinimumWidthAreDropped) {
   EXPECT_TRUE(remesh::detect_features(cube(4), {.min_region_width = 0.51}).empty());
   // The band's corners' vertical edges turn by 90 degrees, but they are
   // parallel, a prism's side: smooth, judged at the smaller width. Where
-  // folds must not be parallel to be smooth, it is rough: judged at the rough width.
+  // folds must not be parallel to be smooth, it is rough: judged at the
+  // rough width, but for a machined surface's, as the slab's (all flat
+  // facets), where no region is rough.
   narrow = {.min_chain_length = 0.5, .min_region_width = 0.04, .min_rough_region_width = 0.06};
   EXPECT_EQ(remesh::detect_features(slab, narrow).sharp_chains, 8);
   narrow.parallel_fold_angle = 0;
+  EXPECT_EQ(remesh::detect_features(slab, narrow).sharp_chains, 8);
+  narrow.machined_regions_smooth = false;
   EXPECT_TRUE(remesh::detect_features(slab, narrow).empty());
   // The remesh's detection asks for a tenth of the spacing, half where rough.
   const remesh::FeatureOptions remesh_options = remesh::remesh_feature_options(slab, 100, 60, 0.5);
@@ -154,8 +158,11 @@ TriangleMesh step(double height, int n, double bulge = 0, bool bumps = false) {
 
 TEST(Features, ASmoothNarrowRegionKeepsItsCreasesDownToTheSmallerWidth) {
   // The wall between the step's two creases is flat, 0.05 high: width
-  // 2 (0.05) / 2.1 = 0.048 (its border: the two creases and two boundary edges).
-  const remesh::FeatureOptions options{.min_region_width = 0.04, .min_rough_region_width = 0.5};
+  // 2 (0.05) / 2.1 = 0.048 (its border: the two creases and two boundary
+  // edges). The step, all quads, is machined: its regions are judged
+  // smooth or rough by their folds with machined_regions_smooth off.
+  const remesh::FeatureOptions options{
+      .min_region_width = 0.04, .min_rough_region_width = 0.5, .machined_regions_smooth = false};
   const remesh::FeatureSet wall = remesh::detect_features(step(0.05, 4), options);
   EXPECT_EQ(wall.sharp_chains, 2);
   EXPECT_NEAR(wall.sharp_length, 2.0, 1e-12);
@@ -170,6 +177,10 @@ TEST(Features, ASmoothNarrowRegionKeepsItsCreasesDownToTheSmallerWidth) {
   const TriangleMesh bumpy = step(0.05, 4, bulge, true);
   EXPECT_TRUE(remesh::detect_features(bumpy, options).empty());
   EXPECT_EQ(remesh::detect_features(bumpy, {.min_region_width = 0.04}).sharp_chains, 2);
+  // With the option on, as by default, a machined surface's bumps are its shape: smooth.
+  remesh::FeatureOptions machined = options;
+  machined.machined_regions_smooth = true;
+  EXPECT_EQ(remesh::detect_features(bumpy, machined).sharp_chains, 2);
 }
 
 TEST(Features, AThinPlatesFacetedRimKeepsItsCreasesAtTheSmallerWidth) {
@@ -183,9 +194,14 @@ TEST(Features, AThinPlatesFacetedRimKeepsItsCreasesAtTheSmallerWidth) {
   EXPECT_EQ(rims.sharp_chains, 2);
   EXPECT_NEAR(rims.sharp_length, 2 * 16 * 2 * std::sin(std::numbers::pi / 16), 1e-9);
   // Its side bulging out at mid-height folds along a ring as well, across
-  // the vertical edges: rough, the rims go at the rough width.
+  // the vertical edges: rough, the rims go at the rough width (the coin,
+  // made of flat facets, is machined: judged so with machined_regions_smooth
+  // off; with it on, its side is smooth whatever its folds).
   const TriangleMesh bulging = bench::revolved_profile({{{0, 0}, {1, 0}, {1.01, 0.025}, {1, 0.05}, {0, 0.05}}}, 16);
-  EXPECT_TRUE(remesh::detect_features(bulging, options).empty());
+  EXPECT_EQ(remesh::detect_features(bulging, options).sharp_chains, 2);
+  remesh::FeatureOptions by_folds = options;
+  by_folds.machined_regions_smooth = false;
+  EXPECT_TRUE(remesh::detect_features(bulging, by_folds).empty());
   EXPECT_EQ(remesh::detect_features(bulging, {.min_region_width = 0.04}).sharp_chains, 2);
 }
 
@@ -500,6 +516,35 @@ TEST(Features, FoldsBetweenPlanarFacetsPartACreasesSidesOnMachinedPartsOnly) {
     const remesh::FeatureSet with_facets = remesh::detect_features(scan, scan_options);
     scan_options.facet_folds_part_sides = false;
     EXPECT_EQ(with_facets.sharp_edges, remesh::detect_features(scan, scan_options).sharp_edges);
+  }
+}
+
+TEST(Features, AMachinedPartsNarrowRegionsAreSmoothWhateverTheirFolds) {
+  // children_indexed's engraved digits are strokes narrower than half a
+  // spacing at 2,000 sites, their sides folded between flat facets: rough
+  // by their folds, they would lose their creases; on a machined part they
+  // are judged as smooth, down to a tenth of a spacing.
+  const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/children_indexed.stl").mesh).mesh;
+  const remesh::FeatureSamplingOptions defaults;
+  remesh::FeatureOptions options = remesh::remesh_feature_options(
+      part, 2000, defaults.sharp_angle, defaults.min_feature_length, defaults.continuation_angle);
+  const remesh::FeatureSet smooth = remesh::detect_features(part, options);
+  options.machined_regions_smooth = false;
+  const remesh::FeatureSet rough = remesh::detect_features(part, options);
+  const double kept_smooth = share_of_sharp_length_kept(part, smooth, 60);
+  const double kept_rough = share_of_sharp_length_kept(part, rough, 60);
+  EXPECT_GT(kept_smooth, kept_rough + 0.05);
+  std::cerr << "KEPT " << kept_smooth << " " << kept_rough << "\n";
+  EXPECT_GT(kept_smooth, 0.9) << kept_rough;
+  // A scan is not machined: its noisy narrow slivers stay rough.
+  const TriangleMesh bunny = io::read_mesh("tests/data/bunny.ply").mesh;
+  for (const std::int64_t sites : {5000, 20000}) {
+    SCOPED_TRACE(std::to_string(sites) + " sites");
+    remesh::FeatureOptions scan_options = remesh::remesh_feature_options(
+        bunny, sites, defaults.sharp_angle, defaults.min_feature_length, defaults.continuation_angle);
+    const remesh::FeatureSet with_option = remesh::detect_features(bunny, scan_options);
+    scan_options.machined_regions_smooth = false;
+    EXPECT_EQ(with_option.sharp_edges, remesh::detect_features(bunny, scan_options).sharp_edges);
   }
 }
 
@@ -967,15 +1012,19 @@ TEST(FeatureSampling, CreasesRoundNarrowSmoothRegionsGoWhereTheChainsWouldTakeTh
 TEST(FeatureSampling, CreasesRoundNarrowFacetedSidesGoFirstWhereTheChainsWouldTakeTooMuchOfTheCount) {
   // OpenSCAD's projection at 500 sites: without the points where they bend,
   // its chains hold 475 points with the creases round its narrow faceted
-  // sides (thin plates' polygonal rims), 451 without. Where the chains may
-  // take 0.92 of the count (460), those round the faceted sides go first,
-  // and the creases round its other narrow smooth regions stay.
+  // sides (thin plates' polygonal rims) and its regions judged rough by
+  // their folds, 451 without those. Where the chains may take 0.92 of the
+  // count (460), its regions are judged by their folds, then those round
+  // the faceted sides go, and the creases round its other narrow smooth
+  // regions stay.
   const TriangleMesh part = remesh::cut_to_manifold(io::read_mesh("tests/data/cad/projection.stl").mesh).mesh;
   const remesh::RemeshSurface prepared(part);
   remesh::FeatureSamplingOptions all_kept;
   all_kept.max_share_narrow_regions = std::numeric_limits<double>::max();
   remesh::FeatureSamplingOptions evenly = all_kept;
   evenly.tight_spacing = 0;
+  EXPECT_GT(remesh::sample_features(prepared, 500, evenly).sites.points, 460);
+  evenly.machined_regions_smooth = false;
   EXPECT_GT(remesh::sample_features(prepared, 500, evenly).sites.points, 460);
   evenly.parallel_fold_angle = 0;
   const remesh::FeatureSampling without_faceted = remesh::sample_features(prepared, 500, evenly);

@@ -51,6 +51,7 @@ FeatureOptions feature_detection_options(const TriangleMesh& surface, std::int64
   FeatureOptions detection = remesh_feature_options(surface, sites, options.sharp_angle, options.min_feature_length,
                                                     options.continuation_angle);
   detection.parallel_fold_angle = options.parallel_fold_angle;
+  detection.machined_regions_smooth = options.machined_regions_smooth;
   detection.given_edges = options.given_edges;
   detection.excluded_edges = options.excluded_edges;
   return detection;
@@ -78,8 +79,9 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
     return true;
   };
   if (!line_creases(detect_features(prepared, feature_options))) return sampling;
-  // Where the creases are more than the count carries, those round narrow
-  // faceted sides go, then those round narrow regions, smooth or not. The
+  // Where the creases are more than the count carries, those round a
+  // machined surface's narrow rough regions go, then those round narrow
+  // faceted sides, then those round narrow regions, smooth or not. The
   // share is judged on the chains' sites without the points where they bend
   // (tight_spacing 0): where those points alone take the chains beyond it,
   // they go, not creases (below).
@@ -90,10 +92,16 @@ FeatureSampling sample_features(const RemeshSurface& prepared, std::int64_t site
   };
   const double share = options.max_share_narrow_regions * static_cast<double>(sites);
   FeatureSites loose = feature_sites(prepared, sampling.features, sampling.cut, loose_options);
-  for (const bool faceted_go : {true, false}) {
+  // Each step judges more narrow regions rough, and keeps fewer creases.
+  enum class Fewer { machined_rough, faceted_rough, all_rough };
+  for (const Fewer step : {Fewer::machined_rough, Fewer::faceted_rough, Fewer::all_rough}) {
     const bool too_many = narrow_regions_kept() && static_cast<double>(loose.points) > share;
-    if (!too_many || (faceted_go && feature_options.parallel_fold_angle == 0)) continue;
-    if (faceted_go) {
+    if (!too_many) break;
+    if (step == Fewer::machined_rough) {
+      if (!feature_options.machined_regions_smooth) continue;
+      feature_options.machined_regions_smooth = false;
+    } else if (step == Fewer::faceted_rough) {
+      if (feature_options.parallel_fold_angle == 0) continue;
       feature_options.parallel_fold_angle = 0;
     } else {
       feature_options.min_region_width = feature_options.min_rough_region_width;

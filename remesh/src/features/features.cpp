@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace geodual::remesh {
 
@@ -152,44 +153,60 @@ constexpr double kCoplanarAngle = 0.05;
 /// of its area lies on facets of two faces or more.
 constexpr double kMachinedFacetShare = 0.5;
 
-/// On a machined surface, the edges where the normals turn by `angle`
-/// degrees or more between two planar facets, each at least a remesh
-/// triangle in area (sqrt(3) scale^2, the scale being half the spacing):
-/// a facet is the faces joined across edges that turn by less than
-/// kCoplanarAngle. A CAD part's flat faces and a faceted side's quads are
-/// such facets, and the folds between them are creases however weak. A
-/// scan has few faces coplanar with a neighbour (under a tenth of its area),
-/// and one split into coplanar quadruples has facets smaller than a remesh
-/// triangle unless the remesh is about as fine as the scan was.
-std::vector<Index> folds_between_facets(const TriangleMesh& mesh, const MeshTopology& topology, double angle,
-                                        double scale) {
+/// A surface's planar facets: the faces joined across edges that turn by
+/// less than kCoplanarAngle. A CAD part's flat faces and a faceted side's
+/// quads are such facets; a scan has few faces coplanar with a neighbour
+/// (under a tenth of its area).
+struct PlanarFacets {
+  std::vector<double> turn;     ///< per edge, in degrees (NaN but between two faces with area)
+  std::vector<Index> facet_of;  ///< per face: its facet, a face's index
+  std::vector<double> area;     ///< per facet (at its index)
+  bool machined = false;        ///< kMachinedFacetShare of the area or more on facets of two faces or more
+};
+
+PlanarFacets planar_facets(const TriangleMesh& mesh, const MeshTopology& topology) {
   const Index num_faces = mesh.num_faces();
-  std::vector<double> turn(static_cast<std::size_t>(topology.num_edges()));
-  UnionFind facets(static_cast<std::size_t>(num_faces));
-  for (Index e = 0; e < topology.num_edges(); ++e) {
-    turn[e] = normal_turn_degrees(mesh, topology, e);
-    if (turn[e] < kCoplanarAngle) facets.unite(topology.edge_faces(e)[0], topology.edge_faces(e)[1]);
-  }
   const auto size = static_cast<std::size_t>(num_faces);
-  std::vector<double> area(size, 0.0);  // per facet, at its root face
+  PlanarFacets planar;
+  planar.turn.resize(static_cast<std::size_t>(topology.num_edges()));
+  UnionFind facets(size);
+  for (Index e = 0; e < topology.num_edges(); ++e) {
+    planar.turn[e] = normal_turn_degrees(mesh, topology, e);
+    if (planar.turn[e] < kCoplanarAngle) facets.unite(topology.edge_faces(e)[0], topology.edge_faces(e)[1]);
+  }
+  planar.facet_of.resize(size);
+  planar.area.assign(size, 0.0);
   std::vector<Index> faces_in(size, 0);
   for (Index f = 0; f < num_faces; ++f) {
-    const Index facet = facets.find(f);
-    area[facet] += face_area(mesh, f);
+    const Index facet = planar.facet_of[f] = facets.find(f);
+    planar.area[facet] += face_area(mesh, f);
     faces_in[facet] += 1;
   }
   double total = 0, on_facets = 0;
   for (std::size_t f = 0; f < size; ++f) {
-    total += area[f];
-    if (faces_in[f] >= 2) on_facets += area[f];
+    total += planar.area[f];
+    if (faces_in[f] >= 2) on_facets += planar.area[f];
   }
+  planar.machined = on_facets >= kMachinedFacetShare * total;
+  return planar;
+}
+
+/// On a machined surface, the edges where the normals turn by `angle`
+/// degrees or more between two planar facets, each at least a remesh
+/// triangle in area (sqrt(3) scale^2, the scale being half the spacing): the
+/// folds between a CAD part's flat faces are creases however weak. A scan
+/// split into coplanar quadruples is machined too, but its facets are
+/// smaller than a remesh triangle unless the remesh is about as fine as the
+/// scan was.
+std::vector<Index> folds_between_facets(const MeshTopology& topology, const PlanarFacets& planar, double angle,
+                                        double scale) {
   std::vector<Index> folds;
-  if (!(on_facets >= kMachinedFacetShare * total)) return folds;
+  if (!planar.machined) return folds;
   const double min_area = std::sqrt(3.0) * scale * scale;
-  const auto wide = [&](Index f) { return area[facets.find(f)] >= min_area; };
+  const auto wide = [&](Index f) { return planar.area[planar.facet_of[f]] >= min_area; };
   for (Index e = 0; e < topology.num_edges(); ++e) {
     const auto faces = topology.edge_faces(e);
-    if (turn[e] >= angle && wide(faces[0]) && wide(faces[1])) folds.push_back(e);
+    if (planar.turn[e] >= angle && wide(faces[0]) && wide(faces[1])) folds.push_back(e);
   }
   return folds;
 }
@@ -270,9 +287,11 @@ constexpr double kFoldAngle = 1;
 /// a sliver boxed in by a scan's noisy creases has no room for a cell of its
 /// own, where a machined part's thin wall or engraved stroke, smooth or
 /// faceted between its creases, is kept down to a fraction of the spacing.
+/// On a `machined` surface no region is rough: its folds are the part's
+/// shape, not a scan's noise.
 std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, const MeshTopology& topology,
                                                     const std::vector<std::uint8_t>& is_sharp,
-                                                    const FeatureOptions& options) {
+                                                    const FeatureOptions& options, bool machined) {
   const Index num_faces = mesh.num_faces();
   UnionFind regions(static_cast<std::size_t>(num_faces));
   for (Index e = 0; e < topology.num_edges(); ++e) {
@@ -311,7 +330,7 @@ std::vector<std::uint8_t> borders_of_narrow_regions(const TriangleMesh& mesh, co
   // Rough: steep somewhere, unless its folds are two or more parallel lines
   // (a faceted prism's or cylinder's side: ruled, developable).
   const auto rough = [&](Index region) {
-    return steep[region] && !(options.parallel_fold_angle > 0 && folds[region] >= 2 && parallel[region]);
+    return !machined && steep[region] && !(options.parallel_fold_angle > 0 && folds[region] >= 2 && parallel[region]);
   };
   std::vector<std::uint8_t> drop(is_sharp.size(), 0);
   for (Index e = 0; e < topology.num_edges(); ++e) {
@@ -395,13 +414,18 @@ FeatureSet detect_features(const RemeshSurface& prepared, const FeatureOptions& 
   const TriangleMesh& surface = prepared.mesh();
   const MeshTopology& topology = prepared.topology();
   std::vector<Index> sharp, sharp_alone;  // the latter judged on their two faces alone
+  std::optional<PlanarFacets> facets;     // made once, where a filter below asks
+  const auto planar = [&]() -> const PlanarFacets& {
+    if (!facets) facets = planar_facets(surface, topology);
+    return *facets;
+  };
   if (options.sharp_angle > 0) {
     sharp = sharp_alone = sharp_edges(surface, topology, options.sharp_angle);
     if (options.scale > 0) {
       std::vector<Index> walls;  // where the two sides part, as at the sharp edges
       if (options.facet_folds_part_sides && !sharp.empty() && options.continuation_angle > 0 &&
           options.continuation_angle < options.sharp_angle) {
-        walls = folds_between_facets(surface, topology, options.continuation_angle, options.scale);
+        walls = folds_between_facets(topology, planar(), options.continuation_angle, options.scale);
       }
       sharp = sharp_at_scale(surface, topology, sharp, options.sharp_angle, options.scale, 0, walls);
     }
@@ -461,7 +485,10 @@ FeatureSet detect_features(const RemeshSurface& prepared, const FeatureOptions& 
       }
     }
     if (!dropped && std::max(options.min_region_width, options.min_rough_region_width) > 0) {
-      const std::vector<std::uint8_t> narrow = borders_of_narrow_regions(surface, topology, is_sharp, options);
+      const bool machined = options.machined_regions_smooth &&
+                            options.min_rough_region_width > options.min_region_width && planar().machined;
+      const std::vector<std::uint8_t> narrow =
+          borders_of_narrow_regions(surface, topology, is_sharp, options, machined);
       for (std::size_t i = 0; i < sharp.size(); ++i) {
         if (!narrow[sharp[i]] || given[sharp[i]]) continue;
         drop[i] = 1;

@@ -61,11 +61,15 @@ struct FeatureSamplingOptions {
   /// Narrow regions whose folds are parallel lines are smooth (FeatureOptions::
   /// parallel_fold_angle; 0: rough where steep).
   double parallel_fold_angle = 10;
+  /// On a machined surface no narrow region is rough (FeatureOptions::
+  /// machined_regions_smooth).
+  bool machined_regions_smooth = true;
   /// Where the chain points would be more than this share of the count with
   /// the creases round narrow smooth regions kept (FeatureOptions::
-  /// min_region_width), those round narrow faceted sides go first (judged
-  /// with parallel_fold_angle 0), then the rest, as round narrow rough ones:
-  /// the count cannot carry them.
+  /// min_region_width), those round a machined surface's narrow rough
+  /// regions go first (judged with machined_regions_smooth false), then
+  /// those round narrow faceted sides (parallel_fold_angle 0), then the
+  /// rest, as round narrow rough ones: the count cannot carry them.
   double max_share_narrow_regions = 1.0;
 };
 

@@ -68,6 +68,10 @@ struct FeatureOptions {
   double min_rough_region_width = 0;
   double smooth_region_angle = 20;
   double parallel_fold_angle = 10;
+  /// On a machined surface (as for facet_folds_part_sides) no region is
+  /// rough: its folds are the part's shape, not a scan's noise, and an
+  /// engraved stroke's or a thin rib's creases stay down to min_region_width.
+  bool machined_regions_smooth = true;
   /// A chain that turns by at least this many degrees at a vertex has a corner there.
   double corner_angle = 60;
   /// Edges kept as features whatever their angle, length or neighbours

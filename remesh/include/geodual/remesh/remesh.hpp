@@ -86,8 +86,10 @@ struct FeatureRemeshOptions {
   /// again with twice as many, this many times at most, before the remesh
   /// without features (0: never); the sites added are reported.
   int max_site_doublings = 2;
-  /// ... and where those fail too with creases round narrow faceted sides
-  /// (sampling.parallel_fold_angle), the tries and doublings run again
+  /// ... and where those fail too with creases round a machined surface's
+  /// narrow rough regions (sampling.machined_regions_smooth), the tries and
+  /// doublings run again without those, and then where they fail with
+  /// creases round narrow faceted sides (sampling.parallel_fold_angle),
   /// without those, before the remesh without features (false: not).
   bool drop_faceted_sides = true;
   /// The dual closed along the chains' sides
